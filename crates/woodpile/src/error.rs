@@ -1,0 +1,99 @@
+//! Typed errors of the library. Every variant carries the numbers a user needs to fix the problem.
+
+/// Everything that can go wrong while building or running a model.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Error {
+    /// A parameter is outside its valid range.
+    #[error("invalid {field} = {value}: {reason}")]
+    InvalidParameter {
+        /// Dotted path of the field, e.g. `chain.elements[3].diameter_m`.
+        field: String,
+        /// The offending value as given.
+        value: String,
+        /// What would be valid.
+        reason: String,
+    },
+    /// A name (material, rod length, scenario, …) that is not in its catalogue.
+    #[error("unknown {what} `{name}` (valid: {valid})")]
+    Unknown {
+        /// What kind of name it is ("material", "rod length", …).
+        what: &'static str,
+        /// The name as given.
+        name: String,
+        /// The valid names, comma separated.
+        valid: String,
+    },
+    /// Two bodies whose contact is not a Hertzian point contact (e.g. parallel cylinders, a
+    /// cylinder on a flat): the force law is not δ^{3/2}.
+    #[error("{what}: not a point contact ({reason}); give a spherical cap radius or set the contact coefficient beta directly")]
+    NotPointContact {
+        /// Which contact.
+        what: String,
+        /// Why.
+        reason: String,
+    },
+    /// The state became NaN or infinite.
+    #[error("numerical blow-up at t = {time_s:.6e} s: non-finite state at contact {contact}; reduce the time step (rk4) or tighten rtol/atol (adaptive)")]
+    NonFiniteState {
+        /// Simulation time [s].
+        time_s: f64,
+        /// Contact index in the paper's numbering (0 = striker/load, N = wall).
+        contact: usize,
+    },
+    /// A contact overlap grew beyond the range where the Hertz law is physical.
+    #[error("numerical blow-up at t = {time_s:.6e} s: overlap at contact {contact} is {overlap_m:.3e} m, beyond the physical limit {limit_m:.3e} m (10 % of the smallest radius of curvature); reduce the time step (rk4) or tighten rtol/atol (adaptive)")]
+    RunawayOverlap {
+        /// Simulation time [s].
+        time_s: f64,
+        /// Contact index in the paper's numbering.
+        contact: usize,
+        /// Overlap δ [m].
+        overlap_m: f64,
+        /// Largest physical overlap [m].
+        limit_m: f64,
+    },
+    /// The adaptive integrator could not meet its tolerance.
+    #[error("adaptive step size fell to {step_s:.3e} s at t = {time_s:.6e} s; loosen rtol/atol or use rk4 with a small fixed step")]
+    StepSizeTooSmall {
+        /// Simulation time [s].
+        time_s: f64,
+        /// The step it tried [s].
+        step_s: f64,
+    },
+}
+
+/// Result alias of the library.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+impl Error {
+    /// Shorthand for [`Error::InvalidParameter`].
+    pub fn invalid(
+        field: impl Into<String>,
+        value: impl ToString,
+        reason: impl Into<String>,
+    ) -> Self {
+        Error::InvalidParameter {
+            field: field.into(),
+            value: value.to_string(),
+            reason: reason.into(),
+        }
+    }
+}
+
+/// Checks that `value` is finite and strictly positive.
+pub fn require_positive(field: &str, value: f64) -> Result<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::invalid(field, value, "must be a finite number > 0"))
+    }
+}
+
+/// Checks that `value` is finite and not negative.
+pub fn require_non_negative(field: &str, value: f64) -> Result<f64> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::invalid(field, value, "must be a finite number >= 0"))
+    }
+}

@@ -1,0 +1,532 @@
+//! How the state advances: explicit Runge–Kutta methods given as data (Butcher tableaux) and run
+//! by one stage loop, with fixed steps or embedded error control, and dense output between steps.
+//!
+//! ## References
+//! - W. Kutta, "Beitrag zur näherungsweisen Integration totaler Differentialgleichungen", 1901
+//!   (the classical fourth-order method).
+//! - J. R. Dormand, P. J. Prince, "A family of embedded Runge–Kutta formulae", J. Comput. Appl.
+//!   Math. 6 (1980) 19–26 (DOPRI5).
+//! - E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential Equations I*, 2nd ed.,
+//!   Springer 1993, §II.4 (step-size control, initial step) and §II.6 (dense output of DOPRI5).
+
+use crate::error::{require_positive, Error, Result};
+
+/// A first-order ODE system y' = f(t, y). `rhs` takes `&mut self` so that a system can keep
+/// per-evaluation quantities (our chain keeps its contact forces).
+pub trait OdeSystem {
+    /// Length of the state vector.
+    fn dimension(&self) -> usize;
+    /// Writes f(t, y) into `dydt`. Must not allocate.
+    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]);
+}
+
+/// Continuous extension of a tableau for samples between steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DenseOutput {
+    /// Cubic Hermite interpolation from y and f at both ends of the step (4th order in y).
+    Hermite,
+    /// The Dormand–Prince 5(4) continuous extension (Hairer et al. II.6) with its coefficients d_i.
+    Dopri5([f64; 7]),
+}
+
+/// An explicit Runge–Kutta method as data (Butcher tableau).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tableau {
+    /// Name, for reports.
+    pub name: &'static str,
+    /// Order of the solution.
+    pub order: u32,
+    /// Nodes c_i.
+    pub c: Vec<f64>,
+    /// Coupling coefficients, row i holds a_{i,0..i}.
+    pub a: Vec<Vec<f64>>,
+    /// Weights b_i.
+    pub b: Vec<f64>,
+    /// Error weights b_i − b̂_i of the embedded method, if any.
+    pub error: Option<Vec<f64>>,
+    /// Whether the last stage is evaluated at the new solution (first same as last).
+    pub fsal: bool,
+    /// How to sample between steps.
+    pub dense: DenseOutput,
+}
+
+impl Tableau {
+    /// The classical fourth-order Runge–Kutta method (Kutta 1901), the paper's integrator.
+    pub fn rk4() -> Self {
+        Tableau {
+            name: "rk4",
+            order: 4,
+            c: vec![0.0, 0.5, 0.5, 1.0],
+            a: vec![vec![], vec![0.5], vec![0.0, 0.5], vec![0.0, 0.0, 1.0]],
+            b: vec![1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0],
+            error: None,
+            fsal: false,
+            dense: DenseOutput::Hermite,
+        }
+    }
+
+    /// Dormand–Prince 5(4) (Dormand & Prince 1980), FSAL, with its dense output.
+    pub fn dopri5() -> Self {
+        Tableau {
+            name: "dopri5",
+            order: 5,
+            c: vec![0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0],
+            a: vec![
+                vec![],
+                vec![1.0 / 5.0],
+                vec![3.0 / 40.0, 9.0 / 40.0],
+                vec![44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0],
+                vec![
+                    19372.0 / 6561.0,
+                    -25360.0 / 2187.0,
+                    64448.0 / 6561.0,
+                    -212.0 / 729.0,
+                ],
+                vec![
+                    9017.0 / 3168.0,
+                    -355.0 / 33.0,
+                    46732.0 / 5247.0,
+                    49.0 / 176.0,
+                    -5103.0 / 18656.0,
+                ],
+                vec![
+                    35.0 / 384.0,
+                    0.0,
+                    500.0 / 1113.0,
+                    125.0 / 192.0,
+                    -2187.0 / 6784.0,
+                    11.0 / 84.0,
+                ],
+            ],
+            b: vec![
+                35.0 / 384.0,
+                0.0,
+                500.0 / 1113.0,
+                125.0 / 192.0,
+                -2187.0 / 6784.0,
+                11.0 / 84.0,
+                0.0,
+            ],
+            error: Some(vec![
+                71.0 / 57600.0,
+                0.0,
+                -71.0 / 16695.0,
+                71.0 / 1920.0,
+                -17253.0 / 339200.0,
+                22.0 / 525.0,
+                -1.0 / 40.0,
+            ]),
+            fsal: true,
+            dense: DenseOutput::Dopri5([
+                -12715105075.0 / 11282082432.0,
+                0.0,
+                87487479700.0 / 32700410799.0,
+                -10690763975.0 / 1880347072.0,
+                701980252875.0 / 199316789632.0,
+                -1453857185.0 / 822651844.0,
+                69997945.0 / 29380423.0,
+            ]),
+        }
+    }
+
+    /// Number of stages.
+    pub fn stages(&self) -> usize {
+        self.b.len()
+    }
+}
+
+/// The integration method and its step control.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Method {
+    /// Classical RK4 with a fixed step Δt [s].
+    Rk4 {
+        /// Time step Δt [s].
+        time_step_s: f64,
+    },
+    /// Dormand–Prince 5(4) with error control: per component, the error must stay below
+    /// atol·unit_i + rtol·|y_i| (units: see [`crate::ode::ChainOde::tolerance_units`]).
+    Dopri5 {
+        /// Relative tolerance.
+        rtol: f64,
+        /// Absolute tolerance [m for displacements].
+        atol: f64,
+    },
+}
+
+impl Method {
+    /// The paper's integrator: RK4 at Δt = 0.1 µs (model.md §8).
+    pub fn paper() -> Self {
+        Method::Rk4 { time_step_s: 1e-7 }
+    }
+
+    /// The tableau this method runs.
+    pub fn tableau(&self) -> Tableau {
+        match self {
+            Method::Rk4 { .. } => Tableau::rk4(),
+            Method::Dopri5 { .. } => Tableau::dopri5(),
+        }
+    }
+
+    /// Validates the parameters against the run duration [s].
+    pub fn validate(&self, duration_s: f64) -> Result<()> {
+        match *self {
+            Method::Rk4 { time_step_s } => {
+                require_positive("run.time_step_s", time_step_s)?;
+                if time_step_s >= duration_s {
+                    return Err(Error::invalid(
+                        "run.time_step_s",
+                        time_step_s,
+                        format!("must be smaller than run.duration_s = {duration_s}"),
+                    ));
+                }
+            }
+            Method::Dopri5 { rtol, atol } => {
+                require_positive("run.rtol", rtol)?;
+                require_positive("run.atol", atol)?;
+                if rtol < 1e-14 {
+                    return Err(Error::invalid(
+                        "run.rtol",
+                        rtol,
+                        "must be at least 1e-14 (double precision)",
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Counters of the work an integration did.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct IntegratorStats {
+    /// Accepted steps.
+    pub steps: u64,
+    /// Right-hand-side evaluations.
+    pub rhs_evaluations: u64,
+    /// Rejected (adaptive) steps.
+    pub rejected_steps: u64,
+}
+
+/// Step control state.
+#[derive(Debug, Clone)]
+enum Control {
+    Fixed { h: f64 },
+    Adaptive { rtol: f64, atol: Vec<f64>, h: f64 },
+}
+
+/// Advances one ODE state step by step. Owns the state and every buffer: a step allocates nothing.
+///
+/// Invariant: after [`Integrator::new`] and after every [`Integrator::step`], the last call of
+/// `rhs` was at the current (t, y). A system that caches per-evaluation quantities (contact forces)
+/// can therefore be read right after a step at no extra cost.
+#[derive(Debug, Clone)]
+pub struct Integrator {
+    tableau: Tableau,
+    control: Control,
+    t: f64,
+    t_prev: f64,
+    y: Vec<f64>,
+    y_prev: Vec<f64>,
+    /// Stage derivatives k_i of the last step; k[0] = f(t_prev, y_prev).
+    k: Vec<Vec<f64>>,
+    /// f(t, y) at the current point.
+    f_now: Vec<f64>,
+    stage: Vec<f64>,
+    stats: IntegratorStats,
+}
+
+impl Integrator {
+    /// Starts at (t0, y0). For an adaptive method, `tolerance_units` scales atol per component.
+    pub fn new<S: OdeSystem>(
+        method: Method,
+        system: &mut S,
+        t0: f64,
+        y0: Vec<f64>,
+        tolerance_units: &[f64],
+        max_step_s: f64,
+    ) -> Self {
+        let tableau = method.tableau();
+        let n = y0.len();
+        let mut f_now = vec![0.0; n];
+        system.rhs(t0, &y0, &mut f_now);
+        let control = match method {
+            Method::Rk4 { time_step_s } => Control::Fixed { h: time_step_s },
+            Method::Dopri5 { rtol, atol } => {
+                let atol: Vec<f64> = tolerance_units.iter().map(|u| atol * u).collect();
+                let h = initial_step(
+                    system,
+                    t0,
+                    &y0,
+                    &f_now,
+                    rtol,
+                    &atol,
+                    tableau.order,
+                    max_step_s,
+                );
+                // `initial_step` evaluated the system elsewhere: restore the invariant.
+                system.rhs(t0, &y0, &mut f_now);
+                Control::Adaptive { rtol, atol, h }
+            }
+        };
+        let evals = match control {
+            Control::Fixed { .. } => 1,
+            Control::Adaptive { .. } => 3,
+        };
+        Integrator {
+            k: vec![vec![0.0; n]; tableau.stages()],
+            tableau,
+            control,
+            t: t0,
+            t_prev: t0,
+            y_prev: y0.clone(),
+            y: y0,
+            f_now,
+            stage: vec![0.0; n],
+            stats: IntegratorStats {
+                rhs_evaluations: evals,
+                ..Default::default()
+            },
+        }
+    }
+
+    /// Current time [s].
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+
+    /// Time at the start of the last step [s].
+    pub fn t_prev(&self) -> f64 {
+        self.t_prev
+    }
+
+    /// Current state.
+    pub fn y(&self) -> &[f64] {
+        &self.y
+    }
+
+    /// Work counters.
+    pub fn stats(&self) -> IntegratorStats {
+        self.stats
+    }
+
+    /// Computes the stages of a step of size h from (t, y) into `self.k` and the new state into
+    /// `self.stage`; the new point's derivative is left in `self.k[last]` for FSAL tableaux.
+    fn attempt<S: OdeSystem>(&mut self, system: &mut S, h: f64) {
+        let tab = &self.tableau;
+        let s = tab.stages();
+        let y = &self.y;
+        std::mem::swap(&mut self.k[0], &mut self.f_now);
+        for i in 1..s {
+            let stage = &mut self.stage;
+            stage.copy_from_slice(y);
+            for (j, &aij) in tab.a[i].iter().enumerate() {
+                if aij != 0.0 {
+                    let ha = h * aij;
+                    for (yi, kj) in stage.iter_mut().zip(&self.k[j]) {
+                        *yi += ha * kj;
+                    }
+                }
+            }
+            system.rhs(self.t + tab.c[i] * h, stage, &mut self.k[i]);
+        }
+        self.stats.rhs_evaluations += (s - 1) as u64;
+        if !tab.fsal {
+            let stage = &mut self.stage;
+            stage.copy_from_slice(y);
+            for (j, &bj) in tab.b.iter().enumerate() {
+                if bj != 0.0 {
+                    let hb = h * bj;
+                    for (yi, kj) in stage.iter_mut().zip(&self.k[j]) {
+                        *yi += hb * kj;
+                    }
+                }
+            }
+        }
+        // For FSAL tableaux the last stage already is the new solution: `stage` holds it.
+    }
+
+    /// Weighted RMS norm of the embedded error estimate (Hairer's sc_i = atol_i + rtol·max|y|).
+    fn error_norm(&self, h: f64, rtol: f64, atol: &[f64]) -> f64 {
+        let e = self
+            .tableau
+            .error
+            .as_ref()
+            .expect("adaptive tableau has error weights");
+        let n = self.y.len();
+        let mut sum = 0.0;
+        for i in 0..n {
+            let mut err = 0.0;
+            for (j, &ej) in e.iter().enumerate() {
+                err += ej * self.k[j][i];
+            }
+            let sc = atol[i] + rtol * self.y[i].abs().max(self.stage[i].abs());
+            let r = h * err / sc;
+            sum += r * r;
+        }
+        (sum / n as f64).sqrt()
+    }
+
+    /// Accepts the attempted step: the new state becomes current and f at it is evaluated
+    /// (or taken from the FSAL stage).
+    fn accept<S: OdeSystem>(&mut self, system: &mut S, h: f64) {
+        self.t_prev = self.t;
+        self.t += h;
+        std::mem::swap(&mut self.y_prev, &mut self.y);
+        std::mem::swap(&mut self.y, &mut self.stage);
+        if self.tableau.fsal {
+            let last = self.tableau.stages() - 1;
+            self.f_now.copy_from_slice(&self.k[last]);
+        } else {
+            system.rhs(self.t, &self.y, &mut self.f_now);
+            self.stats.rhs_evaluations += 1;
+        }
+        self.stats.steps += 1;
+    }
+
+    /// Advances one accepted step, never beyond `t_end`. Returns the step taken [s].
+    pub fn step<S: OdeSystem>(&mut self, system: &mut S, t_end: f64) -> Result<f64> {
+        match self.control {
+            Control::Fixed { h } => {
+                let h = h.min(t_end - self.t);
+                self.attempt(system, h);
+                self.accept(system, h);
+                Ok(h)
+            }
+            Control::Adaptive { .. } => {
+                // Move the control out (no allocation) so that `self` can be borrowed mutably.
+                let mut control = std::mem::replace(&mut self.control, Control::Fixed { h: 0.0 });
+                let result = match &mut control {
+                    Control::Adaptive { rtol, atol, h } => {
+                        self.adaptive_step(system, t_end, *rtol, atol, h)
+                    }
+                    Control::Fixed { .. } => unreachable!("matched above"),
+                };
+                self.control = control;
+                result
+            }
+        }
+    }
+
+    fn adaptive_step<S: OdeSystem>(
+        &mut self,
+        system: &mut S,
+        t_end: f64,
+        rtol: f64,
+        atol: &[f64],
+        h: &mut f64,
+    ) -> Result<f64> {
+        let order = f64::from(self.tableau.order);
+        let mut rejected_before = false;
+        loop {
+            let remaining = t_end - self.t;
+            let h_try = h.min(remaining);
+            if h_try < 1e-14 * self.t.abs().max(1e-9) {
+                return Err(Error::StepSizeTooSmall {
+                    time_s: self.t,
+                    step_s: h_try,
+                });
+            }
+            self.attempt(system, h_try);
+            let err = self.error_norm(h_try, rtol, atol);
+            let mut factor = 0.9 * err.powf(-1.0 / order);
+            if !factor.is_finite() {
+                factor = if err.is_nan() { 0.2 } else { 5.0 };
+            }
+            if err <= 1.0 {
+                let grow = if rejected_before { 1.0 } else { 5.0 };
+                self.accept(system, h_try);
+                *h = h.max(h_try) * factor.clamp(0.2, grow);
+                return Ok(h_try);
+            }
+            // Rejected: restore the derivative at the current point, shrink and retry. The
+            // accepted attempt's last stage (FSAL) is evaluated at the new point, which restores
+            // the invariant that the last evaluation is at the current state.
+            std::mem::swap(&mut self.k[0], &mut self.f_now);
+            self.stats.rejected_steps += 1;
+            rejected_before = true;
+            *h = h_try * factor.clamp(0.2, 0.9);
+        }
+    }
+
+    /// The solution at time t in [t_prev, t] of the last step, written into `out`.
+    pub fn interpolate(&self, t: f64, out: &mut [f64]) {
+        let h = self.t - self.t_prev;
+        if h <= 0.0 || t >= self.t {
+            out.copy_from_slice(&self.y);
+            return;
+        }
+        let th = ((t - self.t_prev) / h).clamp(0.0, 1.0);
+        let (y0, y1) = (&self.y_prev, &self.y);
+        match self.tableau.dense {
+            DenseOutput::Hermite => {
+                let (f0, f1) = (&self.k[0], &self.f_now);
+                let h00 = (1.0 + 2.0 * th) * (1.0 - th) * (1.0 - th);
+                let h10 = th * (1.0 - th) * (1.0 - th);
+                let h01 = th * th * (3.0 - 2.0 * th);
+                let h11 = th * th * (th - 1.0);
+                for i in 0..out.len() {
+                    out[i] = h00 * y0[i] + h * h10 * f0[i] + h01 * y1[i] + h * h11 * f1[i];
+                }
+            }
+            DenseOutput::Dopri5(d) => {
+                let k = &self.k;
+                for i in 0..out.len() {
+                    let ydiff = y1[i] - y0[i];
+                    let bspl = h * k[0][i] - ydiff;
+                    let r4 = ydiff - h * k[6][i] - bspl;
+                    let mut r5 = 0.0;
+                    for (j, &dj) in d.iter().enumerate() {
+                        r5 += dj * k[j][i];
+                    }
+                    r5 *= h;
+                    out[i] =
+                        y0[i] + th * (ydiff + (1.0 - th) * (bspl + th * (r4 + (1.0 - th) * r5)));
+                }
+            }
+        }
+    }
+}
+
+/// Hairer's starting step (Solving ODEs I, II.4): h0 from the sizes of y and f, refined by one
+/// explicit Euler step's estimate of the second derivative. Evaluates the system twice.
+#[allow(clippy::too_many_arguments)]
+fn initial_step<S: OdeSystem>(
+    system: &mut S,
+    t0: f64,
+    y0: &[f64],
+    f0: &[f64],
+    rtol: f64,
+    atol: &[f64],
+    order: u32,
+    max_step_s: f64,
+) -> f64 {
+    let n = y0.len();
+    let norm = |v: &dyn Fn(usize) -> f64| {
+        ((0..n)
+            .map(|i| {
+                let sc = atol[i] + rtol * y0[i].abs();
+                (v(i) / sc).powi(2)
+            })
+            .sum::<f64>()
+            / n as f64)
+            .sqrt()
+    };
+    let d0 = norm(&|i| y0[i]);
+    let d1 = norm(&|i| f0[i]);
+    let h0 = if d0 < 1e-5 || d1 < 1e-5 {
+        1e-6 * max_step_s.min(1e-3)
+    } else {
+        0.01 * d0 / d1
+    };
+    let h0 = h0.min(max_step_s);
+    let y1: Vec<f64> = (0..n).map(|i| y0[i] + h0 * f0[i]).collect();
+    let mut f1 = vec![0.0; n];
+    system.rhs(t0 + h0, &y1, &mut f1);
+    let d2 = norm(&|i| f1[i] - f0[i]) / h0;
+    let h1 = if d1.max(d2) <= 1e-15 {
+        (h0 * 1e-3).max(1e-12)
+    } else {
+        (0.01 / d1.max(d2)).powf(1.0 / f64::from(order + 1))
+    };
+    (100.0 * h0).min(h1).min(max_step_s)
+}

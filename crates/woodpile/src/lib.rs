@@ -1,0 +1,53 @@
+//! # woodpile
+//!
+//! Discrete element model of locally resonant woodpile metamaterials under impact and blast
+//! (Kim, Yang et al., Int. J. Impact Eng. 2017; the project's specification is `model.md`).
+//!
+//! ## Map of the crate, in the order a user works
+//!
+//! 1. **Build a chain** — [`model`]: [`Material`] presets, exact Hertz contact coefficients
+//!    ([`model::hertz_beta`]), unit cells with internal resonators ([`UnitCell`], the paper's
+//!    Table 1 catalogue, effective mass and band edges), and the [`Chain`] of elements on a
+//!    [`Wall`], built by [`ChainBuilder`].
+//! 2. **Excite it** — [`excitation`]: a [`Striker`] sphere or a [`BlastProfile`] force.
+//! 3. **Integrate** — [`ode`] compiles the chain into y' = f(t, y) on flat `f64` slices;
+//!    [`integrate`] advances it with a Butcher [`Tableau`] (RK4, Dormand–Prince 5(4)).
+//! 4. **Run and record** — [`simulate()`] owns the loop, samples on a uniform grid for a
+//!    [`Recorder`] (e.g. [`Trajectory`]) and returns the figures of merit ([`RunSummary`]).
+//!
+//! ```
+//! use woodpile::{simulate, CellModel, ChainBuilder, Excitation, RunSettings, Striker, Trajectory};
+//!
+//! // The paper's 20-rod impact problem with a short chain: 80, 40 and 20 mm rods on the sensor.
+//! let chain = ChainBuilder::table1_rods(&[80, 40, 20], CellModel::Resonant)?.build()?;
+//! let impact = Excitation::Impact(Striker::paper());
+//! let settings = RunSettings { duration_s: 5e-4, ..RunSettings::paper_impact() };
+//! let mut trajectory = Trajectory::default();
+//! let summary = simulate(&chain, &impact, &settings, &mut trajectory)?;
+//! assert!(summary.transmitted_peak_force_n > 0.0);
+//! assert!(summary.energy.max_relative_error < 1e-6);
+//! assert_eq!(trajectory.len(), 501);
+//! # Ok::<(), woodpile::Error>(())
+//! ```
+//!
+//! ## Units and numbering
+//! SI throughout. Displacements are positive from the striker toward the wall. Layer 0 is the
+//! striker (or the load), layers 1..N the elements top to bottom; contact 0 is striker–element 1
+//! (or the load), contact i is element i – element i+1, contact N is element N – wall.
+
+pub mod error;
+pub mod excitation;
+pub mod integrate;
+pub mod model;
+pub mod ode;
+pub mod record;
+pub mod simulate;
+
+pub use error::{Error, Result};
+pub use excitation::{velocity_from_drop_height, BlastProfile, Excitation, Striker};
+pub use integrate::{IntegratorStats, Method, Tableau};
+pub use model::{
+    Body, CellModel, Chain, ChainBuilder, Element, Material, Resonator, Surface, UnitCell, Wall,
+};
+pub use record::{Layout, Recorder, Sample, Trajectory};
+pub use simulate::{simulate, EnergyBalance, Restitution, RunSettings, RunSummary};

@@ -1,0 +1,333 @@
+//! The chain as an ODE system y' = f(t, y): the equations of motion of model.md §4 in flat arrays.
+//!
+//! State layout (n = number of point masses = P primaries + R resonators):
+//!
+//! ```text
+//! y = [ u_0 … u_{P−1} | w_0 … w_{R−1} | u̇_0 … u̇_{P−1} | ẇ_0 … ẇ_{R−1} | W (blast only) ]
+//! ```
+//!
+//! Primaries are the striker (impact only) then the elements top to bottom; resonators are stored
+//! with the index of their primary. W is the work done by the blast load, ∫ F(t) u̇_1 dt, integrated
+//! with the motion so that the energy balance can be closed to the integrator's accuracy.
+//!
+//! Contact forces are computed once per evaluation into "slots": slot i acts on top of primary i,
+//! slot i+1 below it; slot 0 is the load (blast) or nothing (impact, above the striker), slot P the
+//! wall. The paper's contact c is slot c + 1 − s and its layer L is primary L − s, where s = 1 for a
+//! blast (no striker body) and 0 for an impact.
+
+use crate::error::{Error, Result};
+use crate::excitation::{BlastProfile, Excitation};
+use crate::integrate::OdeSystem;
+use crate::model::Chain;
+
+/// The compiled equations of motion of one chain under one excitation.
+#[derive(Debug, Clone)]
+pub struct ChainOde {
+    n_primary: usize,
+    n_dof: usize,
+    /// 0 for impact (primary 0 is the striker), 1 for blast.
+    shift: usize,
+    mass_kg: Vec<f64>,
+    inv_mass: Vec<f64>,
+    res_owner: Vec<usize>,
+    res_mass_kg: Vec<f64>,
+    res_inv_mass: Vec<f64>,
+    res_stiffness: Vec<f64>,
+    /// β per slot (slot 0 unused); 0 for a free end.
+    beta: Vec<f64>,
+    overlap_limit_m: Vec<f64>,
+    load: Option<BlastProfile>,
+    /// Contact force per slot at the last evaluation [N].
+    force_n: Vec<f64>,
+    /// Signed overlap per slot at the last evaluation [m].
+    overlap_m: Vec<f64>,
+    striker_velocity_m_s: f64,
+}
+
+impl ChainOde {
+    /// Compiles a chain and its excitation. Validates the excitation.
+    pub fn new(chain: &Chain, excitation: &Excitation) -> Result<Self> {
+        excitation.validate()?;
+        let n = chain.len();
+        let mut mass_kg = Vec::with_capacity(n + 1);
+        let mut beta = vec![0.0];
+        let mut overlap_limit_m = vec![f64::INFINITY];
+        let (shift, load, striker_velocity_m_s) = match excitation {
+            Excitation::Impact(s) => {
+                mass_kg.push(s.mass_kg());
+                beta.push(s.contact_beta(chain)?);
+                let top = chain.top_surface().smallest_radius_m();
+                overlap_limit_m.push(0.1 * top.min(0.5 * s.diameter_m));
+                (0, None, s.velocity_m_s)
+            }
+            Excitation::Blast(p) => (1, Some(p.clone()), 0.0),
+        };
+        let n_striker = mass_kg.len();
+        let mut res_owner = Vec::new();
+        let mut res_mass_kg = Vec::new();
+        let mut res_stiffness = Vec::new();
+        for (i, e) in chain.elements().iter().enumerate() {
+            mass_kg.push(e.cell.primary_mass_kg);
+            for r in &e.cell.resonators {
+                res_owner.push(n_striker + i);
+                res_mass_kg.push(r.mass_kg);
+                res_stiffness.push(r.stiffness_n_per_m);
+            }
+        }
+        beta.extend_from_slice(chain.inner_betas());
+        beta.push(chain.wall_beta().unwrap_or(0.0));
+        overlap_limit_m.extend_from_slice(chain.overlap_limits_m());
+        let n_primary = mass_kg.len();
+        debug_assert_eq!(beta.len(), n_primary + 1);
+        Ok(ChainOde {
+            n_primary,
+            n_dof: n_primary + res_mass_kg.len(),
+            shift,
+            inv_mass: mass_kg.iter().map(|m| 1.0 / m).collect(),
+            mass_kg,
+            res_owner,
+            res_inv_mass: res_mass_kg.iter().map(|m| 1.0 / m).collect(),
+            res_mass_kg,
+            res_stiffness,
+            beta,
+            overlap_limit_m,
+            load,
+            force_n: vec![0.0; n_primary + 1],
+            overlap_m: vec![0.0; n_primary + 1],
+            striker_velocity_m_s,
+        })
+    }
+
+    /// Number of layers N + 1 (layer 0 = striker or load) = number of paper contacts.
+    pub fn n_layers(&self) -> usize {
+        self.n_primary + self.shift
+    }
+
+    /// Number of elements N.
+    pub fn n_elements(&self) -> usize {
+        self.n_primary + self.shift - 1
+    }
+
+    /// Number of point masses (primaries and resonators).
+    pub fn n_dof(&self) -> usize {
+        self.n_dof
+    }
+
+    /// Whether primary 0 is a striker.
+    pub fn has_striker(&self) -> bool {
+        self.shift == 0
+    }
+
+    /// Whether the top element is loaded by a prescribed force.
+    pub fn is_blast(&self) -> bool {
+        self.load.is_some()
+    }
+
+    /// The initial state: everything at rest and touching, the striker moving at v0.
+    pub fn initial_state(&self) -> Vec<f64> {
+        let mut y = vec![0.0; self.dimension()];
+        if self.has_striker() {
+            y[self.n_dof] = self.striker_velocity_m_s;
+        }
+        y
+    }
+
+    /// Initial striker velocity v0 [m/s] (0 for a blast).
+    pub fn striker_velocity_m_s(&self) -> f64 {
+        self.striker_velocity_m_s
+    }
+
+    /// Striker mass [kg] (None for a blast).
+    pub fn striker_mass_kg(&self) -> Option<f64> {
+        self.has_striker().then(|| self.mass_kg[0])
+    }
+
+    /// Contact forces [N] of paper contacts 0..=N at the last evaluation of [`OdeSystem::rhs`].
+    pub fn contact_forces_n(&self) -> &[f64] {
+        &self.force_n[1 - self.shift..]
+    }
+
+    /// Signed overlaps [m] of paper contacts 0..=N at the last evaluation (0 for a load).
+    pub fn contact_overlaps_m(&self) -> &[f64] {
+        &self.overlap_m[1 - self.shift..]
+    }
+
+    /// Largest physical overlaps [m] of paper contacts 0..=N.
+    pub fn overlap_limits_m(&self) -> &[f64] {
+        &self.overlap_limit_m[1 - self.shift..]
+    }
+
+    /// Rates dF/dt [N/s] of paper contacts 0..=N for state `y`, which must be the state of the last
+    /// evaluation. The load's rate is NaN (its peak is not refined).
+    pub fn contact_force_rates(&self, y: &[f64], out: &mut [f64]) {
+        let v = &y[self.n_dof..2 * self.n_dof];
+        let p = self.n_primary;
+        let first = 1 - self.shift;
+        for (c, slot) in (first..=p).enumerate() {
+            let d = self.overlap_m[slot];
+            let f = self.force_n[slot];
+            out[c] = if slot == 0 {
+                f64::NAN
+            } else if d > 0.0 {
+                let ddot = if slot == p {
+                    v[p - 1]
+                } else {
+                    v[slot - 1] - v[slot]
+                };
+                1.5 * f * ddot / d
+            } else {
+                0.0
+            };
+        }
+    }
+
+    /// Checks the last evaluation for a blow-up: a non-finite force or an overlap beyond the
+    /// physical range of its contact.
+    pub fn check_contacts(&self, time_s: f64) -> Result<()> {
+        let first = 1 - self.shift;
+        for slot in first..=self.n_primary {
+            let (f, d) = (self.force_n[slot], self.overlap_m[slot]);
+            let contact = slot - first;
+            if !f.is_finite() || !d.is_finite() && slot > 0 {
+                return Err(Error::NonFiniteState { time_s, contact });
+            }
+            if d > self.overlap_limit_m[slot] {
+                return Err(Error::RunawayOverlap {
+                    time_s,
+                    contact,
+                    overlap_m: d,
+                    limit_m: self.overlap_limit_m[slot],
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Energy of every layer 0..=N [J] into `out` (model.md §7: kinetic + internal springs + half of
+    /// each adjacent contact's Hertz potential (2/5) β δ^{5/2}); returns the wall's half of contact N.
+    pub fn layer_energies_j(&self, y: &[f64], out: &mut [f64]) -> f64 {
+        let (p, nd) = (self.n_primary, self.n_dof);
+        let (x, v) = (&y[..nd], &y[nd..2 * nd]);
+        let potential = |slot: usize| {
+            let d = if slot == 0 {
+                return 0.0;
+            } else if slot == p {
+                x[p - 1]
+            } else {
+                x[slot - 1] - x[slot]
+            };
+            if d > 0.0 {
+                0.4 * self.beta[slot] * d * d * d.sqrt()
+            } else {
+                0.0
+            }
+        };
+        out.fill(0.0);
+        for i in 0..p {
+            out[i + self.shift] = 0.5 * self.mass_kg[i] * v[i] * v[i];
+        }
+        // Contact potentials, split half–half between the two bodies.
+        for slot in 1..=p {
+            let u = potential(slot);
+            out[slot - 1 + self.shift] += 0.5 * u;
+            if slot < p {
+                out[slot + self.shift] += 0.5 * u;
+            }
+        }
+        for j in 0..self.res_owner.len() {
+            let o = self.res_owner[j];
+            let ext = x[p + j] - x[o];
+            out[o + self.shift] += 0.5 * self.res_mass_kg[j] * v[p + j] * v[p + j]
+                + 0.5 * self.res_stiffness[j] * ext * ext;
+        }
+        0.5 * potential(p)
+    }
+
+    /// Work done by the load so far [J] (0 for an impact).
+    pub fn input_work_j(&self, y: &[f64]) -> f64 {
+        if self.is_blast() {
+            y[2 * self.n_dof]
+        } else {
+            0.0
+        }
+    }
+
+    /// Displacements [m] of the elements' primary masses (rods 1..N).
+    pub fn element_displacements<'a>(&self, y: &'a [f64]) -> &'a [f64] {
+        &y[1 - self.shift..self.n_primary]
+    }
+
+    /// Velocities [m/s] of the elements' primary masses.
+    pub fn element_velocities<'a>(&self, y: &'a [f64]) -> &'a [f64] {
+        &y[self.n_dof + 1 - self.shift..self.n_dof + self.n_primary]
+    }
+
+    /// Striker (position [m], velocity [m/s]), None for a blast.
+    pub fn striker_state(&self, y: &[f64]) -> Option<(f64, f64)> {
+        self.has_striker().then(|| (y[0], y[self.n_dof]))
+    }
+
+    /// Velocity of the top element's primary mass [m/s].
+    pub fn top_element_velocity(&self, y: &[f64]) -> f64 {
+        y[self.n_dof + 1 - self.shift]
+    }
+
+    /// Absolute-tolerance units per state component for the adaptive integrator: 1 for
+    /// displacements [m], 1/τ with τ = 1 µs for velocities [m/s], 100 N for the work [J].
+    pub fn tolerance_units(&self) -> Vec<f64> {
+        let mut u = vec![1.0; self.n_dof];
+        u.extend(std::iter::repeat_n(1e6, self.n_dof));
+        if self.is_blast() {
+            u.push(100.0);
+        }
+        u
+    }
+}
+
+impl OdeSystem for ChainOde {
+    fn dimension(&self) -> usize {
+        2 * self.n_dof + usize::from(self.is_blast())
+    }
+
+    #[inline]
+    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let (p, nd) = (self.n_primary, self.n_dof);
+        let (x, v) = (&y[..nd], &y[nd..2 * nd]);
+        let (dx, rest) = dydt.split_at_mut(nd);
+        let dv = &mut rest[..nd];
+        dx.copy_from_slice(v);
+        let force = &mut self.force_n[..=p];
+        let overlap = &mut self.overlap_m[..=p];
+        let beta = &self.beta[..=p];
+        force[0] = match &self.load {
+            Some(l) => l.force_n(t),
+            None => 0.0,
+        };
+        for i in 1..p {
+            let d = x[i - 1] - x[i];
+            overlap[i] = d;
+            let dp = d.max(0.0);
+            force[i] = beta[i] * dp * dp.sqrt();
+        }
+        let d = x[p - 1];
+        overlap[p] = d;
+        let dp = d.max(0.0);
+        force[p] = beta[p] * dp * dp.sqrt();
+        let inv_mass = &self.inv_mass[..p];
+        for i in 0..p {
+            dv[i] = (force[i] - force[i + 1]) * inv_mass[i];
+        }
+        let r = self.res_owner.len();
+        let (xr, ar) = (&x[p..p + r], &self.res_owner[..r]);
+        let (kr, imr) = (&self.res_stiffness[..r], &self.res_inv_mass[..r]);
+        for j in 0..r {
+            let o = ar[j];
+            let s = kr[j] * (xr[j] - x[o]);
+            dv[p + j] = -s * imr[j];
+            dv[o] += s * inv_mass[o];
+        }
+        if self.load.is_some() {
+            rest[nd] = force[0] * v[0];
+        }
+    }
+}

@@ -1,0 +1,385 @@
+//! Who owns the loop: runs a chain under an excitation, samples on a uniform grid for recorders,
+//! and computes the figures of merit of model.md §8 over every integration step.
+
+use crate::error::{require_positive, Error, Result};
+use crate::excitation::Excitation;
+use crate::integrate::{Integrator, IntegratorStats, Method, OdeSystem};
+use crate::model::Chain;
+use crate::ode::ChainOde;
+use crate::record::{Layout, Recorder, Sample};
+
+/// How long, how and how often to sample.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunSettings {
+    /// Simulated time T [s].
+    pub duration_s: f64,
+    /// Integration method.
+    pub method: Method,
+    /// Spacing of the uniform sample grid Δs [s].
+    pub sample_interval_s: f64,
+}
+
+impl RunSettings {
+    /// model.md §8 for an impact: 2 ms, RK4 at 0.1 µs, samples every 1 µs.
+    pub fn paper_impact() -> Self {
+        RunSettings {
+            duration_s: 2e-3,
+            method: Method::paper(),
+            sample_interval_s: 1e-6,
+        }
+    }
+
+    /// model.md §8 for a blast: 3 ms, RK4 at 0.1 µs, samples every 1 µs.
+    pub fn paper_blast() -> Self {
+        RunSettings {
+            duration_s: 3e-3,
+            ..Self::paper_impact()
+        }
+    }
+
+    /// The defaults for an excitation.
+    pub fn paper_for(excitation: &Excitation) -> Self {
+        match excitation {
+            Excitation::Impact(_) => Self::paper_impact(),
+            Excitation::Blast(_) => Self::paper_blast(),
+        }
+    }
+
+    /// Validates every field (names as in a scenario file's `[run]` table).
+    pub fn validate(&self) -> Result<()> {
+        require_positive("run.duration_s", self.duration_s)?;
+        require_positive("run.sample_interval_s", self.sample_interval_s)?;
+        if self.sample_interval_s > self.duration_s {
+            return Err(Error::invalid(
+                "run.sample_interval_s",
+                self.sample_interval_s,
+                format!("must not exceed run.duration_s = {}", self.duration_s),
+            ));
+        }
+        if self.duration_s / self.sample_interval_s > 1e8 {
+            return Err(Error::invalid(
+                "run.sample_interval_s",
+                self.sample_interval_s,
+                "gives more than 1e8 samples; choose a larger interval",
+            ));
+        }
+        self.method.validate(self.duration_s)
+    }
+
+    /// Number of samples t_k = k Δs ≤ T, k = 0, 1, …
+    pub fn n_samples(&self) -> usize {
+        (self.duration_s / self.sample_interval_s * (1.0 + 1e-12)).floor() as usize + 1
+    }
+}
+
+/// The striker's rebound.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Restitution {
+    /// e = −v_s(end)/v0. Without gravity the striker's velocity is constant once it has left.
+    pub coefficient: f64,
+    /// True when the striker had left for good at the end (out of contact, moving away faster
+    /// than element 1); false means the run ended too early for a final value.
+    pub separated: bool,
+}
+
+/// Energy bookkeeping of a run (model.md §7).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnergyBalance {
+    /// Total energy at t = 0 [J].
+    pub initial_j: f64,
+    /// Total energy at the end [J].
+    pub final_j: f64,
+    /// Work done by the load over the run [J] (0 for an impact).
+    pub input_work_j: f64,
+    /// Largest |E(t) − E(0) − W(t)| over the samples, relative to E(0) (impact) or to the largest
+    /// |W| (blast).
+    pub max_relative_error: f64,
+}
+
+/// Figures of merit of one run (model.md §8).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSummary {
+    /// Peak force of every contact 0..=N over the whole run [N].
+    pub contact_peak_forces_n: Vec<f64>,
+    /// Time of each peak [s].
+    pub contact_peak_times_s: Vec<f64>,
+    /// Incident force: the peak of contact 1 [N].
+    pub incident_peak_force_n: f64,
+    /// Transmitted force: the peak of contact N (the wall) [N].
+    pub transmitted_peak_force_n: f64,
+    /// Transmitted / incident.
+    pub transmission_ratio: f64,
+    /// The striker's rebound (impact only).
+    pub restitution: Option<Restitution>,
+    /// Energy balance.
+    pub energy: EnergyBalance,
+    /// Integrator work.
+    pub stats: IntegratorStats,
+    /// Number of samples delivered.
+    pub n_samples: usize,
+    /// Wall-clock time of the run [s].
+    pub wall_time_s: f64,
+}
+
+/// Tracks the peak of each contact force over every step, refining a maximum that falls between
+/// two steps with the cubic Hermite interpolant of F and dF/dt at the step ends (error O(h⁴)).
+#[derive(Debug, Clone)]
+struct PeakTracker {
+    peak: Vec<f64>,
+    time: Vec<f64>,
+    prev_force: Vec<f64>,
+    prev_rate: Vec<f64>,
+    rate: Vec<f64>,
+}
+
+impl PeakTracker {
+    fn new(n: usize) -> Self {
+        PeakTracker {
+            peak: vec![0.0; n],
+            time: vec![0.0; n],
+            prev_force: vec![0.0; n],
+            prev_rate: vec![0.0; n],
+            rate: vec![0.0; n],
+        }
+    }
+
+    /// Starts from the forces (and `self.rate`) at t = 0.
+    fn start(&mut self, force: &[f64]) {
+        self.peak.copy_from_slice(force);
+        self.prev_force.copy_from_slice(force);
+        self.prev_rate.copy_from_slice(&self.rate);
+    }
+
+    /// Updates with the forces and rates at the end of a step [t0, t1].
+    fn update(&mut self, t0: f64, t1: f64, force: &[f64]) {
+        let h = t1 - t0;
+        for c in 0..force.len() {
+            let (f1, d1) = (force[c], self.rate[c]);
+            let (f0, d0) = (self.prev_force[c], self.prev_rate[c]);
+            if f1 > self.peak[c] {
+                self.peak[c] = f1;
+                self.time[c] = t1;
+            }
+            if d0 > 0.0 && d1 <= 0.0 {
+                if let Some((theta, f)) = hermite_max(f0, d0 * h, f1, d1 * h) {
+                    if f > self.peak[c] {
+                        self.peak[c] = f;
+                        self.time[c] = t0 + theta * h;
+                    }
+                }
+            }
+            self.prev_force[c] = f1;
+            self.prev_rate[c] = d1;
+        }
+    }
+}
+
+/// Maximum on (0, 1) of the cubic Hermite interpolant with values f0, f1 and scaled slopes
+/// s0 = h f'(t0), s1 = h f'(t1): returns (θ, value).
+fn hermite_max(f0: f64, s0: f64, f1: f64, s1: f64) -> Option<(f64, f64)> {
+    let p = |t: f64| {
+        let u = 1.0 - t;
+        (1.0 + 2.0 * t) * u * u * f0 + t * u * u * s0 + t * t * (3.0 - 2.0 * t) * f1
+            - t * t * u * s1
+    };
+    // p'(θ) = a θ² + b θ + c
+    let a = 6.0 * f0 + 3.0 * s0 - 6.0 * f1 + 3.0 * s1;
+    let b = -6.0 * f0 - 4.0 * s0 + 6.0 * f1 - 2.0 * s1;
+    let c = s0;
+    let mut best: Option<(f64, f64)> = None;
+    let mut consider = |t: f64| {
+        if t > 0.0 && t < 1.0 {
+            let v = p(t);
+            if best.is_none_or(|(_, bv)| v > bv) {
+                best = Some((t, v));
+            }
+        }
+    };
+    if a.abs() < 1e-300 {
+        if b != 0.0 {
+            consider(-c / b);
+        }
+    } else {
+        let disc = b * b - 4.0 * a * c;
+        if disc >= 0.0 {
+            let q = -0.5 * (b + b.signum() * disc.sqrt());
+            consider(q / a);
+            if q != 0.0 {
+                consider(c / q);
+            }
+        }
+    }
+    best
+}
+
+/// Buffers for observing a state at a sample time.
+struct Observer {
+    energies: Vec<f64>,
+    scratch: Vec<f64>,
+}
+
+/// Runs `chain` under `excitation` and hands every sample to `recorder`.
+///
+/// Errors: invalid settings or excitation ([`Error::InvalidParameter`]), a blow-up
+/// ([`Error::NonFiniteState`], [`Error::RunawayOverlap`]) or, for the adaptive method,
+/// [`Error::StepSizeTooSmall`].
+pub fn simulate(
+    chain: &Chain,
+    excitation: &Excitation,
+    settings: &RunSettings,
+    recorder: &mut dyn Recorder,
+) -> Result<RunSummary> {
+    settings.validate()?;
+    let started = std::time::Instant::now();
+    let mut ode = ChainOde::new(chain, excitation)?;
+    let n_contacts = ode.n_layers();
+    let n_samples = settings.n_samples();
+    let y0 = ode.initial_state();
+    let dim = ode.dimension();
+    let units = ode.tolerance_units();
+    let mut integrator = Integrator::new(
+        settings.method,
+        &mut ode,
+        0.0,
+        y0,
+        &units,
+        settings.sample_interval_s,
+    );
+    recorder.start(&Layout {
+        n_elements: ode.n_elements(),
+        has_striker: ode.has_striker(),
+        n_samples,
+    });
+    let mut peaks = PeakTracker::new(n_contacts);
+    let mut obs = Observer {
+        energies: vec![0.0; n_contacts],
+        scratch: vec![0.0; dim],
+    };
+    let mut y_sample = vec![0.0; dim];
+    // The integrator's last evaluation was at t = 0: the force cache holds the initial forces.
+    ode.contact_force_rates(integrator.y(), &mut peaks.rate);
+    peaks.start(ode.contact_forces_n());
+    let initial_energy = observe(&mut ode, 0.0, integrator.y(), true, &mut obs, recorder);
+    let reference_energy = if ode.has_striker() {
+        initial_energy.total
+    } else {
+        0.0
+    };
+    let mut max_abs_error = 0.0_f64;
+    let mut max_abs_work = 0.0_f64;
+    let mut next_sample = 1usize;
+    let sample_time = |k: usize| (k as f64 * settings.sample_interval_s).min(settings.duration_s);
+    let t_end = settings.duration_s;
+    let mut last = initial_energy;
+    while integrator.t() < t_end * (1.0 - 1e-14) {
+        integrator.step(&mut ode, t_end)?;
+        let (t0, t1) = (integrator.t_prev(), integrator.t());
+        ode.check_contacts(t1)?;
+        ode.contact_force_rates(integrator.y(), &mut peaks.rate);
+        peaks.update(t0, t1, ode.contact_forces_n());
+        while next_sample < n_samples && sample_time(next_sample) <= t1 * (1.0 + 1e-12) {
+            let ts = sample_time(next_sample);
+            let at_step = (ts - t1).abs() <= 1e-9 * settings.sample_interval_s;
+            let y = if at_step {
+                integrator.y()
+            } else {
+                integrator.interpolate(ts, &mut y_sample);
+                &y_sample
+            };
+            last = observe(&mut ode, ts, y, at_step, &mut obs, recorder);
+            if !last.total.is_finite() {
+                return Err(Error::NonFiniteState {
+                    time_s: ts,
+                    contact: 0,
+                });
+            }
+            max_abs_error =
+                max_abs_error.max((last.total - initial_energy.total - last.work).abs());
+            max_abs_work = max_abs_work.max(last.work.abs());
+            next_sample += 1;
+        }
+    }
+    let y_end = integrator.y();
+    let forces_end = ode.contact_forces_n();
+    let restitution = ode.striker_state(y_end).map(|(_, vs)| {
+        let v0 = ode.striker_velocity_m_s();
+        let v1 = ode.top_element_velocity(y_end);
+        Restitution {
+            coefficient: -vs / v0,
+            separated: forces_end[0] == 0.0 && vs < v1 && vs < 0.0,
+        }
+    });
+    let peak = &peaks.peak;
+    let n = n_contacts - 1;
+    let incident = peak[1.min(n)];
+    let transmitted = peak[n];
+    let scale = if ode.has_striker() {
+        reference_energy
+    } else {
+        max_abs_work
+    };
+    Ok(RunSummary {
+        contact_peak_forces_n: peaks.peak.clone(),
+        contact_peak_times_s: peaks.time.clone(),
+        incident_peak_force_n: incident,
+        transmitted_peak_force_n: transmitted,
+        transmission_ratio: if incident > 0.0 {
+            transmitted / incident
+        } else {
+            0.0
+        },
+        restitution,
+        energy: EnergyBalance {
+            initial_j: initial_energy.total,
+            final_j: last.total,
+            input_work_j: last.work,
+            max_relative_error: if scale > 0.0 {
+                max_abs_error / scale
+            } else {
+                0.0
+            },
+        },
+        stats: integrator.stats(),
+        n_samples: next_sample,
+        wall_time_s: started.elapsed().as_secs_f64(),
+    })
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Energies {
+    total: f64,
+    work: f64,
+}
+
+/// Computes the observables at (t, y) and hands them to the recorder. `cached` says the ODE's
+/// force cache is already at y (the state of the last step); otherwise it is evaluated here
+/// (an observation, not counted in the integrator's statistics).
+fn observe(
+    ode: &mut ChainOde,
+    t: f64,
+    y: &[f64],
+    cached: bool,
+    obs: &mut Observer,
+    recorder: &mut dyn Recorder,
+) -> Energies {
+    if !cached {
+        ode.rhs(t, y, &mut obs.scratch);
+    }
+    let wall = ode.layer_energies_j(y, &mut obs.energies);
+    let work = ode.input_work_j(y);
+    let sample = Sample {
+        time_s: t,
+        contact_forces_n: ode.contact_forces_n(),
+        layer_energies_j: &obs.energies,
+        wall_energy_j: wall,
+        input_work_j: work,
+        displacements_m: ode.element_displacements(y),
+        velocities_m_s: ode.element_velocities(y),
+        striker: ode.striker_state(y),
+    };
+    recorder.record(&sample);
+    Energies {
+        total: sample.total_energy_j(),
+        work,
+    }
+}
