@@ -35,11 +35,13 @@
 //! striker (or the load), layers 1..N the elements top to bottom; contact 0 is striker–element 1
 //! (or the load), contact i is element i – element i+1, contact N is element N – wall.
 
+pub mod analysis;
 pub mod error;
 pub mod excitation;
 pub mod integrate;
 pub mod model;
 pub mod ode;
+pub mod optimize;
 pub mod record;
 pub mod simulate;
 

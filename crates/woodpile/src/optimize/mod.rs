@@ -1,0 +1,2 @@
+//! Breeder genetic algorithm for the element arrangement that transmits the least force
+//! (model.md §11). Placeholder: being written.
