@@ -223,6 +223,7 @@ enum Control {
 pub struct Integrator {
     tableau: Tableau,
     control: Control,
+    t0: f64,
     t: f64,
     t_prev: f64,
     y: Vec<f64>,
@@ -232,6 +233,8 @@ pub struct Integrator {
     /// f(t, y) at the current point.
     f_now: Vec<f64>,
     stage: Vec<f64>,
+    /// Embedded error estimate of the last attempt.
+    error: Vec<f64>,
     stats: IntegratorStats,
 }
 
@@ -276,12 +279,14 @@ impl Integrator {
             k: vec![vec![0.0; n]; tableau.stages()],
             tableau,
             control,
+            t0,
             t: t0,
             t_prev: t0,
             y_prev: y0.clone(),
             y: y0,
             f_now,
             stage: vec![0.0; n],
+            error: vec![0.0; n],
             stats: IntegratorStats {
                 rhs_evaluations: evals,
                 ..Default::default()
@@ -317,53 +322,39 @@ impl Integrator {
         let y = &self.y;
         std::mem::swap(&mut self.k[0], &mut self.f_now);
         for i in 1..s {
-            let stage = &mut self.stage;
-            stage.copy_from_slice(y);
-            for (j, &aij) in tab.a[i].iter().enumerate() {
-                if aij != 0.0 {
-                    let ha = h * aij;
-                    for (yi, kj) in stage.iter_mut().zip(&self.k[j]) {
-                        *yi += ha * kj;
-                    }
-                }
-            }
-            system.rhs(self.t + tab.c[i] * h, stage, &mut self.k[i]);
+            combine(&mut self.stage, y, h, &tab.a[i], &self.k);
+            system.rhs(self.t + tab.c[i] * h, &self.stage, &mut self.k[i]);
         }
         self.stats.rhs_evaluations += (s - 1) as u64;
         if !tab.fsal {
-            let stage = &mut self.stage;
-            stage.copy_from_slice(y);
-            for (j, &bj) in tab.b.iter().enumerate() {
-                if bj != 0.0 {
-                    let hb = h * bj;
-                    for (yi, kj) in stage.iter_mut().zip(&self.k[j]) {
-                        *yi += hb * kj;
-                    }
-                }
-            }
+            combine(&mut self.stage, y, h, &tab.b, &self.k);
         }
         // For FSAL tableaux the last stage already is the new solution: `stage` holds it.
     }
 
     /// Weighted RMS norm of the embedded error estimate (Hairer's sc_i = atol_i + rtol·max|y|).
-    fn error_norm(&self, h: f64, rtol: f64, atol: &[f64]) -> f64 {
+    fn error_norm(&mut self, h: f64, rtol: f64, atol: &[f64]) -> f64 {
         let e = self
             .tableau
             .error
             .as_ref()
             .expect("adaptive tableau has error weights");
-        let n = self.y.len();
-        let mut sum = 0.0;
-        for i in 0..n {
-            let mut err = 0.0;
-            for (j, &ej) in e.iter().enumerate() {
-                err += ej * self.k[j][i];
+        let err = &mut self.error;
+        err.fill(0.0);
+        for (&ej, kj) in e.iter().zip(&self.k) {
+            if ej != 0.0 {
+                let he = h * ej;
+                for (ei, &k) in err.iter_mut().zip(kj) {
+                    *ei += he * k;
+                }
             }
-            let sc = atol[i] + rtol * self.y[i].abs().max(self.stage[i].abs());
-            let r = h * err / sc;
+        }
+        let mut sum = 0.0;
+        for (((&ei, &y0), &y1), &a) in err.iter().zip(&self.y).zip(&self.stage).zip(atol) {
+            let r = ei / (a + rtol * y0.abs().max(y1.abs()));
             sum += r * r;
         }
-        (sum / n as f64).sqrt()
+        (sum / err.len() as f64).sqrt()
     }
 
     /// Accepts the attempted step: the new state becomes current and f at it is evaluated
@@ -387,10 +378,18 @@ impl Integrator {
     pub fn step<S: OdeSystem>(&mut self, system: &mut S, t_end: f64) -> Result<f64> {
         match self.control {
             Control::Fixed { h } => {
-                let h = h.min(t_end - self.t);
-                self.attempt(system, h);
-                self.accept(system, h);
-                Ok(h)
+                // Step to t0 + (n+1) h computed by multiplication (no drift), snapping to t_end
+                // when the remainder is a rounding error.
+                let n = self.stats.steps as f64 + 1.0;
+                let mut t_next = self.t0 + n * h;
+                if t_next > t_end || t_end - t_next < 1e-6 * h {
+                    t_next = t_end;
+                }
+                let h_step = t_next - self.t;
+                self.attempt(system, h_step);
+                self.accept(system, h_step);
+                self.t = t_next;
+                Ok(h_step)
             }
             Control::Adaptive { .. } => {
                 // Move the control out (no allocation) so that `self` can be borrowed mutably.
@@ -484,6 +483,31 @@ impl Integrator {
                 }
             }
         }
+    }
+}
+
+/// out = y + h Σ_j w_j k_j, skipping zero weights; one pass per non-zero weight, no copy.
+#[inline]
+fn combine(out: &mut [f64], y: &[f64], h: f64, weights: &[f64], k: &[Vec<f64>]) {
+    let mut first = true;
+    for (&w, kj) in weights.iter().zip(k) {
+        if w == 0.0 {
+            continue;
+        }
+        let hw = h * w;
+        if first {
+            for ((o, &yi), &kv) in out.iter_mut().zip(y).zip(kj) {
+                *o = yi + hw * kv;
+            }
+            first = false;
+        } else {
+            for (o, &kv) in out.iter_mut().zip(kj) {
+                *o += hw * kv;
+            }
+        }
+    }
+    if first {
+        out.copy_from_slice(y);
     }
 }
 

@@ -31,8 +31,11 @@ pub struct ChainOde {
     inv_mass: Vec<f64>,
     res_owner: Vec<usize>,
     res_mass_kg: Vec<f64>,
-    res_inv_mass: Vec<f64>,
     res_stiffness: Vec<f64>,
+    /// k_j / m_j [1/s²].
+    res_omega2: Vec<f64>,
+    /// k_j / M_owner [1/s²].
+    res_coupling: Vec<f64>,
     /// β per slot (slot 0 unused); 0 for a free end.
     beta: Vec<f64>,
     overlap_limit_m: Vec<f64>,
@@ -79,6 +82,16 @@ impl ChainOde {
         overlap_limit_m.extend_from_slice(chain.overlap_limits_m());
         let n_primary = mass_kg.len();
         debug_assert_eq!(beta.len(), n_primary + 1);
+        let res_omega2 = res_stiffness
+            .iter()
+            .zip(&res_mass_kg)
+            .map(|(k, m)| k / m)
+            .collect();
+        let res_coupling = res_stiffness
+            .iter()
+            .zip(&res_owner)
+            .map(|(k, &o)| k / mass_kg[o])
+            .collect();
         Ok(ChainOde {
             n_primary,
             n_dof: n_primary + res_mass_kg.len(),
@@ -86,7 +99,8 @@ impl ChainOde {
             inv_mass: mass_kg.iter().map(|m| 1.0 / m).collect(),
             mass_kg,
             res_owner,
-            res_inv_mass: res_mass_kg.iter().map(|m| 1.0 / m).collect(),
+            res_omega2,
+            res_coupling,
             res_mass_kg,
             res_stiffness,
             beta,
@@ -318,13 +332,18 @@ impl OdeSystem for ChainOde {
             dv[i] = (force[i] - force[i + 1]) * inv_mass[i];
         }
         let r = self.res_owner.len();
-        let (xr, ar) = (&x[p..p + r], &self.res_owner[..r]);
-        let (kr, imr) = (&self.res_stiffness[..r], &self.res_inv_mass[..r]);
-        for j in 0..r {
-            let o = ar[j];
-            let s = kr[j] * (xr[j] - x[o]);
-            dv[p + j] = -s * imr[j];
-            dv[o] += s * inv_mass[o];
+        let xr = &x[p..p + r];
+        let (dvp, dvr) = dv.split_at_mut(p);
+        for ((((&o, &w2), &cpl), &xj), a) in self.res_owner[..r]
+            .iter()
+            .zip(&self.res_omega2[..r])
+            .zip(&self.res_coupling[..r])
+            .zip(xr)
+            .zip(dvr.iter_mut())
+        {
+            let ext = xj - x[o];
+            *a = -w2 * ext;
+            dvp[o] += cpl * ext;
         }
         if self.load.is_some() {
             rest[nd] = force[0] * v[0];
