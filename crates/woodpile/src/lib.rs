@@ -45,6 +45,7 @@ pub mod optimize;
 pub mod record;
 pub mod simulate;
 
+pub use analysis::{BandStructure, EffectiveMassCurve, LayerByLayer, Map2, Spectrum};
 pub use error::{Error, Result};
 pub use excitation::{velocity_from_drop_height, BlastProfile, Excitation, Striker};
 pub use integrate::{IntegratorStats, Method, Tableau};
