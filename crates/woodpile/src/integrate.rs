@@ -249,8 +249,7 @@ impl Integrator {
         max_step_s: f64,
     ) -> Self {
         let tableau = method.tableau();
-        let n = y0.len();
-        let mut f_now = vec![0.0; n];
+        let mut f_now = vec![0.0; y0.len()];
         system.rhs(t0, &y0, &mut f_now);
         let control = match method {
             Method::Rk4 { time_step_s } => Control::Fixed { h: time_step_s },
@@ -275,6 +274,31 @@ impl Integrator {
             Control::Fixed { .. } => 1,
             Control::Adaptive { .. } => 3,
         };
+        Self::assemble(tableau, control, t0, y0, f_now, evals)
+    }
+
+    /// Fixed steps of size h [s] with any tableau (e.g. to measure a method's order of accuracy).
+    pub fn fixed_step<S: OdeSystem>(
+        tableau: Tableau,
+        h: f64,
+        system: &mut S,
+        t0: f64,
+        y0: Vec<f64>,
+    ) -> Self {
+        let mut f_now = vec![0.0; y0.len()];
+        system.rhs(t0, &y0, &mut f_now);
+        Self::assemble(tableau, Control::Fixed { h }, t0, y0, f_now, 1)
+    }
+
+    fn assemble(
+        tableau: Tableau,
+        control: Control,
+        t0: f64,
+        y0: Vec<f64>,
+        f_now: Vec<f64>,
+        evals: u64,
+    ) -> Self {
+        let n = y0.len();
         Integrator {
             k: vec![vec![0.0; n]; tableau.stages()],
             tableau,

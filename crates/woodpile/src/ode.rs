@@ -80,6 +80,10 @@ impl ChainOde {
         beta.extend_from_slice(chain.inner_betas());
         beta.push(chain.wall_beta().unwrap_or(0.0));
         overlap_limit_m.extend_from_slice(chain.overlap_limits_m());
+        if chain.wall_beta().is_none() {
+            // A free end: the last element may move away without bound.
+            *overlap_limit_m.last_mut().expect("has the wall slot") = f64::INFINITY;
+        }
         let n_primary = mass_kg.len();
         debug_assert_eq!(beta.len(), n_primary + 1);
         let res_omega2 = res_stiffness

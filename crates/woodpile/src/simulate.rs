@@ -77,8 +77,8 @@ impl RunSettings {
 pub struct Restitution {
     /// e = −v_s(end)/v0. Without gravity the striker's velocity is constant once it has left.
     pub coefficient: f64,
-    /// True when the striker had left for good at the end (out of contact, moving away faster
-    /// than element 1); false means the run ended too early for a final value.
+    /// True when, at the end, the striker is out of contact and moving away from element 1
+    /// (slower than it toward the wall); false means the run ended too early for a final value.
     pub separated: bool,
 }
 
@@ -306,7 +306,7 @@ pub fn simulate(
         let v1 = ode.top_element_velocity(y_end);
         Restitution {
             coefficient: -vs / v0,
-            separated: forces_end[0] == 0.0 && vs < v1 && vs < 0.0,
+            separated: forces_end[0] == 0.0 && vs < v1,
         }
     });
     let peak = &peaks.peak;
