@@ -52,5 +52,6 @@ pub use integrate::{IntegratorStats, Method, Tableau};
 pub use model::{
     Body, CellModel, Chain, ChainBuilder, Element, Material, Resonator, Surface, UnitCell, Wall,
 };
+pub use optimize::{BreederGa, DesignSpace, GaSettings, Objective, StandardObjective};
 pub use record::{Layout, Recorder, Sample, Trajectory};
 pub use simulate::{simulate, EnergyBalance, Restitution, RunSettings, RunSummary};

@@ -1,0 +1,196 @@
+//! What is minimised: a figure of merit of one full run of a candidate chain.
+//!
+//! Every objective runs the whole window `settings.duration_s`: no simulation is stopped early,
+//! because no cheap bound proves that a later peak cannot exceed the current one.
+
+use crate::error::{Error, Result};
+use crate::excitation::Excitation;
+use crate::model::Chain;
+use crate::record::{Layout, Recorder, Sample};
+use crate::simulate::{simulate, RunSettings};
+
+/// A figure of merit to minimise. Implement it to optimise for your own quantity; it must be a
+/// deterministic function of its arguments (the GA caches and compares values bit for bit).
+pub trait Objective: Send + Sync {
+    /// Short name for tables and file headers, e.g. `transmitted-force`.
+    fn name(&self) -> &str;
+
+    /// Unit of the value, e.g. `N`.
+    fn unit(&self) -> &str;
+
+    /// The value for one chain (smaller is better). Must not be NaN.
+    fn evaluate(
+        &self,
+        chain: &Chain,
+        excitation: &Excitation,
+        settings: &RunSettings,
+    ) -> Result<f64>;
+}
+
+/// The objectives of issue 3, all over the whole run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum StandardObjective {
+    /// Peak force of contact N (the wall) [N]: the paper's objective. Peaks are tracked over
+    /// every integration step with Hermite refinement ([`crate::RunSummary`]).
+    #[default]
+    TransmittedForce,
+    /// Transmitted / incident peak force (contact N over contact 1).
+    TransmissionRatio,
+    /// Peak energy of the last layer N [J] (model.md §7), the maximum over the sample grid.
+    TransmittedEnergy,
+    /// Impulse ∫ F_N dt delivered to the wall over the run [N s], by the trapezoid rule on the
+    /// sample grid (the runner hands recorders samples, not steps).
+    TransmittedImpulse,
+}
+
+impl StandardObjective {
+    /// Every standard objective.
+    pub const ALL: [StandardObjective; 4] = [
+        StandardObjective::TransmittedForce,
+        StandardObjective::TransmissionRatio,
+        StandardObjective::TransmittedEnergy,
+        StandardObjective::TransmittedImpulse,
+    ];
+
+    /// The objective with this name (as in [`Objective::name`]).
+    pub fn from_name(name: &str) -> Result<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|o| o.as_str() == name)
+            .ok_or_else(|| Error::Unknown {
+                what: "objective",
+                name: name.to_string(),
+                valid: Self::ALL.map(StandardObjective::as_str).join(", "),
+            })
+    }
+
+    /// The name used in config files and tables.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            StandardObjective::TransmittedForce => "transmitted-force",
+            StandardObjective::TransmissionRatio => "transmission-ratio",
+            StandardObjective::TransmittedEnergy => "transmitted-energy",
+            StandardObjective::TransmittedImpulse => "transmitted-impulse",
+        }
+    }
+}
+
+impl Objective for StandardObjective {
+    fn name(&self) -> &str {
+        self.as_str()
+    }
+
+    fn unit(&self) -> &str {
+        match self {
+            StandardObjective::TransmittedForce => "N",
+            StandardObjective::TransmissionRatio => "1",
+            StandardObjective::TransmittedEnergy => "J",
+            StandardObjective::TransmittedImpulse => "N s",
+        }
+    }
+
+    fn evaluate(
+        &self,
+        chain: &Chain,
+        excitation: &Excitation,
+        settings: &RunSettings,
+    ) -> Result<f64> {
+        match self {
+            StandardObjective::TransmittedForce => {
+                Ok(simulate(chain, excitation, settings, &mut ())?.transmitted_peak_force_n)
+            }
+            StandardObjective::TransmissionRatio => {
+                Ok(simulate(chain, excitation, settings, &mut ())?.transmission_ratio)
+            }
+            StandardObjective::TransmittedEnergy => {
+                let mut peak = LayerEnergyPeak::last_layer();
+                simulate(chain, excitation, settings, &mut peak)?;
+                Ok(peak.peak_j)
+            }
+            StandardObjective::TransmittedImpulse => {
+                let mut impulse = ContactImpulse::wall();
+                simulate(chain, excitation, settings, &mut impulse)?;
+                Ok(impulse.impulse_n_s)
+            }
+        }
+    }
+}
+
+/// Records the largest energy of one layer over the sample grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayerEnergyPeak {
+    /// The layer (0 = striker, N = last element); None = the last layer N.
+    pub layer: Option<usize>,
+    /// Largest energy seen [J].
+    pub peak_j: f64,
+    /// Time of the peak [s].
+    pub time_s: f64,
+    resolved: usize,
+}
+
+impl LayerEnergyPeak {
+    /// Watches the last layer N.
+    pub fn last_layer() -> Self {
+        LayerEnergyPeak {
+            layer: None,
+            peak_j: 0.0,
+            time_s: 0.0,
+            resolved: 0,
+        }
+    }
+}
+
+impl Recorder for LayerEnergyPeak {
+    fn start(&mut self, layout: &Layout) {
+        self.resolved = self.layer.unwrap_or(layout.n_elements);
+        self.peak_j = f64::NEG_INFINITY;
+        self.time_s = 0.0;
+    }
+
+    fn record(&mut self, s: &Sample<'_>) {
+        let e = s.layer_energies_j[self.resolved];
+        if e > self.peak_j {
+            self.peak_j = e;
+            self.time_s = s.time_s;
+        }
+    }
+}
+
+/// Integrates one contact force over time with the trapezoid rule on the sample grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactImpulse {
+    /// The contact (paper numbering); None = the wall contact N.
+    pub contact: Option<usize>,
+    /// ∫ F dt so far [N s].
+    pub impulse_n_s: f64,
+    resolved: usize,
+    last: Option<(f64, f64)>,
+}
+
+impl ContactImpulse {
+    /// Integrates the wall force F_N.
+    pub fn wall() -> Self {
+        ContactImpulse {
+            contact: None,
+            impulse_n_s: 0.0,
+            resolved: 0,
+            last: None,
+        }
+    }
+}
+
+impl Recorder for ContactImpulse {
+    fn start(&mut self, layout: &Layout) {
+        self.resolved = self.contact.unwrap_or(layout.n_elements);
+        self.impulse_n_s = 0.0;
+        self.last = None;
+    }
+
+    fn record(&mut self, s: &Sample<'_>) {
+        let f = s.contact_forces_n[self.resolved];
+        if let Some((t0, f0)) = self.last {
+            self.impulse_n_s += 0.5 * (f0 + f) * (s.time_s - t0);
+        }
+        self.last = Some((s.time_s, f));
+    }
+}

@@ -1,0 +1,85 @@
+//! The breeder GA's operators (Mühlenbein & Schlierkamp-Voosen 1993), as plain functions of the
+//! population and a random generator. None of them evaluates, prints or stops anything.
+
+use super::space::{FeasibleSet, Genome};
+use rand::Rng;
+
+/// Number of parents that breed under truncation threshold T: ⌈T·μ⌉, at least 1, at most μ.
+///
+/// Truncation selection (Mühlenbein & Schlierkamp-Voosen 1993, §3): only the best T·100 % of a
+/// population of size μ are parents, each equally likely.
+pub fn truncation_pool(population: usize, truncation: f64) -> usize {
+    ((truncation * population as f64).ceil() as usize).clamp(1, population)
+}
+
+/// Two parent ranks drawn uniformly from the best `pool` (distinct when pool ≥ 2).
+pub fn select_parents(pool: usize, rng: &mut impl Rng) -> (usize, usize) {
+    let a = rng.random_range(0..pool);
+    if pool < 2 {
+        return (a, a);
+    }
+    let mut b = rng.random_range(0..pool - 1);
+    if b >= a {
+        b += 1;
+    }
+    (a, b)
+}
+
+/// Discrete (gene-wise) recombination: each gene of the child comes from either parent with
+/// probability ½ (Mühlenbein & Schlierkamp-Voosen 1993, §4.1 "discrete recombination").
+pub fn recombine(a: &[u8], b: &[u8], rng: &mut impl Rng) -> Genome {
+    a.iter()
+        .zip(b)
+        .map(|(&x, &y)| if rng.random_bool(0.5) { x } else { y })
+        .collect()
+}
+
+/// The BGA mutation step δ = Σ_{k=0}^{15} α_k 2^{−k}, α_k = 1 with probability 1/16
+/// (Mühlenbein & Schlierkamp-Voosen 1993, §4.2): small steps are common, large ones rare.
+pub fn bga_delta(rng: &mut impl Rng) -> f64 {
+    (0..16)
+        .filter(|_| rng.random_bool(1.0 / 16.0))
+        .map(|k| 0.5_f64.powi(k))
+        .sum()
+}
+
+/// The BGA mutation for catalogue indices: each free gene is mutated with probability 1/n
+/// (n = number of free positions) by ± round(range·δ) indices, at least one, the sign + or −
+/// with probability ½, clamped to the catalogue 0..len. `range` is in index units.
+pub fn mutate(genome: &mut [u8], set: &FeasibleSet, range: f64, rng: &mut impl Rng) {
+    let free = set.free_positions();
+    if free.is_empty() {
+        return;
+    }
+    let p = 1.0 / free.len() as f64;
+    let top = set.catalogue_len() - 1;
+    for &pos in free {
+        if !rng.random_bool(p) {
+            continue;
+        }
+        let step = ((range * bga_delta(rng)).round() as usize).max(1);
+        let g = usize::from(genome[pos]);
+        let to = if rng.random_bool(0.5) {
+            (g + step).min(top)
+        } else {
+            g.saturating_sub(step)
+        };
+        genome[pos] = to as u8;
+    }
+}
+
+/// One child: two parents from the truncated pool of a population sorted best first,
+/// recombined, mutated and repaired into the feasible set.
+pub fn breed(
+    sorted: &[&[u8]],
+    pool: usize,
+    set: &FeasibleSet,
+    range: f64,
+    rng: &mut impl Rng,
+) -> Genome {
+    let (a, b) = select_parents(pool, rng);
+    let mut child = recombine(sorted[a], sorted[b], rng);
+    mutate(&mut child, set, range, rng);
+    set.repair(&mut child, rng);
+    child
+}

@@ -1,0 +1,472 @@
+//! What is searched: N positions, each filled from a discrete catalogue of elements, under the
+//! designer's constraints; and the set of genomes that meet them.
+
+use super::OptimizeError;
+use crate::error::{Error, Result};
+use crate::excitation::{BlastProfile, Excitation, Striker};
+use crate::model::{CellModel, Chain, ChainBuilder, Element, Wall, TABLE1_LENGTHS_MM};
+use crate::simulate::RunSettings;
+use rand::Rng;
+
+/// A design: the catalogue index of the element at each position, top to bottom.
+pub type Genome = Vec<u8>;
+
+/// Largest catalogue a [`Genome`] can index.
+pub const MAX_CATALOGUE_LEN: usize = 256;
+
+/// Relative slack of the mass constraint, so that summing the same masses in another order
+/// (one rounding per term) never turns a feasible design infeasible.
+const MASS_SLACK: f64 = 1e-12;
+
+/// Optional limits a designer puts on the chain. Indices are catalogue indices; positions count
+/// from 0 at the top.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Constraints {
+    /// Largest total mass of the chain [kg].
+    pub max_total_mass_kg: Option<f64>,
+    /// Positions whose element is fixed: (position, catalogue index).
+    pub fixed: Vec<(usize, usize)>,
+    /// Largest number of copies of a catalogue entry: (catalogue index, count).
+    pub max_count: Vec<(usize, usize)>,
+}
+
+/// The design space of an optimisation: N positions, a catalogue, how the chain is held and
+/// loaded, how long it is run, and the constraints.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DesignSpace {
+    /// Number of positions N (elements in the chain).
+    pub positions: usize,
+    /// The elements a position can hold (at most [`MAX_CATALOGUE_LEN`]).
+    pub catalogue: Vec<Element>,
+    /// What the last element stands on.
+    pub wall: Wall,
+    /// Angle between the axes of neighbouring rods [rad].
+    pub crossing_angle_rad: f64,
+    /// The load.
+    pub excitation: Excitation,
+    /// Duration and integrator of every evaluation.
+    pub settings: RunSettings,
+    /// The designer's constraints.
+    pub constraints: Constraints,
+}
+
+impl DesignSpace {
+    /// The Table 1 rods 20, 30, …, 80 mm in the given model.
+    pub fn table1_catalogue(model: CellModel) -> Vec<Element> {
+        TABLE1_LENGTHS_MM
+            .iter()
+            .map(|&l| Element::table1_rod(l, model).expect("Table 1 length"))
+            .collect()
+    }
+
+    /// `positions` Table 1 rods on the paper's sensor under `excitation`, with the model.md §8
+    /// run settings for that excitation and no constraints.
+    pub fn table1(positions: usize, model: CellModel, excitation: Excitation) -> Self {
+        DesignSpace {
+            positions,
+            catalogue: Self::table1_catalogue(model),
+            wall: Wall::paper_sensor(),
+            crossing_angle_rad: std::f64::consts::FRAC_PI_2,
+            settings: RunSettings::paper_for(&excitation),
+            excitation,
+            constraints: Constraints::default(),
+        }
+    }
+
+    /// The paper's impact problem (§4, model.md §9): 20 rods from Table 1, the glass striker
+    /// dropped from 0.2 m, the steel sensor, 2 ms of RK4 at 0.1 µs.
+    pub fn paper_impact(model: CellModel) -> Self {
+        Self::table1(20, model, Excitation::Impact(Striker::paper()))
+    }
+
+    /// The paper's blast problem (§5): 20 rods, the Friedlander load of model.md §6, 3 ms.
+    pub fn paper_blast(model: CellModel) -> Self {
+        Self::table1(20, model, Excitation::Blast(BlastProfile::paper()))
+    }
+
+    /// The chain a genome describes.
+    pub fn chain(&self, genome: &[u8]) -> Result<Chain> {
+        let elements = genome
+            .iter()
+            .map(|&g| self.catalogue[usize::from(g)].clone())
+            .collect();
+        ChainBuilder::new(elements)
+            .wall(self.wall.clone())
+            .crossing_angle_rad(self.crossing_angle_rad)
+            .build()
+    }
+
+    /// The labels of a genome's elements, top to bottom.
+    pub fn labels(&self, genome: &[u8]) -> Vec<String> {
+        genome
+            .iter()
+            .map(|&g| self.catalogue[usize::from(g)].label.clone())
+            .collect()
+    }
+
+    /// Total mass of a genome's chain [kg], summed top to bottom.
+    pub fn mass_kg(&self, genome: &[u8]) -> f64 {
+        genome
+            .iter()
+            .map(|&g| self.catalogue[usize::from(g)].cell.total_mass_kg())
+            .sum()
+    }
+
+    /// Checks every field and that some design meets the constraints.
+    pub fn validate(&self) -> std::result::Result<(), OptimizeError> {
+        FeasibleSet::new(self).map(|_| ())
+    }
+}
+
+/// The genomes that meet a design space's constraints, checked to be non-empty; draws and
+/// repairs genomes.
+///
+/// Constraint handling is by **repair**: an operator's child that breaks a constraint is changed
+/// minimally until it meets them all, so every evaluated genome is feasible. Fixed positions are
+/// reset; an entry used more often than allowed has randomly chosen surplus copies moved to the
+/// nearest catalogue index with room left; while the chain is too heavy, a random position is
+/// moved to the heaviest lighter entry with room left. Each move strictly lowers the mass, and a
+/// design where no move is possible is a lightest design (every lighter entry is full), which the
+/// up-front check found to be light enough: repair always ends feasible.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeasibleSet {
+    positions: usize,
+    masses_kg: Vec<f64>,
+    caps: Vec<usize>,
+    fixed: Vec<Option<u8>>,
+    free: Vec<usize>,
+    max_mass_kg: Option<f64>,
+    lightest: Genome,
+}
+
+impl FeasibleSet {
+    /// Validates a design space and proves its constraints can be met.
+    ///
+    /// Errors: an invalid field ([`OptimizeError::Model`]) or constraints no design meets
+    /// ([`OptimizeError::Infeasible`], naming the conflicting numbers).
+    pub fn new(space: &DesignSpace) -> std::result::Result<Self, OptimizeError> {
+        let n_cat = space.catalogue.len();
+        if space.positions == 0 {
+            return Err(Error::invalid("design.positions", 0, "must be at least 1").into());
+        }
+        if n_cat == 0 {
+            return Err(
+                Error::invalid("design.catalogue", "[]", "must hold at least one element").into(),
+            );
+        }
+        if n_cat > MAX_CATALOGUE_LEN {
+            return Err(Error::invalid(
+                "design.catalogue",
+                format!("{n_cat} entries"),
+                format!("must hold at most {MAX_CATALOGUE_LEN} entries"),
+            )
+            .into());
+        }
+        space.excitation.validate()?;
+        space.settings.validate()?;
+        for (i, e) in space.catalogue.iter().enumerate() {
+            ChainBuilder::new(vec![e.clone()])
+                .wall(space.wall.clone())
+                .build()
+                .map_err(|err| match err {
+                    Error::InvalidParameter {
+                        field,
+                        value,
+                        reason,
+                    } => Error::InvalidParameter {
+                        field: field
+                            .replace("chain.elements[0]", &format!("design.catalogue[{i}]")),
+                        value,
+                        reason,
+                    },
+                    other => other,
+                })?;
+        }
+        // One full chain of the first entry checks the wall, angle and excitation together.
+        space.chain(&vec![0; space.positions])?;
+
+        let c = &space.constraints;
+        let mut fixed = vec![None; space.positions];
+        for (k, &(pos, idx)) in c.fixed.iter().enumerate() {
+            let field = format!("design.constraints.fixed[{k}]");
+            if pos >= space.positions {
+                return Err(Error::invalid(
+                    format!("{field}.position"),
+                    pos,
+                    format!("positions are 0..{} (0 = top)", space.positions),
+                )
+                .into());
+            }
+            if idx >= n_cat {
+                return Err(Error::invalid(
+                    format!("{field}.element"),
+                    idx,
+                    format!("catalogue indices are 0..{n_cat}"),
+                )
+                .into());
+            }
+            match fixed[pos] {
+                Some(prev) if usize::from(prev) != idx => {
+                    return Err(OptimizeError::Infeasible {
+                        reason: format!(
+                            "position {pos} is fixed to both `{}` and `{}`",
+                            space.catalogue[usize::from(prev)].label,
+                            space.catalogue[idx].label
+                        ),
+                    })
+                }
+                _ => fixed[pos] = Some(idx as u8),
+            }
+        }
+        let mut caps = vec![usize::MAX; n_cat];
+        for (k, &(idx, count)) in c.max_count.iter().enumerate() {
+            if idx >= n_cat {
+                return Err(Error::invalid(
+                    format!("design.constraints.max_count[{k}].element"),
+                    idx,
+                    format!("catalogue indices are 0..{n_cat}"),
+                )
+                .into());
+            }
+            caps[idx] = caps[idx].min(count);
+        }
+        let max_mass_kg = match c.max_total_mass_kg {
+            Some(m) if !(m.is_finite() && m > 0.0) => {
+                return Err(Error::invalid(
+                    "design.constraints.max_total_mass_kg",
+                    m,
+                    "must be a finite number > 0",
+                )
+                .into())
+            }
+            other => other,
+        };
+        let masses_kg: Vec<f64> = space
+            .catalogue
+            .iter()
+            .map(|e| e.cell.total_mass_kg())
+            .collect();
+        let free: Vec<usize> = (0..space.positions)
+            .filter(|&p| fixed[p].is_none())
+            .collect();
+        // Counts: the fixed copies must fit under the caps, and the room left must fill the rest.
+        let mut room = caps.clone();
+        for f in fixed.iter().flatten() {
+            let e = usize::from(*f);
+            if room[e] == 0 {
+                let n_fixed = fixed.iter().flatten().filter(|&&x| x == *f).count();
+                return Err(OptimizeError::Infeasible {
+                    reason: format!(
+                        "`{}` is fixed at {n_fixed} positions but allowed at most {} times",
+                        space.catalogue[e].label, caps[e]
+                    ),
+                });
+            }
+            if room[e] != usize::MAX {
+                room[e] -= 1;
+            }
+        }
+        let total_room = room.iter().fold(0usize, |a, &r| a.saturating_add(r));
+        if total_room < free.len() {
+            return Err(OptimizeError::Infeasible {
+                reason: format!(
+                    "the count limits leave room for {total_room} elements but {} positions are free",
+                    free.len()
+                ),
+            });
+        }
+        // The lightest design: fill the free positions with the lightest entries that have room.
+        let mut by_mass: Vec<usize> = (0..n_cat).collect();
+        by_mass.sort_by(|&a, &b| masses_kg[a].total_cmp(&masses_kg[b]).then(a.cmp(&b)));
+        let mut lightest: Genome = fixed.iter().map(|f| f.unwrap_or(0)).collect();
+        let mut left = room;
+        let mut next = by_mass.iter();
+        let mut current = *next.next().expect("catalogue is not empty");
+        for &p in &free {
+            while left[current] == 0 {
+                current = *next.next().expect("room was checked");
+            }
+            lightest[p] = current as u8;
+            if left[current] != usize::MAX {
+                left[current] -= 1;
+            }
+        }
+        if let Some(max) = max_mass_kg {
+            let min = space.mass_kg(&lightest);
+            if min > max * (1.0 + MASS_SLACK) {
+                return Err(OptimizeError::Infeasible {
+                    reason: format!(
+                        "design.constraints.max_total_mass_kg = {max} kg, but the lightest design \
+                         meeting the other constraints weighs {min} kg ({})",
+                        space.labels(&lightest).join(" ")
+                    ),
+                });
+            }
+        }
+        Ok(FeasibleSet {
+            positions: space.positions,
+            masses_kg,
+            caps,
+            fixed,
+            free,
+            max_mass_kg,
+            lightest,
+        })
+    }
+
+    /// Number of positions N.
+    pub fn positions(&self) -> usize {
+        self.positions
+    }
+
+    /// Number of catalogue entries.
+    pub fn catalogue_len(&self) -> usize {
+        self.masses_kg.len()
+    }
+
+    /// The positions not fixed by a constraint.
+    pub fn free_positions(&self) -> &[usize] {
+        &self.free
+    }
+
+    /// A lightest feasible design (the witness of feasibility).
+    pub fn lightest(&self) -> &[u8] {
+        &self.lightest
+    }
+
+    fn mass_kg(&self, genome: &[u8]) -> f64 {
+        genome.iter().map(|&g| self.masses_kg[usize::from(g)]).sum()
+    }
+
+    fn counts(&self, genome: &[u8]) -> Vec<usize> {
+        let mut counts = vec![0; self.masses_kg.len()];
+        for &g in genome {
+            counts[usize::from(g)] += 1;
+        }
+        counts
+    }
+
+    /// Whether a genome has the right length, indexes the catalogue and meets every constraint.
+    pub fn contains(&self, genome: &[u8]) -> bool {
+        if genome.len() != self.positions
+            || genome
+                .iter()
+                .any(|&g| usize::from(g) >= self.masses_kg.len())
+        {
+            return false;
+        }
+        if self
+            .fixed
+            .iter()
+            .zip(genome)
+            .any(|(f, &g)| f.is_some_and(|f| f != g))
+        {
+            return false;
+        }
+        if self
+            .counts(genome)
+            .iter()
+            .zip(&self.caps)
+            .any(|(n, cap)| n > cap)
+        {
+            return false;
+        }
+        match self.max_mass_kg {
+            Some(max) => self.mass_kg(genome) <= max * (1.0 + MASS_SLACK),
+            None => true,
+        }
+    }
+
+    /// A random feasible genome: each free gene uniform over the catalogue, then repaired.
+    pub fn random(&self, rng: &mut impl Rng) -> Genome {
+        let n = self.masses_kg.len();
+        let mut g: Genome = self.fixed.iter().map(|f| f.unwrap_or(0)).collect();
+        for &p in &self.free {
+            g[p] = rng.random_range(0..n) as u8;
+        }
+        self.repair(&mut g, rng);
+        g
+    }
+
+    /// Changes a genome of the right length with genes inside the catalogue as little as the
+    /// rules of [`FeasibleSet`] allow until it meets every constraint.
+    pub fn repair(&self, genome: &mut [u8], rng: &mut impl Rng) {
+        assert_eq!(genome.len(), self.positions, "genome length");
+        for (g, f) in genome.iter_mut().zip(&self.fixed) {
+            if let Some(f) = f {
+                *g = *f;
+            }
+        }
+        let n = self.masses_kg.len();
+        let mut counts = self.counts(genome);
+        for e in 0..n {
+            if counts[e] <= self.caps[e] {
+                continue;
+            }
+            let mut holders: Vec<usize> = self
+                .free
+                .iter()
+                .copied()
+                .filter(|&p| usize::from(genome[p]) == e)
+                .collect();
+            while counts[e] > self.caps[e] {
+                let k = rng.random_range(0..holders.len());
+                let p = holders.swap_remove(k);
+                let to = nearest_with_room(e, &counts, &self.caps, rng)
+                    .expect("room was checked in FeasibleSet::new");
+                genome[p] = to as u8;
+                counts[e] -= 1;
+                counts[to] += 1;
+            }
+        }
+        let Some(max) = self.max_mass_kg else { return };
+        let limit = max * (1.0 + MASS_SLACK);
+        let mut mass = self.mass_kg(genome);
+        while mass > limit {
+            let lighter = |p: &usize| {
+                let m = self.masses_kg[usize::from(genome[*p])];
+                (0..n)
+                    .filter(|&j| self.masses_kg[j] < m && counts[j] < self.caps[j])
+                    .max_by(|&a, &b| self.masses_kg[a].total_cmp(&self.masses_kg[b]))
+            };
+            let movable: Vec<usize> = self
+                .free
+                .iter()
+                .copied()
+                .filter(|p| lighter(p).is_some())
+                .collect();
+            if movable.is_empty() {
+                // A lightest multiset summed in another order: cannot exceed the limit unless
+                // rounding differs; fall back on the checked witness.
+                genome.copy_from_slice(&self.lightest);
+                return;
+            }
+            let p = movable[rng.random_range(0..movable.len())];
+            let to = lighter(&p).expect("movable");
+            counts[usize::from(genome[p])] -= 1;
+            counts[to] += 1;
+            genome[p] = to as u8;
+            mass = self.mass_kg(genome);
+        }
+    }
+}
+
+/// The catalogue index nearest to `e` (ties broken at random) whose count is below its cap.
+fn nearest_with_room(
+    e: usize,
+    counts: &[usize],
+    caps: &[usize],
+    rng: &mut impl Rng,
+) -> Option<usize> {
+    let n = counts.len();
+    for d in 1..n {
+        let down = e.checked_sub(d).filter(|&j| counts[j] < caps[j]);
+        let up = Some(e + d).filter(|&j| j < n && counts[j] < caps[j]);
+        match (down, up) {
+            (Some(a), Some(b)) => return Some(if rng.random_bool(0.5) { a } else { b }),
+            (Some(a), None) | (None, Some(a)) => return Some(a),
+            (None, None) => {}
+        }
+    }
+    None
+}
