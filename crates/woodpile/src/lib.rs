@@ -48,9 +48,10 @@ pub mod simulate;
 pub use analysis::{BandStructure, EffectiveMassCurve, LayerByLayer, Map2, Spectrum};
 pub use error::{Error, Result};
 pub use excitation::{velocity_from_drop_height, BlastProfile, Excitation, Striker};
-pub use integrate::{IntegratorStats, Method, Tableau};
+pub use integrate::{Integrator, IntegratorStats, Method, OdeSystem, Tableau};
 pub use model::{
     Body, CellModel, Chain, ChainBuilder, Element, Material, Resonator, Surface, UnitCell, Wall,
+    TABLE1_LENGTHS_MM,
 };
 pub use optimize::{BreederGa, DesignSpace, GaSettings, Objective, StandardObjective};
 pub use record::{Layout, Recorder, Sample, Trajectory};
