@@ -1,1 +1,51 @@
-fn main() {}
+//! The `woodpile` command line. Each subcommand is one variant of [`Command`] and one arm in
+//! [`dispatch`]; the work is done in `woodpile_cli::commands`.
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+use woodpile_cli::commands::{self, Context};
+use woodpile_cli::CliError;
+
+/// Locally resonant woodpile metamaterials under impact and blast (Kim, Yang et al. 2017).
+#[derive(Debug, Parser)]
+#[command(name = "woodpile", version, about)]
+struct Cli {
+    /// Print nothing but errors.
+    #[arg(long, short, global = true)]
+    quiet: bool,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Run a scenario file or a built-in scenario and write its outputs.
+    Simulate(commands::simulate::Args),
+    /// List the built-in scenarios.
+    Scenarios(commands::scenarios::ListArgs),
+    /// Print a built-in scenario as a complete TOML file to start from.
+    Scenario(commands::scenarios::ShowArgs),
+    /// Print the unit-cell catalogue (paper Table 1): masses, resonances, negative-mass bands.
+    Cells(commands::cells::Args),
+}
+
+fn dispatch(command: &Command, ctx: &Context) -> Result<(), CliError> {
+    match command {
+        Command::Simulate(args) => commands::simulate::run(args, ctx),
+        Command::Scenarios(args) => commands::scenarios::list(args, ctx),
+        Command::Scenario(args) => commands::scenarios::show(args, ctx),
+        Command::Cells(args) => commands::cells::run(args, ctx),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let ctx = Context { quiet: cli.quiet };
+    match dispatch(&cli.command, &ctx) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(e.exit_code())
+        }
+    }
+}

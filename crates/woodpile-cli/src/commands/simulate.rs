@@ -1,0 +1,164 @@
+//! `woodpile simulate`: run a scenario file or a built-in scenario and write its outputs.
+
+use super::Context;
+use crate::error::CliError;
+use crate::output::{write_run, RunRecord, Staging, SummaryJson};
+use crate::scenario::{resolve, Scenario, DEFAULT_SCENARIO};
+use std::path::{Path, PathBuf};
+use woodpile::{simulate, Excitation, Trajectory};
+
+/// Arguments of `woodpile simulate`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct Args {
+    /// Scenario file (TOML). Without it and without --scenario: the default job,
+    /// `paper-impact-optimized`.
+    #[arg(value_name = "SCENARIO.toml", conflicts_with = "scenario")]
+    pub file: Option<PathBuf>,
+    /// A built-in scenario (see `woodpile scenarios`).
+    #[arg(long, value_name = "NAME")]
+    pub scenario: Option<String>,
+    /// Output directory (default: ./runs/<scenario name>). Replaced if it holds a previous run.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+}
+
+/// A scenario ready to run: its name, where it came from, and the directory its files are
+/// relative to.
+#[derive(Debug, Clone)]
+pub struct Loaded {
+    /// Built-in name or file stem.
+    pub name: String,
+    /// The scenario file, if any.
+    pub file: Option<PathBuf>,
+    /// The scenario.
+    pub scenario: Scenario,
+    /// Directory for relative paths in the scenario.
+    pub base_dir: PathBuf,
+}
+
+/// Loads the scenario the arguments name.
+pub fn load(args: &Args) -> Result<Loaded, CliError> {
+    if let Some(file) = &args.file {
+        let scenario = Scenario::load(file)?;
+        let name = file
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "scenario".into());
+        let base_dir = match file.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        return Ok(Loaded {
+            name,
+            file: Some(file.clone()),
+            scenario,
+            base_dir,
+        });
+    }
+    let name = args.scenario.as_deref().unwrap_or(DEFAULT_SCENARIO);
+    Ok(Loaded {
+        name: name.to_string(),
+        file: None,
+        scenario: super::scenarios::lookup(name)?,
+        base_dir: PathBuf::from("."),
+    })
+}
+
+/// Runs `woodpile simulate`.
+pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
+    let loaded = load(args)?;
+    let resolved = resolve(&loaded.scenario, &loaded.base_dir)?;
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| Path::new("runs").join(&loaded.name));
+    let staging = Staging::prepare(&out)?;
+    let mut trajectory = Trajectory::default();
+    let summary = simulate(
+        &resolved.chain,
+        &resolved.excitation,
+        &resolved.settings,
+        &mut trajectory,
+    )?;
+    let record = RunRecord {
+        name: &loaded.name,
+        file: loaded.file.as_deref(),
+        scenario: &loaded.scenario,
+        resolved: &resolved,
+        summary: &summary,
+        trajectory: &trajectory,
+    };
+    write_run(staging.path(), &record)?;
+    let dir = staging.commit()?;
+    if !ctx.quiet {
+        print!("{}", terminal_summary(&record, &dir));
+    }
+    Ok(())
+}
+
+/// The short human-readable report printed after a run.
+pub fn terminal_summary(r: &RunRecord<'_>, dir: &Path) -> String {
+    let s = SummaryJson::new(r);
+    let chain = &r.resolved.chain;
+    let mut o = String::new();
+    let labels = s.chain_labels.join(" ");
+    o.push_str(&format!("scenario     {}\n", r.name));
+    o.push_str(&format!(
+        "chain        {} elements: {labels}\n",
+        chain.len()
+    ));
+    match &r.resolved.excitation {
+        Excitation::Impact(st) => o.push_str(&format!(
+            "excitation   impact: {:.1} mm {} sphere ({:.4} g) at {:.4} m/s\n",
+            st.diameter_m * 1e3,
+            st.material.name,
+            st.mass_kg() * 1e3,
+            st.velocity_m_s
+        )),
+        Excitation::Blast(woodpile::BlastProfile::Friedlander {
+            peak_force_n,
+            duration_s,
+            decay,
+        }) => o.push_str(&format!(
+            "excitation   blast: Friedlander F0 = {peak_force_n} N, Td = {duration_s:e} s, b = {decay}\n"
+        )),
+        Excitation::Blast(woodpile::BlastProfile::Table { times_s, .. }) => o.push_str(&format!(
+            "excitation   blast: table of {} points\n",
+            times_s.len()
+        )),
+    }
+    o.push_str(&format!(
+        "incident     {:.4} N   (peak of contact 1)\n",
+        s.incident_peak_force_n
+    ));
+    o.push_str(&format!(
+        "transmitted  {:.4} N   (peak of contact {}, the wall)\n",
+        s.transmitted_peak_force_n, s.n_elements
+    ));
+    o.push_str(&format!("ratio        {:.4}\n", s.transmission_ratio));
+    if let (Some(e), Some(sep)) = (s.restitution_coefficient, s.striker_separated) {
+        o.push_str(&format!(
+            "restitution  {e:.4}{}\n",
+            if sep {
+                ""
+            } else {
+                "   (striker still in contact or not yet away at the end)"
+            }
+        ));
+    }
+    o.push_str(&format!(
+        "energy       initial {:.4e} J, final {:.4e} J, input work {:.4e} J, max relative error {:.2e}\n",
+        s.energy.initial_j, s.energy.final_j, s.energy.input_work_j, s.energy.max_relative_error
+    ));
+    o.push_str(&format!(
+        "integrator   {}: {} steps, {} rhs evaluations, {} rejected; {} samples; {:.3} s wall time\n",
+        s.integrator.method,
+        s.integrator.steps,
+        s.integrator.rhs_evaluations,
+        s.integrator.rejected_steps,
+        s.n_samples,
+        s.wall_time_s
+    ));
+    o.push_str(&format!("output       {}\n", dir.display()));
+    o
+}
