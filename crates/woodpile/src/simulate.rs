@@ -153,8 +153,8 @@ impl PeakTracker {
     /// Updates with the forces and rates at the end of a step [t0, t1].
     fn update(&mut self, t0: f64, t1: f64, force: &[f64]) {
         let h = t1 - t0;
-        for c in 0..force.len() {
-            let (f1, d1) = (force[c], self.rate[c]);
+        for (c, &f1) in force.iter().enumerate() {
+            let d1 = self.rate[c];
             let (f0, d0) = (self.prev_force[c], self.prev_rate[c]);
             if f1 > self.peak[c] {
                 self.peak[c] = f1;

@@ -46,8 +46,11 @@ pub struct UnitCell {
 /// Rod lengths of the paper's Table 1 [mm].
 pub const TABLE1_LENGTHS_MM: [u32; 7] = [20, 30, 40, 50, 60, 70, 80];
 
-/// Table 1 of the paper: (length mm, M g, [(m_j g, k_j kN/mm)]).
-const TABLE1: [(u32, f64, &[(f64, f64)]); 7] = [
+/// A Table 1 row: (length mm, M g, [(m_j g, k_j kN/mm)]).
+type Table1Row = (u32, f64, &'static [(f64, f64)]);
+
+/// Table 1 of the paper.
+const TABLE1: [Table1Row; 7] = [
     (20, 0.423, &[(0.443, 26.27)]),
     (30, 0.570, &[(0.729, 8.782)]),
     (40, 0.838, &[(0.894, 3.961)]),

@@ -145,7 +145,7 @@ pub fn hertz_contact(
         (s1.smallest_radius_m(), "first"),
         (s2.smallest_radius_m(), "second"),
     ] {
-        if !(r > 0.0) {
+        if r.is_nan() || r <= 0.0 {
             return Err(Error::invalid(
                 format!("{what} body radius_m"),
                 r,
@@ -161,7 +161,7 @@ pub fn hertz_contact(
     let diff = 0.5 * diff_sq.max(0.0).sqrt();
     let a = 0.5 * (sum - diff);
     let b = 0.5 * (sum + diff);
-    if !(a > 1e-9 * b) || !(a > 0.0) {
+    if a.is_nan() || a <= 1e-9 * b || a <= 0.0 {
         return Err(Error::NotPointContact {
             what: format!("{s1:?} on {s2:?}"),
             reason: "one principal gap curvature is zero (line contact, e.g. parallel cylinders or a cylinder on a flat)".into(),
