@@ -6,7 +6,9 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use woodpile::{simulate, CellModel, ChainBuilder, Excitation, Method, RunSettings, Striker};
 
-const CHAIN: [u32; 20] = [50, 80, 80, 80, 60, 70, 80, 80, 40, 30, 40, 40, 40, 30, 50, 40, 20, 20, 30, 50];
+const CHAIN: [u32; 20] = [
+    50, 80, 80, 80, 60, 70, 80, 80, 40, 30, 40, 40, 40, 30, 50, 40, 20, 20, 30, 50,
+];
 
 fn impact(c: &mut Criterion) {
     let chain = ChainBuilder::table1_rods(&CHAIN, CellModel::Resonant)
@@ -19,7 +21,13 @@ fn impact(c: &mut Criterion) {
     let methods = [
         ("rk4_0.1us", Method::Rk4 { time_step_s: 1e-7 }),
         ("rk4_0.5us", Method::Rk4 { time_step_s: 5e-7 }),
-        ("dopri5_1e-6", Method::Dopri5 { rtol: 1e-6, atol: 1e-12 }),
+        (
+            "dopri5_1e-6",
+            Method::Dopri5 {
+                rtol: 1e-6,
+                atol: 1e-12,
+            },
+        ),
     ];
     for (name, method) in methods {
         for (sampling, interval) in [("sampled_1us", 1e-6), ("peaks_only", 2e-3)] {
