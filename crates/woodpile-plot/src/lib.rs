@@ -1,0 +1,178 @@
+//! # woodpile-plot
+//!
+//! Figures of woodpile runs and analyses, each written as PNG and SVG from in-memory data (the
+//! [`woodpile::analysis`] results and trajectories), never from files. Text uses DejaVu Sans,
+//! bundled in the binary, so figures render the same on machines without system fonts.
+//!
+//! | function | figure | paper |
+//! | --- | --- | --- |
+//! | [`force_map`] | contact force, contact × time | Figs. 5, 9 a, c, e, g |
+//! | [`energy_map`] | layer energy / injected energy [%], layer × time | Fig. 6 |
+//! | [`spectrum_map`] | force amplitude (log), contact × frequency | Fig. 9 b, d, f, h |
+//! | [`protocol_map`], [`peaks_per_layer`] | layer-by-layer protocol | Fig. 7 a, b |
+//! | [`force_histories`] | force at chosen contacts vs time | Fig. 7 c |
+//! | [`spectra`] | amplitude spectra (log) with negative-mass bands shaded | Fig. 9 |
+//! | [`effective_mass`] | M_eff/M_total vs frequency with bands shaded | Fig. 3 |
+//! | [`convergence`] | best and mean objective per GA generation | – |
+//! | [`chain_picture`] | rods to scale, top to bottom | Fig. 5 d, e (right) |
+//!
+//! Every function takes a file *stem* (`dir/force_map`) and writes `stem.png` and `stem.svg`,
+//! returning the two paths.
+
+mod chain;
+mod colormap;
+mod heatmap;
+mod lines;
+
+pub use chain::chain_picture;
+pub use colormap::ColorMap;
+pub use heatmap::{energy_map, force_map, protocol_map, spectrum_map, Heatmap};
+pub use lines::{
+    convergence, effective_mass, force_histories, peaks_per_layer, spectra, ConvergencePoint,
+    Series,
+};
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::Once;
+
+/// What can go wrong while drawing.
+#[derive(Debug, thiserror::Error)]
+pub enum PlotError {
+    /// The data cannot be drawn (empty, wrong shape, non-finite).
+    #[error("cannot plot {what}: {reason}")]
+    BadData {
+        /// Which figure or input.
+        what: String,
+        /// Why.
+        reason: String,
+    },
+    /// The drawing backend failed (e.g. the file could not be written).
+    #[error("drawing {path} failed: {reason}")]
+    Draw {
+        /// The output file.
+        path: PathBuf,
+        /// The backend's message.
+        reason: String,
+    },
+}
+
+/// Result alias of this crate.
+pub type Result<T, E = PlotError> = std::result::Result<T, E>;
+
+/// Backend error while drawing, before the file is known.
+#[derive(Debug)]
+pub(crate) struct DrawFailure(String);
+
+impl<E: std::error::Error + Send + Sync> From<DrawingAreaErrorKind<E>> for DrawFailure {
+    fn from(e: DrawingAreaErrorKind<E>) -> Self {
+        DrawFailure(e.to_string())
+    }
+}
+
+pub(crate) type DrawResult = std::result::Result<(), DrawFailure>;
+
+/// A figure that can be drawn on any plotters backend.
+pub(crate) trait Figure {
+    /// Canvas size in pixels.
+    fn size(&self) -> (u32, u32);
+    /// Draws on a white canvas.
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static;
+}
+
+/// Font family name under which DejaVu Sans is registered.
+pub(crate) const FONT: &str = "sans-serif";
+
+fn register_fonts() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // The bundled fonts are valid TrueType files: registration cannot fail.
+        let _ = plotters::style::register_font(FONT, FontStyle::Normal, dejavu::sans::regular());
+        let _ = plotters::style::register_font(FONT, FontStyle::Bold, dejavu::sans::bold());
+    });
+}
+
+/// Writes `stem.png` and `stem.svg`.
+pub(crate) fn render(figure: &impl Figure, stem: &Path) -> Result<Vec<PathBuf>> {
+    register_fonts();
+    let size = figure.size();
+    let png = with_extension(stem, "png");
+    let svg = with_extension(stem, "svg");
+    let fail = |path: &Path| {
+        let path = path.to_path_buf();
+        move |e: DrawFailure| PlotError::Draw { path, reason: e.0 }
+    };
+    {
+        let root = BitMapBackend::new(&png, size).into_drawing_area();
+        figure.draw(&root).map_err(fail(&png))?;
+        root.present()
+            .map_err(|e| DrawFailure(e.to_string()))
+            .map_err(fail(&png))?;
+    }
+    {
+        let root = SVGBackend::new(&svg, size).into_drawing_area();
+        figure.draw(&root).map_err(fail(&svg))?;
+        root.present()
+            .map_err(|e| DrawFailure(e.to_string()))
+            .map_err(fail(&svg))?;
+    }
+    Ok(vec![png, svg])
+}
+
+/// `stem` + `.ext`, keeping any dots already in the file name.
+fn with_extension(stem: &Path, ext: &str) -> PathBuf {
+    let mut s = stem.as_os_str().to_owned();
+    s.push(".");
+    s.push(ext);
+    PathBuf::from(s)
+}
+
+/// A qualitative palette (Tableau 10) for line series.
+pub(crate) fn series_color(i: usize) -> RGBColor {
+    const P: [(u8, u8, u8); 10] = [
+        (31, 119, 180),
+        (255, 127, 14),
+        (44, 160, 44),
+        (214, 39, 40),
+        (148, 103, 189),
+        (140, 86, 75),
+        (227, 119, 194),
+        (127, 127, 127),
+        (188, 189, 34),
+        (23, 190, 207),
+    ];
+    let (r, g, b) = P[i % P.len()];
+    RGBColor(r, g, b)
+}
+
+/// Checks that `values` has at least one finite value; returns (min, max) of the finite ones.
+pub(crate) fn finite_range(
+    what: &str,
+    values: impl IntoIterator<Item = f64>,
+) -> Result<(f64, f64)> {
+    values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold(None, |acc: Option<(f64, f64)>, v| match acc {
+            None => Some((v, v)),
+            Some((lo, hi)) => Some((lo.min(v), hi.max(v))),
+        })
+        .ok_or_else(|| PlotError::BadData {
+            what: what.to_string(),
+            reason: "no finite value to draw".to_string(),
+        })
+}
+
+/// Widens a degenerate range so an axis can be drawn.
+pub(crate) fn padded(lo: f64, hi: f64) -> (f64, f64) {
+    if hi > lo {
+        (lo, hi)
+    } else if lo == 0.0 {
+        (-1.0, 1.0)
+    } else {
+        (lo - 0.5 * lo.abs(), hi + 0.5 * hi.abs())
+    }
+}

@@ -1,0 +1,459 @@
+//! Line plots: force histories, spectra, effective-mass curves, GA convergence, peaks per layer.
+
+use crate::heatmap::format_number;
+use crate::{
+    finite_range, padded, render, series_color, DrawResult, Figure, PlotError, Result, FONT,
+};
+use plotters::coord::types::RangedCoordf64;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+use woodpile::{EffectiveMassCurve, Spectrum};
+
+/// A named series of values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    /// Legend entry.
+    pub label: String,
+    /// Values, one per point of the shared x axis.
+    pub values: Vec<f64>,
+}
+
+impl Series {
+    /// A series.
+    pub fn new(label: impl Into<String>, values: Vec<f64>) -> Self {
+        Series {
+            label: label.into(),
+            values,
+        }
+    }
+}
+
+/// One generation of a genetic algorithm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ConvergencePoint {
+    /// Generation number.
+    pub generation: usize,
+    /// Best objective value of the generation.
+    pub best: f64,
+    /// Mean objective value of the generation.
+    pub mean: f64,
+}
+
+const LEGEND_FONT: u32 = 15;
+
+/// A polyline broken into segments (a new segment where the line must not be joined).
+type Segments = Vec<Vec<(f64, f64)>>;
+
+/// x/y points of several series, drawn as lines on linear or log-y axes.
+struct LinePlot {
+    title: String,
+    x_label: String,
+    y_label: String,
+    /// Per series: label, (x, y) points split into segments (a new segment where the line must
+    /// break, e.g. at a pole).
+    series: Vec<(String, Segments)>,
+    /// Shaded x intervals: (lo, hi, colour index or None for grey, legend label).
+    bands: Vec<(f64, f64, Option<usize>, Option<String>)>,
+    x_range: (f64, f64),
+    y_range: (f64, f64),
+    log_y: bool,
+    markers: bool,
+    zero_line: bool,
+    size: (u32, u32),
+}
+
+impl LinePlot {
+    fn write(self, stem: &Path) -> Result<Vec<PathBuf>> {
+        render(&self, stem)
+    }
+
+    fn draw_on<'a, DB: DrawingBackend + 'a, Y>(
+        &self,
+        chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, Y>>,
+        y_lo: f64,
+        y_hi: f64,
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+        Y: Ranged<ValueType = f64>,
+    {
+        for (lo, hi, colour, label) in &self.bands {
+            let c = match colour {
+                Some(i) => series_color(*i).mix(0.15),
+                None => RGBColor(120, 120, 120).mix(0.2),
+            };
+            let (lo, hi) = (lo.max(self.x_range.0), hi.min(self.x_range.1));
+            if hi <= lo {
+                continue;
+            }
+            let s = chart.draw_series(std::iter::once(Rectangle::new(
+                [(lo, y_lo), (hi, y_hi)],
+                c.filled(),
+            )))?;
+            if let Some(label) = label {
+                s.label(label.as_str()).legend(move |(x, y)| {
+                    Rectangle::new([(x, y - 6), (x + 18, y + 6)], c.filled())
+                });
+            }
+        }
+        if self.zero_line {
+            chart.draw_series(LineSeries::new(
+                [(self.x_range.0, 0.0), (self.x_range.1, 0.0)],
+                BLACK.mix(0.5).stroke_width(1),
+            ))?;
+        }
+        for (i, (label, segments)) in self.series.iter().enumerate() {
+            let colour = series_color(i);
+            let style = colour.stroke_width(2);
+            for (k, seg) in segments.iter().enumerate() {
+                let s = chart.draw_series(LineSeries::new(seg.iter().copied(), style))?;
+                if k == 0 {
+                    s.label(label.as_str()).legend(move |(x, y)| {
+                        PathElement::new([(x, y), (x + 18, y)], colour.stroke_width(3))
+                    });
+                }
+                if self.markers {
+                    chart.draw_series(
+                        seg.iter()
+                            .map(|&(x, y)| Circle::new((x, y), 4, colour.filled())),
+                    )?;
+                }
+            }
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK.mix(0.4))
+            .label_font((FONT, LEGEND_FONT))
+            .draw()?;
+        Ok(())
+    }
+}
+
+impl Figure for LinePlot {
+    fn size(&self) -> (u32, u32) {
+        self.size
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE)?;
+        let (x0, x1) = self.x_range;
+        let (y0, y1) = self.y_range;
+        let mut builder = ChartBuilder::on(root);
+        builder
+            .caption(&self.title, (FONT, 22))
+            .margin(15)
+            .x_label_area_size(50)
+            .y_label_area_size(85);
+        if self.log_y {
+            let mut chart = builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())?;
+            chart
+                .configure_mesh()
+                .x_desc(&self.x_label)
+                .x_label_formatter(&|v| format_number(*v))
+                .y_desc(&self.y_label)
+                .y_label_formatter(&|v| format_number(*v))
+                .label_style((FONT, 15))
+                .axis_desc_style((FONT, 17))
+                .light_line_style(WHITE.mix(0.0))
+                .draw()?;
+            self.draw_on(&mut chart, y0, y1)
+        } else {
+            let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1)?;
+            chart
+                .configure_mesh()
+                .x_desc(&self.x_label)
+                .x_label_formatter(&|v| format_number(*v))
+                .y_desc(&self.y_label)
+                .y_label_formatter(&|v| format_number(*v))
+                .label_style((FONT, 15))
+                .axis_desc_style((FONT, 17))
+                .light_line_style(WHITE.mix(0.0))
+                .draw()?;
+            self.draw_on(&mut chart, y0, y1)
+        }
+    }
+}
+
+fn bad(what: &str, reason: impl Into<String>) -> PlotError {
+    PlotError::BadData {
+        what: what.to_string(),
+        reason: reason.into(),
+    }
+}
+
+/// Force histories at chosen contacts (e.g. the striker contact, contact 1 and the wall): time
+/// in ms, force in N.
+pub fn force_histories(
+    times_s: &[f64],
+    series: &[Series],
+    title: &str,
+    stem: &Path,
+) -> Result<Vec<PathBuf>> {
+    if times_s.len() < 2 || series.is_empty() {
+        return Err(bad(title, "needs at least 2 samples and 1 series"));
+    }
+    if let Some(s) = series.iter().find(|s| s.values.len() != times_s.len()) {
+        return Err(bad(
+            title,
+            format!(
+                "series `{}` has {} values for {} times",
+                s.label,
+                s.values.len(),
+                times_s.len()
+            ),
+        ));
+    }
+    let (_, hi) = finite_range(title, series.iter().flat_map(|s| s.values.iter().copied()))?;
+    let (lo, _) = finite_range(title, series.iter().flat_map(|s| s.values.iter().copied()))?;
+    let (y0, y1) = padded(lo.min(0.0), hi * 1.08);
+    LinePlot {
+        title: title.to_string(),
+        x_label: "time [ms]".into(),
+        y_label: "contact force [N]".into(),
+        series: series
+            .iter()
+            .map(|s| {
+                let pts = times_s
+                    .iter()
+                    .map(|t| t * 1e3)
+                    .zip(s.values.iter().copied());
+                (
+                    s.label.clone(),
+                    vec![pts.filter(|p| p.1.is_finite()).collect()],
+                )
+            })
+            .collect(),
+        bands: Vec::new(),
+        x_range: (times_s[0] * 1e3, times_s[times_s.len() - 1] * 1e3),
+        y_range: (y0, y1),
+        log_y: false,
+        markers: false,
+        zero_line: false,
+        size: (1100, 600),
+    }
+    .write(stem)
+}
+
+/// Amplitude spectra (log amplitude [N], frequency in kHz up to `max_frequency_hz`) with the
+/// negative-effective-mass bands `bands_hz` shaded (paper Fig. 9).
+pub fn spectra(
+    spectra: &[(String, &Spectrum)],
+    bands_hz: &[(f64, f64)],
+    title: &str,
+    max_frequency_hz: f64,
+    stem: &Path,
+) -> Result<Vec<PathBuf>> {
+    if spectra.is_empty() {
+        return Err(bad(title, "no spectrum"));
+    }
+    let in_range = |s: &Spectrum| -> Vec<(f64, f64)> {
+        s.frequencies_hz
+            .iter()
+            .zip(&s.amplitudes)
+            .skip(1) // 0 Hz: the mean force, not a vibration
+            .take_while(|(f, _)| **f <= max_frequency_hz)
+            .map(|(f, a)| (f * 1e-3, *a))
+            .collect()
+    };
+    let (_, top) = finite_range(
+        title,
+        spectra
+            .iter()
+            .flat_map(|(_, s)| in_range(s).into_iter().map(|p| p.1)),
+    )?;
+    if top <= 0.0 {
+        return Err(bad(title, "every amplitude is zero"));
+    }
+    // Down to the smallest amplitude drawn, but no more than 5 decades below the top.
+    let smallest = spectra
+        .iter()
+        .flat_map(|(_, s)| in_range(s).into_iter().map(|p| p.1))
+        .filter(|a| *a > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    let floor = (0.5 * smallest).max(top * 1e-5);
+    let x_max = spectra
+        .iter()
+        .map(|(_, s)| s.frequencies_hz.last().copied().unwrap_or(0.0))
+        .fold(0.0, f64::max)
+        .min(max_frequency_hz)
+        * 1e-3;
+    let mut bands: Vec<(f64, f64, Option<usize>, Option<String>)> = bands_hz
+        .iter()
+        .map(|&(lo, hi)| (lo * 1e-3, hi * 1e-3, None, None))
+        .collect();
+    if let Some(first) = bands.first_mut() {
+        first.3 = Some("negative-mass band".to_string());
+    }
+    LinePlot {
+        title: title.to_string(),
+        x_label: "frequency [kHz]".into(),
+        y_label: "force amplitude [N]".into(),
+        series: spectra
+            .iter()
+            .map(|(label, s)| {
+                let pts = in_range(s)
+                    .into_iter()
+                    .map(|(f, a)| (f, a.max(floor)))
+                    .collect();
+                (label.clone(), vec![pts])
+            })
+            .collect(),
+        bands,
+        x_range: (0.0, x_max),
+        y_range: (floor, top * 2.0),
+        log_y: true,
+        markers: false,
+        zero_line: false,
+        size: (1100, 600),
+    }
+    .write(stem)
+}
+
+/// Effective-mass curves M_eff/M_total against frequency in kHz, clipped to ±`y_limit`, each
+/// curve's negative-mass bands shaded in its colour (paper Fig. 3).
+pub fn effective_mass(
+    curves: &[(String, EffectiveMassCurve)],
+    title: &str,
+    y_limit: f64,
+    stem: &Path,
+) -> Result<Vec<PathBuf>> {
+    if curves.is_empty() || curves.iter().any(|(_, c)| c.frequencies_hz.len() < 2) {
+        return Err(bad(title, "needs curves of at least 2 frequencies"));
+    }
+    let mut bands = Vec::new();
+    let mut series = Vec::new();
+    for (i, (label, c)) in curves.iter().enumerate() {
+        let poles: Vec<f64> = c.negative_bands_hz.iter().map(|b| b.0).collect();
+        let mut segments: Segments = vec![Vec::new()];
+        for (k, (&f, &m)) in c.frequencies_hz.iter().zip(&c.normalised_mass).enumerate() {
+            if k > 0 {
+                let prev = c.frequencies_hz[k - 1];
+                if poles.iter().any(|&p| prev < p && p <= f) {
+                    segments.push(Vec::new());
+                }
+            }
+            if m.is_finite() {
+                segments
+                    .last_mut()
+                    .expect("at least one segment")
+                    .push((f * 1e-3, m.clamp(-y_limit, y_limit)));
+            }
+        }
+        segments.retain(|s| !s.is_empty());
+        series.push((label.clone(), segments));
+        for &(lo, hi) in &c.negative_bands_hz {
+            bands.push((lo * 1e-3, hi * 1e-3, Some(i), None));
+        }
+    }
+    let x_max = curves
+        .iter()
+        .filter_map(|(_, c)| c.frequencies_hz.last().copied())
+        .fold(0.0, f64::max)
+        * 1e-3;
+    let x_min = curves
+        .iter()
+        .map(|(_, c)| c.frequencies_hz[0])
+        .fold(f64::INFINITY, f64::min)
+        * 1e-3;
+    LinePlot {
+        title: title.to_string(),
+        x_label: "frequency [kHz]".into(),
+        y_label: "M_eff / M_total [-]".into(),
+        series,
+        bands,
+        x_range: (x_min, x_max),
+        y_range: (-y_limit, y_limit),
+        log_y: false,
+        markers: false,
+        zero_line: true,
+        size: (1100, 600),
+    }
+    .write(stem)
+}
+
+/// Convergence of a genetic algorithm: best and mean objective per generation.
+pub fn convergence(
+    points: &[ConvergencePoint],
+    objective_label: &str,
+    title: &str,
+    stem: &Path,
+) -> Result<Vec<PathBuf>> {
+    if points.is_empty() {
+        return Err(bad(title, "no generation"));
+    }
+    let (lo, hi) = finite_range(title, points.iter().flat_map(|p| [p.best, p.mean]))?;
+    let (y0, y1) = padded(lo - 0.05 * (hi - lo), hi + 0.05 * (hi - lo));
+    let g0 = points[0].generation as f64;
+    let g1 = (points[points.len() - 1].generation as f64).max(g0 + 1.0);
+    let line = |f: fn(&ConvergencePoint) -> f64| {
+        vec![points
+            .iter()
+            .map(|p| (p.generation as f64, f(p)))
+            .filter(|p| p.1.is_finite())
+            .collect()]
+    };
+    LinePlot {
+        title: title.to_string(),
+        x_label: "generation".into(),
+        y_label: objective_label.to_string(),
+        series: vec![
+            ("best".to_string(), line(|p| p.best)),
+            ("population mean".to_string(), line(|p| p.mean)),
+        ],
+        bands: Vec::new(),
+        x_range: (g0, g1),
+        y_range: (y0, y1),
+        log_y: false,
+        markers: points.len() <= 40,
+        zero_line: false,
+        size: (1000, 600),
+    }
+    .write(stem)
+}
+
+/// Peak force per interface k = 1..N (one or more series, e.g. protocol vs full chain; paper
+/// Fig. 7 b).
+pub fn peaks_per_layer(
+    series: &[Series],
+    title: &str,
+    y_label: &str,
+    stem: &Path,
+) -> Result<Vec<PathBuf>> {
+    let n = series.iter().map(|s| s.values.len()).max().unwrap_or(0);
+    if n == 0 {
+        return Err(bad(title, "no value"));
+    }
+    let (_, hi) = finite_range(title, series.iter().flat_map(|s| s.values.iter().copied()))?;
+    LinePlot {
+        title: title.to_string(),
+        x_label: "interface k (rod k – rod k+1; N = wall)".into(),
+        y_label: y_label.to_string(),
+        series: series
+            .iter()
+            .map(|s| {
+                let pts = s
+                    .values
+                    .iter()
+                    .enumerate()
+                    .map(|(k, v)| ((k + 1) as f64, *v))
+                    .filter(|p| p.1.is_finite())
+                    .collect();
+                (s.label.clone(), vec![pts])
+            })
+            .collect(),
+        bands: Vec::new(),
+        x_range: (0.5, n as f64 + 0.5),
+        y_range: padded(0.0, hi * 1.1),
+        log_y: false,
+        markers: true,
+        zero_line: false,
+        size: (1000, 600),
+    }
+    .write(stem)
+}
