@@ -13,7 +13,9 @@
 
 pub mod commands;
 pub mod error;
+pub mod optimize_cmd;
 pub mod output;
+pub mod plot_cmd;
 pub mod scenario;
 pub mod table;
 

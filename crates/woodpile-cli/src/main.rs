@@ -27,6 +27,10 @@ enum Command {
     Scenario(commands::scenarios::ShowArgs),
     /// Print the unit-cell catalogue (paper Table 1): masses, resonances, negative-mass bands.
     Cells(commands::cells::Args),
+    /// Search the element arrangement that minimises an objective (breeder GA, model.md §11).
+    Optimize(woodpile_cli::optimize_cmd::Args),
+    /// Draw the figures of a `simulate` output directory into RUN_DIR/plots (PNG and SVG).
+    Plot(woodpile_cli::plot_cmd::Args),
 }
 
 fn dispatch(command: &Command, ctx: &Context) -> Result<(), CliError> {
@@ -35,6 +39,8 @@ fn dispatch(command: &Command, ctx: &Context) -> Result<(), CliError> {
         Command::Scenarios(args) => commands::scenarios::list(args, ctx),
         Command::Scenario(args) => commands::scenarios::show(args, ctx),
         Command::Cells(args) => commands::cells::run(args, ctx),
+        Command::Optimize(args) => woodpile_cli::optimize_cmd::run(args, ctx),
+        Command::Plot(args) => woodpile_cli::plot_cmd::run(args, ctx),
     }
 }
 

@@ -330,20 +330,37 @@ pub fn effective_mass(
     let mut series = Vec::new();
     for (i, (label, c)) in curves.iter().enumerate() {
         let poles: Vec<f64> = c.negative_bands_hz.iter().map(|b| b.0).collect();
+        // Points beyond ±y_limit are left out: the line runs to the frame and breaks there
+        // (no flat runs along the frame), and it breaks at every pole.
         let mut segments: Segments = vec![Vec::new()];
-        for (k, (&f, &m)) in c.frequencies_hz.iter().zip(&c.normalised_mass).enumerate() {
-            if k > 0 {
-                let prev = c.frequencies_hz[k - 1];
-                if poles.iter().any(|&p| prev < p && p <= f) {
+        let mut prev: Option<(f64, f64)> = None;
+        for (&f, &m) in c.frequencies_hz.iter().zip(&c.normalised_mass) {
+            let x = f * 1e-3;
+            if let Some((px, _)) = prev {
+                if poles.iter().any(|&p| px * 1e3 < p && p <= f) {
                     segments.push(Vec::new());
+                    prev = None;
                 }
             }
-            if m.is_finite() {
-                segments
-                    .last_mut()
-                    .expect("at least one segment")
-                    .push((f * 1e-3, m.clamp(-y_limit, y_limit)));
+            if !m.is_finite() {
+                prev = None;
+                continue;
             }
+            let inside = m.abs() <= y_limit;
+            let seg = segments.last_mut().expect("at least one segment");
+            match (prev, inside) {
+                (Some((px, pm)), true) if pm.abs() > y_limit => {
+                    seg.push((px, pm.clamp(-y_limit, y_limit)));
+                    seg.push((x, m));
+                }
+                (_, true) => seg.push((x, m)),
+                (Some((_, pm)), false) if pm.abs() <= y_limit => {
+                    seg.push((x, m.clamp(-y_limit, y_limit)));
+                    segments.push(Vec::new());
+                }
+                (_, false) => {}
+            }
+            prev = Some((x, m));
         }
         segments.retain(|s| !s.is_empty());
         series.push((label.clone(), segments));

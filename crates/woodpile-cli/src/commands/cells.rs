@@ -7,7 +7,11 @@ use woodpile::UnitCell;
 
 /// Arguments of `woodpile cells`.
 #[derive(Debug, Clone, clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// Also draw the effective-mass curves (paper Fig. 3) into this directory (PNG and SVG).
+    #[arg(long, value_name = "DIR")]
+    pub plot: Option<std::path::PathBuf>,
+}
 
 fn khz(values: &[f64]) -> String {
     values
@@ -62,7 +66,13 @@ pub fn table() -> Result<String, CliError> {
 }
 
 /// Prints the catalogue.
-pub fn run(_args: &Args, _ctx: &Context) -> Result<(), CliError> {
+pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     print!("{}", table()?);
+    if let Some(dir) = &args.plot {
+        let files = crate::plot_cmd::cells_figures(dir)?;
+        if !ctx.quiet {
+            println!("wrote {} files to {}", files.len(), dir.display());
+        }
+    }
     Ok(())
 }

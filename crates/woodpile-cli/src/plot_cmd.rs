@@ -1,0 +1,552 @@
+//! `woodpile plot RUN_DIR`: the figures of a `woodpile simulate` output directory, written to
+//! `RUN_DIR/plots/` as PNG and SVG — force map, energy map, spectrum map, force histories at the
+//! striker contact, contact 1 and the wall, their spectra, and a picture of the chain.
+//!
+//! Also [`cells_figures`] for `woodpile cells --plot DIR`: the effective-mass curves of the
+//! catalogue with the negative-mass bands shaded (paper Fig. 3).
+
+use crate::commands::Context;
+use crate::error::CliError;
+use crate::output::RUN_MARKER;
+use crate::scenario::{resolve, Scenario};
+use serde_json::Value;
+use std::fs;
+use std::path::{Path, PathBuf};
+use woodpile::analysis::{
+    contact_spectrum_map, energy_map, force_map, linspace, Spectrum, SpectrumSettings, Window,
+};
+use woodpile::model::TABLE1_LENGTHS_MM;
+use woodpile::{Chain, EffectiveMassCurve, Resonator, Trajectory, UnitCell};
+use woodpile_plot as plot;
+
+/// The run-directory format this build reads: `run.json` written by woodpile of the same
+/// major.minor version (0.x: every minor version may change the files). A run.json that carries
+/// an explicit `format` key must name this one.
+pub const RUN_FORMAT: &str = "woodpile-run/1";
+
+/// Arguments of `woodpile plot`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct Args {
+    /// A directory written by `woodpile simulate` (it holds run.json).
+    #[arg(value_name = "RUN_DIR")]
+    pub dir: PathBuf,
+    /// Where to write the figures (default: RUN_DIR/plots).
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Highest frequency drawn in the spectra [kHz].
+    #[arg(long, value_name = "KHZ", default_value_t = 80.0)]
+    pub max_frequency_khz: f64,
+    /// Window of the spectra: rectangular, hann, hamming, blackman-harris, flat-top.
+    #[arg(long, value_name = "NAME", default_value = "rectangular")]
+    pub window: String,
+}
+
+/// What `run.json` says about a run, as far as the figures need it.
+#[derive(Debug, Clone)]
+pub struct RunInfo {
+    /// Scenario name.
+    pub name: String,
+    /// Element labels, top to bottom.
+    pub labels: Vec<String>,
+    /// Unit cells of the elements (for the negative-mass bands).
+    pub cells: Vec<UnitCell>,
+    /// "impact 1.98 m/s" or "blast …".
+    pub excitation: String,
+    /// The chain, when the scenario still resolves (a blast table may have moved).
+    pub chain: Option<Chain>,
+}
+
+fn bad_dir(dir: &Path, reason: impl Into<String>) -> CliError {
+    CliError::invalid("RUN_DIR", dir.display(), reason)
+}
+
+fn read_error(path: &Path, reason: impl Into<String>) -> CliError {
+    CliError::Read {
+        path: path.to_path_buf(),
+        source: std::io::Error::other(reason.into()),
+    }
+}
+
+/// Reads and checks `run.json`: a woodpile run of a format this build reads.
+pub fn read_run_info(dir: &Path) -> Result<RunInfo, CliError> {
+    if !dir.is_dir() {
+        return Err(bad_dir(
+            dir,
+            "is not a directory; give a directory written by `woodpile simulate`",
+        ));
+    }
+    let path = dir.join(RUN_MARKER);
+    if !path.is_file() {
+        return Err(bad_dir(
+            dir,
+            "is not a woodpile run (no run.json); give a directory written by `woodpile simulate` (an optimisation directory is not supported by this command yet)",
+        ));
+    }
+    let text = fs::read_to_string(&path).map_err(|e| CliError::Read {
+        path: path.clone(),
+        source: e,
+    })?;
+    let run: Value = serde_json::from_str(&text).map_err(|e| CliError::Parse {
+        source_name: path.display().to_string(),
+        message: e.to_string(),
+    })?;
+    check_format(&path, &run)?;
+    let field = |key: &str| {
+        run.get(key).ok_or_else(|| {
+            read_error(
+                &path,
+                format!("no `{key}` key: not a complete woodpile run.json"),
+            )
+        })
+    };
+    let name = field("scenario_name")?
+        .as_str()
+        .unwrap_or("run")
+        .to_string();
+    let elements = field("elements")?
+        .as_array()
+        .ok_or_else(|| read_error(&path, "`elements` is not a list"))?;
+    let mut labels = Vec::with_capacity(elements.len());
+    let mut cells = Vec::with_capacity(elements.len());
+    for (i, e) in elements.iter().enumerate() {
+        labels.push(
+            e.get("label")
+                .and_then(Value::as_str)
+                .unwrap_or("?")
+                .to_string(),
+        );
+        let num = |k: &str| e.get(k).and_then(Value::as_f64);
+        let list = |k: &str| -> Vec<f64> {
+            e.get(k)
+                .and_then(Value::as_array)
+                .map(|a| a.iter().filter_map(Value::as_f64).collect())
+                .unwrap_or_default()
+        };
+        let primary = num("primary_mass_kg")
+            .ok_or_else(|| read_error(&path, format!("elements[{i}] has no primary_mass_kg")))?;
+        let resonators = list("resonator_masses_kg")
+            .into_iter()
+            .zip(list("resonator_stiffnesses_n_per_m"))
+            .map(|(m, k)| Resonator {
+                mass_kg: m,
+                stiffness_n_per_m: k,
+            })
+            .collect();
+        cells.push(UnitCell::new(primary, resonators).map_err(CliError::Model)?);
+    }
+    let excitation = match run.get("striker_velocity_m_s").and_then(Value::as_f64) {
+        Some(v) => format!("impact {v:.2} m/s"),
+        None => describe_blast(run.pointer("/scenario/excitation")),
+    };
+    // The chain itself (element bodies, for the picture) comes from the completed scenario.
+    let chain = run
+        .get("scenario")
+        .cloned()
+        .and_then(|s| serde_json::from_value::<Scenario>(s).ok())
+        .and_then(|s| {
+            let base = run
+                .get("scenario_file")
+                .and_then(Value::as_str)
+                .and_then(|f| Path::new(f).parent().map(Path::to_path_buf))
+                .filter(|p| !p.as_os_str().is_empty())
+                .unwrap_or_else(|| PathBuf::from("."));
+            resolve(&s, &base).ok()
+        })
+        .map(|r| r.chain);
+    Ok(RunInfo {
+        name,
+        labels,
+        cells,
+        excitation,
+        chain,
+    })
+}
+
+fn check_format(path: &Path, run: &Value) -> Result<(), CliError> {
+    let tool = run.get("tool").and_then(Value::as_str);
+    if tool != Some("woodpile") {
+        return Err(read_error(
+            path,
+            format!(
+                "not written by woodpile (tool = {}); give a directory written by `woodpile simulate`",
+                tool.unwrap_or("missing")
+            ),
+        ));
+    }
+    if let Some(format) = run.get("format").and_then(Value::as_str) {
+        if format != RUN_FORMAT {
+            return Err(read_error(
+                path,
+                format!("run format `{format}` is not `{RUN_FORMAT}`, the one this woodpile reads; re-run `woodpile simulate` with this version"),
+            ));
+        }
+        return Ok(());
+    }
+    let version = run
+        .get("version")
+        .and_then(Value::as_str)
+        .unwrap_or("unknown");
+    let major_minor = |v: &str| v.split('.').take(2).collect::<Vec<_>>().join(".");
+    let ours = env!("CARGO_PKG_VERSION");
+    if major_minor(version) != major_minor(ours) {
+        return Err(read_error(
+            path,
+            format!("written by woodpile {version}, whose run format this woodpile {ours} does not read; re-run `woodpile simulate` with this version"),
+        ));
+    }
+    Ok(())
+}
+
+fn describe_blast(excitation: Option<&Value>) -> String {
+    let get = |k: &str| excitation.and_then(|e| e.get(k)).and_then(Value::as_f64);
+    match (get("peak_force_n"), get("duration_s")) {
+        (Some(f), Some(td)) => format!("blast {f:.0} N / {:.2} ms", td * 1e3),
+        _ => "blast (tabulated load)".to_string(),
+    }
+}
+
+/// A short description of the chain: `20 × 80mm` or the labels top to bottom.
+pub fn describe_chain(labels: &[String]) -> String {
+    match labels {
+        [] => "empty chain".to_string(),
+        [first, rest @ ..] if rest.iter().all(|l| l == first) => {
+            format!("{} × {first}", labels.len())
+        }
+        _ if labels.len() <= 8 => labels.join(" "),
+        _ => format!(
+            "{} elements ({} … {})",
+            labels.len(),
+            labels[..3].join(" "),
+            labels[labels.len() - 2..].join(" ")
+        ),
+    }
+}
+
+/// Reads a run's samples: the `.npy` files, or the CSV files where those are missing.
+pub fn read_trajectory(dir: &Path, n_elements: usize) -> Result<Trajectory, CliError> {
+    let nc = n_elements + 1;
+    let npy = [
+        "time_s.npy",
+        "forces_n.npy",
+        "energy_j.npy",
+        "wall_energy_j.npy",
+    ];
+    if npy.iter().all(|f| dir.join(f).is_file()) {
+        let times = read_npy(&dir.join("time_s.npy"), &[None])?;
+        let ns = times.len();
+        let forces = read_npy(&dir.join("forces_n.npy"), &[Some(ns), Some(nc)])?;
+        let energies = read_npy(&dir.join("energy_j.npy"), &[Some(ns), Some(nc)])?;
+        let wall = read_npy(&dir.join("wall_energy_j.npy"), &[Some(ns)])?;
+        let work = if dir.join("input_work_j.npy").is_file() {
+            read_npy(&dir.join("input_work_j.npy"), &[Some(ns)])?
+        } else {
+            vec![0.0; ns]
+        };
+        return Ok(trajectory(n_elements, times, forces, energies, wall, work));
+    }
+    let forces_csv = dir.join("forces.csv");
+    let energy_csv = dir.join("energy.csv");
+    for f in [&forces_csv, &energy_csv] {
+        if !f.is_file() {
+            return Err(read_error(
+                f,
+                format!(
+                    "missing: the run has neither {} nor this file; re-run `woodpile simulate`",
+                    npy.join(", ")
+                ),
+            ));
+        }
+    }
+    let (times, forces) = read_csv(
+        &forces_csv,
+        &(0..nc)
+            .map(|c| format!("contact_{c}_n"))
+            .collect::<Vec<_>>(),
+    )?;
+    let mut energy_cols: Vec<String> = (0..nc).map(|l| format!("layer_{l}_j")).collect();
+    energy_cols.push("wall_j".into());
+    energy_cols.push("input_work_j".into());
+    let (etimes, e) = read_csv(&energy_csv, &energy_cols)?;
+    if etimes.len() != times.len() {
+        return Err(read_error(
+            &energy_csv,
+            format!(
+                "{} samples, but forces.csv has {}",
+                etimes.len(),
+                times.len()
+            ),
+        ));
+    }
+    let w = nc + 2;
+    let energies = e.chunks(w).flat_map(|r| r[..nc].to_vec()).collect();
+    let wall = e.chunks(w).map(|r| r[nc]).collect();
+    let work = e.chunks(w).map(|r| r[nc + 1]).collect();
+    Ok(trajectory(n_elements, times, forces, energies, wall, work))
+}
+
+fn trajectory(
+    n_elements: usize,
+    times_s: Vec<f64>,
+    contact_forces_n: Vec<f64>,
+    layer_energies_j: Vec<f64>,
+    wall_energy_j: Vec<f64>,
+    input_work_j: Vec<f64>,
+) -> Trajectory {
+    Trajectory {
+        n_elements,
+        times_s,
+        contact_forces_n,
+        layer_energies_j,
+        wall_energy_j,
+        input_work_j,
+        ..Trajectory::default()
+    }
+}
+
+/// Reads a float64 `.npy` file and checks its shape (None: any length).
+fn read_npy(path: &Path, shape: &[Option<usize>]) -> Result<Vec<f64>, CliError> {
+    let bytes = fs::read(path).map_err(|e| CliError::Read {
+        path: path.to_path_buf(),
+        source: e,
+    })?;
+    let npy = npyz::NpyFile::new(&bytes[..]).map_err(|e| CliError::Read {
+        path: path.to_path_buf(),
+        source: e,
+    })?;
+    let actual: Vec<usize> = npy.shape().iter().map(|&d| d as usize).collect();
+    let fits = actual.len() == shape.len()
+        && actual
+            .iter()
+            .zip(shape)
+            .all(|(a, s)| s.is_none_or(|s| s == *a));
+    if !fits {
+        let want: Vec<String> = shape
+            .iter()
+            .map(|s| s.map_or("any".to_string(), |s| s.to_string()))
+            .collect();
+        return Err(read_error(
+            path,
+            format!("array of shape {actual:?}, expected [{}]", want.join(", ")),
+        ));
+    }
+    npy.into_vec::<f64>().map_err(|e| CliError::Read {
+        path: path.to_path_buf(),
+        source: e,
+    })
+}
+
+/// Reads `time_s` and the named columns of a CSV file: (times, rows of the columns).
+fn read_csv(path: &Path, columns: &[String]) -> Result<(Vec<f64>, Vec<f64>), CliError> {
+    let csv_err = |e: csv::Error| read_error(path, e.to_string());
+    let mut r = csv::Reader::from_path(path).map_err(csv_err)?;
+    let header = r.headers().map_err(csv_err)?.clone();
+    let index = |name: &str| {
+        header
+            .iter()
+            .position(|h| h == name)
+            .ok_or_else(|| read_error(path, format!("no column `{name}`")))
+    };
+    let t_col = index("time_s")?;
+    let cols = columns
+        .iter()
+        .map(|c| index(c))
+        .collect::<Result<Vec<_>, _>>()?;
+    let (mut times, mut data) = (Vec::new(), Vec::new());
+    for (line, rec) in r.records().enumerate() {
+        let rec = rec.map_err(csv_err)?;
+        let num = |i: usize| -> Result<f64, CliError> {
+            rec.get(i)
+                .and_then(|s| s.trim().parse().ok())
+                .ok_or_else(|| {
+                    read_error(
+                        path,
+                        format!("line {}: not a number in column {}", line + 2, i + 1),
+                    )
+                })
+        };
+        times.push(num(t_col)?);
+        for &c in &cols {
+            data.push(num(c)?);
+        }
+    }
+    Ok((times, data))
+}
+
+fn plot_err(e: plot::PlotError) -> CliError {
+    let path = match &e {
+        plot::PlotError::Draw { path, .. } => path.clone(),
+        plot::PlotError::BadData { .. } => PathBuf::from("figure"),
+    };
+    CliError::Output {
+        path,
+        source: std::io::Error::other(e.to_string()),
+    }
+}
+
+/// The negative-mass bands to shade: those of the chain's cells when it has at most two
+/// different cells (more would cover the whole axis; paper §5: no common band then).
+fn bands_to_shade(cells: &[UnitCell]) -> Vec<(f64, f64)> {
+    let mut distinct: Vec<&UnitCell> = Vec::new();
+    for c in cells {
+        if !distinct.contains(&c) {
+            distinct.push(c);
+        }
+    }
+    if distinct.len() > 2 {
+        return Vec::new();
+    }
+    let mut bands: Vec<(f64, f64)> = distinct
+        .iter()
+        .flat_map(|c| c.negative_mass_bands_hz())
+        .collect();
+    bands.sort_by(|a, b| a.0.total_cmp(&b.0));
+    bands
+}
+
+/// Draws every figure of a run directory into `out`; returns the files written.
+pub fn plot_run(
+    dir: &Path,
+    out: &Path,
+    max_frequency_hz: f64,
+    window: Window,
+) -> Result<Vec<PathBuf>, CliError> {
+    let info = read_run_info(dir)?;
+    let n = info.labels.len();
+    let t = read_trajectory(dir, n)?;
+    if t.len() < 2 {
+        return Err(read_error(
+            &dir.join("time_s.npy"),
+            "fewer than 2 samples: nothing to plot",
+        ));
+    }
+    fs::create_dir_all(out).map_err(|e| CliError::Output {
+        path: out.to_path_buf(),
+        source: e,
+    })?;
+    let title = format!(
+        "{}: {}, {}",
+        info.name,
+        describe_chain(&info.labels),
+        info.excitation
+    );
+    let stem = |s: &str| out.join(s);
+    let mut files = Vec::new();
+    files.extend(plot::force_map(&force_map(&t)?, &title, &stem("force_map")).map_err(plot_err)?);
+    files
+        .extend(plot::energy_map(&energy_map(&t)?, &title, &stem("energy_map")).map_err(plot_err)?);
+    let settings = SpectrumSettings {
+        window,
+        ..SpectrumSettings::default()
+    };
+    files.extend(
+        plot::spectrum_map(
+            &contact_spectrum_map(&t, &settings)?,
+            &title,
+            max_frequency_hz,
+            &stem("spectrum_map"),
+        )
+        .map_err(plot_err)?,
+    );
+    let striker_label = if info.excitation.starts_with("impact") {
+        "contact 0 (striker)"
+    } else {
+        "contact 0 (load)"
+    };
+    let mut picks = vec![(0, striker_label.to_string())];
+    if n >= 2 {
+        picks.push((1, "contact 1 (incident)".to_string()));
+    }
+    picks.push((n, format!("contact {n} (wall)")));
+    let series: Vec<plot::Series> = picks
+        .iter()
+        .map(|(c, l)| plot::Series::new(l.clone(), t.contact_force_n(*c)))
+        .collect();
+    files.extend(
+        plot::force_histories(&t.times_s, &series, &title, &stem("force_histories"))
+            .map_err(plot_err)?,
+    );
+    let dt = woodpile::analysis::sample_interval_s(&t)?;
+    let spectra = picks
+        .iter()
+        .map(|(c, l)| {
+            Ok((
+                l.clone(),
+                Spectrum::of(&t.contact_force_n(*c), dt, &settings)?,
+            ))
+        })
+        .collect::<Result<Vec<_>, woodpile::Error>>()?;
+    let refs: Vec<(String, &Spectrum)> = spectra.iter().map(|(l, s)| (l.clone(), s)).collect();
+    files.extend(
+        plot::spectra(
+            &refs,
+            &bands_to_shade(&info.cells),
+            &title,
+            max_frequency_hz,
+            &stem("spectra"),
+        )
+        .map_err(plot_err)?,
+    );
+    if let Some(chain) = &info.chain {
+        let chain_title = format!("{} ({} elements, top to bottom)", info.name, n);
+        files.extend(plot::chain_picture(chain, &chain_title, &stem("chain")).map_err(plot_err)?);
+    }
+    Ok(files)
+}
+
+/// Runs `woodpile plot`.
+pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
+    let window = Window::from_name(&args.window).map_err(CliError::at("--window"))?;
+    if !(args.max_frequency_khz.is_finite() && args.max_frequency_khz > 0.0) {
+        return Err(CliError::invalid(
+            "--max-frequency-khz",
+            args.max_frequency_khz,
+            "must be a finite number > 0",
+        ));
+    }
+    let out = args.out.clone().unwrap_or_else(|| args.dir.join("plots"));
+    let files = plot_run(&args.dir, &out, args.max_frequency_khz * 1e3, window)?;
+    if !ctx.quiet {
+        println!("wrote {} files to {}", files.len(), out.display());
+        for f in files
+            .iter()
+            .filter(|f| f.extension().is_some_and(|e| e == "png"))
+        {
+            println!("  {}", f.display());
+        }
+    }
+    Ok(())
+}
+
+/// The catalogue's effective-mass curves (paper Fig. 3 a: 20–40 mm, b: 50–80 mm) into `dir`.
+pub fn cells_figures(dir: &Path) -> Result<Vec<PathBuf>, CliError> {
+    fs::create_dir_all(dir).map_err(|e| CliError::Output {
+        path: dir.to_path_buf(),
+        source: e,
+    })?;
+    let f = linspace(0.0, 60e3, 3001);
+    let curves = TABLE1_LENGTHS_MM
+        .iter()
+        .map(|&l| {
+            Ok((
+                format!("{l} mm"),
+                EffectiveMassCurve::of(&UnitCell::table1(l)?, &f),
+            ))
+        })
+        .collect::<Result<Vec<_>, woodpile::Error>>()?;
+    let mut files = Vec::new();
+    for (curves, title, name) in [
+        (
+            &curves[..3],
+            "Effective mass of 20, 30, 40 mm rods (one resonator), negative-mass bands shaded",
+            "effective_mass_20_40mm",
+        ),
+        (
+            &curves[3..],
+            "Effective mass of 50–80 mm rods (two resonators), negative-mass bands shaded",
+            "effective_mass_50_80mm",
+        ),
+    ] {
+        files.extend(plot::effective_mass(curves, title, 5.0, &dir.join(name)).map_err(plot_err)?);
+    }
+    Ok(files)
+}
