@@ -157,11 +157,11 @@ pub struct RunRecord<'a> {
 /// Energy bookkeeping in `summary.json`.
 #[derive(Debug, Clone, Serialize)]
 pub struct EnergyJson {
-    /// Total energy at t = 0 [J].
+    /// Total energy at t = 0 \[J\].
     pub initial_j: f64,
-    /// Total energy at the end [J].
+    /// Total energy at the end \[J\].
     pub final_j: f64,
-    /// Work done by the load [J].
+    /// Work done by the load \[J\].
     pub input_work_j: f64,
     /// Largest relative error of the energy balance.
     pub max_relative_error: f64,
@@ -193,9 +193,9 @@ pub struct SummaryJson {
     pub n_elements: usize,
     /// Number of samples.
     pub n_samples: usize,
-    /// Peak of contact 1 [N].
+    /// Peak of contact 1 \[N\].
     pub incident_peak_force_n: f64,
-    /// Peak of contact N (the wall) [N].
+    /// Peak of contact N (the wall) \[N\].
     pub transmitted_peak_force_n: f64,
     /// Transmitted / incident.
     pub transmission_ratio: f64,
@@ -203,17 +203,17 @@ pub struct SummaryJson {
     pub restitution_coefficient: Option<f64>,
     /// Whether the striker had left for good at the end (impact; null for a blast).
     pub striker_separated: Option<bool>,
-    /// Peak of every contact 0..=N [N].
+    /// Peak of every contact 0..=N \[N\].
     pub contact_peak_forces_n: Vec<f64>,
-    /// Time of each peak [s].
+    /// Time of each peak \[s\].
     pub contact_peak_times_s: Vec<f64>,
-    /// Largest sampled energy of every layer 0..=N [J].
+    /// Largest sampled energy of every layer 0..=N \[J\].
     pub layer_peak_energies_j: Vec<f64>,
     /// Energy balance.
     pub energy: EnergyJson,
     /// Integrator statistics.
     pub integrator: IntegratorJson,
-    /// Wall-clock time of the run [s].
+    /// Wall-clock time of the run \[s\].
     pub wall_time_s: f64,
 }
 
@@ -276,7 +276,7 @@ impl SummaryJson {
     }
 }
 
-/// Contact coefficients of a run in `run.json` [N/m^1.5].
+/// Contact coefficients of a run in `run.json` \[N/m^1.5\].
 #[derive(Debug, Clone, Serialize)]
 struct BetasJson {
     /// Striker – element 1 (impact).
@@ -361,7 +361,7 @@ pub fn write_npy(path: &Path, shape: &[u64], data: &[f64]) -> Result<(), CliErro
 /// `velocities.csv`, `striker.csv` (impact), and `time_s.npy`, `forces_n.npy`
 /// (samples × contacts 0..=N), `energy_j.npy` (samples × layers 0..=N), `wall_energy_j.npy`,
 /// `input_work_j.npy`, `displacements_m.npy`, `velocities_m_s.npy` (samples × N),
-/// `striker.npy` (impact: samples × [position m, velocity m/s]).
+/// `striker.npy` (impact: samples × \[position m, velocity m/s\]).
 pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), CliError> {
     let t = r.trajectory;
     let n = t.n_elements;

@@ -155,6 +155,11 @@ fn conflicting_keys_are_refused() {
         "[chain]\nrods_mm = [20]\n[run]\nrtol = 1e-8\n",
         &["run.rtol", "rk4"],
     );
+    case(
+        "rod on a flat",
+        "[chain]\nrods_mm = [20]\n[wall]\nkind = \"flat\"\n",
+        &["wall.kind", "line contact", "cap_radius_mm"],
+    );
     case("no rods", "[chain]\n", &["chain", "rods_mm"]);
     case(
         "empty chain",

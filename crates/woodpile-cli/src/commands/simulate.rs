@@ -17,7 +17,7 @@ pub struct Args {
     /// A built-in scenario (see `woodpile scenarios`).
     #[arg(long, value_name = "NAME")]
     pub scenario: Option<String>,
-    /// Output directory (default: ./runs/<scenario name>). Replaced if it holds a previous run.
+    /// Output directory (default: ./runs/NAME, NAME = scenario name or file stem). Replaced if it holds a previous run.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
 }

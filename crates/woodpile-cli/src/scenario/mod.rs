@@ -87,7 +87,7 @@ impl ModelSpec {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ChainSpec {
-    /// Table 1 catalogue rods by length [mm], top to bottom.
+    /// Table 1 catalogue rods by length \[mm\], top to bottom.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rods_mm: Option<Vec<u32>>,
     /// General form: one entry per element, top to bottom.
@@ -96,7 +96,7 @@ pub struct ChainSpec {
     /// Cell model of every catalogue rod (default `resonant`); an element may override it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub model: Option<ModelSpec>,
-    /// Angle between the axes of neighbouring rods [deg] (default 90).
+    /// Angle between the axes of neighbouring rods \[deg\] (default 90).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub crossing_angle_deg: Option<f64>,
     /// Contact coefficients set directly, by contact number (1 = elements 1–2, N = wall).
@@ -110,7 +110,7 @@ pub struct ChainSpec {
 pub struct BetaOverride {
     /// Contact number in the paper's numbering: 1..N−1 between elements, N = the wall.
     pub contact: usize,
-    /// Contact coefficient β [N/m^1.5].
+    /// Contact coefficient β \[N/m^1.5\].
     pub beta: f64,
 }
 
@@ -144,16 +144,16 @@ pub struct ElementSpec {
     /// `catalogue` (default when `rod_mm` is given), `rod` or `sphere`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kind: Option<ElementKind>,
-    /// Catalogue rod length [mm] (kind `catalogue`).
+    /// Catalogue rod length \[mm\] (kind `catalogue`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rod_mm: Option<u32>,
     /// Cell model of this element (default: `chain.model`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub model: Option<ModelSpec>,
-    /// Diameter [mm] (kinds `rod`, `sphere`; default 5 for a rod).
+    /// Diameter \[mm\] (kinds `rod`, `sphere`; default 5 for a rod).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub diameter_mm: Option<f64>,
-    /// Length [mm] (kind `rod`).
+    /// Length \[mm\] (kind `rod`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub length_mm: Option<f64>,
     /// Material (kinds `rod`, `sphere`; default `fused-quartz`).
@@ -168,7 +168,7 @@ pub struct ElementSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CellSpec {
-    /// Primary mass M [g].
+    /// Primary mass M \[g\].
     pub primary_mass_g: f64,
     /// Internal resonators (none: a rigid body).
     #[serde(default)]
@@ -179,9 +179,9 @@ pub struct CellSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ResonatorSpec {
-    /// Auxiliary mass m_j [g].
+    /// Auxiliary mass m_j \[g\].
     pub mass_g: f64,
-    /// Spring stiffness k_j [kN/mm].
+    /// Spring stiffness k_j \[kN/mm\].
     pub stiffness_kn_per_mm: f64,
 }
 
@@ -200,11 +200,11 @@ pub enum MaterialSpec {
 pub struct CustomMaterial {
     /// Name, for reports.
     pub name: String,
-    /// Young's modulus E [Pa].
+    /// Young's modulus E \[Pa\].
     pub youngs_modulus_pa: f64,
     /// Poisson's ratio ν.
     pub poisson_ratio: f64,
-    /// Density ρ [kg/m³].
+    /// Density ρ \[kg/m³\].
     pub density_kg_m3: f64,
 }
 
@@ -281,25 +281,25 @@ pub struct ExcitationSpec {
     /// `impact` (default) or `blast`.
     #[serde(default)]
     pub kind: ExcitationKind,
-    /// Drop height h [m] (impact; default 0.20): v0 = sqrt(2 g h).
+    /// Drop height h \[m\] (impact; default 0.20): v0 = sqrt(2 g h).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub drop_height_m: Option<f64>,
-    /// Initial striker velocity v0 [m/s] (impact; instead of `drop_height_m`).
+    /// Initial striker velocity v0 \[m/s\] (impact; instead of `drop_height_m`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub velocity_m_s: Option<f64>,
     /// The striker sphere (impact).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub striker: Option<StrikerSpec>,
-    /// Striker–element 1 contact coefficient β [N/m^1.5] (impact; default: Hertz theory).
+    /// Striker–element 1 contact coefficient β \[N/m^1.5\] (impact; default: Hertz theory).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub beta: Option<f64>,
     /// `friedlander` (default) or `table` (blast).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub profile: Option<ProfileKind>,
-    /// Friedlander peak force F0 [N] (default 200).
+    /// Friedlander peak force F0 \[N\] (default 200).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub peak_force_n: Option<f64>,
-    /// Friedlander positive-phase duration Td [s] (default 2e-4).
+    /// Friedlander positive-phase duration Td \[s\] (default 2e-4).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub duration_s: Option<f64>,
     /// Friedlander decay b (default 1).
@@ -314,7 +314,7 @@ pub struct ExcitationSpec {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StrikerSpec {
-    /// Diameter [mm] (default 10).
+    /// Diameter \[mm\] (default 10).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub diameter_mm: Option<f64>,
     /// Material (default `soda-lime-glass`).
@@ -347,10 +347,10 @@ pub struct WallSpec {
     /// Material of the cap or flat (default `stainless-steel`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<MaterialSpec>,
-    /// Cap radius R_c [mm] (default 5).
+    /// Cap radius R_c \[mm\] (default 5).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cap_radius_mm: Option<f64>,
-    /// Contact coefficient β [N/m^1.5] of the wall contact.
+    /// Contact coefficient β \[N/m^1.5\] of the wall contact.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub beta: Option<f64>,
 }
@@ -380,61 +380,61 @@ impl IntegratorKind {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RunSpec {
-    /// Simulated time [s] (default 2e-3 for an impact, 3e-3 for a blast).
+    /// Simulated time \[s\] (default 2e-3 for an impact, 3e-3 for a blast).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub duration_s: Option<f64>,
     /// `rk4` (default) or `dopri5`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub integrator: Option<IntegratorKind>,
-    /// RK4 time step Δt [s] (default 1e-7).
+    /// RK4 time step Δt \[s\] (default 1e-7).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub time_step_s: Option<f64>,
     /// DOPRI5 relative tolerance (default 1e-9).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rtol: Option<f64>,
-    /// DOPRI5 absolute tolerance [m] (default 1e-15).
+    /// DOPRI5 absolute tolerance \[m\] (default 1e-15).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub atol: Option<f64>,
-    /// Spacing of the uniform sample grid [s] (default 1e-6).
+    /// Spacing of the uniform sample grid \[s\] (default 1e-6).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sample_interval_s: Option<f64>,
 }
 
 /// Defaults of model.md.
 pub mod defaults {
-    /// Drop height [m] (model.md §2).
+    /// Drop height \[m\] (model.md §2).
     pub const DROP_HEIGHT_M: f64 = 0.20;
-    /// Striker diameter [mm].
+    /// Striker diameter \[mm\].
     pub const STRIKER_DIAMETER_MM: f64 = 10.0;
     /// Striker material.
     pub const STRIKER_MATERIAL: &str = "soda-lime-glass";
-    /// Friedlander peak [N] (model.md §6).
+    /// Friedlander peak \[N\] (model.md §6).
     pub const PEAK_FORCE_N: f64 = 200.0;
-    /// Friedlander duration [s].
+    /// Friedlander duration \[s\].
     pub const BLAST_DURATION_S: f64 = 2e-4;
     /// Friedlander decay.
     pub const DECAY: f64 = 1.0;
     /// Wall material.
     pub const WALL_MATERIAL: &str = "stainless-steel";
-    /// Wall cap radius [mm].
+    /// Wall cap radius \[mm\].
     pub const CAP_RADIUS_MM: f64 = 5.0;
-    /// User rod diameter [mm] (the paper's rods).
+    /// User rod diameter \[mm\] (the paper's rods).
     pub const ROD_DIAMETER_MM: f64 = 5.0;
     /// User rod / sphere material.
     pub const ELEMENT_MATERIAL: &str = "fused-quartz";
-    /// Crossing angle [deg].
+    /// Crossing angle \[deg\].
     pub const CROSSING_ANGLE_DEG: f64 = 90.0;
-    /// Impact run [s] (model.md §8).
+    /// Impact run \[s\] (model.md §8).
     pub const IMPACT_DURATION_S: f64 = 2e-3;
-    /// Blast run [s].
+    /// Blast run \[s\].
     pub const BLAST_RUN_DURATION_S: f64 = 3e-3;
-    /// RK4 step [s].
+    /// RK4 step \[s\].
     pub const TIME_STEP_S: f64 = 1e-7;
     /// DOPRI5 rtol.
     pub const RTOL: f64 = 1e-9;
-    /// DOPRI5 atol [m].
+    /// DOPRI5 atol \[m\].
     pub const ATOL: f64 = 1e-15;
-    /// Sample interval [s].
+    /// Sample interval \[s\].
     pub const SAMPLE_INTERVAL_S: f64 = 1e-6;
 }
 

@@ -279,6 +279,18 @@ fn resolve_chain(s: &Scenario) -> Result<Chain, CliError> {
             "must lie strictly between 0 and 180 (0 and 180 are parallel rods: a line contact)",
         ));
     }
+    if s.wall.effective_kind() == WallKind::Flat {
+        if let Body::Rod { .. } = elements[n - 1].body {
+            return Err(CliError::invalid(
+                "wall.kind",
+                "\"flat\"",
+                format!(
+                    "element {n} is a rod, and a rod on a flat is a line contact, not a Hertz point contact; \
+                     use kind = \"cap\" with cap_radius_mm, or kind = \"beta\" with beta = …"
+                ),
+            ));
+        }
+    }
     let mut builder = ChainBuilder::new(elements)
         .crossing_angle_rad(angle.to_radians())
         .wall(resolve_wall(s)?);
