@@ -61,7 +61,7 @@ pub const CHECKPOINT_FILE: &str = "checkpoint.json";
 /// Arguments of `woodpile optimize`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct Args {
-    /// Config file (TOML): a scenario's [excitation], [wall], [run] plus [design] and [ga].
+    /// Config file (TOML): a scenario's excitation, wall and run tables plus design and ga tables.
     #[arg(value_name = "CONFIG.toml", conflicts_with = "scenario")]
     pub file: Option<PathBuf>,
     /// A built-in problem: paper-impact or paper-blast (20 rods, Table 1 catalogue).
@@ -115,7 +115,7 @@ pub struct DesignSpec {
     /// Number of positions N (default 20).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub positions: Option<usize>,
-    /// Table 1 rods [mm] a position can hold (default: all of 20, 30, …, 80).
+    /// Table 1 rods \[mm\] a position can hold (default: all of 20, 30, …, 80).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub catalogue_mm: Option<Vec<u32>>,
     /// General catalogue, as a scenario's `chain.elements` entries (instead of catalogue_mm).
@@ -124,7 +124,7 @@ pub struct DesignSpec {
     /// Cell model of the catalogue rods (default `resonant`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub model: Option<ModelSpec>,
-    /// Angle between neighbouring rods [deg] (default 90).
+    /// Angle between neighbouring rods \[deg\] (default 90).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub crossing_angle_deg: Option<f64>,
     /// `[design.constraints]`.
@@ -136,7 +136,7 @@ pub struct DesignSpec {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ConstraintsSpec {
-    /// Largest total mass of the chain [g].
+    /// Largest total mass of the chain \[g\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_total_mass_g: Option<f64>,
     /// Layers whose element is fixed.
@@ -153,7 +153,7 @@ pub struct ConstraintsSpec {
 pub struct FixedSpec {
     /// Layer 1..=N (1 = top, next to the striker).
     pub layer: usize,
-    /// The catalogue rod by length [mm].
+    /// The catalogue rod by length \[mm\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rod_mm: Option<u32>,
     /// The catalogue entry by index (0-based, in catalogue order).
@@ -165,7 +165,7 @@ pub struct FixedSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CountSpec {
-    /// The catalogue rod by length [mm].
+    /// The catalogue rod by length \[mm\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rod_mm: Option<u32>,
     /// The catalogue entry by index (0-based).

@@ -30,15 +30,15 @@ pub trait Objective: Send + Sync {
 /// The objectives of issue 3, all over the whole run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum StandardObjective {
-    /// Peak force of contact N (the wall) [N]: the paper's objective. Peaks are tracked over
+    /// Peak force of contact N (the wall) \[N\]: the paper's objective. Peaks are tracked over
     /// every integration step with Hermite refinement ([`crate::RunSummary`]).
     #[default]
     TransmittedForce,
     /// Transmitted / incident peak force (contact N over contact 1).
     TransmissionRatio,
-    /// Peak energy of the last layer N [J] (model.md §7), the maximum over the sample grid.
+    /// Peak energy of the last layer N \[J\] (model.md §7), the maximum over the sample grid.
     TransmittedEnergy,
-    /// Impulse ∫ F_N dt delivered to the wall over the run [N s], by the trapezoid rule on the
+    /// Impulse ∫ F_N dt delivered to the wall over the run \[N s\], by the trapezoid rule on the
     /// sample grid (the runner hands recorders samples, not steps).
     TransmittedImpulse,
 }
@@ -121,9 +121,9 @@ impl Objective for StandardObjective {
 pub struct LayerEnergyPeak {
     /// The layer (0 = striker, N = last element); None = the last layer N.
     pub layer: Option<usize>,
-    /// Largest energy seen [J].
+    /// Largest energy seen \[J\].
     pub peak_j: f64,
-    /// Time of the peak [s].
+    /// Time of the peak \[s\].
     pub time_s: f64,
     resolved: usize,
 }
@@ -161,7 +161,7 @@ impl Recorder for LayerEnergyPeak {
 pub struct ContactImpulse {
     /// The contact (paper numbering); None = the wall contact N.
     pub contact: Option<usize>,
-    /// ∫ F dt so far [N s].
+    /// ∫ F dt so far \[N s\].
     pub impulse_n_s: f64,
     resolved: usize,
     last: Option<(f64, f64)>,

@@ -22,7 +22,7 @@ const MASS_SLACK: f64 = 1e-12;
 /// from 0 at the top.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Constraints {
-    /// Largest total mass of the chain [kg].
+    /// Largest total mass of the chain \[kg\].
     pub max_total_mass_kg: Option<f64>,
     /// Positions whose element is fixed: (position, catalogue index).
     pub fixed: Vec<(usize, usize)>,
@@ -40,7 +40,7 @@ pub struct DesignSpace {
     pub catalogue: Vec<Element>,
     /// What the last element stands on.
     pub wall: Wall,
-    /// Angle between the axes of neighbouring rods [rad].
+    /// Angle between the axes of neighbouring rods \[rad\].
     pub crossing_angle_rad: f64,
     /// The load.
     pub excitation: Excitation,
@@ -104,7 +104,7 @@ impl DesignSpace {
             .collect()
     }
 
-    /// Total mass of a genome's chain [kg], summed top to bottom.
+    /// Total mass of a genome's chain \[kg\], summed top to bottom.
     pub fn mass_kg(&self, genome: &[u8]) -> f64 {
         genome
             .iter()
