@@ -265,29 +265,27 @@ impl ChainBuilder {
         }
         let last = surface(n - 1);
         let last_material = &self.elements[n - 1].material;
-        let computed_wall = match &self.wall {
-            Wall::Free => None,
-            Wall::Beta(b) => Some(require_positive("wall.beta", *b)?),
-            Wall::Cap { material, radius_m } => {
+        // A wall whose β is overridden needs no contact geometry (e.g. a rod on a flat sensor
+        // with a measured coefficient).
+        let wall_beta = match (&self.wall, overridden(n)) {
+            (Wall::Free, _) => None,
+            (_, Some(b)) => Some(b),
+            (Wall::Beta(b), None) => Some(require_positive("wall.beta", *b)?),
+            (Wall::Cap { material, radius_m }, None) => {
                 require_positive("wall.cap_radius_m", *radius_m)?;
+                let cap = Surface::Sphere {
+                    radius_m: *radius_m,
+                };
                 Some(
-                    hertz_beta(
-                        last,
-                        last_material,
-                        Surface::Sphere {
-                            radius_m: *radius_m,
-                        },
-                        material,
-                    )
-                    .map_err(|e| contact_context(e, n))?,
+                    hertz_beta(last, last_material, cap, material)
+                        .map_err(|e| contact_context(e, n))?,
                 )
             }
-            Wall::Flat { material } => Some(
+            (Wall::Flat { material }, None) => Some(
                 hertz_beta(last, last_material, Surface::Flat, material)
                     .map_err(|e| contact_context(e, n))?,
             ),
         };
-        let wall_beta = computed_wall.map(|b| overridden(n).unwrap_or(b));
         let wall_radius = match &self.wall {
             Wall::Cap { radius_m, .. } => *radius_m,
             _ => f64::INFINITY,

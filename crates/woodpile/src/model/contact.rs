@@ -41,6 +41,24 @@ pub enum Surface {
     Flat,
 }
 
+impl std::fmt::Display for Surface {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Surface::Cylinder {
+                radius_m,
+                axis_angle_rad,
+            } => write!(
+                f,
+                "cylinder of radius {:.3} mm (axis at {:.1} deg)",
+                radius_m * 1e3,
+                axis_angle_rad.to_degrees()
+            ),
+            Surface::Sphere { radius_m } => write!(f, "sphere of radius {:.3} mm", radius_m * 1e3),
+            Surface::Flat => write!(f, "flat"),
+        }
+    }
+}
+
 impl Surface {
     /// Principal curvatures (κ', κ'') [1/m] and the direction of the first principal plane [rad].
     fn curvatures(&self) -> (f64, f64, f64) {
@@ -163,7 +181,7 @@ pub fn hertz_contact(
     let b = 0.5 * (sum + diff);
     if a.is_nan() || a <= 1e-9 * b || a <= 0.0 {
         return Err(Error::NotPointContact {
-            what: format!("{s1:?} on {s2:?}"),
+            what: format!("{s1} on {s2}"),
             reason: "one principal gap curvature is zero (line contact, e.g. parallel cylinders or a cylinder on a flat)".into(),
         });
     }
