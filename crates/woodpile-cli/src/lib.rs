@@ -16,6 +16,7 @@ pub mod error;
 pub mod optimize_cmd;
 pub mod output;
 pub mod plot_cmd;
+pub mod report_cmd;
 pub mod scenario;
 pub mod table;
 

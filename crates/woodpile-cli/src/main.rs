@@ -29,8 +29,10 @@ enum Command {
     Cells(commands::cells::Args),
     /// Search the element arrangement that minimises an objective (breeder GA, model.md §11).
     Optimize(woodpile_cli::optimize_cmd::Args),
-    /// Draw the figures of a `simulate` output directory into RUN_DIR/plots (PNG and SVG).
+    /// Draw the figures of a `simulate` or `optimize` output directory into DIR/plots (PNG, SVG).
     Plot(woodpile_cli::plot_cmd::Args),
+    /// Run everything the paper's figures need; write the figures, report.md and report.html.
+    Report(woodpile_cli::report_cmd::Args),
 }
 
 fn dispatch(command: &Command, ctx: &Context) -> Result<(), CliError> {
@@ -41,6 +43,7 @@ fn dispatch(command: &Command, ctx: &Context) -> Result<(), CliError> {
         Command::Cells(args) => commands::cells::run(args, ctx),
         Command::Optimize(args) => woodpile_cli::optimize_cmd::run(args, ctx),
         Command::Plot(args) => woodpile_cli::plot_cmd::run(args, ctx),
+        Command::Report(args) => woodpile_cli::report_cmd::run(args, ctx),
     }
 }
 

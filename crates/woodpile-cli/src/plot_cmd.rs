@@ -1,6 +1,13 @@
-//! `woodpile plot RUN_DIR`: the figures of a `woodpile simulate` output directory, written to
-//! `RUN_DIR/plots/` as PNG and SVG — force map, energy map, spectrum map, force histories at the
-//! striker contact, contact 1 and the wall, their spectra, and a picture of the chain.
+//! `woodpile plot DIR`: the figures of an output directory, written to `DIR/plots/` as PNG and
+//! SVG.
+//!
+//! - A `woodpile simulate` run (it holds `run.json`): force map, energy map, spectrum map, force
+//!   histories at the striker contact, contact 1 and the wall, their spectra, and a picture of the
+//!   chain ([`plot_run`]).
+//! - A `woodpile optimize` output (it holds `history.csv` and `summary.json`, `best.toml` or
+//!   `checkpoint.json`): the convergence of the GA (best and mean objective per generation) and
+//!   the best chain as a picture of rods to scale, like the right panels of paper Fig. 5 d, e
+//!   ([`plot_optimization`]).
 //!
 //! Also [`cells_figures`] for `woodpile cells --plot DIR`: the effective-mass curves of the
 //! catalogue with the negative-mass bands shaded (paper Fig. 3).
@@ -27,10 +34,11 @@ pub const RUN_FORMAT: &str = "woodpile-run/1";
 /// Arguments of `woodpile plot`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct Args {
-    /// A directory written by `woodpile simulate` (it holds run.json).
-    #[arg(value_name = "RUN_DIR")]
+    /// A directory written by `woodpile simulate` (it holds run.json) or by `woodpile optimize`
+    /// (it holds history.csv).
+    #[arg(value_name = "DIR")]
     pub dir: PathBuf,
-    /// Where to write the figures (default: RUN_DIR/plots).
+    /// Where to write the figures (default: DIR/plots).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Highest frequency drawn in the spectra [kHz].
@@ -79,7 +87,7 @@ pub fn read_run_info(dir: &Path) -> Result<RunInfo, CliError> {
     if !path.is_file() {
         return Err(bad_dir(
             dir,
-            "is not a woodpile run (no run.json); give a directory written by `woodpile simulate` (an optimisation directory is not supported by this command yet)",
+            "is not a woodpile run (no run.json); give a directory written by `woodpile simulate` or `woodpile optimize`",
         ));
     }
     let text = fs::read_to_string(&path).map_err(|e| CliError::Read {
@@ -504,7 +512,16 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         ));
     }
     let out = args.out.clone().unwrap_or_else(|| args.dir.join("plots"));
-    let files = plot_run(&args.dir, &out, args.max_frequency_khz * 1e3, window)?;
+    let files = match detect_dir(&args.dir)? {
+        DirKind::Run => plot_run(&args.dir, &out, args.max_frequency_khz * 1e3, window)?,
+        DirKind::Optimization => {
+            let (files, note) = plot_optimization(&args.dir, &out)?;
+            if let (Some(note), false) = (note, ctx.quiet) {
+                eprintln!("note: {note}");
+            }
+            files
+        }
+    };
     if !ctx.quiet {
         println!("wrote {} files to {}", files.len(), out.display());
         for f in files
@@ -549,4 +566,228 @@ pub fn cells_figures(dir: &Path) -> Result<Vec<PathBuf>, CliError> {
         files.extend(plot::effective_mass(curves, title, 5.0, &dir.join(name)).map_err(plot_err)?);
     }
     Ok(files)
+}
+
+/// What kind of output directory `woodpile plot` was given.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DirKind {
+    /// A `woodpile simulate` run: it holds `run.json`.
+    Run,
+    /// A `woodpile optimize` output: it holds `history.csv` and one of `summary.json`,
+    /// `best.toml`, `checkpoint.json`.
+    Optimization,
+}
+
+/// Files that mark an optimisation output (besides `history.csv`).
+const OPT_MARKERS: [&str; 3] = [
+    "summary.json",
+    "best.toml",
+    crate::optimize_cmd::CHECKPOINT_FILE,
+];
+
+/// Tells a simulate run from an optimisation output; anything else is a usage error that says
+/// what was expected.
+pub fn detect_dir(dir: &Path) -> Result<DirKind, CliError> {
+    if !dir.is_dir() {
+        return Err(bad_dir(
+            dir,
+            "is not a directory; give a directory written by `woodpile simulate` or `woodpile optimize`",
+        ));
+    }
+    if dir.join(RUN_MARKER).is_file() {
+        return Ok(DirKind::Run);
+    }
+    let history = dir.join("history.csv").is_file();
+    let marker = OPT_MARKERS.iter().any(|m| dir.join(m).is_file());
+    match (history, marker) {
+        (true, true) => Ok(DirKind::Optimization),
+        (false, true) => Err(bad_dir(
+            dir,
+            "looks like a `woodpile optimize` output but holds no history.csv: it was written by another version or is incomplete; re-run `woodpile optimize`",
+        )),
+        _ => Err(bad_dir(
+            dir,
+            "is neither a woodpile run (no run.json) nor a `woodpile optimize` output (no history.csv with summary.json, best.toml or checkpoint.json)",
+        )),
+    }
+}
+
+/// The objective's axis label, from its name and unit.
+pub fn objective_label(name: &str, unit: &str) -> String {
+    match name {
+        "transmitted-force" => "transmitted peak force (wall) [N]".to_string(),
+        "transmission-ratio" => "transmitted / incident peak force [-]".to_string(),
+        "transmitted-energy" => "peak energy of the last layer [J]".to_string(),
+        "transmitted-impulse" => "impulse delivered to the wall [N s]".to_string(),
+        _ if unit.is_empty() || unit == "1" => format!("{name} [-]"),
+        _ => format!("{name} [{unit}]"),
+    }
+}
+
+/// Reads `history.csv` of `woodpile optimize`: one point per generation.
+pub fn read_history(path: &Path) -> Result<Vec<plot::ConvergencePoint>, CliError> {
+    let cols = ["best".to_string(), "mean".to_string()];
+    let csv_err = |e: csv::Error| read_error(path, e.to_string());
+    let mut r = csv::Reader::from_path(path).map_err(csv_err)?;
+    let header = r.headers().map_err(csv_err)?.clone();
+    let index = |name: &str| {
+        header.iter().position(|h| h == name).ok_or_else(|| {
+            read_error(
+                path,
+                format!("no column `{name}`: not a history.csv of `woodpile optimize`"),
+            )
+        })
+    };
+    let g_col = index("generation")?;
+    let (b_col, m_col) = (index(&cols[0])?, index(&cols[1])?);
+    let mut points = Vec::new();
+    for (line, rec) in r.records().enumerate() {
+        let rec = rec.map_err(csv_err)?;
+        let field = |i: usize| {
+            rec.get(i).map(str::trim).ok_or_else(|| {
+                read_error(path, format!("line {}: missing column {}", line + 2, i + 1))
+            })
+        };
+        let not_number = |i: usize| {
+            read_error(
+                path,
+                format!("line {}: not a number in column {}", line + 2, i + 1),
+            )
+        };
+        let generation = field(g_col)?
+            .parse::<usize>()
+            .map_err(|_| not_number(g_col))?;
+        let best = field(b_col)?
+            .parse::<f64>()
+            .map_err(|_| not_number(b_col))?;
+        let mean = field(m_col)?
+            .parse::<f64>()
+            .map_err(|_| not_number(m_col))?;
+        points.push(plot::ConvergencePoint {
+            generation,
+            best,
+            mean,
+        });
+    }
+    if points.is_empty() {
+        return Err(read_error(
+            path,
+            "no generation recorded yet: nothing to plot",
+        ));
+    }
+    Ok(points)
+}
+
+/// Draws the figures of a `woodpile optimize` output into `out`: `convergence` (best and mean
+/// objective per generation) and, once the run has written `best.toml`, `best_chain` (rods to
+/// scale, top to bottom). Returns the files written and a note when the chain could not be drawn.
+pub fn plot_optimization(
+    dir: &Path,
+    out: &Path,
+) -> Result<(Vec<PathBuf>, Option<String>), CliError> {
+    let points = read_history(&dir.join("history.csv"))?;
+    // What was optimised: summary.json of a finished run, else the checkpoint's config.
+    let read_json = |name: &str| -> Result<Option<Value>, CliError> {
+        let path = dir.join(name);
+        if !path.is_file() {
+            return Ok(None);
+        }
+        let text = fs::read_to_string(&path).map_err(|e| CliError::Read {
+            path: path.clone(),
+            source: e,
+        })?;
+        serde_json::from_str(&text)
+            .map(Some)
+            .map_err(|e| CliError::Parse {
+                source_name: path.display().to_string(),
+                message: e.to_string(),
+            })
+    };
+    let summary = read_json("summary.json")?;
+    let config = match &summary {
+        Some(s) => s.get("config").cloned(),
+        None => {
+            read_json(crate::optimize_cmd::CHECKPOINT_FILE)?.and_then(|c| c.get("config").cloned())
+        }
+    };
+    let text_at = |v: Option<&Value>, pointer: &str| {
+        v.and_then(|v| v.pointer(pointer))
+            .and_then(Value::as_str)
+            .map(str::to_string)
+    };
+    let objective = text_at(summary.as_ref(), "/objective")
+        .or_else(|| text_at(config.as_ref(), "/ga/objective"))
+        .unwrap_or_else(|| "objective".to_string());
+    let unit = text_at(summary.as_ref(), "/objective_unit").unwrap_or_default();
+    let problem = text_at(summary.as_ref(), "/problem").unwrap_or_else(|| {
+        dir.file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "optimisation".into())
+    });
+    let model = text_at(config.as_ref(), "/design/model").unwrap_or_else(|| "resonant".into());
+    let excitation =
+        text_at(config.as_ref(), "/excitation/kind").unwrap_or_else(|| "impact".into());
+    let seed = config
+        .as_ref()
+        .and_then(|c| c.pointer("/ga/seed"))
+        .and_then(Value::as_u64)
+        .map(|s| format!(", seed {s}"))
+        .unwrap_or_default();
+    fs::create_dir_all(out).map_err(|e| CliError::Output {
+        path: out.to_path_buf(),
+        source: e,
+    })?;
+    let label = objective_label(&objective, &unit);
+    let last = points[points.len() - 1];
+    let title = format!(
+        "Breeder GA, {problem} ({model} model, {excitation}{seed}): best {} after {} generations",
+        format_value(last.best),
+        last.generation
+    );
+    let mut files =
+        plot::convergence(&points, &label, &title, &out.join("convergence")).map_err(plot_err)?;
+    let best = dir.join("best.toml");
+    if !best.is_file() {
+        return Ok((
+            files,
+            Some(format!(
+                "{} is missing (the run has not finished): the best chain is not drawn",
+                best.display()
+            )),
+        ));
+    }
+    let scenario = Scenario::load(&best)?;
+    let chain = resolve(&scenario, dir)?.chain;
+    let best_value = summary
+        .as_ref()
+        .and_then(|s| s.get("best_objective"))
+        .and_then(Value::as_f64)
+        .unwrap_or(last.best);
+    let short = match objective.as_str() {
+        "transmitted-force" => "wall force",
+        "transmission-ratio" => "ratio",
+        "transmitted-energy" => "last-layer energy",
+        "transmitted-impulse" => "wall impulse",
+        other => other,
+    };
+    // Short enough for the picture's width: the chain's own labels say the rest.
+    let chain_title = format!(
+        "Best chain ({model}, {excitation}): {short} {} {unit}",
+        format_value(best_value)
+    );
+    files.extend(
+        plot::chain_picture(&chain, chain_title.trim_end(), &out.join("best_chain"))
+            .map_err(plot_err)?,
+    );
+    Ok((files, None))
+}
+
+/// Four significant digits.
+fn format_value(v: f64) -> String {
+    if v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3) {
+        format!("{v:.3e}")
+    } else {
+        let decimals = (3 - v.abs().log10().floor() as i32).clamp(0, 6) as usize;
+        format!("{v:.decimals$}")
+    }
 }
