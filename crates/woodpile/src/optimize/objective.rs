@@ -95,12 +95,19 @@ impl Objective for StandardObjective {
         excitation: &Excitation,
         settings: &RunSettings,
     ) -> Result<f64> {
+        // Peak forces are tracked over every integration step whatever the sample grid, so the
+        // force objectives observe only the start and the end (no per-sample energies): the same
+        // peaks (bit for bit with fixed steps), ~5 % less work per evaluation.
+        let peaks_only = RunSettings {
+            sample_interval_s: settings.duration_s,
+            ..*settings
+        };
         match self {
             StandardObjective::TransmittedForce => {
-                Ok(simulate(chain, excitation, settings, &mut ())?.transmitted_peak_force_n)
+                Ok(simulate(chain, excitation, &peaks_only, &mut ())?.transmitted_peak_force_n)
             }
             StandardObjective::TransmissionRatio => {
-                Ok(simulate(chain, excitation, settings, &mut ())?.transmission_ratio)
+                Ok(simulate(chain, excitation, &peaks_only, &mut ())?.transmission_ratio)
             }
             StandardObjective::TransmittedEnergy => {
                 let mut peak = LayerEnergyPeak::last_layer();
