@@ -41,7 +41,7 @@ pub struct Args {
     /// Where to write the figures (default: DIR/plots).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Highest frequency drawn in the spectra [kHz].
+    /// Highest frequency drawn in the spectra \[kHz\].
     #[arg(long, value_name = "KHZ", default_value_t = 80.0)]
     pub max_frequency_khz: f64,
     /// Window of the spectra: rectangular, hann, hamming, blackman-harris, flat-top.

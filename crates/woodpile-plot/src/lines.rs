@@ -240,7 +240,7 @@ pub fn force_histories(
     .write(stem)
 }
 
-/// Amplitude spectra (log amplitude [N], frequency in kHz up to `max_frequency_hz`) with the
+/// Amplitude spectra (log amplitude \[N\], frequency in kHz up to `max_frequency_hz`) with the
 /// negative-effective-mass bands `bands_hz` shaded (paper Fig. 9).
 pub fn spectra(
     spectra: &[(String, &Spectrum)],

@@ -35,7 +35,7 @@ pub enum Error {
     /// The state became NaN or infinite.
     #[error("numerical blow-up at t = {time_s:.6e} s: non-finite state at contact {contact}; reduce the time step (rk4) or tighten rtol/atol (adaptive)")]
     NonFiniteState {
-        /// Simulation time [s].
+        /// Simulation time \[s\].
         time_s: f64,
         /// Contact index in the paper's numbering (0 = striker/load, N = wall).
         contact: usize,
@@ -43,21 +43,21 @@ pub enum Error {
     /// A contact overlap grew beyond the range where the Hertz law is physical.
     #[error("numerical blow-up at t = {time_s:.6e} s: overlap at contact {contact} is {overlap_m:.3e} m, beyond the physical limit {limit_m:.3e} m (10 % of the smallest radius of curvature); reduce the time step (rk4) or tighten rtol/atol (adaptive)")]
     RunawayOverlap {
-        /// Simulation time [s].
+        /// Simulation time \[s\].
         time_s: f64,
         /// Contact index in the paper's numbering.
         contact: usize,
-        /// Overlap δ [m].
+        /// Overlap δ \[m\].
         overlap_m: f64,
-        /// Largest physical overlap [m].
+        /// Largest physical overlap \[m\].
         limit_m: f64,
     },
     /// The adaptive integrator could not meet its tolerance.
     #[error("adaptive step size fell to {step_s:.3e} s at t = {time_s:.6e} s; loosen rtol/atol or use rk4 with a small fixed step")]
     StepSizeTooSmall {
-        /// Simulation time [s].
+        /// Simulation time \[s\].
         time_s: f64,
-        /// The step it tried [s].
+        /// The step it tried \[s\].
         step_s: f64,
     },
 }

@@ -9,7 +9,7 @@ pub const STANDARD_GRAVITY_M_S2: f64 = 9.81;
 /// A sphere striking the top element; a body of the simulation with its own Hertz contact.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Striker {
-    /// Diameter [m].
+    /// Diameter \[m\].
     pub diameter_m: f64,
     /// Material.
     pub material: Material,
@@ -30,7 +30,7 @@ impl Striker {
         }
     }
 
-    /// Mass ρ π d³/6 [kg].
+    /// Mass ρ π d³/6 \[kg\].
     pub fn mass_kg(&self) -> f64 {
         self.material.density_kg_m3 * std::f64::consts::PI * self.diameter_m.powi(3) / 6.0
     }
@@ -57,28 +57,28 @@ impl Striker {
     }
 }
 
-/// v0 = sqrt(2 g h) [m/s] for a drop height h [m].
+/// v0 = sqrt(2 g h) [m/s] for a drop height h \[m\].
 pub fn velocity_from_drop_height(height_m: f64) -> f64 {
     (2.0 * STANDARD_GRAVITY_M_S2 * height_m).sqrt()
 }
 
-/// A prescribed force history F(t) on the top element [N].
+/// A prescribed force history F(t) on the top element \[N\].
 #[derive(Debug, Clone, PartialEq)]
 pub enum BlastProfile {
     /// Friedlander positive phase F0 (1 − t/Td) exp(−b t/Td) on [0, Td], zero after (model.md §6).
     Friedlander {
-        /// Peak force F0 [N].
+        /// Peak force F0 \[N\].
         peak_force_n: f64,
-        /// Positive-phase duration Td [s].
+        /// Positive-phase duration Td \[s\].
         duration_s: f64,
         /// Decay parameter b [-] (1 = classic Friedlander, 0 = triangle).
         decay: f64,
     },
     /// A table (t_k, F_k), linearly interpolated, zero outside [t_0, t_last].
     Table {
-        /// Times, strictly increasing [s].
+        /// Times, strictly increasing \[s\].
         times_s: Vec<f64>,
-        /// Forces [N].
+        /// Forces \[N\].
         forces_n: Vec<f64>,
     },
 }
@@ -100,7 +100,7 @@ impl BlastProfile {
         Ok(p)
     }
 
-    /// Force F(t) [N].
+    /// Force F(t) \[N\].
     #[inline]
     pub fn force_n(&self, t: f64) -> f64 {
         match self {

@@ -138,9 +138,9 @@ impl Tableau {
 /// The integration method and its step control.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Method {
-    /// Classical RK4 with a fixed step Δt [s].
+    /// Classical RK4 with a fixed step Δt \[s\].
     Rk4 {
-        /// Time step Δt [s].
+        /// Time step Δt \[s\].
         time_step_s: f64,
     },
     /// Dormand–Prince 5(4) with error control: per component, the error must stay below
@@ -167,7 +167,7 @@ impl Method {
         }
     }
 
-    /// Validates the parameters against the run duration [s].
+    /// Validates the parameters against the run duration \[s\].
     pub fn validate(&self, duration_s: f64) -> Result<()> {
         match *self {
             Method::Rk4 { time_step_s } => {
@@ -277,7 +277,7 @@ impl Integrator {
         Self::assemble(tableau, control, t0, y0, f_now, evals)
     }
 
-    /// Fixed steps of size h [s] with any tableau (e.g. to measure a method's order of accuracy).
+    /// Fixed steps of size h \[s\] with any tableau (e.g. to measure a method's order of accuracy).
     pub fn fixed_step<S: OdeSystem>(
         tableau: Tableau,
         h: f64,
@@ -318,12 +318,12 @@ impl Integrator {
         }
     }
 
-    /// Current time [s].
+    /// Current time \[s\].
     pub fn t(&self) -> f64 {
         self.t
     }
 
-    /// Time at the start of the last step [s].
+    /// Time at the start of the last step \[s\].
     pub fn t_prev(&self) -> f64 {
         self.t_prev
     }
@@ -398,7 +398,7 @@ impl Integrator {
         self.stats.steps += 1;
     }
 
-    /// Advances one accepted step, never beyond `t_end`. Returns the step taken [s].
+    /// Advances one accepted step, never beyond `t_end`. Returns the step taken \[s\].
     pub fn step<S: OdeSystem>(&mut self, system: &mut S, t_end: f64) -> Result<f64> {
         match self.control {
             Control::Fixed { h } => {

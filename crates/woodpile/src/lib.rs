@@ -14,6 +14,11 @@
 //!    [`integrate`] advances it with a Butcher [`Tableau`] (RK4, Dormand–Prince 5(4)).
 //! 4. **Run and record** — [`simulate()`] owns the loop, samples on a uniform grid for a
 //!    [`Recorder`] (e.g. [`Trajectory`]) and returns the figures of merit ([`RunSummary`]).
+//! 5. **Analyse** — [`analysis`]: spectra ([`Spectrum`]), spatio-temporal force and energy maps
+//!    ([`Map2`]), effective-mass curves and band gaps ([`BandStructure`]), and the paper's
+//!    layer-by-layer experimental protocol ([`LayerByLayer`]).
+//! 6. **Optimise** — [`optimize`]: the breeder genetic algorithm ([`BreederGa`]) over a
+//!    [`DesignSpace`] of catalogue elements, with a user-extensible [`Objective`].
 //!
 //! ```
 //! use woodpile::{simulate, CellModel, ChainBuilder, Excitation, RunSettings, Striker, Trajectory};

@@ -40,9 +40,9 @@ pub struct ChainOde {
     beta: Vec<f64>,
     overlap_limit_m: Vec<f64>,
     load: Option<BlastProfile>,
-    /// Contact force per slot at the last evaluation [N].
+    /// Contact force per slot at the last evaluation \[N\].
     force_n: Vec<f64>,
-    /// Signed overlap per slot at the last evaluation [m].
+    /// Signed overlap per slot at the last evaluation \[m\].
     overlap_m: Vec<f64>,
     striker_velocity_m_s: f64,
 }
@@ -155,22 +155,22 @@ impl ChainOde {
         self.striker_velocity_m_s
     }
 
-    /// Striker mass [kg] (None for a blast).
+    /// Striker mass \[kg\] (None for a blast).
     pub fn striker_mass_kg(&self) -> Option<f64> {
         self.has_striker().then(|| self.mass_kg[0])
     }
 
-    /// Contact forces [N] of paper contacts 0..=N at the last evaluation of [`OdeSystem::rhs`].
+    /// Contact forces \[N\] of paper contacts 0..=N at the last evaluation of [`OdeSystem::rhs`].
     pub fn contact_forces_n(&self) -> &[f64] {
         &self.force_n[1 - self.shift..]
     }
 
-    /// Signed overlaps [m] of paper contacts 0..=N at the last evaluation (0 for a load).
+    /// Signed overlaps \[m\] of paper contacts 0..=N at the last evaluation (0 for a load).
     pub fn contact_overlaps_m(&self) -> &[f64] {
         &self.overlap_m[1 - self.shift..]
     }
 
-    /// Largest physical overlaps [m] of paper contacts 0..=N.
+    /// Largest physical overlaps \[m\] of paper contacts 0..=N.
     pub fn overlap_limits_m(&self) -> &[f64] {
         &self.overlap_limit_m[1 - self.shift..]
     }
@@ -221,7 +221,7 @@ impl ChainOde {
         Ok(())
     }
 
-    /// Energy of every layer 0..=N [J] into `out` (model.md §7: kinetic + internal springs + half of
+    /// Energy of every layer 0..=N \[J\] into `out` (model.md §7: kinetic + internal springs + half of
     /// each adjacent contact's Hertz potential (2/5) β δ^{5/2}); returns the wall's half of contact N.
     pub fn layer_energies_j(&self, y: &[f64], out: &mut [f64]) -> f64 {
         let (p, nd) = (self.n_primary, self.n_dof);
@@ -261,7 +261,7 @@ impl ChainOde {
         0.5 * potential(p)
     }
 
-    /// Work done by the load so far [J] (0 for an impact).
+    /// Work done by the load so far \[J\] (0 for an impact).
     pub fn input_work_j(&self, y: &[f64]) -> f64 {
         if self.is_blast() {
             y[2 * self.n_dof]
@@ -270,7 +270,7 @@ impl ChainOde {
         }
     }
 
-    /// Displacements [m] of the elements' primary masses (rods 1..N).
+    /// Displacements \[m\] of the elements' primary masses (rods 1..N).
     pub fn element_displacements<'a>(&self, y: &'a [f64]) -> &'a [f64] {
         &y[1 - self.shift..self.n_primary]
     }
@@ -280,7 +280,7 @@ impl ChainOde {
         &y[self.n_dof + 1 - self.shift..self.n_dof + self.n_primary]
     }
 
-    /// Striker (position [m], velocity [m/s]), None for a blast.
+    /// Striker (position \[m\], velocity [m/s]), None for a blast.
     pub fn striker_state(&self, y: &[f64]) -> Option<(f64, f64)> {
         self.has_striker().then(|| (y[0], y[self.n_dof]))
     }
@@ -291,7 +291,7 @@ impl ChainOde {
     }
 
     /// Absolute-tolerance units per state component for the adaptive integrator: 1 for
-    /// displacements [m], 1/τ with τ = 1 µs for velocities [m/s], 100 N for the work [J].
+    /// displacements \[m\], 1/τ with τ = 1 µs for velocities [m/s], 100 N for the work \[J\].
     pub fn tolerance_units(&self) -> Vec<f64> {
         let mut u = vec![1.0; self.n_dof];
         u.extend(std::iter::repeat_n(1e6, self.n_dof));

@@ -22,26 +22,26 @@ impl Layout {
 /// contact 0 = striker–element 1 (or the load), contact N = element N – wall; layer 0 = striker.
 #[derive(Debug, Clone, Copy)]
 pub struct Sample<'a> {
-    /// Time t [s].
+    /// Time t \[s\].
     pub time_s: f64,
-    /// Force of contacts 0..=N [N].
+    /// Force of contacts 0..=N \[N\].
     pub contact_forces_n: &'a [f64],
-    /// Energy of layers 0..=N [J].
+    /// Energy of layers 0..=N \[J\].
     pub layer_energies_j: &'a [f64],
-    /// The wall's half of the potential of contact N [J].
+    /// The wall's half of the potential of contact N \[J\].
     pub wall_energy_j: f64,
-    /// Work done by the load so far [J] (0 for an impact).
+    /// Work done by the load so far \[J\] (0 for an impact).
     pub input_work_j: f64,
-    /// Displacements u_1..u_N of the elements' primary masses [m].
+    /// Displacements u_1..u_N of the elements' primary masses \[m\].
     pub displacements_m: &'a [f64],
     /// Velocities of the elements' primary masses [m/s].
     pub velocities_m_s: &'a [f64],
-    /// Striker position [m] and velocity [m/s] (impact only).
+    /// Striker position \[m\] and velocity [m/s] (impact only).
     pub striker: Option<(f64, f64)>,
 }
 
 impl Sample<'_> {
-    /// Total energy of all bodies and contacts [J].
+    /// Total energy of all bodies and contacts \[J\].
     pub fn total_energy_j(&self) -> f64 {
         self.layer_energies_j.iter().sum::<f64>() + self.wall_energy_j
     }
@@ -65,21 +65,21 @@ impl Recorder for () {
 pub struct Trajectory {
     /// Number of elements N.
     pub n_elements: usize,
-    /// Sample times [s].
+    /// Sample times \[s\].
     pub times_s: Vec<f64>,
-    /// Contact forces, rows of N+1 [N].
+    /// Contact forces, rows of N+1 \[N\].
     pub contact_forces_n: Vec<f64>,
-    /// Layer energies, rows of N+1 [J].
+    /// Layer energies, rows of N+1 \[J\].
     pub layer_energies_j: Vec<f64>,
-    /// Wall's share of the energy [J].
+    /// Wall's share of the energy \[J\].
     pub wall_energy_j: Vec<f64>,
-    /// Work done by the load [J].
+    /// Work done by the load \[J\].
     pub input_work_j: Vec<f64>,
-    /// Primary displacements, rows of N [m].
+    /// Primary displacements, rows of N \[m\].
     pub displacements_m: Vec<f64>,
     /// Primary velocities, rows of N [m/s].
     pub velocities_m_s: Vec<f64>,
-    /// Striker position [m] (empty for a blast).
+    /// Striker position \[m\] (empty for a blast).
     pub striker_position_m: Vec<f64>,
     /// Striker velocity [m/s] (empty for a blast).
     pub striker_velocity_m_s: Vec<f64>,
@@ -101,7 +101,7 @@ impl Trajectory {
         self.n_elements + 1
     }
 
-    /// Force history of one contact [N].
+    /// Force history of one contact \[N\].
     pub fn contact_force_n(&self, contact: usize) -> Vec<f64> {
         self.contact_forces_n
             .chunks(self.n_contacts())
@@ -109,7 +109,7 @@ impl Trajectory {
             .collect()
     }
 
-    /// Energy history of one layer [J].
+    /// Energy history of one layer \[J\].
     pub fn layer_energy_j(&self, layer: usize) -> Vec<f64> {
         self.layer_energies_j
             .chunks(self.n_contacts())
@@ -117,7 +117,7 @@ impl Trajectory {
             .collect()
     }
 
-    /// Total energy (all layers and the wall's share) at each sample [J].
+    /// Total energy (all layers and the wall's share) at each sample \[J\].
     pub fn total_energy_j(&self) -> Vec<f64> {
         self.layer_energies_j
             .chunks(self.n_contacts())

@@ -11,11 +11,11 @@ use crate::record::{Layout, Recorder, Sample};
 /// How long, how and how often to sample.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunSettings {
-    /// Simulated time T [s].
+    /// Simulated time T \[s\].
     pub duration_s: f64,
     /// Integration method.
     pub method: Method,
-    /// Spacing of the uniform sample grid Δs [s].
+    /// Spacing of the uniform sample grid Δs \[s\].
     pub sample_interval_s: f64,
 }
 
@@ -85,11 +85,11 @@ pub struct Restitution {
 /// Energy bookkeeping of a run (model.md §7).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EnergyBalance {
-    /// Total energy at t = 0 [J].
+    /// Total energy at t = 0 \[J\].
     pub initial_j: f64,
-    /// Total energy at the end [J].
+    /// Total energy at the end \[J\].
     pub final_j: f64,
-    /// Work done by the load over the run [J] (0 for an impact).
+    /// Work done by the load over the run \[J\] (0 for an impact).
     pub input_work_j: f64,
     /// Largest |E(t) − E(0) − W(t)| over the samples, relative to E(0) (impact) or to the largest
     /// |W| (blast).
@@ -99,13 +99,13 @@ pub struct EnergyBalance {
 /// Figures of merit of one run (model.md §8).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSummary {
-    /// Peak force of every contact 0..=N over the whole run [N].
+    /// Peak force of every contact 0..=N over the whole run \[N\].
     pub contact_peak_forces_n: Vec<f64>,
-    /// Time of each peak [s].
+    /// Time of each peak \[s\].
     pub contact_peak_times_s: Vec<f64>,
-    /// Incident force: the peak of contact 1 [N].
+    /// Incident force: the peak of contact 1 \[N\].
     pub incident_peak_force_n: f64,
-    /// Transmitted force: the peak of contact N (the wall) [N].
+    /// Transmitted force: the peak of contact N (the wall) \[N\].
     pub transmitted_peak_force_n: f64,
     /// Transmitted / incident.
     pub transmission_ratio: f64,
@@ -117,7 +117,7 @@ pub struct RunSummary {
     pub stats: IntegratorStats,
     /// Number of samples delivered.
     pub n_samples: usize,
-    /// Wall-clock time of the run [s].
+    /// Wall-clock time of the run \[s\].
     pub wall_time_s: f64,
 }
 

@@ -30,13 +30,13 @@ use std::f64::consts::PI;
 /// M_eff(ω)/M_total of one cell over a frequency grid, with its negative-mass bands.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EffectiveMassCurve {
-    /// Frequencies f [Hz].
+    /// Frequencies f \[Hz\].
     pub frequencies_hz: Vec<f64>,
     /// M_eff(2πf)/M_total [-] (±∞ exactly at a local resonance).
     pub normalised_mass: Vec<f64>,
-    /// Total mass M + Σ m_j [kg].
+    /// Total mass M + Σ m_j \[kg\].
     pub total_mass_kg: f64,
-    /// Negative-effective-mass bands (f_j, F_j) [Hz].
+    /// Negative-effective-mass bands (f_j, F_j) \[Hz\].
     pub negative_bands_hz: Vec<(f64, f64)>,
 }
 
@@ -81,15 +81,15 @@ pub struct BandStructure {
     pub cell: UnitCell,
     /// Linearised contact stiffness K_c [N/m].
     pub contact_stiffness_n_per_m: f64,
-    /// Pass bands [f_lo, f_hi] [Hz], ascending; the first starts at 0.
+    /// Pass bands [f_lo, f_hi] \[Hz\], ascending; the first starts at 0.
     pub pass_bands_hz: Vec<(f64, f64)>,
-    /// Gaps (f_lo, f_hi) [Hz], ascending; the last is (cut-off, ∞).
+    /// Gaps (f_lo, f_hi) \[Hz\], ascending; the last is (cut-off, ∞).
     pub gaps_hz: Vec<(f64, f64)>,
 }
 
 impl BandStructure {
     /// Bands of a homogeneous chain of `cell` with contact coefficient β [N/m^1.5] at a static
-    /// precompression F_p [N].
+    /// precompression F_p \[N\].
     pub fn homogeneous(cell: &UnitCell, beta: f64, precompression_n: f64) -> Result<Self> {
         let kc = contact_stiffness_n_per_m(beta, precompression_n)?;
         Self::with_stiffness(cell, kc)
@@ -140,19 +140,19 @@ impl BandStructure {
         })
     }
 
-    /// s(f) = ω² M_eff(ω)/(4 K_c) at f [Hz]: sin²(qa/2) inside a pass band.
+    /// s(f) = ω² M_eff(ω)/(4 K_c) at f \[Hz\]: sin²(qa/2) inside a pass band.
     pub fn dispersion_ratio(&self, frequency_hz: f64) -> f64 {
         let w = 2.0 * PI * frequency_hz;
         w * w * self.cell.effective_mass_kg(w) / (4.0 * self.contact_stiffness_n_per_m)
     }
 
-    /// Reduced Bloch wavenumber qa ∈ [0, π] at f [Hz], or None inside a gap.
+    /// Reduced Bloch wavenumber qa ∈ [0, π] at f \[Hz\], or None inside a gap.
     pub fn wavenumber(&self, frequency_hz: f64) -> Option<f64> {
         let s = self.dispersion_ratio(frequency_hz);
         (0.0..=1.0).contains(&s).then(|| 2.0 * s.sqrt().asin())
     }
 
-    /// Whether f [Hz] lies inside a gap (open intervals; edges are in the pass bands).
+    /// Whether f \[Hz\] lies inside a gap (open intervals; edges are in the pass bands).
     pub fn in_gap(&self, frequency_hz: f64) -> bool {
         self.gaps_hz
             .iter()

@@ -56,7 +56,7 @@ impl Axis {
 pub struct Map2 {
     /// Row axis (e.g. contact index).
     pub rows: Axis,
-    /// Column axis (e.g. time [s]).
+    /// Column axis (e.g. time \[s\]).
     pub cols: Axis,
     /// What the values are (`contact force`, …).
     pub value_name: String,
@@ -167,7 +167,7 @@ fn check_recorded(trajectory: &Trajectory) -> Result<()> {
     sample_interval_s(trajectory).map(|_| ())
 }
 
-/// Contact force over contacts 0..=N (rows) × time [s] (columns) [N] (paper Figs. 5, 9).
+/// Contact force over contacts 0..=N (rows) × time \[s\] (columns) \[N\] (paper Figs. 5, 9).
 pub fn force_map(trajectory: &Trajectory) -> Result<Map2> {
     check_recorded(trajectory)?;
     let c = trajectory.n_contacts();
@@ -180,7 +180,7 @@ pub fn force_map(trajectory: &Trajectory) -> Result<Map2> {
     )
 }
 
-/// The energy put into the system [J]: the striker's initial energy for an impact (the total at
+/// The energy put into the system \[J\]: the striker's initial energy for an impact (the total at
 /// t = 0), the largest work done by the load so far for a blast.
 pub fn injected_energy_j(trajectory: &Trajectory) -> f64 {
     let work = trajectory
@@ -195,7 +195,7 @@ pub fn injected_energy_j(trajectory: &Trajectory) -> f64 {
     }
 }
 
-/// Layer energy over layers 0..=N (rows) × time [s] (columns), divided by the injected energy
+/// Layer energy over layers 0..=N (rows) × time \[s\] (columns), divided by the injected energy
 /// ([`injected_energy_j`]) — dimensionless (paper Fig. 6 shows it in %). The wall's half of the
 /// last contact is not a layer: for an impact the columns sum to 1 − E_wall(t)/E_in.
 pub fn energy_map(trajectory: &Trajectory) -> Result<Map2> {

@@ -14,11 +14,11 @@ use rayon::prelude::*;
 /// The results of the layer-by-layer protocol.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LayerByLayer {
-    /// Wall force of sub-chain k (row k−1, k = 1..=N) over time [s] [N].
+    /// Wall force of sub-chain k (row k−1, k = 1..=N) over time \[s\] \[N\].
     pub wall_force_map: Map2,
-    /// Peak wall force of each sub-chain [N] (refined between steps, as in [`RunSummary`]).
+    /// Peak wall force of each sub-chain \[N\] (refined between steps, as in [`RunSummary`]).
     pub peak_wall_force_n: Vec<f64>,
-    /// Time of each peak [s].
+    /// Time of each peak \[s\].
     pub peak_time_s: Vec<f64>,
     /// The figures of merit of each sub-chain's run.
     pub summaries: Vec<RunSummary>,

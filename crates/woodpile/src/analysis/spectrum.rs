@@ -138,7 +138,7 @@ pub struct SpectrumSettings {
 /// The one-sided spectrum of a real signal.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Spectrum {
-    /// Frequencies f_k = k/(L Δt), k = 0..=L/2 [Hz].
+    /// Frequencies f_k = k/(L Δt), k = 0..=L/2 \[Hz\].
     pub frequencies_hz: Vec<f64>,
     /// One-sided amplitude A_k with coherent-gain correction [unit of the signal].
     pub amplitudes: Vec<f64>,
@@ -148,7 +148,7 @@ pub struct Spectrum {
     pub n_samples: usize,
     /// Transform length L ≥ N.
     pub n_fft: usize,
-    /// Sample interval Δt [s].
+    /// Sample interval Δt \[s\].
     pub sample_interval_s: f64,
     /// Window used.
     pub window: Window,
@@ -160,12 +160,12 @@ impl Spectrum {
         SpectrumPlan::new(signal.len(), sample_interval_s, settings)?.transform(signal)
     }
 
-    /// Frequency resolution 1/(L Δt) [Hz].
+    /// Frequency resolution 1/(L Δt) \[Hz\].
     pub fn resolution_hz(&self) -> f64 {
         1.0 / (self.n_fft as f64 * self.sample_interval_s)
     }
 
-    /// Nyquist frequency 1/(2Δt) [Hz].
+    /// Nyquist frequency 1/(2Δt) \[Hz\].
     pub fn nyquist_hz(&self) -> f64 {
         0.5 / self.sample_interval_s
     }
@@ -267,7 +267,7 @@ impl SpectrumPlan {
         })
     }
 
-    /// Frequencies of the one-sided bins [Hz].
+    /// Frequencies of the one-sided bins \[Hz\].
     pub fn frequencies_hz(&self) -> Vec<f64> {
         let df = 1.0 / (self.n_fft as f64 * self.sample_interval_s);
         (0..=self.n_fft / 2).map(|k| k as f64 * df).collect()
@@ -336,7 +336,7 @@ impl SpectrumPlan {
 }
 
 /// Amplitude spectra of every contact force of a trajectory: rows = contacts 0..=N, columns =
-/// frequencies [Hz], values = one-sided amplitude [N].
+/// frequencies \[Hz\], values = one-sided amplitude \[N\].
 pub fn contact_spectrum_map(trajectory: &Trajectory, settings: &SpectrumSettings) -> Result<Map2> {
     let dt = sample_interval_s(trajectory)?;
     let mut plan = SpectrumPlan::new(trajectory.len(), dt, settings)?;
@@ -355,7 +355,7 @@ pub fn contact_spectrum_map(trajectory: &Trajectory, settings: &SpectrumSettings
     )
 }
 
-/// The uniform sample interval Δt of a trajectory [s] (checked to be uniform to 1e-6 relative).
+/// The uniform sample interval Δt of a trajectory \[s\] (checked to be uniform to 1e-6 relative).
 pub fn sample_interval_s(trajectory: &Trajectory) -> Result<f64> {
     let t = &trajectory.times_s;
     if t.len() < 2 {

@@ -21,7 +21,7 @@ use std::f64::consts::PI;
 /// One internal resonator: an auxiliary mass on a spring attached to the primary mass.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Resonator {
-    /// Auxiliary mass m_j [kg].
+    /// Auxiliary mass m_j \[kg\].
     pub mass_kg: f64,
     /// Spring stiffness k_j [N/m].
     pub stiffness_n_per_m: f64,
@@ -37,13 +37,13 @@ impl Resonator {
 /// A unit cell: primary mass M plus any number of resonators.
 #[derive(Debug, Clone, PartialEq)]
 pub struct UnitCell {
-    /// Primary mass M [kg].
+    /// Primary mass M \[kg\].
     pub primary_mass_kg: f64,
     /// Internal resonators, in order of increasing frequency for the catalogue cells.
     pub resonators: Vec<Resonator>,
 }
 
-/// Rod lengths of the paper's Table 1 [mm].
+/// Rod lengths of the paper's Table 1 \[mm\].
 pub const TABLE1_LENGTHS_MM: [u32; 7] = [20, 30, 40, 50, 60, 70, 80];
 
 /// A Table 1 row: (length mm, M g, [(m_j g, k_j kN/mm)]).
@@ -132,12 +132,12 @@ impl UnitCell {
         }
     }
 
-    /// Total mass M + Σ m_j [kg].
+    /// Total mass M + Σ m_j \[kg\].
     pub fn total_mass_kg(&self) -> f64 {
         self.primary_mass_kg + self.resonators.iter().map(|r| r.mass_kg).sum::<f64>()
     }
 
-    /// Effective mass M_eff(ω) [kg] at angular frequency ω [rad/s] (infinite at a local resonance).
+    /// Effective mass M_eff(ω) \[kg\] at angular frequency ω [rad/s] (infinite at a local resonance).
     pub fn effective_mass_kg(&self, omega: f64) -> f64 {
         let w2 = omega * omega;
         self.primary_mass_kg
@@ -151,7 +151,7 @@ impl UnitCell {
                 .sum::<f64>()
     }
 
-    /// Local resonances f_j = ω_j/2π [Hz], ascending.
+    /// Local resonances f_j = ω_j/2π \[Hz\], ascending.
     pub fn local_resonances_hz(&self) -> Vec<f64> {
         let mut f: Vec<f64> = self
             .resonators
@@ -162,7 +162,7 @@ impl UnitCell {
         f
     }
 
-    /// Free-cell resonances F_j [Hz]: the zeros of M_eff, ascending. M_eff increases with ω between
+    /// Free-cell resonances F_j \[Hz\]: the zeros of M_eff, ascending. M_eff increases with ω between
     /// consecutive poles (every term does), going from −∞ to +∞ (or to M > 0 above the last pole),
     /// so there is exactly one zero above each pole: found by bisection in ω².
     pub fn free_resonances_hz(&self) -> Vec<f64> {
@@ -202,7 +202,7 @@ impl UnitCell {
             .collect()
     }
 
-    /// Negative-effective-mass bands (f_j, F_j) [Hz].
+    /// Negative-effective-mass bands (f_j, F_j) \[Hz\].
     pub fn negative_mass_bands_hz(&self) -> Vec<(f64, f64)> {
         self.local_resonances_hz()
             .into_iter()

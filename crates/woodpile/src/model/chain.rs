@@ -6,7 +6,7 @@ use super::contact::{hertz_beta, Surface};
 use super::material::Material;
 use crate::error::{require_positive, Error, Result};
 
-/// Diameter of the paper's rods [m].
+/// Diameter of the paper's rods \[m\].
 pub const PAPER_ROD_DIAMETER_M: f64 = 5e-3;
 
 /// The solid body of an element, which fixes its contact surface.
@@ -14,14 +14,14 @@ pub const PAPER_ROD_DIAMETER_M: f64 = 5e-3;
 pub enum Body {
     /// A slender cylinder touching its neighbours at its centre.
     Rod {
-        /// Diameter [m].
+        /// Diameter \[m\].
         diameter_m: f64,
-        /// Length [m].
+        /// Length \[m\].
         length_m: f64,
     },
     /// A sphere.
     Sphere {
-        /// Diameter [m].
+        /// Diameter \[m\].
         diameter_m: f64,
     },
 }
@@ -120,11 +120,11 @@ pub(crate) fn prefix_field(e: Error, prefix: &str) -> Error {
 pub enum Wall {
     /// Nothing: the last element is free.
     Free,
-    /// A fixed force sensor with a spherical cap of radius R_c [m] (model.md §2: steel, 5 mm).
+    /// A fixed force sensor with a spherical cap of radius R_c \[m\] (model.md §2: steel, 5 mm).
     Cap {
         /// Material of the cap.
         material: Material,
-        /// Cap radius R_c [m].
+        /// Cap radius R_c \[m\].
         radius_m: f64,
     },
     /// A fixed flat (only a point contact with a sphere).
@@ -155,7 +155,7 @@ pub struct Chain {
     inner_betas: Vec<f64>,
     /// β of the wall contact (paper contact N), or None for a free end.
     wall_beta: Option<f64>,
-    /// Largest physical overlap of each contact (paper contacts 1..=N) [m].
+    /// Largest physical overlap of each contact (paper contacts 1..=N) \[m\].
     overlap_limits_m: Vec<f64>,
     crossing_angle_rad: f64,
 }
@@ -180,7 +180,7 @@ impl ChainBuilder {
         }
     }
 
-    /// Table 1 rods by length [mm], top to bottom.
+    /// Table 1 rods by length \[mm\], top to bottom.
     pub fn table1_rods(lengths_mm: &[u32], model: CellModel) -> Result<Self> {
         let elements = lengths_mm
             .iter()
@@ -195,7 +195,7 @@ impl ChainBuilder {
         self
     }
 
-    /// Angle between the axes of neighbouring rods [rad] (default π/2).
+    /// Angle between the axes of neighbouring rods \[rad\] (default π/2).
     pub fn crossing_angle_rad(mut self, angle: f64) -> Self {
         self.crossing_angle_rad = angle;
         self
@@ -333,7 +333,7 @@ impl Chain {
         &self.wall
     }
 
-    /// Angle between neighbouring rods [rad].
+    /// Angle between neighbouring rods \[rad\].
     pub fn crossing_angle_rad(&self) -> f64 {
         self.crossing_angle_rad
     }
@@ -348,7 +348,7 @@ impl Chain {
         self.wall_beta
     }
 
-    /// Largest physical overlap of paper contacts 1..=N [m] (10 % of the smallest radius).
+    /// Largest physical overlap of paper contacts 1..=N \[m\] (10 % of the smallest radius).
     pub fn overlap_limits_m(&self) -> &[f64] {
         &self.overlap_limits_m
     }
@@ -358,7 +358,7 @@ impl Chain {
         self.elements[0].surface(0.0)
     }
 
-    /// Total mass of the chain [kg].
+    /// Total mass of the chain \[kg\].
     pub fn total_mass_kg(&self) -> f64 {
         self.elements.iter().map(|e| e.cell.total_mass_kg()).sum()
     }

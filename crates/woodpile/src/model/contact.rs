@@ -24,17 +24,17 @@ use crate::error::{Error, Result};
 /// The local shape of a body at its contact point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Surface {
-    /// A circular cylinder of radius r [m]: curvatures (1/r, 0). `axis_angle_rad` is the direction
+    /// A circular cylinder of radius r \[m\]: curvatures (1/r, 0). `axis_angle_rad` is the direction
     /// of its axis in the contact plane; only differences between two bodies matter.
     Cylinder {
-        /// Radius r [m].
+        /// Radius r \[m\].
         radius_m: f64,
-        /// Axis direction in the contact plane [rad].
+        /// Axis direction in the contact plane \[rad\].
         axis_angle_rad: f64,
     },
-    /// A sphere (or spherical cap) of radius R [m]: curvatures (1/R, 1/R).
+    /// A sphere (or spherical cap) of radius R \[m\]: curvatures (1/R, 1/R).
     Sphere {
-        /// Radius R [m].
+        /// Radius R \[m\].
         radius_m: f64,
     },
     /// A flat: curvatures (0, 0).
@@ -60,7 +60,7 @@ impl std::fmt::Display for Surface {
 }
 
 impl Surface {
-    /// Principal curvatures (κ', κ'') [1/m] and the direction of the first principal plane [rad].
+    /// Principal curvatures (κ', κ'') [1/m] and the direction of the first principal plane \[rad\].
     fn curvatures(&self) -> (f64, f64, f64) {
         match *self {
             Surface::Cylinder {
@@ -72,7 +72,7 @@ impl Surface {
         }
     }
 
-    /// Smallest radius of curvature [m] (infinite for a flat).
+    /// Smallest radius of curvature \[m\] (infinite for a flat).
     pub fn smallest_radius_m(&self) -> f64 {
         match *self {
             Surface::Cylinder { radius_m, .. } | Surface::Sphere { radius_m } => radius_m,
@@ -128,7 +128,7 @@ pub struct HertzContact {
     pub b_per_m: f64,
     /// Eccentricity e of the contact ellipse [-].
     pub eccentricity: f64,
-    /// Effective modulus E* [Pa].
+    /// Effective modulus E* \[Pa\].
     pub effective_modulus_pa: f64,
     /// Contact coefficient β of F = β δ^{3/2} [N/m^1.5].
     pub beta: f64,

@@ -7,7 +7,7 @@ use crate::error::{require_positive, Error, Result};
 pub struct Material {
     /// Name (a preset name or the user's).
     pub name: String,
-    /// Young's modulus E [Pa].
+    /// Young's modulus E \[Pa\].
     pub youngs_modulus_pa: f64,
     /// Poisson's ratio ν [-], in (-1, 0.5).
     pub poisson_ratio: f64,
@@ -15,7 +15,7 @@ pub struct Material {
     pub density_kg_m3: f64,
 }
 
-/// Presets: (name, E [Pa], ν, ρ [kg/m³]). The first three are model.md §2; the others are
+/// Presets: (name, E \[Pa\], ν, ρ [kg/m³]). The first three are model.md §2; the others are
 /// handbook values (e.g. the ASM/Matweb typical values for the named class of material).
 const PRESETS: [(&str, f64, f64, f64); 7] = [
     ("fused-quartz", 72e9, 0.17, 2200.0),
