@@ -997,7 +997,7 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
                     &points,
                     &objective_label(&ga.objective, &ga.unit),
                     &format!(
-                        "Breeder GA, 20 rods, {} model, {impact_text} (population {}, seed {})",
+                        "Breeder GA, 20 rods, {} model, impact (population {}, seed {})",
                         ga.model, ga.population, args.seed
                     ),
                     &fig(&format!("{slug}_convergence")),
@@ -1174,12 +1174,16 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
     let last5 = mean_mm(&ga_res.rods[15..]);
     doc.h2("How this report was made");
     doc.p(format!(
-        "Command: `woodpile report --out {}{} --seed {}` (woodpile {}), {} the GA results{}. Every number below was measured in this run; the model and its defaults are model.md's (rods of fused quartz with the paper's Table 1 unit cells, Hertz contacts, fixed-step RK4 with dt = 0.1 µs, samples every 1 µs).",
+        "Command: `woodpile report --out {}{} --seed {}` (woodpile {}), {}{}. Every number below was measured by this tool (the GA results possibly by an earlier run of the same command, kept in cache/); the model and its defaults are model.md's (rods of fused quartz with the paper's Table 1 unit cells, Hertz contacts, fixed-step RK4 with dt = 0.1 µs, samples every 1 µs).",
         out.display(),
         if args.quick { " --quick" } else { "" },
         args.seed,
         env!("CARGO_PKG_VERSION"),
-        if ga_res.cached && ga_rig.cached { "reusing from cache/" } else { "computing" },
+        match (ga_res.cached, ga_rig.cached) {
+            (true, true) => "both GA results reused from cache/",
+            (false, false) => "both GAs run now",
+            _ => "one GA result reused from cache/, one GA run now",
+        },
         if args.quick {
             " — QUICK version: the GAs ran with population 20 × 10 generations and are not converged, so the optimisation numbers are not the full report's"
         } else {

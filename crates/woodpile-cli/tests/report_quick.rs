@@ -73,7 +73,7 @@ fn quick_report_writes_every_file_it_names() {
     );
     assert!(o.status.success());
     let md2 = std::fs::read_to_string(out.join("report.md")).unwrap();
-    assert!(md2.contains("reusing from cache/"));
+    assert!(md2.contains("both GA results reused from cache/"));
     assert!(
         first < 90.0,
         "the quick report took {first:.1} s; CI needs it well under 2 minutes"
