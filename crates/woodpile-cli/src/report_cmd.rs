@@ -44,7 +44,7 @@ use woodpile::{
 };
 use woodpile_plot as plot;
 
-/// The paper's blast-optimised chain (model.md §9), top to bottom [mm].
+/// The paper's blast-optimised chain (model.md §9), top to bottom \[mm\].
 pub const PAPER_BLAST_OPTIMUM_MM: [u32; 20] = [
     50, 80, 80, 80, 60, 70, 80, 80, 40, 30, 40, 40, 40, 30, 50, 40, 20, 20, 30, 50,
 ];
@@ -375,7 +375,7 @@ impl Cache {
 // ---------------------------------------------------------------------------------------------
 // Measurements.
 
-/// First time the force exceeds `frac` of its maximum [s].
+/// First time the force exceeds `frac` of its maximum \[s\].
 pub fn arrival_s(times_s: &[f64], force_n: &[f64], frac: f64) -> Option<f64> {
     let max = force_n.iter().copied().fold(0.0, f64::max);
     (max > 0.0)
@@ -386,7 +386,7 @@ pub fn arrival_s(times_s: &[f64], force_n: &[f64], frac: f64) -> Option<f64> {
 
 /// Separated peaks of a force history inside [t0, t1]: local maxima of at least `keep` times the
 /// window's maximum, where two neighbouring maxima count as one unless the force between them
-/// falls below half the smaller of the two. Returns (time [s], force [N]) of each peak.
+/// falls below half the smaller of the two. Returns (time \[s\], force \[N\]) of each peak.
 pub fn separated_peaks(
     times_s: &[f64],
     force_n: &[f64],
@@ -436,7 +436,7 @@ pub fn separated_peaks(
 #[derive(Debug, Clone)]
 struct WaveAtWall {
     name: String,
-    /// First arrival at contact 1 and at the wall [s].
+    /// First arrival at contact 1 and at the wall \[s\].
     arrival_top_s: f64,
     arrival_wall_s: f64,
     /// Separated peaks at the wall within one transit time after the arrival.
@@ -457,7 +457,7 @@ impl WaveAtWall {
         }
     }
 
-    /// Time between the two largest peaks [s].
+    /// Time between the two largest peaks \[s\].
     fn main_gap_s(&self) -> Option<f64> {
         let mut p = self.peaks.clone();
         p.sort_by(|a, b| b.1.total_cmp(&a.1));
@@ -500,7 +500,7 @@ fn band_contrast(t: &Trajectory, band: (f64, f64)) -> Result<f64, CliError> {
     Ok(inside / flanks)
 }
 
-/// Peak energy of layer `layer` over the run [J].
+/// Peak energy of layer `layer` over the run \[J\].
 fn peak_layer_energy(t: &Trajectory, layer: usize) -> f64 {
     t.layer_energy_j(layer).into_iter().fold(0.0, f64::max)
 }

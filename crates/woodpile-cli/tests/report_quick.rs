@@ -48,7 +48,10 @@ fn quick_report_writes_every_file_it_names() {
     for f in &figures {
         let png = out.join(f);
         assert!(png.is_file(), "{f} is named in report.md but missing");
-        assert!(std::fs::metadata(&png).unwrap().len() > 1000, "{f} is empty");
+        assert!(
+            std::fs::metadata(&png).unwrap().len() > 1000,
+            "{f} is empty"
+        );
         let svg = out.join(f.trim_end_matches(".png").to_string() + ".svg");
         assert!(svg.is_file(), "{} missing", svg.display());
         assert!(
@@ -62,7 +65,10 @@ fn quick_report_writes_every_file_it_names() {
     );
     // The comparison table carries the paper's numbers beside ours.
     for paper in ["28.5 N", "159.6 N", "85.5 N", "0.2570", "0.4991", "8.3 %"] {
-        assert!(md.contains(paper), "comparison table lacks the paper's {paper}");
+        assert!(
+            md.contains(paper),
+            "comparison table lacks the paper's {paper}"
+        );
     }
     // Two GA results in the cache; a rerun reuses them.
     let cached = std::fs::read_dir(out.join("cache")).unwrap().count();
