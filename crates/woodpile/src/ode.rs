@@ -307,7 +307,7 @@ impl OdeSystem for ChainOde {
         2 * self.n_dof + usize::from(self.is_blast())
     }
 
-    #[inline]
+    #[inline(always)]
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let (p, nd) = (self.n_primary, self.n_dof);
         let (x, v) = (&y[..nd], &y[nd..2 * nd]);
