@@ -642,7 +642,7 @@ impl Checkpoint {
                 .iter()
                 .map(|i| ind(&i.genome, i.objective))
                 .collect(),
-            history: s.history.iter().map(history_json).collect(),
+            history: s.history.iter().map(HistoryJson::from).collect(),
             cache,
         }
     }
@@ -684,15 +684,17 @@ impl Checkpoint {
     }
 }
 
-fn history_json(h: &GenerationStats) -> HistoryJson {
-    HistoryJson {
-        generation: h.generation,
-        best: h.best,
-        mean: h.mean,
-        worst: h.worst,
-        evaluations: h.evaluations,
-        cache_hits: h.cache_hits,
-        elapsed_s: h.elapsed_s,
+impl From<&GenerationStats> for HistoryJson {
+    fn from(h: &GenerationStats) -> Self {
+        HistoryJson {
+            generation: h.generation,
+            best: h.best,
+            mean: h.mean,
+            worst: h.worst,
+            evaluations: h.evaluations,
+            cache_hits: h.cache_hits,
+            elapsed_s: h.elapsed_s,
+        }
     }
 }
 

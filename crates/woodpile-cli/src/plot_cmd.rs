@@ -380,7 +380,8 @@ fn read_csv(path: &Path, columns: &[String]) -> Result<(Vec<f64>, Vec<f64>), Cli
     Ok((times, data))
 }
 
-fn plot_err(e: plot::PlotError) -> CliError {
+/// A plotting failure as a CLI output error naming the figure's path.
+pub(crate) fn plot_err(e: plot::PlotError) -> CliError {
     let path = match &e {
         plot::PlotError::Draw { path, .. } => path.clone(),
         plot::PlotError::BadData { .. } => PathBuf::from("figure"),

@@ -23,6 +23,7 @@
 use crate::commands::Context;
 use crate::error::CliError;
 use crate::optimize_cmd::{write_atomic, HistoryJson, OptimizeConfig, Problem};
+use crate::plot_cmd::plot_err;
 use crate::plot_cmd::{cells_figures, objective_label};
 use crate::scenario::ModelSpec;
 use base64::Engine as _;
@@ -552,17 +553,6 @@ fn join_mm(rods: &[u32]) -> String {
         .join(" ")
 }
 
-fn plot_err(e: plot::PlotError) -> CliError {
-    let path = match &e {
-        plot::PlotError::Draw { path, .. } => path.clone(),
-        plot::PlotError::BadData { .. } => PathBuf::from("figure"),
-    };
-    CliError::Output {
-        path,
-        source: std::io::Error::other(e.to_string()),
-    }
-}
-
 // ---------------------------------------------------------------------------------------------
 // The runs.
 
@@ -710,19 +700,7 @@ fn run_ga(
                 inputs: key.clone(),
                 best_genome: s.best().genome.clone(),
                 best_objective: s.best().objective,
-                history: s
-                    .history
-                    .iter()
-                    .map(|h| HistoryJson {
-                        generation: h.generation,
-                        best: h.best,
-                        mean: h.mean,
-                        worst: h.worst,
-                        evaluations: h.evaluations,
-                        cache_hits: h.cache_hits,
-                        elapsed_s: h.elapsed_s,
-                    })
-                    .collect(),
+                history: s.history.iter().map(HistoryJson::from).collect(),
                 generations: s.generation,
                 evaluations: s.evaluations,
                 cache_hits: s.cache_hits,
