@@ -41,9 +41,14 @@ pub struct Args {
     /// Where to write the figures (default: DIR/plots).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Highest frequency drawn in the spectra \[kHz\].
+    /// Highest frequency drawn in the spectra, in kHz.
     #[arg(long, value_name = "KHZ", default_value_t = 80.0)]
     pub max_frequency_khz: f64,
+    /// A contact force to draw as a history and a spectrum (repeatable): `contact_K` (K = 0..N),
+    /// `striker` or `load` (contact 0), `incident` (contact 1), `wall` (contact N).
+    /// Default: the striker or load, the incident contact and the wall.
+    #[arg(long = "signal", value_name = "NAME")]
+    pub signals: Vec<String>,
     /// Window of the spectra: rectangular, hann, hamming, blackman-harris, flat-top.
     #[arg(long, value_name = "NAME", default_value = "rectangular")]
     pub window: String,
@@ -418,9 +423,14 @@ pub fn plot_run(
     out: &Path,
     max_frequency_hz: f64,
     window: Window,
+    signals: &[String],
 ) -> Result<Vec<PathBuf>, CliError> {
     let info = read_run_info(dir)?;
     let n = info.labels.len();
+    let signal_picks = signals
+        .iter()
+        .map(|name| signal_contact(name, n))
+        .collect::<Result<Vec<_>, _>>()?;
     let t = read_trajectory(dir, n)?;
     if t.len() < 2 {
         return Err(read_error(
@@ -466,6 +476,9 @@ pub fn plot_run(
         picks.push((1, "contact 1 (incident)".to_string()));
     }
     picks.push((n, format!("contact {n} (wall)")));
+    if !signal_picks.is_empty() {
+        picks = signal_picks;
+    }
     let series: Vec<plot::Series> = picks
         .iter()
         .map(|(c, l)| plot::Series::new(l.clone(), t.contact_force_n(*c)))
@@ -502,6 +515,35 @@ pub fn plot_run(
     Ok(files)
 }
 
+/// The contact a `--signal` name designates, with its legend label.
+fn signal_contact(name: &str, n: usize) -> Result<(usize, String), CliError> {
+    let contact = match name {
+        "striker" | "load" => Some(0),
+        "incident" if n >= 2 => Some(1),
+        "wall" => Some(n),
+        _ => name
+            .strip_prefix("contact_")
+            .and_then(|k| k.parse::<usize>().ok())
+            .filter(|&k| k <= n),
+    };
+    contact
+        .map(|c| {
+            let label = if name.starts_with("contact_") {
+                format!("contact {c}")
+            } else {
+                format!("contact {c} ({name})")
+            };
+            (c, label)
+        })
+        .ok_or_else(|| {
+            CliError::invalid(
+                "--signal",
+                name,
+                format!("unknown signal; valid: contact_0 .. contact_{n}, striker, load, incident, wall"),
+            )
+        })
+}
+
 /// Runs `woodpile plot`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let window = Window::from_name(&args.window).map_err(CliError::at("--window"))?;
@@ -514,7 +556,13 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     }
     let out = args.out.clone().unwrap_or_else(|| args.dir.join("plots"));
     let files = match detect_dir(&args.dir)? {
-        DirKind::Run => plot_run(&args.dir, &out, args.max_frequency_khz * 1e3, window)?,
+        DirKind::Run => plot_run(
+            &args.dir,
+            &out,
+            args.max_frequency_khz * 1e3,
+            window,
+            &args.signals,
+        )?,
         DirKind::Optimization => {
             let (files, note) = plot_optimization(&args.dir, &out)?;
             if let (Some(note), false) = (note, ctx.quiet) {

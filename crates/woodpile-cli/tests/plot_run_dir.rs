@@ -1,7 +1,8 @@
 //! Claim: `woodpile plot RUN_DIR` turns a `simulate` output directory into PNG and SVG figures in
 //! RUN_DIR/plots (from the .npy files, or from the CSV files when those are gone), and refuses
 //! with exit code 2 and a message naming the problem: a directory that is not a run, a run of
-//! another format version, a missing data file. `woodpile cells --plot DIR` draws Fig. 3.
+//! another format version, a missing data file, a signal name that does not exist.
+//! `woodpile cells --plot DIR` draws Fig. 3.
 //! No tolerance: file existence and exit codes are exact.
 
 use std::path::Path;
@@ -111,6 +112,14 @@ fn bad_run_directories_are_clear_errors() {
     let o = woodpile(&["plot", run.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("forces.csv"), "{}", stderr(&o));
+
+    let o = woodpile(&["plot", run.to_str().unwrap(), "--signal", "contact_99"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("contact_99") && stderr(&o).contains("wall"),
+        "names the signal and the valid ones: {}",
+        stderr(&o)
+    );
 
     let o = woodpile(&["plot", run.to_str().unwrap(), "--window", "kaiser"]);
     assert_eq!(o.status.code(), Some(2));
