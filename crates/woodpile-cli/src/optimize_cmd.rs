@@ -31,6 +31,7 @@
 
 use crate::commands::Context;
 use crate::error::CliError;
+use crate::output::io_err;
 use crate::scenario::{
     resolve, ChainSpec, ElementSpec, ExcitationKind, ExcitationSpec, ModelSpec, RunSpec, Scenario,
     WallSpec,
@@ -695,13 +696,6 @@ impl From<&GenerationStats> for HistoryJson {
             cache_hits: h.cache_hits,
             elapsed_s: h.elapsed_s,
         }
-    }
-}
-
-fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> CliError + '_ {
-    move |e| CliError::Output {
-        path: path.to_path_buf(),
-        source: e,
     }
 }
 

@@ -16,7 +16,8 @@ use woodpile::{Excitation, Method, RunSummary, Trajectory};
 /// The file that marks a directory as a previous `woodpile` run.
 pub const RUN_MARKER: &str = "run.json";
 
-fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> CliError + '_ {
+/// Turns an I/O error on `path` into [`CliError::Output`] naming the path.
+pub(crate) fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> CliError + '_ {
     move |e| CliError::Output {
         path: path.to_path_buf(),
         source: e,
