@@ -155,10 +155,7 @@ fn element(
                 ));
             };
             let length = positive(&field("length_mm"), length)?;
-            let mat = match &e.material {
-                Some(m) => material(&field("material"), m)?,
-                None => Material::preset(defaults::ELEMENT_MATERIAL)?,
-            };
+            let mat = element_material(&field("material"), e.material.as_ref())?;
             let Some(cell_spec) = &e.cell else {
                 return Err(CliError::invalid(
                     field("cell"),
@@ -202,12 +199,17 @@ fn element(
                 ));
             };
             let d = positive(&field("diameter_mm"), d)?;
-            let mat = match &e.material {
-                Some(m) => material(&field("material"), m)?,
-                None => Material::preset(defaults::ELEMENT_MATERIAL)?,
-            };
+            let mat = element_material(&field("material"), e.material.as_ref())?;
             Ok(Element::sphere(d * 1e-3, mat)?)
         }
+    }
+}
+
+/// An element's material: the one given, or the default rod material.
+fn element_material(field: &str, spec: Option<&MaterialSpec>) -> Result<Material, CliError> {
+    match spec {
+        Some(m) => material(field, m),
+        None => Ok(Material::preset(defaults::ELEMENT_MATERIAL)?),
     }
 }
 
