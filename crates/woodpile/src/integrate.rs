@@ -210,8 +210,16 @@ pub struct IntegratorStats {
 /// Step control state.
 #[derive(Debug, Clone)]
 enum Control {
-    Fixed { h: f64 },
-    Adaptive { rtol: f64, atol: Vec<f64>, h: f64 },
+    Fixed {
+        h: f64,
+    },
+    Adaptive {
+        rtol: f64,
+        atol: Vec<f64>,
+        h: f64,
+        /// Error norm of the last accepted step (for the PI controller).
+        err_prev: f64,
+    },
 }
 
 /// Advances one ODE state step by step. Owns the state and every buffer: a step allocates nothing.
@@ -267,7 +275,12 @@ impl Integrator {
                 );
                 // `initial_step` evaluated the system elsewhere: restore the invariant.
                 system.rhs(t0, &y0, &mut f_now);
-                Control::Adaptive { rtol, atol, h }
+                Control::Adaptive {
+                    rtol,
+                    atol,
+                    h,
+                    err_prev: 1e-4,
+                }
             }
         };
         let evals = match control {
@@ -457,9 +470,12 @@ impl Integrator {
                 // Move the control out (no allocation) so that `self` can be borrowed mutably.
                 let mut control = std::mem::replace(&mut self.control, Control::Fixed { h: 0.0 });
                 let result = match &mut control {
-                    Control::Adaptive { rtol, atol, h } => {
-                        self.adaptive_step(system, t_end, *rtol, atol, h)
-                    }
+                    Control::Adaptive {
+                        rtol,
+                        atol,
+                        h,
+                        err_prev,
+                    } => self.adaptive_step(system, t_end, *rtol, atol, h, err_prev),
                     Control::Fixed { .. } => unreachable!("matched above"),
                 };
                 self.control = control;
@@ -476,7 +492,13 @@ impl Integrator {
         rtol: f64,
         atol: &[f64],
         h: &mut f64,
+        err_prev: &mut f64,
     ) -> Result<f64> {
+        // Step-size control of Hairer's DOPRI5 code (Solving ODEs I, §IV.2): a PI controller on
+        // accepted steps, h_new = h · 0.9 · err^{−(1/q − 0.75 β)} · err_prev^{β} with β = 0.04,
+        // which damps the oscillation between accepted and rejected steps of the plain controller;
+        // after a rejection the step may not grow.
+        const BETA: f64 = 0.04;
         let order = f64::from(self.tableau.order);
         let mut rejected_before = false;
         loop {
@@ -490,15 +512,20 @@ impl Integrator {
             }
             self.attempt(system, h_try);
             let err = self.error_norm(h_try, rtol, atol);
-            let mut factor = 0.9 * err.powf(-1.0 / order);
-            if !factor.is_finite() {
-                factor = if err.is_nan() { 0.2 } else { 5.0 };
-            }
             if err <= 1.0 {
+                let mut factor = 0.9 * err.powf(-(1.0 / order - 0.75 * BETA)) * err_prev.powf(BETA);
+                if !factor.is_finite() {
+                    factor = 5.0;
+                }
                 let grow = if rejected_before { 1.0 } else { 5.0 };
                 self.accept(system, h_try);
+                *err_prev = err.max(1e-4);
                 *h = h.max(h_try) * factor.clamp(0.2, grow);
                 return Ok(h_try);
+            }
+            let mut factor = 0.9 * err.powf(-1.0 / order);
+            if !factor.is_finite() {
+                factor = 0.2;
             }
             // Rejected: restore the derivative at the current point, shrink and retry. The
             // accepted attempt's last stage (FSAL) is evaluated at the new point, which restores
