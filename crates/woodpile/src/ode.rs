@@ -206,7 +206,7 @@ impl ChainOde {
         for slot in first..=self.n_primary {
             let (f, d) = (self.force_n[slot], self.overlap_m[slot]);
             let contact = slot - first;
-            if !f.is_finite() || !d.is_finite() && slot > 0 {
+            if !f.is_finite() || (slot > 0 && !d.is_finite()) {
                 return Err(Error::NonFiniteState { time_s, contact });
             }
             if d > self.overlap_limit_m[slot] {
