@@ -45,11 +45,6 @@ use woodpile::{
 };
 use woodpile_plot as plot;
 
-/// The paper's blast-optimised chain (model.md §9), top to bottom \[mm\].
-pub const PAPER_BLAST_OPTIMUM_MM: [u32; 20] = [
-    50, 80, 80, 80, 60, 70, 80, 80, 40, 30, 40, 40, 40, 30, 50, 40, 20, 20, 30, 50,
-];
-
 /// Tag of the cache entries' format (part of every key).
 const CACHE_FORMAT: &str = "woodpile-report-cache/1";
 
@@ -1054,7 +1049,7 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
             "20 × 80 mm rods (resonant)".to_string(),
         ),
         (
-            PAPER_BLAST_OPTIMUM_MM.to_vec(),
+            woodpile::PAPER_OPTIMIZED_CHAIN_MM.to_vec(),
             "paper optimum",
             "paper_optimum",
             "paper's blast-optimised chain (resonant)".to_string(),
@@ -1468,7 +1463,7 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
     doc.h2("Blast (Figs. 8, 9)");
     doc.p(format!(
         "The {blast_text} load on the top rod of 20-rod resonant chains: homogeneous 20, 40, 80 mm and the paper's blast-optimised chain `{}`. The paper: peak transmitted energy (energy of the last layer) ~70 % of the 20 mm chain's for 40 and 80 mm rods, 8.3 % for the optimised chain; the spectra show low-energy bands at the negative-mass bands of the rods.",
-        join_mm(&PAPER_BLAST_OPTIMUM_MM)
+        join_mm(&woodpile::PAPER_OPTIMIZED_CHAIN_MM)
     ));
     doc.table(
         &[

@@ -9,14 +9,9 @@ use woodpile::analysis::{
 use woodpile::model::TABLE1_LENGTHS_MM;
 use woodpile::{
     simulate, BlastProfile, CellModel, ChainBuilder, EffectiveMassCurve, Excitation, RunSettings,
-    Striker, Trajectory, UnitCell,
+    Striker, Trajectory, UnitCell, PAPER_OPTIMIZED_CHAIN_MM,
 };
 use woodpile_plot as plot;
-
-/// The paper's blast-optimised chain (model.md §9), top to bottom [mm].
-const OPTIMISED: [u32; 20] = [
-    50, 80, 80, 80, 60, 70, 80, 80, 40, 30, 40, 40, 40, 30, 50, 40, 20, 20, 30, 50,
-];
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let out = PathBuf::from(std::env::args().nth(1).unwrap_or_else(|| "gallery".into()));
@@ -24,7 +19,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let stem = |name: &str| out.join(name);
 
     // Impact on the optimised chain.
-    let chain = ChainBuilder::table1_rods(&OPTIMISED, CellModel::Resonant)?.build()?;
+    let chain =
+        ChainBuilder::table1_rods(&PAPER_OPTIMIZED_CHAIN_MM, CellModel::Resonant)?.build()?;
     let impact = Excitation::Impact(Striker::paper());
     let settings = RunSettings::paper_impact();
     let mut t = Trajectory::default();

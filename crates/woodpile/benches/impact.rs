@@ -4,14 +4,13 @@
 //! full 1 µs sampling and with peaks only.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use woodpile::{simulate, CellModel, ChainBuilder, Excitation, Method, RunSettings, Striker};
-
-const CHAIN: [u32; 20] = [
-    50, 80, 80, 80, 60, 70, 80, 80, 40, 30, 40, 40, 40, 30, 50, 40, 20, 20, 30, 50,
-];
+use woodpile::{
+    simulate, CellModel, ChainBuilder, Excitation, Method, RunSettings, Striker,
+    PAPER_OPTIMIZED_CHAIN_MM,
+};
 
 fn impact(c: &mut Criterion) {
-    let chain = ChainBuilder::table1_rods(&CHAIN, CellModel::Resonant)
+    let chain = ChainBuilder::table1_rods(&PAPER_OPTIMIZED_CHAIN_MM, CellModel::Resonant)
         .expect("catalogue rods")
         .build()
         .expect("valid chain");

@@ -7,11 +7,8 @@
 
 use woodpile::{
     simulate, CellModel, ChainBuilder, Excitation, Method, RunSettings, RunSummary, Striker,
+    PAPER_OPTIMIZED_CHAIN_MM,
 };
-
-const CHAIN: [u32; 20] = [
-    50, 80, 80, 80, 60, 70, 80, 80, 40, 30, 40, 40, 40, 30, 50, 40, 20, 20, 30, 50,
-];
 
 fn main() -> woodpile::Result<()> {
     let runs: usize = std::env::args()
@@ -19,7 +16,8 @@ fn main() -> woodpile::Result<()> {
         .nth(1)
         .map(|s| s.parse().expect("--runs takes an integer"))
         .unwrap_or(7);
-    let chain = ChainBuilder::table1_rods(&CHAIN, CellModel::Resonant)?.build()?;
+    let chain =
+        ChainBuilder::table1_rods(&PAPER_OPTIMIZED_CHAIN_MM, CellModel::Resonant)?.build()?;
     let impact = Excitation::Impact(Striker::paper());
     // `sample_interval_s` = 1 µs observes energies on the full grid (as `woodpile simulate` does);
     // = duration observes only the start and the end (peaks are still taken over every step).

@@ -48,6 +48,7 @@ pub mod model;
 pub mod ode;
 pub mod optimize;
 pub mod record;
+mod root;
 pub mod simulate;
 
 pub use analysis::{BandStructure, EffectiveMassCurve, LayerByLayer, Map2, Spectrum};
@@ -56,7 +57,7 @@ pub use excitation::{velocity_from_drop_height, BlastProfile, Excitation, Strike
 pub use integrate::{Integrator, IntegratorStats, Method, OdeSystem, Tableau};
 pub use model::{
     Body, CellModel, Chain, ChainBuilder, Element, Material, Resonator, Surface, UnitCell, Wall,
-    TABLE1_LENGTHS_MM,
+    PAPER_OPTIMIZED_CHAIN_MM, TABLE1_LENGTHS_MM,
 };
 pub use optimize::{BreederGa, DesignSpace, GaSettings, Objective, StandardObjective};
 pub use record::{Layout, Recorder, Sample, Trajectory};

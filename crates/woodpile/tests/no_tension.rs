@@ -30,11 +30,8 @@ fn check(chain: &woodpile::Chain, excitation: &Excitation, duration_s: f64) {
 
 #[test]
 fn fixed_cases_never_pull() {
-    let optimised = [
-        50, 80, 80, 80, 60, 70, 80, 80, 40, 30, 40, 40, 40, 30, 50, 40, 20, 20, 30, 50,
-    ];
     for model in [CellModel::Resonant, CellModel::Rigid] {
-        let chain = ChainBuilder::table1_rods(&optimised, model)
+        let chain = ChainBuilder::table1_rods(&woodpile::PAPER_OPTIMIZED_CHAIN_MM, model)
             .unwrap()
             .build()
             .unwrap();

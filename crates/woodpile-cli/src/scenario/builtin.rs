@@ -8,9 +8,7 @@ use super::{ChainSpec, ExcitationKind, ExcitationSpec, ModelSpec, Scenario};
 pub const DEFAULT_SCENARIO: &str = "paper-impact-optimized";
 
 /// model.md §9: the blast-optimised chain, top to bottom \[mm\].
-pub const OPTIMIZED_CHAIN_MM: [u32; 20] = [
-    50, 80, 80, 80, 60, 70, 80, 80, 40, 30, 40, 40, 40, 30, 50, 40, 20, 20, 30, 50,
-];
+pub use woodpile::PAPER_OPTIMIZED_CHAIN_MM as OPTIMIZED_CHAIN_MM;
 
 /// A built-in scenario: its name and its scenario.
 #[derive(Debug, Clone, PartialEq)]

@@ -163,7 +163,7 @@ impl BandStructure {
 /// The root in ω² of s(ω²) = 1 on (lo, hi) where s rises monotonically from s(lo) ≤ 1 to +∞ at
 /// `hi` (a pole) or at infinity (hi = None: the bracket grows by doubling).
 fn crossing_of_one(s: &dyn Fn(f64) -> f64, lo: f64, hi: Option<f64>) -> Option<f64> {
-    let mut hi = match hi {
+    let hi = match hi {
         Some(h) => h,
         None => {
             let mut h = if lo > 0.0 { 2.0 * lo } else { 1.0 };
@@ -178,18 +178,6 @@ fn crossing_of_one(s: &dyn Fn(f64) -> f64, lo: f64, hi: Option<f64>) -> Option<f
             h
         }
     };
-    let mut lo = lo;
-    for _ in 0..400 {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        // Below the crossing s < 1 (including s = +0 at a zero of M_eff).
-        if s(mid) < 1.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    Some(0.5 * (lo + hi))
+    // Below the crossing s < 1 (including s = +0 at a zero of M_eff).
+    Some(crate::root::bisect(lo, hi, |w| s(w) < 1.0))
 }

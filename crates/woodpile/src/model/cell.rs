@@ -46,6 +46,12 @@ pub struct UnitCell {
 /// Rod lengths of the paper's Table 1 \[mm\].
 pub const TABLE1_LENGTHS_MM: [u32; 7] = [20, 30, 40, 50, 60, 70, 80];
 
+/// The paper's blast-optimised chain of Table 1 rods (model.md §9), top to bottom \[mm\]: the
+/// default job and the benchmark problem.
+pub const PAPER_OPTIMIZED_CHAIN_MM: [u32; 20] = [
+    50, 80, 80, 80, 60, 70, 80, 80, 40, 30, 40, 40, 40, 30, 50, 40, 20, 20, 30, 50,
+];
+
 /// A Table 1 row: (length mm, M g, [(m_j g, k_j kN/mm)]).
 type Table1Row = (u32, f64, &'static [(f64, f64)]);
 
@@ -185,19 +191,7 @@ impl UnitCell {
                     }
                     hi
                 };
-                let (mut lo, mut hi) = (lo0, hi0);
-                for _ in 0..200 {
-                    let mid = 0.5 * (lo + hi);
-                    if mid <= lo || mid >= hi {
-                        break;
-                    }
-                    if meff(mid) < 0.0 {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                (0.5 * (lo + hi)).sqrt() / (2.0 * PI)
+                crate::root::bisect(lo0, hi0, |w2| meff(w2) < 0.0).sqrt() / (2.0 * PI)
             })
             .collect()
     }

@@ -213,17 +213,6 @@ fn solve_axis_ratio(gap_ratio: f64) -> f64 {
         let (_, sig) = agm_k_sigma(s);
         (1.0 - sig) / (s * s * sig)
     };
-    let (mut lo, mut hi) = (-40.0_f64, 0.0_f64); // b/a from 4e-18 to 1
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if g(mid) > gap_ratio {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-        if hi - lo < 1e-16 {
-            break;
-        }
-    }
-    (0.5 * (lo + hi)).exp()
+    // b/a from 4e-18 to 1; g decreases in ln(b/a).
+    crate::root::bisect(-40.0, 0.0, |ln_s| g(ln_s) > gap_ratio).exp()
 }

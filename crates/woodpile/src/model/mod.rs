@@ -5,7 +5,7 @@ pub mod chain;
 pub mod contact;
 pub mod material;
 
-pub use cell::{CellModel, Resonator, UnitCell, TABLE1_LENGTHS_MM};
+pub use cell::{CellModel, Resonator, UnitCell, PAPER_OPTIMIZED_CHAIN_MM, TABLE1_LENGTHS_MM};
 pub use chain::{Body, Chain, ChainBuilder, Element, Wall, PAPER_ROD_DIAMETER_M};
 pub use contact::{
     complete_elliptic_integrals, hertz_beta, hertz_contact, EllipseSolution, HertzContact, Surface,
