@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Times the benchmark problem (model.md §9 chain, resonant, default impact, 2 ms) in woodpile and in
+# Times the benchmark problem (docs/physics.md §9 chain, resonant, default impact, 2 ms) in woodpile and in
 # an independent SciPy solve_ivp script, in the same invocation, and prints both tables and the
 # speed ratio at equal accuracy (transmitted peak within 1e-5 of a converged reference).
 # Usage: bash bench/compare_scipy.sh [RUNS]     (RUNS = runs per setting for the medians, default 7)

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The benchmark problem written independently as a plain SciPy `solve_ivp` script.
 
-The model.md §9 chain (20 fused-quartz rods, resonant Table 1 cells) hit by the default striker
+The docs/physics.md §9 chain (20 fused-quartz rods, resonant Table 1 cells) hit by the default striker
 (10 mm soda-lime glass sphere, v0 = sqrt(2 g 0.20 m)) on the default sensor (stainless-steel cap,
 R = 5 mm), 2 ms. Contact coefficients are computed here with SciPy's elliptic integrals (which
 take the parameter m = e^2) and brentq, independently of the Rust code.

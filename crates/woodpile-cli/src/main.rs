@@ -27,7 +27,7 @@ enum Command {
     Scenario(commands::scenarios::ShowArgs),
     /// Print the unit-cell catalogue (paper Table 1): masses, resonances, negative-mass bands.
     Cells(commands::cells::Args),
-    /// Search the element arrangement that minimises an objective (breeder GA, model.md §11).
+    /// Search the element arrangement that minimises an objective (breeder GA, docs/physics.md §11).
     Optimize(woodpile_cli::optimize_cmd::Args),
     /// Draw the figures of a `simulate` or `optimize` output directory into DIR/plots (PNG, SVG).
     Plot(woodpile_cli::plot_cmd::Args),

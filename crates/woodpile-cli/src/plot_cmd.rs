@@ -13,9 +13,7 @@
 //! catalogue with the negative-mass bands shaded (paper Fig. 3).
 
 use crate::commands::Context;
-use crate::error::CliError;
-use crate::output::RUN_MARKER;
-use crate::scenario::{resolve, Scenario};
+use crate::CliError;
 use serde_json::Value;
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -23,13 +21,11 @@ use woodpile::analysis::{
     contact_spectrum_map, energy_map, force_map, linspace, Spectrum, SpectrumSettings, Window,
 };
 use woodpile::model::TABLE1_LENGTHS_MM;
-use woodpile::{Chain, EffectiveMassCurve, Resonator, Trajectory, UnitCell};
+use woodpile::{EffectiveMassCurve, UnitCell};
+use woodpile_io::atomic::RUN_MARKER;
+use woodpile_io::rundir::{bad_dir, read_error, read_run_info, read_trajectory};
+use woodpile_io::scenario::{resolve, Scenario};
 use woodpile_plot as plot;
-
-/// The run-directory format this build reads: `run.json` written by woodpile of the same
-/// major.minor version (0.x: every minor version may change the files). A run.json that carries
-/// an explicit `format` key must name this one.
-pub const RUN_FORMAT: &str = "woodpile-run/1";
 
 /// Arguments of `woodpile plot`.
 #[derive(Debug, Clone, clap::Args)]
@@ -54,170 +50,6 @@ pub struct Args {
     pub window: String,
 }
 
-/// What `run.json` says about a run, as far as the figures need it.
-#[derive(Debug, Clone)]
-pub struct RunInfo {
-    /// Scenario name.
-    pub name: String,
-    /// Element labels, top to bottom.
-    pub labels: Vec<String>,
-    /// Unit cells of the elements (for the negative-mass bands).
-    pub cells: Vec<UnitCell>,
-    /// "impact 1.98 m/s" or "blast …".
-    pub excitation: String,
-    /// The chain, when the scenario still resolves (a blast table may have moved).
-    pub chain: Option<Chain>,
-}
-
-fn bad_dir(dir: &Path, reason: impl Into<String>) -> CliError {
-    CliError::invalid("RUN_DIR", dir.display(), reason)
-}
-
-fn read_error(path: &Path, reason: impl Into<String>) -> CliError {
-    CliError::Read {
-        path: path.to_path_buf(),
-        source: std::io::Error::other(reason.into()),
-    }
-}
-
-/// Reads and checks `run.json`: a woodpile run of a format this build reads.
-pub fn read_run_info(dir: &Path) -> Result<RunInfo, CliError> {
-    if !dir.is_dir() {
-        return Err(bad_dir(
-            dir,
-            "is not a directory; give a directory written by `woodpile simulate`",
-        ));
-    }
-    let path = dir.join(RUN_MARKER);
-    if !path.is_file() {
-        return Err(bad_dir(
-            dir,
-            "is not a woodpile run (no run.json); give a directory written by `woodpile simulate` or `woodpile optimize`",
-        ));
-    }
-    let text = fs::read_to_string(&path).map_err(|e| CliError::Read {
-        path: path.clone(),
-        source: e,
-    })?;
-    let run: Value = serde_json::from_str(&text).map_err(|e| CliError::Parse {
-        source_name: path.display().to_string(),
-        message: e.to_string(),
-    })?;
-    check_format(&path, &run)?;
-    let field = |key: &str| {
-        run.get(key).ok_or_else(|| {
-            read_error(
-                &path,
-                format!("no `{key}` key: not a complete woodpile run.json"),
-            )
-        })
-    };
-    let name = field("scenario_name")?
-        .as_str()
-        .unwrap_or("run")
-        .to_string();
-    let elements = field("elements")?
-        .as_array()
-        .ok_or_else(|| read_error(&path, "`elements` is not a list"))?;
-    let mut labels = Vec::with_capacity(elements.len());
-    let mut cells = Vec::with_capacity(elements.len());
-    for (i, e) in elements.iter().enumerate() {
-        labels.push(
-            e.get("label")
-                .and_then(Value::as_str)
-                .unwrap_or("?")
-                .to_string(),
-        );
-        let num = |k: &str| e.get(k).and_then(Value::as_f64);
-        let list = |k: &str| -> Vec<f64> {
-            e.get(k)
-                .and_then(Value::as_array)
-                .map(|a| a.iter().filter_map(Value::as_f64).collect())
-                .unwrap_or_default()
-        };
-        let primary = num("primary_mass_kg")
-            .ok_or_else(|| read_error(&path, format!("elements[{i}] has no primary_mass_kg")))?;
-        let resonators = list("resonator_masses_kg")
-            .into_iter()
-            .zip(list("resonator_stiffnesses_n_per_m"))
-            .map(|(m, k)| Resonator {
-                mass_kg: m,
-                stiffness_n_per_m: k,
-            })
-            .collect();
-        cells.push(UnitCell::new(primary, resonators).map_err(CliError::Model)?);
-    }
-    let excitation = match run.get("striker_velocity_m_s").and_then(Value::as_f64) {
-        Some(v) => format!("impact {v:.2} m/s"),
-        None => describe_blast(run.pointer("/scenario/excitation")),
-    };
-    // The chain itself (element bodies, for the picture) comes from the completed scenario.
-    let chain = run
-        .get("scenario")
-        .cloned()
-        .and_then(|s| serde_json::from_value::<Scenario>(s).ok())
-        .and_then(|s| {
-            let base = run
-                .get("scenario_file")
-                .and_then(Value::as_str)
-                .and_then(|f| Path::new(f).parent().map(Path::to_path_buf))
-                .filter(|p| !p.as_os_str().is_empty())
-                .unwrap_or_else(|| PathBuf::from("."));
-            resolve(&s, &base).ok()
-        })
-        .map(|r| r.chain);
-    Ok(RunInfo {
-        name,
-        labels,
-        cells,
-        excitation,
-        chain,
-    })
-}
-
-fn check_format(path: &Path, run: &Value) -> Result<(), CliError> {
-    let tool = run.get("tool").and_then(Value::as_str);
-    if tool != Some("woodpile") {
-        return Err(read_error(
-            path,
-            format!(
-                "not written by woodpile (tool = {}); give a directory written by `woodpile simulate`",
-                tool.unwrap_or("missing")
-            ),
-        ));
-    }
-    if let Some(format) = run.get("format").and_then(Value::as_str) {
-        if format != RUN_FORMAT {
-            return Err(read_error(
-                path,
-                format!("run format `{format}` is not `{RUN_FORMAT}`, the one this woodpile reads; re-run `woodpile simulate` with this version"),
-            ));
-        }
-        return Ok(());
-    }
-    let version = run
-        .get("version")
-        .and_then(Value::as_str)
-        .unwrap_or("unknown");
-    let major_minor = |v: &str| v.split('.').take(2).collect::<Vec<_>>().join(".");
-    let ours = env!("CARGO_PKG_VERSION");
-    if major_minor(version) != major_minor(ours) {
-        return Err(read_error(
-            path,
-            format!("written by woodpile {version}, whose run format this woodpile {ours} does not read; re-run `woodpile simulate` with this version"),
-        ));
-    }
-    Ok(())
-}
-
-fn describe_blast(excitation: Option<&Value>) -> String {
-    let get = |k: &str| excitation.and_then(|e| e.get(k)).and_then(Value::as_f64);
-    match (get("peak_force_n"), get("duration_s")) {
-        (Some(f), Some(td)) => format!("blast {f:.0} N / {:.2} ms", td * 1e3),
-        _ => "blast (tabulated load)".to_string(),
-    }
-}
-
 /// A short description of the chain: `20 × 80mm` or the labels top to bottom.
 pub fn describe_chain(labels: &[String]) -> String {
     match labels {
@@ -233,156 +65,6 @@ pub fn describe_chain(labels: &[String]) -> String {
             labels[labels.len() - 2..].join(" ")
         ),
     }
-}
-
-/// Reads a run's samples: the `.npy` files, or the CSV files where those are missing.
-pub fn read_trajectory(dir: &Path, n_elements: usize) -> Result<Trajectory, CliError> {
-    let nc = n_elements + 1;
-    let npy = [
-        "time_s.npy",
-        "forces_n.npy",
-        "energy_j.npy",
-        "wall_energy_j.npy",
-    ];
-    if npy.iter().all(|f| dir.join(f).is_file()) {
-        let times = read_npy(&dir.join("time_s.npy"), &[None])?;
-        let ns = times.len();
-        let forces = read_npy(&dir.join("forces_n.npy"), &[Some(ns), Some(nc)])?;
-        let energies = read_npy(&dir.join("energy_j.npy"), &[Some(ns), Some(nc)])?;
-        let wall = read_npy(&dir.join("wall_energy_j.npy"), &[Some(ns)])?;
-        let work = if dir.join("input_work_j.npy").is_file() {
-            read_npy(&dir.join("input_work_j.npy"), &[Some(ns)])?
-        } else {
-            vec![0.0; ns]
-        };
-        return Ok(trajectory(n_elements, times, forces, energies, wall, work));
-    }
-    let forces_csv = dir.join("forces.csv");
-    let energy_csv = dir.join("energy.csv");
-    for f in [&forces_csv, &energy_csv] {
-        if !f.is_file() {
-            return Err(read_error(
-                f,
-                format!(
-                    "missing: the run has neither {} nor this file; re-run `woodpile simulate`",
-                    npy.join(", ")
-                ),
-            ));
-        }
-    }
-    let (times, forces) = read_csv(
-        &forces_csv,
-        &(0..nc)
-            .map(|c| format!("contact_{c}_n"))
-            .collect::<Vec<_>>(),
-    )?;
-    let mut energy_cols: Vec<String> = (0..nc).map(|l| format!("layer_{l}_j")).collect();
-    energy_cols.push("wall_j".into());
-    energy_cols.push("input_work_j".into());
-    let (etimes, e) = read_csv(&energy_csv, &energy_cols)?;
-    if etimes.len() != times.len() {
-        return Err(read_error(
-            &energy_csv,
-            format!(
-                "{} samples, but forces.csv has {}",
-                etimes.len(),
-                times.len()
-            ),
-        ));
-    }
-    let w = nc + 2;
-    let energies = e.chunks(w).flat_map(|r| r[..nc].to_vec()).collect();
-    let wall = e.chunks(w).map(|r| r[nc]).collect();
-    let work = e.chunks(w).map(|r| r[nc + 1]).collect();
-    Ok(trajectory(n_elements, times, forces, energies, wall, work))
-}
-
-fn trajectory(
-    n_elements: usize,
-    times_s: Vec<f64>,
-    contact_forces_n: Vec<f64>,
-    layer_energies_j: Vec<f64>,
-    wall_energy_j: Vec<f64>,
-    input_work_j: Vec<f64>,
-) -> Trajectory {
-    Trajectory {
-        n_elements,
-        times_s,
-        contact_forces_n,
-        layer_energies_j,
-        wall_energy_j,
-        input_work_j,
-        ..Trajectory::default()
-    }
-}
-
-/// Reads a float64 `.npy` file and checks its shape (None: any length).
-fn read_npy(path: &Path, shape: &[Option<usize>]) -> Result<Vec<f64>, CliError> {
-    let bytes = fs::read(path).map_err(|e| CliError::Read {
-        path: path.to_path_buf(),
-        source: e,
-    })?;
-    let npy = npyz::NpyFile::new(&bytes[..]).map_err(|e| CliError::Read {
-        path: path.to_path_buf(),
-        source: e,
-    })?;
-    let actual: Vec<usize> = npy.shape().iter().map(|&d| d as usize).collect();
-    let fits = actual.len() == shape.len()
-        && actual
-            .iter()
-            .zip(shape)
-            .all(|(a, s)| s.is_none_or(|s| s == *a));
-    if !fits {
-        let want: Vec<String> = shape
-            .iter()
-            .map(|s| s.map_or("any".to_string(), |s| s.to_string()))
-            .collect();
-        return Err(read_error(
-            path,
-            format!("array of shape {actual:?}, expected [{}]", want.join(", ")),
-        ));
-    }
-    npy.into_vec::<f64>().map_err(|e| CliError::Read {
-        path: path.to_path_buf(),
-        source: e,
-    })
-}
-
-/// Reads `time_s` and the named columns of a CSV file: (times, rows of the columns).
-fn read_csv(path: &Path, columns: &[String]) -> Result<(Vec<f64>, Vec<f64>), CliError> {
-    let csv_err = |e: csv::Error| read_error(path, e.to_string());
-    let mut r = csv::Reader::from_path(path).map_err(csv_err)?;
-    let header = r.headers().map_err(csv_err)?.clone();
-    let index = |name: &str| {
-        header
-            .iter()
-            .position(|h| h == name)
-            .ok_or_else(|| read_error(path, format!("no column `{name}`")))
-    };
-    let t_col = index("time_s")?;
-    let cols = columns
-        .iter()
-        .map(|c| index(c))
-        .collect::<Result<Vec<_>, _>>()?;
-    let (mut times, mut data) = (Vec::new(), Vec::new());
-    for (line, rec) in r.records().enumerate() {
-        let rec = rec.map_err(csv_err)?;
-        let num = |i: usize| -> Result<f64, CliError> {
-            rec.get(i)
-                .and_then(|s| s.trim().parse().ok())
-                .ok_or_else(|| {
-                    read_error(
-                        path,
-                        format!("line {}: not a number in column {}", line + 2, i + 1),
-                    )
-                })
-        };
-        times.push(num(t_col)?);
-        for &c in &cols {
-            data.push(num(c)?);
-        }
-    }
-    Ok((times, data))
 }
 
 /// A plotting failure as a CLI output error naming the figure's path.
@@ -631,7 +313,7 @@ pub enum DirKind {
 const OPT_MARKERS: [&str; 3] = [
     "summary.json",
     "best.toml",
-    crate::optimize_cmd::CHECKPOINT_FILE,
+    woodpile_io::optimize::CHECKPOINT_FILE,
 ];
 
 /// Tells a simulate run from an optimisation output; anything else is a usage error that says
@@ -755,9 +437,8 @@ pub fn plot_optimization(
     let summary = read_json("summary.json")?;
     let config = match &summary {
         Some(s) => s.get("config").cloned(),
-        None => {
-            read_json(crate::optimize_cmd::CHECKPOINT_FILE)?.and_then(|c| c.get("config").cloned())
-        }
+        None => read_json(woodpile_io::optimize::CHECKPOINT_FILE)?
+            .and_then(|c| c.get("config").cloned()),
     };
     let text_at = |v: Option<&Value>, pointer: &str| {
         v.and_then(|v| v.pointer(pointer))

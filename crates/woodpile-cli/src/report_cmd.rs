@@ -1,9 +1,9 @@
 //! `woodpile report --out DIR [--quick] [--seed S] [--threads T]`: runs everything the paper's
 //! figures and numbers need, draws every figure into `DIR/figures/` (PNG and SVG), and writes
 //! `DIR/report.md` and a self-contained `DIR/report.html` (figures embedded as data URIs) with a
-//! comparison table: each number the paper reports (model.md §9) beside ours.
+//! comparison table: each number the paper reports (docs/physics.md §9) beside ours.
 //!
-//! What runs (model.md defaults throughout):
+//! What runs (docs/physics.md defaults throughout):
 //! - homogeneous 20-rod chains of 20, 40, 80 mm rods (resonant) and 20 mm (rigid) under the
 //!   impact: force and energy maps, force histories, spectra, the separated pulses at the wall
 //!   (paper Figs. 5 a–c, 6);
@@ -21,11 +21,9 @@
 //! half-written report.
 
 use crate::commands::Context;
-use crate::error::CliError;
-use crate::optimize_cmd::{write_atomic, HistoryJson, OptimizeConfig, Problem};
 use crate::plot_cmd::plot_err;
 use crate::plot_cmd::{cells_figures, objective_label};
-use crate::scenario::ModelSpec;
+use crate::CliError;
 use base64::Engine as _;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -43,6 +41,9 @@ use woodpile::{
     simulate, BlastProfile, CellModel, Chain, ChainBuilder, Excitation, RunSettings, RunSummary,
     Striker, Trajectory, UnitCell,
 };
+use woodpile_io::atomic::write_atomic;
+use woodpile_io::optimize::{HistoryJson, OptimizeConfig, Problem};
+use woodpile_io::scenario::ModelSpec;
 use woodpile_plot as plot;
 
 /// Tag of the cache entries' format (part of every key).
@@ -1147,7 +1148,7 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
     let last5 = mean_mm(&ga_res.rods[15..]);
     doc.h2("How this report was made");
     doc.p(format!(
-        "Command: `woodpile report --out {}{} --seed {}` (woodpile {}), {}{}. Every number below was measured by this tool (the GA results possibly by an earlier run of the same command, kept in cache/); the model and its defaults are model.md's (rods of fused quartz with the paper's Table 1 unit cells, Hertz contacts, fixed-step RK4 with dt = 0.1 µs, samples every 1 µs).",
+        "Command: `woodpile report --out {}{} --seed {}` (woodpile {}), {}{}. Every number below was measured by this tool (the GA results possibly by an earlier run of the same command, kept in cache/); the model and its defaults are docs/physics.md's (rods of fused quartz with the paper's Table 1 unit cells, Hertz contacts, fixed-step RK4 with dt = 0.1 µs, samples every 1 µs).",
         out.display(),
         if args.quick { " --quick" } else { "" },
         args.seed,
@@ -1164,10 +1165,10 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
         },
     ));
     doc.list(vec![
-        format!("Impact: {impact_text} (dropped from 0.20 m), run 2 ms; wall = stainless-steel spherical cap of radius 5 mm (assumed, model.md §5)."),
-        format!("Blast: {blast_text} (Friedlander positive phase, model.md §6, parameters chosen by model.md), run 3 ms."),
+        format!("Impact: {impact_text} (dropped from 0.20 m), run 2 ms; wall = stainless-steel spherical cap of radius 5 mm (assumed, docs/physics.md §5)."),
+        format!("Blast: {blast_text} (Friedlander positive phase, docs/physics.md §6, parameters chosen by docs/physics.md), run 3 ms."),
         format!(
-            "GA (model.md §11): population {}, at most {} generations, stall limit {}, truncation 0.3, one elite, seed {}, objective: peak wall force.",
+            "GA (docs/physics.md §11): population {}, at most {} generations, stall limit {}, truncation 0.3, one elite, seed {}, objective: peak wall force.",
             ga_res.population,
             ga_res.generations_limit,
             ga_res.stall.map_or("none".to_string(), |s| s.to_string()),
@@ -1177,8 +1178,8 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
     ]);
 
     doc.h2("Comparison with the paper");
-    doc.p("Each number the paper reports (model.md §9) beside ours. Differences in percent are relative to the paper's value; `pp` are percentage points.");
-    let reason_constants = "the paper's wall and striker contact constants were lost: we use a 5 mm steel cap and a soda-lime sphere (model.md §2, §5)";
+    doc.p("Each number the paper reports (docs/physics.md §9) beside ours. Differences in percent are relative to the paper's value; `pp` are percentage points.");
+    let reason_constants = "the paper's wall and striker contact constants were lost: we use a 5 mm steel cap and a soda-lime sphere (docs/physics.md §2, §5)";
     let reason_ga = if args.quick {
         "quick GA (20 × 10), not converged; GA settings of the paper unknown"
     } else {
@@ -1309,7 +1310,7 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
                 if paper > 0.5 { "~70 %".into() } else { "8.3 %".into() },
                 pct(*ratio),
                 pp_diff(*ratio, paper),
-                "F0, Td and the pulse shape of the paper's blast are unknown: model.md's Friedlander 200 N / 0.2 ms",
+                "F0, Td and the pulse shape of the paper's blast are unknown: docs/physics.md's Friedlander 200 N / 0.2 ms",
             );
         }
     }

@@ -1,4 +1,4 @@
-//! Accuracy against cost for the benchmark problem: the model.md §9 chain (20 rods, resonant)
+//! Accuracy against cost for the benchmark problem: the docs/physics.md §9 chain (20 rods, resonant)
 //! under the default impact, 2 ms. Prints, for RK4 at several steps and DOPRI5 at several
 //! tolerances, the median wall time of several runs and the relative error of the transmitted
 //! peak (and the worst contact peak) against a converged reference (DOPRI5, rtol = 1e-12).

@@ -3,7 +3,7 @@
 use crate::error::{require_non_negative, require_positive, Error, Result};
 use crate::model::{hertz_beta, Chain, Material, Surface};
 
-/// Standard gravity g [m/s²] used to turn a drop height into a velocity (model.md §2).
+/// Standard gravity g [m/s²] used to turn a drop height into a velocity (docs/physics.md §2).
 pub const STANDARD_GRAVITY_M_S2: f64 = 9.81;
 
 /// A sphere striking the top element; a body of the simulation with its own Hertz contact.
@@ -20,7 +20,7 @@ pub struct Striker {
 }
 
 impl Striker {
-    /// The paper's striker: a 10 mm soda-lime glass sphere dropped from 0.20 m (model.md §2).
+    /// The paper's striker: a 10 mm soda-lime glass sphere dropped from 0.20 m (docs/physics.md §2).
     pub fn paper() -> Self {
         Striker {
             diameter_m: 10e-3,
@@ -65,7 +65,7 @@ pub fn velocity_from_drop_height(height_m: f64) -> f64 {
 /// A prescribed force history F(t) on the top element \[N\].
 #[derive(Debug, Clone, PartialEq)]
 pub enum BlastProfile {
-    /// Friedlander positive phase F0 (1 − t/Td) exp(−b t/Td) on [0, Td], zero after (model.md §6).
+    /// Friedlander positive phase F0 (1 − t/Td) exp(−b t/Td) on [0, Td], zero after (docs/physics.md §6).
     Friedlander {
         /// Peak force F0 \[N\].
         peak_force_n: f64,
@@ -84,7 +84,7 @@ pub enum BlastProfile {
 }
 
 impl BlastProfile {
-    /// The default blast of model.md §6: F0 = 200 N, Td = 0.2 ms, b = 1.
+    /// The default blast of docs/physics.md §6: F0 = 200 N, Td = 0.2 ms, b = 1.
     pub fn paper() -> Self {
         BlastProfile::Friedlander {
             peak_force_n: 200.0,

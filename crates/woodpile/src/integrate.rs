@@ -154,7 +154,7 @@ pub enum Method {
 }
 
 impl Method {
-    /// The paper's integrator: RK4 at Δt = 0.1 µs (model.md §8).
+    /// The paper's integrator: RK4 at Δt = 0.1 µs (docs/physics.md §8).
     pub fn paper() -> Self {
         Method::Rk4 { time_step_s: 1e-7 }
     }

@@ -1,7 +1,7 @@
 //! # woodpile
 //!
 //! Discrete element model of locally resonant woodpile metamaterials under impact and blast
-//! (Kim, Yang et al., Int. J. Impact Eng. 2017; the project's specification is `model.md`).
+//! (Kim, Yang et al., Int. J. Impact Eng. 2017; the project's specification is `docs/physics.md`).
 //!
 //! ## Map of the crate, in the order a user works
 //!

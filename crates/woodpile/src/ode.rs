@@ -1,4 +1,4 @@
-//! The chain as an ODE system y' = f(t, y): the equations of motion of model.md §4 in flat arrays.
+//! The chain as an ODE system y' = f(t, y): the equations of motion of docs/physics.md §4 in flat arrays.
 //!
 //! State layout (n = number of point masses = P primaries + R resonators):
 //!
@@ -221,7 +221,7 @@ impl ChainOde {
         Ok(())
     }
 
-    /// Energy of every layer 0..=N \[J\] into `out` (model.md §7: kinetic + internal springs + half of
+    /// Energy of every layer 0..=N \[J\] into `out` (docs/physics.md §7: kinetic + internal springs + half of
     /// each adjacent contact's Hertz potential (2/5) β δ^{5/2}); returns the wall's half of contact N.
     pub fn layer_energies_j(&self, y: &[f64], out: &mut [f64]) -> f64 {
         let (p, nd) = (self.n_primary, self.n_dof);

@@ -1,5 +1,5 @@
 //! Who owns the loop: runs a chain under an excitation, samples on a uniform grid for recorders,
-//! and computes the figures of merit of model.md §8 over every integration step.
+//! and computes the figures of merit of docs/physics.md §8 over every integration step.
 
 use crate::error::{require_positive, Error, Result};
 use crate::excitation::Excitation;
@@ -20,7 +20,7 @@ pub struct RunSettings {
 }
 
 impl RunSettings {
-    /// model.md §8 for an impact: 2 ms, RK4 at 0.1 µs, samples every 1 µs.
+    /// docs/physics.md §8 for an impact: 2 ms, RK4 at 0.1 µs, samples every 1 µs.
     pub fn paper_impact() -> Self {
         RunSettings {
             duration_s: 2e-3,
@@ -29,7 +29,7 @@ impl RunSettings {
         }
     }
 
-    /// model.md §8 for a blast: 3 ms, RK4 at 0.1 µs, samples every 1 µs.
+    /// docs/physics.md §8 for a blast: 3 ms, RK4 at 0.1 µs, samples every 1 µs.
     pub fn paper_blast() -> Self {
         RunSettings {
             duration_s: 3e-3,
@@ -82,7 +82,7 @@ pub struct Restitution {
     pub separated: bool,
 }
 
-/// Energy bookkeeping of a run (model.md §7).
+/// Energy bookkeeping of a run (docs/physics.md §7).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EnergyBalance {
     /// Total energy at t = 0 \[J\].
@@ -96,7 +96,7 @@ pub struct EnergyBalance {
     pub max_relative_error: f64,
 }
 
-/// Figures of merit of one run (model.md §8).
+/// Figures of merit of one run (docs/physics.md §8).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSummary {
     /// Peak force of every contact 0..=N over the whole run \[N\].

@@ -1,7 +1,7 @@
-//! `woodpile cells`: the unit-cell catalogue of the paper's Table 1 (model.md §3).
+//! `woodpile cells`: the unit-cell catalogue of the paper's Table 1 (docs/physics.md §3).
 
 use super::Context;
-use crate::error::CliError;
+use crate::CliError;
 use woodpile::model::TABLE1_LENGTHS_MM;
 use woodpile::UnitCell;
 

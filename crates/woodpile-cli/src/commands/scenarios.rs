@@ -1,8 +1,8 @@
 //! `woodpile scenarios` (list the built-ins) and `woodpile scenario NAME` (print one as TOML).
 
 use super::Context;
-use crate::error::CliError;
-use crate::scenario::{self, builtin, builtin_names};
+use crate::CliError;
+use woodpile_io::scenario::{self, builtin, builtin_names};
 
 /// Arguments of `woodpile scenarios`.
 #[derive(Debug, Clone, clap::Args)]

@@ -1,11 +1,12 @@
 //! `woodpile simulate`: run a scenario file or a built-in scenario and write its outputs.
 
 use super::Context;
-use crate::error::CliError;
-use crate::output::{write_run, RunRecord, Staging, SummaryJson};
-use crate::scenario::{resolve, Scenario, DEFAULT_SCENARIO};
+use crate::CliError;
 use std::path::{Path, PathBuf};
 use woodpile::{simulate, Excitation, Trajectory};
+use woodpile_io::atomic::Staging;
+use woodpile_io::rundir::{write_run, RunRecord, SummaryJson};
+use woodpile_io::scenario::{resolve, Scenario, DEFAULT_SCENARIO};
 
 /// Arguments of `woodpile simulate`.
 #[derive(Debug, Clone, clap::Args)]

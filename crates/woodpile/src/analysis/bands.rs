@@ -1,5 +1,5 @@
 //! Effective-mass curves (paper Fig. 3) and the linear band structure of a homogeneous chain
-//! (model.md §10).
+//! (docs/physics.md §10).
 //!
 //! A homogeneous chain precompressed by a static force F_p has linearised contact stiffness
 //! K_c = dF/dδ = (3/2) β^{2/3} F_p^{1/3}. A Bloch wave u_n ∝ e^{i(qna − ωt)} obeys

@@ -8,7 +8,7 @@
 //!   injected energy (layer × time) as [`Map2`] (paper Figs. 5, 6, 9 a, c, e, g).
 //! - [`EffectiveMassCurve`] — M_eff(ω)/M_total of a unit cell with its negative-mass bands
 //!   (paper Fig. 3); [`BandStructure`] — pass bands and gaps of a homogeneous chain from the
-//!   linearised dispersion relation (model.md §10).
+//!   linearised dispersion relation (docs/physics.md §10).
 //! - [`layer_by_layer`] — the experimental protocol of paper §2 / Fig. 7: sub-chains of the
 //!   first k elements on the sensor, k = 1..N.
 //!

@@ -1,5 +1,5 @@
 //! Unit cells: a primary mass M carrying internal spring–mass resonators (m_j, k_j), the paper's
-//! model of a rod and its symmetric bending modes (paper §3.1, Table 1; model.md §3).
+//! model of a rod and its symmetric bending modes (paper §3.1, Table 1; docs/physics.md §3).
 //!
 //! For harmonic motion at angular frequency ω, with ω_j² = k_j/m_j, the cell behaves as one mass
 //!
@@ -46,7 +46,7 @@ pub struct UnitCell {
 /// Rod lengths of the paper's Table 1 \[mm\].
 pub const TABLE1_LENGTHS_MM: [u32; 7] = [20, 30, 40, 50, 60, 70, 80];
 
-/// The paper's blast-optimised chain of Table 1 rods (model.md §9), top to bottom \[mm\]: the
+/// The paper's blast-optimised chain of Table 1 rods (docs/physics.md §9), top to bottom \[mm\]: the
 /// default job and the benchmark problem.
 pub const PAPER_OPTIMIZED_CHAIN_MM: [u32; 20] = [
     50, 80, 80, 80, 60, 70, 80, 80, 40, 30, 40, 40, 40, 30, 50, 40, 20, 20, 30, 50,

@@ -120,7 +120,7 @@ pub(crate) fn prefix_field(e: Error, prefix: &str) -> Error {
 pub enum Wall {
     /// Nothing: the last element is free.
     Free,
-    /// A fixed force sensor with a spherical cap of radius R_c \[m\] (model.md §2: steel, 5 mm).
+    /// A fixed force sensor with a spherical cap of radius R_c \[m\] (docs/physics.md §2: steel, 5 mm).
     Cap {
         /// Material of the cap.
         material: Material,
@@ -137,7 +137,7 @@ pub enum Wall {
 }
 
 impl Wall {
-    /// The paper's sensor: a stainless-steel spherical cap of radius 5 mm (model.md §2).
+    /// The paper's sensor: a stainless-steel spherical cap of radius 5 mm (docs/physics.md §2).
     pub fn paper_sensor() -> Self {
         Wall::Cap {
             material: Material::preset("stainless-steel").expect("preset exists"),

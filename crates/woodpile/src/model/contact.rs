@@ -16,7 +16,7 @@
 //! - K. L. Johnson, *Contact Mechanics*, Cambridge University Press 1985, §4.2 (Hertz theory of
 //!   elliptical contacts).
 //! - Abramowitz & Stegun, *Handbook of Mathematical Functions*, §17.6 (arithmetic–geometric mean).
-//! - model.md §5 (the project's specification, with reference values).
+//! - docs/physics.md §5 (the project's specification, with reference values).
 
 use super::material::Material;
 use crate::error::{Error, Result};

@@ -15,7 +15,7 @@ pub struct Material {
     pub density_kg_m3: f64,
 }
 
-/// Presets: (name, E \[Pa\], ν, ρ [kg/m³]). The first three are model.md §2; the others are
+/// Presets: (name, E \[Pa\], ν, ρ [kg/m³]). The first three are docs/physics.md §2; the others are
 /// handbook values (e.g. the ASM/Matweb typical values for the named class of material).
 const PRESETS: [(&str, f64, f64, f64); 7] = [
     ("fused-quartz", 72e9, 0.17, 2200.0),

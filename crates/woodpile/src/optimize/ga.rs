@@ -185,7 +185,7 @@ pub struct Outcome {
     pub reason: StopReason,
 }
 
-/// The breeder genetic algorithm of model.md §11 over a [`DesignSpace`].
+/// The breeder genetic algorithm of docs/physics.md §11 over a [`DesignSpace`].
 ///
 /// Each generation: sort by objective; keep the `elites` best unchanged; breed the rest from
 /// two parents drawn from the best ⌈T μ⌉ (truncation selection), by discrete recombination and

@@ -1,5 +1,5 @@
 //! Breeder genetic algorithm for the element arrangement that transmits the least force
-//! (model.md §11; paper §4).
+//! (docs/physics.md §11; paper §4).
 //!
 //! - [`DesignSpace`]: N positions filled from a catalogue of [`crate::Element`]s, how the chain
 //!   is held and loaded, the run settings and the designer's [`Constraints`]; [`FeasibleSet`]

@@ -36,7 +36,7 @@ pub enum StandardObjective {
     TransmittedForce,
     /// Transmitted / incident peak force (contact N over contact 1).
     TransmissionRatio,
-    /// Peak energy of the last layer N \[J\] (model.md §7), the maximum over the sample grid.
+    /// Peak energy of the last layer N \[J\] (docs/physics.md §7), the maximum over the sample grid.
     TransmittedEnergy,
     /// Impulse ∫ F_N dt delivered to the wall over the run \[N s\], by the trapezoid rule on the
     /// sample grid (the runner hands recorders samples, not steps).

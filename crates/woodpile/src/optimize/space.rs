@@ -59,7 +59,7 @@ impl DesignSpace {
             .collect()
     }
 
-    /// `positions` Table 1 rods on the paper's sensor under `excitation`, with the model.md §8
+    /// `positions` Table 1 rods on the paper's sensor under `excitation`, with the docs/physics.md §8
     /// run settings for that excitation and no constraints.
     pub fn table1(positions: usize, model: CellModel, excitation: Excitation) -> Self {
         DesignSpace {
@@ -73,13 +73,13 @@ impl DesignSpace {
         }
     }
 
-    /// The paper's impact problem (§4, model.md §9): 20 rods from Table 1, the glass striker
+    /// The paper's impact problem (§4, docs/physics.md §9): 20 rods from Table 1, the glass striker
     /// dropped from 0.2 m, the steel sensor, 2 ms of RK4 at 0.1 µs.
     pub fn paper_impact(model: CellModel) -> Self {
         Self::table1(20, model, Excitation::Impact(Striker::paper()))
     }
 
-    /// The paper's blast problem (§5): 20 rods, the Friedlander load of model.md §6, 3 ms.
+    /// The paper's blast problem (§5): 20 rods, the Friedlander load of docs/physics.md §6, 3 ms.
     pub fn paper_blast(model: CellModel) -> Self {
         Self::table1(20, model, Excitation::Blast(BlastProfile::paper()))
     }

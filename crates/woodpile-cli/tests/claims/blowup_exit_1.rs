@@ -1,0 +1,24 @@
+//! Claim: a run that blows up numerically (here RK4 with a step 100× too large, so the striker
+//! overruns rod 1) stops with exit code 1 and a message naming the time, the contact and the fix,
+//! and leaves no output directory behind. Bad input is exit 2; a failed run is exit 1.
+
+use crate::common;
+
+#[test]
+fn numerical_blowup_exits_1_without_output() {
+    let dir = tempfile::tempdir().unwrap();
+    common::write(
+        dir.path(),
+        "s.toml",
+        "[chain]\nrods_mm = [20, 20]\n[run]\ntime_step_s = 1e-5\n",
+    );
+    let out = common::run_in(dir.path(), &["simulate", "s.toml", "--out", "out"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.starts_with("error: "), "{stderr}");
+    for e in ["t = ", "contact", "reduce the time step"] {
+        assert!(stderr.contains(e), "expected `{e}` in {stderr}");
+    }
+    assert!(!dir.path().join("out").exists());
+    assert!(common::leftovers(dir.path()).is_empty());
+}

@@ -1,0 +1,22 @@
+//! Claims of the `woodpile` command line, each run through the real binary.
+//!
+//! One test binary per crate (link time dominates the suite): each module below is one claim,
+//! and opens with the claim it checks and the reason for its tolerance.
+
+mod atomic_output;
+mod bad_input_exit_2;
+mod blast_table;
+mod blowup_exit_1;
+mod builtins_run;
+mod cells_table;
+mod common;
+mod default_job;
+mod optimize_bad_input;
+mod optimize_best_reruns;
+#[cfg(unix)]
+mod optimize_interrupt_resume;
+mod output_files;
+mod plot_opt_dir;
+mod plot_run_dir;
+mod report_quick;
+mod scenario_roundtrip;

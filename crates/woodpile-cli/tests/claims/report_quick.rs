@@ -1,0 +1,118 @@
+//! Claim: `woodpile report --quick --out DIR` runs everything the paper's figures need (impact on
+//! homogeneous chains, resonant and rigid GAs, the layer-by-layer protocol, the blast cases, the
+//! effective-mass curves) and writes report.md, a self-contained report.html and every figure it
+//! names; a second run reuses the cached GA results; an output location that cannot be written
+//! is refused with exit code 2 and leaves no report behind.
+//! No tolerance: file existence, references and exit codes are exact.
+
+use crate::common;
+
+use std::path::Path;
+use std::time::Instant;
+
+/// The figure paths (`figures/….png`) a Markdown report names in `![…](…)` links.
+fn figures_named(md: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for line in md.lines().filter(|l| l.starts_with("![")) {
+        if let Some(start) = line.rfind("](") {
+            let rest = &line[start + 2..];
+            if let Some(end) = rest.find(')') {
+                out.push(rest[..end].to_string());
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn quick_report_writes_every_file_it_names() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("report");
+    let started = Instant::now();
+    let o = common::run_in(
+        tmp.path(),
+        &["report", "--quick", "--out", out.to_str().unwrap(), "-q"],
+    );
+    let first = started.elapsed().as_secs_f64();
+    assert!(
+        o.status.success(),
+        "report failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(!html.is_empty());
+    let figures = figures_named(&md);
+    // Impact (4 chains × 4 + 1), optima (2 × 4), protocol (2), blast (4 × 4 + 1), Fig. 3 (2).
+    assert_eq!(figures.len(), 46, "figures named: {figures:?}");
+    for f in &figures {
+        let png = out.join(f);
+        assert!(png.is_file(), "{f} is named in report.md but missing");
+        assert!(
+            std::fs::metadata(&png).unwrap().len() > 1000,
+            "{f} is empty"
+        );
+        let svg = out.join(f.trim_end_matches(".png").to_string() + ".svg");
+        assert!(svg.is_file(), "{} missing", svg.display());
+        assert!(
+            html.contains(&format!("data-file=\"{f}\"")),
+            "report.html does not embed {f}"
+        );
+    }
+    assert_eq!(
+        html.matches("<img src=\"data:image/png;base64,").count(),
+        figures.len()
+    );
+    // The comparison table carries the paper's numbers beside ours.
+    for paper in ["28.5 N", "159.6 N", "85.5 N", "0.2570", "0.4991", "8.3 %"] {
+        assert!(
+            md.contains(paper),
+            "comparison table lacks the paper's {paper}"
+        );
+    }
+    // Two GA results in the cache; a rerun reuses them.
+    let cached = std::fs::read_dir(out.join("cache")).unwrap().count();
+    assert_eq!(cached, 2);
+    let o = common::run_in(
+        tmp.path(),
+        &["report", "--quick", "--out", out.to_str().unwrap(), "-q"],
+    );
+    assert!(o.status.success());
+    let md2 = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md2.contains("both GA results reused from cache/"));
+    assert!(
+        first < 90.0,
+        "the quick report took {first:.1} s; CI needs it well under 2 minutes"
+    );
+}
+
+#[test]
+fn unwritable_or_foreign_output_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    // A file where the directory should be.
+    let file = common::write(tmp.path(), "taken", "x");
+    let o = common::run_in(
+        tmp.path(),
+        &["report", "--quick", "--out", file.to_str().unwrap()],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    // A directory holding something else.
+    let other = tmp.path().join("other");
+    std::fs::create_dir(&other).unwrap();
+    common::write(&other, "notes.txt", "mine");
+    let o = common::run_in(
+        tmp.path(),
+        &["report", "--quick", "--out", other.to_str().unwrap()],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--out"));
+    assert!(!other.join("report.md").exists());
+    // Below a file: cannot be created.
+    let below = file.join("report");
+    let o = common::run_in(
+        tmp.path(),
+        &["report", "--quick", "--out", below.to_str().unwrap()],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!Path::new(&below).exists());
+}

@@ -1,0 +1,24 @@
+//! # woodpile-io
+//!
+//! Everything between the physics core ([`woodpile`]) and a front end (the `woodpile` command
+//! line, the Python package): the file formats, shared so that every front end reads and writes
+//! the same files with the same checks.
+//!
+//! - [`scenario`]: the TOML scenario format ([`scenario::Scenario`]), completion of its
+//!   defaults, the built-in scenarios, TOML emission and [`scenario::resolve`] into a
+//!   [`woodpile::Chain`], [`woodpile::Excitation`] and [`woodpile::RunSettings`].
+//! - [`table`]: blast force tables from CSV.
+//! - [`rundir`]: the run directory (`summary.json`, `run.json`, CSV and `.npy`), written and
+//!   read back.
+//! - [`atomic`]: atomic file replacement and staged run directories.
+//! - [`optimize`]: the optimisation config, the problem it defines and its checkpoint.
+//! - [`Error`]: every failure, typed, naming the field, the value and what would be valid.
+
+pub mod atomic;
+pub mod error;
+pub mod optimize;
+pub mod rundir;
+pub mod scenario;
+pub mod table;
+
+pub use error::Error;

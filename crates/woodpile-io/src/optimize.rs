@@ -1,0 +1,774 @@
+//! `woodpile optimize`: the breeder genetic algorithm of docs/physics.md §11 over a design space read
+//! from a config file (or a built-in problem), with a progress bar, a checkpoint after every
+//! generation, exact resume and a clean stop on Ctrl-C.
+//!
+//! The config file is a scenario's `[excitation]`, `[wall]` and `[run]` tables plus:
+//!
+//! ```toml
+//! [design]
+//! positions = 20                 # N elements (default 20)
+//! catalogue_mm = [20, 30, 40, 50, 60, 70, 80]   # Table 1 rods (default), or:
+//! # elements = [{ rod_mm = 20 }, { kind = "sphere", diameter_mm = 5 }]
+//! model = "resonant"             # or "rigid"
+//! [design.constraints]
+//! max_total_mass_g = 50.0
+//! fixed = [{ layer = 1, rod_mm = 80 }]          # layer 1 = top; or { layer = 1, element = 0 }
+//! max_count = [{ rod_mm = 80, count = 5 }]      # or { element = 6, count = 5 }
+//! [ga]
+//! population = 100
+//! generations = 100
+//! truncation = 0.3
+//! elites = 1
+//! stall_generations = 30         # 0 = no stall limit
+//! seed = 1
+//! objective = "transmitted-force"   # transmission-ratio | transmitted-energy | transmitted-impulse
+//! ```
+//!
+//! Outputs in `--out DIR`: `checkpoint.json` and `history.csv` (rewritten atomically after every
+//! generation), then `population.csv`, `best.toml` (a scenario `woodpile simulate` re-runs to
+//! the same figures) and `summary.json`. A directory that holds anything is never written
+//! into unless `--resume` continues the run it holds, with the same config.
+
+use crate::error::Error;
+use crate::scenario::{
+    resolve, ChainSpec, ElementSpec, ExcitationKind, ExcitationSpec, ModelSpec, RunSpec, Scenario,
+    WallSpec,
+};
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use std::fs;
+use std::path::{Path, PathBuf};
+use woodpile::optimize::{
+    Constraints, DesignSpace, GaSettings, GaState, GenerationStats, Individual, OptimizeError,
+    StandardObjective, StopReason,
+};
+use woodpile::TABLE1_LENGTHS_MM;
+
+/// Names of the built-in problems.
+pub const BUILTIN_PROBLEMS: [&str; 2] = ["paper-impact", "paper-blast"];
+
+/// The checkpoint's format tag.
+pub const CHECKPOINT_FORMAT: &str = "woodpile-optimize-checkpoint/1";
+
+/// The file that marks a directory as an optimisation run.
+pub const CHECKPOINT_FILE: &str = "checkpoint.json";
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OptimizeConfig {
+    /// One line saying what the problem is.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// `[design]`: positions, catalogue, model, constraints.
+    #[serde(default)]
+    pub design: DesignSpec,
+    /// `[excitation]` as in a scenario file.
+    #[serde(default)]
+    pub excitation: ExcitationSpec,
+    /// `[wall]` as in a scenario file.
+    #[serde(default)]
+    pub wall: WallSpec,
+    /// `[run]` as in a scenario file.
+    #[serde(default)]
+    pub run: RunSpec,
+    /// `[ga]`: the GA's parameters and the objective.
+    #[serde(default)]
+    pub ga: GaSpec,
+}
+
+/// `[design]`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DesignSpec {
+    /// Number of positions N (default 20).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub positions: Option<usize>,
+    /// Table 1 rods \[mm\] a position can hold (default: all of 20, 30, …, 80).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub catalogue_mm: Option<Vec<u32>>,
+    /// General catalogue, as a scenario's `chain.elements` entries (instead of catalogue_mm).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub elements: Option<Vec<ElementSpec>>,
+    /// Cell model of the catalogue rods (default `resonant`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub model: Option<ModelSpec>,
+    /// Angle between neighbouring rods \[deg\] (default 90).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crossing_angle_deg: Option<f64>,
+    /// `[design.constraints]`.
+    #[serde(default)]
+    pub constraints: ConstraintsSpec,
+}
+
+/// `[design.constraints]`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConstraintsSpec {
+    /// Largest total mass of the chain \[g\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_total_mass_g: Option<f64>,
+    /// Layers whose element is fixed.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub fixed: Vec<FixedSpec>,
+    /// Largest number of copies of a catalogue entry.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub max_count: Vec<CountSpec>,
+}
+
+/// `{ layer = 1, rod_mm = 80 }` or `{ layer = 1, element = 0 }`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FixedSpec {
+    /// Layer 1..=N (1 = top, next to the striker).
+    pub layer: usize,
+    /// The catalogue rod by length \[mm\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rod_mm: Option<u32>,
+    /// The catalogue entry by index (0-based, in catalogue order).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub element: Option<usize>,
+}
+
+/// `{ rod_mm = 80, count = 5 }` or `{ element = 6, count = 5 }`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CountSpec {
+    /// The catalogue rod by length \[mm\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rod_mm: Option<u32>,
+    /// The catalogue entry by index (0-based).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub element: Option<usize>,
+    /// Most copies allowed.
+    pub count: usize,
+}
+
+/// `[ga]`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GaSpec {
+    /// Population size μ ≥ 2 (default 100).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub population: Option<usize>,
+    /// Generations after the initial population (default 100).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub generations: Option<usize>,
+    /// Truncation threshold T ∈ (0, 1] (default 0.3).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub truncation: Option<f64>,
+    /// Individuals copied unchanged (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub elites: Option<usize>,
+    /// Stop after this many generations without improvement; 0 = never (default 30).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stall_generations: Option<usize>,
+    /// Seed (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
+    /// BGA mutation range in catalogue indices (default: catalogue size − 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mutation_range: Option<f64>,
+    /// Objective (default `transmitted-force`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub objective: Option<String>,
+    /// Fitness cache on (default true); off changes only the run time.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cache: Option<bool>,
+}
+
+impl OptimizeConfig {
+    /// Parses a config from TOML text; syntax errors and unknown keys give line and column.
+    pub fn parse(text: &str, source_name: &str) -> Result<Self, Error> {
+        toml::from_str(text).map_err(|e| Error::Parse {
+            source_name: source_name.to_string(),
+            message: e.to_string(),
+        })
+    }
+
+    /// A built-in problem: the paper's 20 rods from Table 1 under its impact or blast.
+    pub fn builtin(name: &str) -> Result<Self, Error> {
+        let kind = match name {
+            "paper-impact" => ExcitationKind::Impact,
+            "paper-blast" => ExcitationKind::Blast,
+            _ => {
+                return Err(Error::UnknownScenario {
+                    name: name.to_string(),
+                    valid: BUILTIN_PROBLEMS.join(", "),
+                })
+            }
+        };
+        Ok(OptimizeConfig {
+            description: Some(format!(
+                "{name}: 20 positions, Table 1 rods 20-80 mm, least transmitted force"
+            )),
+            excitation: ExcitationSpec {
+                kind,
+                ..ExcitationSpec::default()
+            },
+            ..OptimizeConfig::default()
+        })
+    }
+
+    /// The same config with every default written out.
+    pub fn complete(&self) -> Self {
+        let mut c = self.clone();
+        let d = &mut c.design;
+        d.positions.get_or_insert(20);
+        if d.elements.is_none() {
+            d.catalogue_mm
+                .get_or_insert_with(|| TABLE1_LENGTHS_MM.to_vec());
+        }
+        d.model.get_or_insert(ModelSpec::Resonant);
+        d.crossing_angle_deg.get_or_insert(90.0);
+        let base = Scenario {
+            description: None,
+            chain: ChainSpec::default(),
+            excitation: c.excitation.clone(),
+            wall: c.wall.clone(),
+            run: c.run.clone(),
+        }
+        .complete();
+        c.excitation = base.excitation;
+        c.wall = base.wall;
+        c.run = base.run;
+        let g = &mut c.ga;
+        let defaults = GaSettings::default();
+        g.population.get_or_insert(defaults.population);
+        g.generations.get_or_insert(defaults.generations);
+        g.truncation.get_or_insert(defaults.truncation);
+        g.elites.get_or_insert(defaults.elites);
+        g.stall_generations
+            .get_or_insert(defaults.stall_generations.unwrap_or(0));
+        g.seed.get_or_insert(defaults.seed);
+        g.objective
+            .get_or_insert_with(|| StandardObjective::default().as_str().to_string());
+        g.cache.get_or_insert(true);
+        c
+    }
+
+    /// The scenario of a chain of this problem (`chain` top to bottom).
+    fn scenario(&self, chain: ChainSpec, description: Option<String>) -> Scenario {
+        Scenario {
+            description,
+            chain,
+            excitation: self.excitation.clone(),
+            wall: self.wall.clone(),
+            run: self.run.clone(),
+        }
+    }
+
+    /// The chain spec of a genome (catalogue indices).
+    fn chain_spec(&self, genome: &[u8]) -> ChainSpec {
+        let d = &self.design;
+        let mut c = ChainSpec {
+            model: d.model,
+            crossing_angle_deg: d.crossing_angle_deg,
+            ..ChainSpec::default()
+        };
+        match (&d.catalogue_mm, &d.elements) {
+            (_, Some(list)) => {
+                c.elements = Some(genome.iter().map(|&g| list[g as usize].clone()).collect())
+            }
+            (Some(rods), None) => {
+                c.rods_mm = Some(genome.iter().map(|&g| rods[g as usize]).collect())
+            }
+            (None, None) => {}
+        }
+        c
+    }
+}
+
+/// A config turned into what the library runs.
+pub struct Problem {
+    /// The completed config.
+    pub config: OptimizeConfig,
+    /// The design space.
+    pub space: DesignSpace,
+    /// The GA's settings.
+    pub settings: GaSettings,
+    /// The objective.
+    pub objective: StandardObjective,
+    /// Directory relative to which the config's files are found.
+    pub base_dir: PathBuf,
+}
+
+fn catalogue_index(
+    field: &str,
+    rod_mm: Option<u32>,
+    element: Option<usize>,
+    cfg: &OptimizeConfig,
+) -> Result<usize, Error> {
+    let d = &cfg.design;
+    let n = d
+        .elements
+        .as_ref()
+        .map(Vec::len)
+        .or(d.catalogue_mm.as_ref().map(Vec::len))
+        .unwrap_or(0);
+    match (rod_mm, element) {
+        (Some(_), Some(_)) => Err(Error::invalid(
+            field,
+            "both rod_mm and element",
+            "give one of them",
+        )),
+        (None, None) => Err(Error::invalid(
+            field,
+            "(no element)",
+            "give rod_mm = <length in the catalogue> or element = <catalogue index>",
+        )),
+        (None, Some(e)) if e < n => Ok(e),
+        (None, Some(e)) => Err(Error::invalid(
+            format!("{field}.element"),
+            e,
+            format!("catalogue indices are 0..={}", n.saturating_sub(1)),
+        )),
+        (Some(l), None) => match &d.catalogue_mm {
+            Some(rods) => rods.iter().position(|&r| r == l).ok_or_else(|| {
+                Error::invalid(
+                    format!("{field}.rod_mm"),
+                    l,
+                    format!(
+                        "not in design.catalogue_mm = {:?}",
+                        rods.iter().collect::<Vec<_>>()
+                    ),
+                )
+            }),
+            None => Err(Error::invalid(
+                format!("{field}.rod_mm"),
+                l,
+                "rod_mm needs design.catalogue_mm; with design.elements use element = <index>",
+            )),
+        },
+    }
+}
+
+impl Problem {
+    /// Validates a config (after the command line's overrides) and builds the design space.
+    pub fn new(config: &OptimizeConfig, base_dir: &Path, threads: usize) -> Result<Self, Error> {
+        let cfg = config.complete();
+        let d = &cfg.design;
+        let positions = d.positions.unwrap_or(20);
+        if positions == 0 {
+            return Err(Error::invalid("design.positions", 0, "must be at least 1"));
+        }
+        if d.catalogue_mm.is_some() && d.elements.is_some() {
+            return Err(Error::invalid(
+                "design",
+                "both catalogue_mm and elements",
+                "give one catalogue: catalogue_mm (Table 1 rods) or elements (general form)",
+            ));
+        }
+        let n_cat = d
+            .elements
+            .as_ref()
+            .map(Vec::len)
+            .or(d.catalogue_mm.as_ref().map(Vec::len))
+            .unwrap_or(0);
+        if n_cat == 0 {
+            let key = if d.elements.is_some() {
+                "design.elements"
+            } else {
+                "design.catalogue_mm"
+            };
+            return Err(Error::invalid(
+                key,
+                "[]",
+                "the catalogue needs at least one element, e.g. catalogue_mm = [20, 30, 40, 50, 60, 70, 80]",
+            ));
+        }
+        if n_cat > woodpile::optimize::MAX_CATALOGUE_LEN {
+            return Err(Error::invalid(
+                "design.catalogue",
+                n_cat,
+                format!("at most {} entries", woodpile::optimize::MAX_CATALOGUE_LEN),
+            ));
+        }
+        // The catalogue as a chain resolves every element, the wall, the load and the run
+        // under the scenario keys; its errors are renamed to the design keys.
+        let catalogue_chain = ChainSpec {
+            rods_mm: d.catalogue_mm.clone(),
+            elements: d.elements.clone(),
+            model: d.model,
+            crossing_angle_deg: d.crossing_angle_deg,
+            ..ChainSpec::default()
+        };
+        let resolved =
+            resolve(&cfg.scenario(catalogue_chain, None), base_dir).map_err(rename_chain_keys)?;
+        let catalogue = resolved.chain.elements().to_vec();
+        let c = &d.constraints;
+        let mut constraints = Constraints {
+            max_total_mass_kg: c.max_total_mass_g.map(|g| g * 1e-3),
+            ..Constraints::default()
+        };
+        for (k, f) in c.fixed.iter().enumerate() {
+            let field = format!("design.constraints.fixed[{k}]");
+            if f.layer == 0 || f.layer > positions {
+                return Err(Error::invalid(
+                    format!("{field}.layer"),
+                    f.layer,
+                    format!("layers are 1..={positions} (1 = top)"),
+                ));
+            }
+            let e = catalogue_index(&field, f.rod_mm, f.element, &cfg)?;
+            constraints.fixed.push((f.layer - 1, e));
+        }
+        for (k, m) in c.max_count.iter().enumerate() {
+            let field = format!("design.constraints.max_count[{k}]");
+            let e = catalogue_index(&field, m.rod_mm, m.element, &cfg)?;
+            constraints.max_count.push((e, m.count));
+        }
+        let space = DesignSpace {
+            positions,
+            catalogue,
+            wall: resolved.chain.wall().clone(),
+            crossing_angle_rad: resolved.chain.crossing_angle_rad(),
+            excitation: resolved.excitation,
+            settings: resolved.settings,
+            constraints,
+        };
+        let g = &cfg.ga;
+        let objective_name = g.objective.clone().unwrap_or_default();
+        let objective =
+            StandardObjective::from_name(&objective_name).map_err(Error::at("ga.objective"))?;
+        let settings = GaSettings {
+            population: g.population.unwrap_or(100),
+            truncation: g.truncation.unwrap_or(0.3),
+            elites: g.elites.unwrap_or(1),
+            generations: g.generations.unwrap_or(100),
+            stall_generations: g.stall_generations.filter(|&s| s > 0),
+            seed: g.seed.unwrap_or(1),
+            mutation_range: g.mutation_range,
+            threads,
+            cache: g.cache.unwrap_or(true),
+        };
+        settings.validate()?;
+        woodpile::optimize::FeasibleSet::new(&space).map_err(optimize_error)?;
+        Ok(Problem {
+            config: cfg,
+            space,
+            settings,
+            objective,
+            base_dir: base_dir.to_path_buf(),
+        })
+    }
+
+    /// The scenario of a genome: the problem's load, support and run with that chain. Files
+    /// named in the config (a blast table) are made absolute so the scenario runs from anywhere.
+    pub fn scenario(&self, genome: &[u8], description: Option<String>) -> Scenario {
+        let mut s = self
+            .config
+            .scenario(self.config.chain_spec(genome), description);
+        if let Some(file) = &s.excitation.file {
+            let p = self.base_dir.join(file);
+            let p = p.canonicalize().unwrap_or(p);
+            s.excitation.file = Some(p.display().to_string());
+        }
+        s
+    }
+}
+
+/// Renames `chain.*` keys of a resolution error to the `design.*` keys of the config.
+pub fn rename_chain_keys(e: Error) -> Error {
+    let rename = |f: String| {
+        f.replace("chain.rods_mm", "design.catalogue_mm")
+            .replace("chain.elements", "design.elements")
+            .replace("chain.crossing_angle_deg", "design.crossing_angle_deg")
+    };
+    match e {
+        Error::Invalid {
+            field,
+            value,
+            reason,
+        } => Error::Invalid {
+            field: rename(field),
+            value,
+            reason,
+        },
+        Error::Field { field, source } => Error::Field {
+            field: rename(field),
+            source,
+        },
+        Error::Model(woodpile::Error::InvalidParameter {
+            field,
+            value,
+            reason,
+        }) => Error::Model(woodpile::Error::InvalidParameter {
+            field: rename(field),
+            value,
+            reason,
+        }),
+        other => other,
+    }
+}
+
+/// The command line's error for a library optimisation error.
+pub fn optimize_error(e: OptimizeError) -> Error {
+    match e {
+        OptimizeError::Model(m) => Error::Model(m),
+        OptimizeError::Infeasible { reason } => Error::invalid(
+            "design.constraints",
+            "(as given)",
+            format!("no design meets them: {reason}"),
+        ),
+        OptimizeError::Simulation { design, source } => {
+            eprintln!("error while evaluating design [{design}]");
+            Error::Model(source)
+        }
+        OptimizeError::NotANumber { objective, design } => Error::invalid(
+            "ga.objective",
+            objective,
+            format!("returned NaN for design [{design}]"),
+        ),
+        OptimizeError::StateMismatch { reason } => {
+            Error::invalid("--resume", CHECKPOINT_FILE, reason)
+        }
+        OptimizeError::ThreadPool { threads, reason } => {
+            Error::invalid("--threads", threads, reason)
+        }
+    }
+}
+
+/// One individual in the checkpoint.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IndividualJson {
+    /// Catalogue indices, top to bottom.
+    pub genome: Vec<u8>,
+    /// Objective value.
+    pub objective: f64,
+}
+
+/// One line of the history in the checkpoint (and `history.csv`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HistoryJson {
+    /// Generation.
+    pub generation: usize,
+    /// Best objective.
+    pub best: f64,
+    /// Mean objective.
+    pub mean: f64,
+    /// Worst objective.
+    pub worst: f64,
+    /// Simulations so far.
+    pub evaluations: u64,
+    /// Cache hits so far.
+    pub cache_hits: u64,
+    /// Wall-clock seconds so far.
+    pub elapsed_s: f64,
+}
+
+/// `checkpoint.json`: the complete config and the GA's whole state. Floats are written with
+/// shortest round-trip digits and read back exactly, so a resumed run continues bit for bit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Checkpoint {
+    /// [`CHECKPOINT_FORMAT`].
+    pub format: String,
+    /// The completed config the run was started with (seed included).
+    pub config: OptimizeConfig,
+    /// Generations completed.
+    pub generation: usize,
+    /// Generations since the best improved.
+    pub stalled: usize,
+    /// Simulations so far.
+    pub evaluations: u64,
+    /// Cache hits so far.
+    pub cache_hits: u64,
+    /// Wall-clock seconds so far.
+    pub elapsed_s: f64,
+    /// Population, best first.
+    pub population: Vec<IndividualJson>,
+    /// History, one line per generation.
+    pub history: Vec<HistoryJson>,
+    /// Fitness cache, sorted by genome.
+    pub cache: Vec<IndividualJson>,
+}
+
+impl Checkpoint {
+    pub fn new(config: &OptimizeConfig, s: &GaState) -> Self {
+        let ind = |genome: &Vec<u8>, objective: f64| IndividualJson {
+            genome: genome.clone(),
+            objective,
+        };
+        let mut cache: Vec<IndividualJson> = s.cache.iter().map(|(g, &v)| ind(g, v)).collect();
+        cache.sort_by(|a, b| a.genome.cmp(&b.genome));
+        Checkpoint {
+            format: CHECKPOINT_FORMAT.to_string(),
+            config: config.clone(),
+            generation: s.generation,
+            stalled: s.stalled,
+            evaluations: s.evaluations,
+            cache_hits: s.cache_hits,
+            elapsed_s: s.elapsed_s,
+            population: s
+                .population
+                .iter()
+                .map(|i| ind(&i.genome, i.objective))
+                .collect(),
+            history: s.history.iter().map(HistoryJson::from).collect(),
+            cache,
+        }
+    }
+
+    pub fn into_state(self) -> GaState {
+        GaState {
+            generation: self.generation,
+            population: self
+                .population
+                .into_iter()
+                .map(|i| Individual {
+                    genome: i.genome,
+                    objective: i.objective,
+                })
+                .collect(),
+            history: self
+                .history
+                .iter()
+                .map(|h| GenerationStats {
+                    generation: h.generation,
+                    best: h.best,
+                    mean: h.mean,
+                    worst: h.worst,
+                    evaluations: h.evaluations,
+                    cache_hits: h.cache_hits,
+                    elapsed_s: h.elapsed_s,
+                })
+                .collect(),
+            cache: self
+                .cache
+                .into_iter()
+                .map(|i| (i.genome, i.objective))
+                .collect::<HashMap<_, _>>(),
+            evaluations: self.evaluations,
+            cache_hits: self.cache_hits,
+            stalled: self.stalled,
+            elapsed_s: self.elapsed_s,
+        }
+    }
+}
+
+impl From<&GenerationStats> for HistoryJson {
+    fn from(h: &GenerationStats) -> Self {
+        HistoryJson {
+            generation: h.generation,
+            best: h.best,
+            mean: h.mean,
+            worst: h.worst,
+            evaluations: h.evaluations,
+            cache_hits: h.cache_hits,
+            elapsed_s: h.elapsed_s,
+        }
+    }
+}
+
+pub fn history_csv(history: &[GenerationStats]) -> String {
+    let mut s = String::from("generation,best,mean,worst,evaluations,cache_hits,elapsed_s\n");
+    for h in history {
+        s.push_str(&format!(
+            "{},{},{},{},{},{},{:.3}\n",
+            h.generation, h.best, h.mean, h.worst, h.evaluations, h.cache_hits, h.elapsed_s
+        ));
+    }
+    s
+}
+
+pub fn population_csv(space: &DesignSpace, population: &[Individual]) -> String {
+    let mut s = String::from("rank,objective");
+    for l in 1..=space.positions {
+        s.push_str(&format!(",layer_{l}"));
+    }
+    s.push('\n');
+    for (r, i) in population.iter().enumerate() {
+        s.push_str(&format!("{},{}", r + 1, i.objective));
+        for l in space.labels(&i.genome) {
+            s.push(',');
+            s.push_str(&l);
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct SummaryJson<'a> {
+    pub tool: &'static str,
+    pub version: &'static str,
+    pub problem: &'a str,
+    pub status: &'static str,
+    pub stop_reason: &'static str,
+    pub objective: &'a str,
+    pub objective_unit: &'a str,
+    pub best_objective: f64,
+    pub best_chain_labels: Vec<String>,
+    pub best_rods_mm: Option<Vec<u32>>,
+    pub best_genome: &'a [u8],
+    pub best_total_mass_g: f64,
+    pub incident_peak_force_n: f64,
+    pub transmitted_peak_force_n: f64,
+    pub transmission_ratio: f64,
+    pub restitution_coefficient: Option<f64>,
+    pub seed: u64,
+    pub generations_completed: usize,
+    pub evaluations: u64,
+    pub cache_hits: u64,
+    pub elapsed_s: f64,
+    pub evaluations_per_s: f64,
+    pub config: &'a OptimizeConfig,
+}
+
+pub fn stop_text(reason: StopReason) -> &'static str {
+    match reason {
+        StopReason::GenerationLimit => "generation limit",
+        StopReason::Stalled => "stall limit",
+        StopReason::Interrupted => "interrupted",
+        StopReason::Observer => "output error",
+    }
+}
+
+/// Reads and checks the checkpoint in `dir` against the config of this invocation.
+pub fn read_checkpoint(dir: &Path, config: &OptimizeConfig) -> Result<GaState, Error> {
+    let path = dir.join(CHECKPOINT_FILE);
+    let text = fs::read_to_string(&path).map_err(|e| Error::Read {
+        path: path.clone(),
+        source: e,
+    })?;
+    let corrupt = |message: String| Error::Parse {
+        source_name: path.display().to_string(),
+        message: format!(
+            "{message}; the checkpoint is corrupt: restore it or start a new run in another --out"
+        ),
+    };
+    let cp: Checkpoint = serde_json::from_str(&text).map_err(|e| corrupt(e.to_string()))?;
+    if cp.format != CHECKPOINT_FORMAT {
+        return Err(corrupt(format!(
+            "format `{}`, expected `{CHECKPOINT_FORMAT}`",
+            cp.format
+        )));
+    }
+    if cp.config != *config {
+        let json = |v: &OptimizeConfig| serde_json::to_value(v).unwrap_or_default();
+        let (a, b) = (json(&cp.config), json(config));
+        let differing: Vec<String> = ["design", "excitation", "wall", "run", "ga", "description"]
+            .iter()
+            .filter(|k| a.get(**k) != b.get(**k))
+            .map(|k| {
+                format!(
+                    "[{k}] saved {} vs now {}",
+                    a.get(*k).cloned().unwrap_or_default(),
+                    b.get(*k).cloned().unwrap_or_default()
+                )
+            })
+            .collect();
+        return Err(Error::invalid(
+            "--resume",
+            path.display(),
+            format!(
+                "the checkpoint belongs to a different problem: {}; resume with the same config, --model and --seed",
+                differing.join("; ")
+            ),
+        ));
+    }
+    Ok(cp.into_state())
+}

@@ -1,0 +1,715 @@
+//! Run outputs: `summary.json`, `run.json`, CSV and NumPy files, written atomically.
+//!
+//! Everything is written into a sibling staging directory `.NAME.partial-PID` and renamed to the
+//! output directory at the end, so a directory named like the output never holds a half-written
+//! run. An existing output directory is replaced only when it holds a previous run (`run.json`)
+//! or is empty.
+
+use crate::atomic::{io_err, RUN_MARKER};
+use crate::error::Error;
+use crate::scenario::{resolve, Resolved, Scenario};
+use serde::Serialize;
+use serde_json::Value;
+use std::fs;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+use woodpile::{Chain, Excitation, Method, Resonator, RunSummary, Trajectory, UnitCell};
+
+/// Everything a run produced, for the writers.
+#[derive(Debug, Clone, Copy)]
+pub struct RunRecord<'a> {
+    /// Scenario name (built-in name or file stem).
+    pub name: &'a str,
+    /// The scenario file, if the run came from one.
+    pub file: Option<&'a Path>,
+    /// The scenario as given.
+    pub scenario: &'a Scenario,
+    /// What the library ran.
+    pub resolved: &'a Resolved,
+    /// Figures of merit.
+    pub summary: &'a RunSummary,
+    /// Samples.
+    pub trajectory: &'a Trajectory,
+}
+
+/// Energy bookkeeping in `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct EnergyJson {
+    /// Total energy at t = 0 \[J\].
+    pub initial_j: f64,
+    /// Total energy at the end \[J\].
+    pub final_j: f64,
+    /// Work done by the load \[J\].
+    pub input_work_j: f64,
+    /// Largest relative error of the energy balance.
+    pub max_relative_error: f64,
+}
+
+/// Integrator work in `summary.json` / `run.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct IntegratorJson {
+    /// `rk4` or `dopri5`.
+    pub method: &'static str,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Right-hand-side evaluations.
+    pub rhs_evaluations: u64,
+    /// Rejected steps.
+    pub rejected_steps: u64,
+}
+
+/// The contents of `summary.json`: the figures of merit (docs/physics.md §8), units in the key names.
+#[derive(Debug, Clone, Serialize)]
+pub struct SummaryJson {
+    /// Scenario name.
+    pub scenario: String,
+    /// `impact` or `blast`.
+    pub excitation: &'static str,
+    /// Element labels, top to bottom.
+    pub chain_labels: Vec<String>,
+    /// Number of elements N.
+    pub n_elements: usize,
+    /// Number of samples.
+    pub n_samples: usize,
+    /// Peak of contact 1 \[N\].
+    pub incident_peak_force_n: f64,
+    /// Peak of contact N (the wall) \[N\].
+    pub transmitted_peak_force_n: f64,
+    /// Transmitted / incident.
+    pub transmission_ratio: f64,
+    /// Striker restitution e (impact; null for a blast).
+    pub restitution_coefficient: Option<f64>,
+    /// Whether the striker had left for good at the end (impact; null for a blast).
+    pub striker_separated: Option<bool>,
+    /// Peak of every contact 0..=N \[N\].
+    pub contact_peak_forces_n: Vec<f64>,
+    /// Time of each peak \[s\].
+    pub contact_peak_times_s: Vec<f64>,
+    /// Largest sampled energy of every layer 0..=N \[J\].
+    pub layer_peak_energies_j: Vec<f64>,
+    /// Energy balance.
+    pub energy: EnergyJson,
+    /// Integrator statistics.
+    pub integrator: IntegratorJson,
+    /// Wall-clock time of the run \[s\].
+    pub wall_time_s: f64,
+}
+
+fn method_name(m: &Method) -> &'static str {
+    match m {
+        Method::Rk4 { .. } => "rk4",
+        Method::Dopri5 { .. } => "dopri5",
+    }
+}
+
+impl SummaryJson {
+    /// Builds the summary of a run.
+    pub fn new(r: &RunRecord<'_>) -> Self {
+        let s = r.summary;
+        let t = r.trajectory;
+        let nc = t.n_contacts();
+        let mut layer_peaks = vec![0.0_f64; nc];
+        for row in t.layer_energies_j.chunks(nc) {
+            for (p, &e) in layer_peaks.iter_mut().zip(row) {
+                *p = p.max(e);
+            }
+        }
+        SummaryJson {
+            scenario: r.name.to_string(),
+            excitation: match r.resolved.excitation {
+                Excitation::Impact(_) => "impact",
+                Excitation::Blast(_) => "blast",
+            },
+            chain_labels: r
+                .resolved
+                .chain
+                .elements()
+                .iter()
+                .map(|e| e.label.clone())
+                .collect(),
+            n_elements: r.resolved.chain.len(),
+            n_samples: s.n_samples,
+            incident_peak_force_n: s.incident_peak_force_n,
+            transmitted_peak_force_n: s.transmitted_peak_force_n,
+            transmission_ratio: s.transmission_ratio,
+            restitution_coefficient: s.restitution.map(|e| e.coefficient),
+            striker_separated: s.restitution.map(|e| e.separated),
+            contact_peak_forces_n: s.contact_peak_forces_n.clone(),
+            contact_peak_times_s: s.contact_peak_times_s.clone(),
+            layer_peak_energies_j: layer_peaks,
+            energy: EnergyJson {
+                initial_j: s.energy.initial_j,
+                final_j: s.energy.final_j,
+                input_work_j: s.energy.input_work_j,
+                max_relative_error: s.energy.max_relative_error,
+            },
+            integrator: IntegratorJson {
+                method: method_name(&r.resolved.settings.method),
+                steps: s.stats.steps,
+                rhs_evaluations: s.stats.rhs_evaluations,
+                rejected_steps: s.stats.rejected_steps,
+            },
+            wall_time_s: s.wall_time_s,
+        }
+    }
+}
+
+/// Contact coefficients of a run in `run.json` \[N/m^1.5\].
+#[derive(Debug, Clone, Serialize)]
+struct BetasJson {
+    /// Striker – element 1 (impact).
+    striker: Option<f64>,
+    /// Contacts 1..N−1, element i – element i+1.
+    inner: Vec<f64>,
+    /// Contact N, element N – wall (null for a free end).
+    wall: Option<f64>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+struct ElementJson {
+    label: String,
+    total_mass_kg: f64,
+    primary_mass_kg: f64,
+    resonator_masses_kg: Vec<f64>,
+    resonator_stiffnesses_n_per_m: Vec<f64>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+struct RunJson<'a> {
+    tool: &'static str,
+    version: &'static str,
+    scenario_name: &'a str,
+    scenario_file: Option<String>,
+    /// The scenario with every default filled in (the same structure as the TOML file).
+    scenario: Scenario,
+    contact_betas_n_per_m1_5: BetasJson,
+    striker_mass_kg: Option<f64>,
+    striker_velocity_m_s: Option<f64>,
+    elements: Vec<ElementJson>,
+    integrator: IntegratorJson,
+    n_samples: usize,
+    wall_time_s: f64,
+}
+
+fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<(), Error> {
+    let file = fs::File::create(path).map_err(io_err(path))?;
+    let mut w = BufWriter::new(file);
+    serde_json::to_writer_pretty(&mut w, value)
+        .map_err(|e| io_err(path)(std::io::Error::other(e)))?;
+    writeln!(w).and_then(|_| w.flush()).map_err(io_err(path))
+}
+
+/// Writes a CSV with a header and one row per sample (`time_s` then the row's values).
+fn write_csv(
+    path: &Path,
+    header: &[String],
+    times: &[f64],
+    rows: impl Iterator<Item = Vec<f64>>,
+) -> Result<(), Error> {
+    let csv_err = |e: csv::Error| io_err(path)(std::io::Error::other(e));
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    w.write_record(header).map_err(csv_err)?;
+    let mut fields = Vec::with_capacity(header.len());
+    for (t, row) in times.iter().zip(rows) {
+        fields.clear();
+        fields.push(format!("{t:e}"));
+        fields.extend(row.iter().map(|v| format!("{v:e}")));
+        w.write_record(&fields).map_err(csv_err)?;
+    }
+    w.flush().map_err(io_err(path))
+}
+
+/// Writes a C-order float64 `.npy` array of the given shape.
+pub fn write_npy(path: &Path, shape: &[u64], data: &[f64]) -> Result<(), Error> {
+    use npyz::WriterBuilder;
+    let file = BufWriter::new(fs::File::create(path).map_err(io_err(path))?);
+    let mut w = npyz::WriteOptions::<f64>::new()
+        .default_dtype()
+        .shape(shape)
+        .writer(file)
+        .begin_nd()
+        .map_err(io_err(path))?;
+    w.extend(data.iter().copied()).map_err(io_err(path))?;
+    w.finish().map_err(io_err(path))
+}
+
+/// Writes every output file of a run into `dir`.
+///
+/// Files: `summary.json`, `run.json`, `forces.csv`, `energy.csv`, `displacements.csv`,
+/// `velocities.csv`, `striker.csv` (impact), and `time_s.npy`, `forces_n.npy`
+/// (samples × contacts 0..=N), `energy_j.npy` (samples × layers 0..=N), `wall_energy_j.npy`,
+/// `input_work_j.npy`, `displacements_m.npy`, `velocities_m_s.npy` (samples × N),
+/// `striker.npy` (impact: samples × \[position m, velocity m/s\]).
+pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), Error> {
+    let t = r.trajectory;
+    let n = t.n_elements;
+    let nc = t.n_contacts();
+    let ns = t.len();
+    let chain = &r.resolved.chain;
+
+    write_json(&dir.join("summary.json"), &SummaryJson::new(r))?;
+
+    let (striker_beta, striker_mass, striker_v0) = match &r.resolved.excitation {
+        Excitation::Impact(s) => (
+            s.contact_beta(chain).ok(),
+            Some(s.mass_kg()),
+            Some(s.velocity_m_s),
+        ),
+        Excitation::Blast(_) => (None, None, None),
+    };
+    let s = r.summary;
+    let run = RunJson {
+        tool: "woodpile",
+        version: env!("CARGO_PKG_VERSION"),
+        scenario_name: r.name,
+        scenario_file: r.file.map(|p| p.display().to_string()),
+        scenario: r.scenario.complete(),
+        contact_betas_n_per_m1_5: BetasJson {
+            striker: striker_beta,
+            inner: chain.inner_betas().to_vec(),
+            wall: chain.wall_beta(),
+        },
+        striker_mass_kg: striker_mass,
+        striker_velocity_m_s: striker_v0,
+        elements: chain
+            .elements()
+            .iter()
+            .map(|e| ElementJson {
+                label: e.label.clone(),
+                total_mass_kg: e.cell.total_mass_kg(),
+                primary_mass_kg: e.cell.primary_mass_kg,
+                resonator_masses_kg: e.cell.resonators.iter().map(|r| r.mass_kg).collect(),
+                resonator_stiffnesses_n_per_m: e
+                    .cell
+                    .resonators
+                    .iter()
+                    .map(|r| r.stiffness_n_per_m)
+                    .collect(),
+            })
+            .collect(),
+        integrator: IntegratorJson {
+            method: method_name(&r.resolved.settings.method),
+            steps: s.stats.steps,
+            rhs_evaluations: s.stats.rhs_evaluations,
+            rejected_steps: s.stats.rejected_steps,
+        },
+        n_samples: s.n_samples,
+        wall_time_s: s.wall_time_s,
+    };
+
+    // CSV
+    let mut header = vec!["time_s".to_string()];
+    header.extend((0..nc).map(|c| format!("contact_{c}_n")));
+    write_csv(
+        &dir.join("forces.csv"),
+        &header,
+        &t.times_s,
+        t.contact_forces_n.chunks(nc).map(<[f64]>::to_vec),
+    )?;
+    let mut header = vec!["time_s".to_string()];
+    header.extend((0..nc).map(|l| format!("layer_{l}_j")));
+    header.extend(["wall_j", "total_j", "input_work_j"].map(String::from));
+    let energy_rows = t
+        .layer_energies_j
+        .chunks(nc)
+        .zip(&t.wall_energy_j)
+        .zip(&t.input_work_j)
+        .map(|((row, &w), &work)| {
+            let mut v = row.to_vec();
+            let total = row.iter().sum::<f64>() + w;
+            v.extend([w, total, work]);
+            v
+        });
+    write_csv(&dir.join("energy.csv"), &header, &t.times_s, energy_rows)?;
+    if n > 0 {
+        let mut header = vec!["time_s".to_string()];
+        header.extend((1..=n).map(|i| format!("element_{i}_m")));
+        write_csv(
+            &dir.join("displacements.csv"),
+            &header,
+            &t.times_s,
+            t.displacements_m.chunks(n).map(<[f64]>::to_vec),
+        )?;
+        let mut header = vec!["time_s".to_string()];
+        header.extend((1..=n).map(|i| format!("element_{i}_m_s")));
+        write_csv(
+            &dir.join("velocities.csv"),
+            &header,
+            &t.times_s,
+            t.velocities_m_s.chunks(n).map(<[f64]>::to_vec),
+        )?;
+    }
+    let has_striker = t.striker_position_m.len() == ns && ns > 0;
+    if has_striker {
+        let header = ["time_s", "position_m", "velocity_m_s"].map(String::from);
+        write_csv(
+            &dir.join("striker.csv"),
+            &header,
+            &t.times_s,
+            t.striker_position_m
+                .iter()
+                .zip(&t.striker_velocity_m_s)
+                .map(|(&x, &v)| vec![x, v]),
+        )?;
+    }
+
+    // NumPy
+    let (ns64, nc64, n64) = (ns as u64, nc as u64, n as u64);
+    write_npy(&dir.join("time_s.npy"), &[ns64], &t.times_s)?;
+    write_npy(
+        &dir.join("forces_n.npy"),
+        &[ns64, nc64],
+        &t.contact_forces_n,
+    )?;
+    write_npy(
+        &dir.join("energy_j.npy"),
+        &[ns64, nc64],
+        &t.layer_energies_j,
+    )?;
+    write_npy(&dir.join("wall_energy_j.npy"), &[ns64], &t.wall_energy_j)?;
+    write_npy(&dir.join("input_work_j.npy"), &[ns64], &t.input_work_j)?;
+    write_npy(
+        &dir.join("displacements_m.npy"),
+        &[ns64, n64],
+        &t.displacements_m,
+    )?;
+    write_npy(
+        &dir.join("velocities_m_s.npy"),
+        &[ns64, n64],
+        &t.velocities_m_s,
+    )?;
+    if has_striker {
+        let data: Vec<f64> = t
+            .striker_position_m
+            .iter()
+            .zip(&t.striker_velocity_m_s)
+            .flat_map(|(&x, &v)| [x, v])
+            .collect();
+        write_npy(&dir.join("striker.npy"), &[ns64, 2], &data)?;
+    }
+
+    // run.json last: its presence marks a complete run.
+    write_json(&dir.join(RUN_MARKER), &run)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading a run directory back.
+
+/// The run-directory format this build reads: `run.json` written by woodpile of the same
+/// major.minor version (0.x: every minor version may change the files). A run.json that carries
+/// an explicit `format` key must name this one.
+pub const RUN_FORMAT: &str = "woodpile-run/1";
+
+/// What `run.json` says about a run, as far as the figures need it.
+#[derive(Debug, Clone)]
+pub struct RunInfo {
+    /// Scenario name.
+    pub name: String,
+    /// Element labels, top to bottom.
+    pub labels: Vec<String>,
+    /// Unit cells of the elements (for the negative-mass bands).
+    pub cells: Vec<UnitCell>,
+    /// "impact 1.98 m/s" or "blast …".
+    pub excitation: String,
+    /// The chain, when the scenario still resolves (a blast table may have moved).
+    pub chain: Option<Chain>,
+}
+
+pub fn bad_dir(dir: &Path, reason: impl Into<String>) -> Error {
+    Error::invalid("RUN_DIR", dir.display(), reason)
+}
+
+pub fn read_error(path: &Path, reason: impl Into<String>) -> Error {
+    Error::Read {
+        path: path.to_path_buf(),
+        source: std::io::Error::other(reason.into()),
+    }
+}
+
+/// Reads and checks `run.json`: a woodpile run of a format this build reads.
+pub fn read_run_info(dir: &Path) -> Result<RunInfo, Error> {
+    if !dir.is_dir() {
+        return Err(bad_dir(
+            dir,
+            "is not a directory; give a directory written by `woodpile simulate`",
+        ));
+    }
+    let path = dir.join(RUN_MARKER);
+    if !path.is_file() {
+        return Err(bad_dir(
+            dir,
+            "is not a woodpile run (no run.json); give a directory written by `woodpile simulate` or `woodpile optimize`",
+        ));
+    }
+    let text = fs::read_to_string(&path).map_err(|e| Error::Read {
+        path: path.clone(),
+        source: e,
+    })?;
+    let run: Value = serde_json::from_str(&text).map_err(|e| Error::Parse {
+        source_name: path.display().to_string(),
+        message: e.to_string(),
+    })?;
+    check_format(&path, &run)?;
+    let field = |key: &str| {
+        run.get(key).ok_or_else(|| {
+            read_error(
+                &path,
+                format!("no `{key}` key: not a complete woodpile run.json"),
+            )
+        })
+    };
+    let name = field("scenario_name")?
+        .as_str()
+        .unwrap_or("run")
+        .to_string();
+    let elements = field("elements")?
+        .as_array()
+        .ok_or_else(|| read_error(&path, "`elements` is not a list"))?;
+    let mut labels = Vec::with_capacity(elements.len());
+    let mut cells = Vec::with_capacity(elements.len());
+    for (i, e) in elements.iter().enumerate() {
+        labels.push(
+            e.get("label")
+                .and_then(Value::as_str)
+                .unwrap_or("?")
+                .to_string(),
+        );
+        let num = |k: &str| e.get(k).and_then(Value::as_f64);
+        let list = |k: &str| -> Vec<f64> {
+            e.get(k)
+                .and_then(Value::as_array)
+                .map(|a| a.iter().filter_map(Value::as_f64).collect())
+                .unwrap_or_default()
+        };
+        let primary = num("primary_mass_kg")
+            .ok_or_else(|| read_error(&path, format!("elements[{i}] has no primary_mass_kg")))?;
+        let resonators = list("resonator_masses_kg")
+            .into_iter()
+            .zip(list("resonator_stiffnesses_n_per_m"))
+            .map(|(m, k)| Resonator {
+                mass_kg: m,
+                stiffness_n_per_m: k,
+            })
+            .collect();
+        cells.push(UnitCell::new(primary, resonators).map_err(Error::Model)?);
+    }
+    let excitation = match run.get("striker_velocity_m_s").and_then(Value::as_f64) {
+        Some(v) => format!("impact {v:.2} m/s"),
+        None => describe_blast(run.pointer("/scenario/excitation")),
+    };
+    // The chain itself (element bodies, for the picture) comes from the completed scenario.
+    let chain = run
+        .get("scenario")
+        .cloned()
+        .and_then(|s| serde_json::from_value::<Scenario>(s).ok())
+        .and_then(|s| {
+            let base = run
+                .get("scenario_file")
+                .and_then(Value::as_str)
+                .and_then(|f| Path::new(f).parent().map(Path::to_path_buf))
+                .filter(|p| !p.as_os_str().is_empty())
+                .unwrap_or_else(|| PathBuf::from("."));
+            resolve(&s, &base).ok()
+        })
+        .map(|r| r.chain);
+    Ok(RunInfo {
+        name,
+        labels,
+        cells,
+        excitation,
+        chain,
+    })
+}
+
+fn check_format(path: &Path, run: &Value) -> Result<(), Error> {
+    let tool = run.get("tool").and_then(Value::as_str);
+    if tool != Some("woodpile") {
+        return Err(read_error(
+            path,
+            format!(
+                "not written by woodpile (tool = {}); give a directory written by `woodpile simulate`",
+                tool.unwrap_or("missing")
+            ),
+        ));
+    }
+    if let Some(format) = run.get("format").and_then(Value::as_str) {
+        if format != RUN_FORMAT {
+            return Err(read_error(
+                path,
+                format!("run format `{format}` is not `{RUN_FORMAT}`, the one this woodpile reads; re-run `woodpile simulate` with this version"),
+            ));
+        }
+        return Ok(());
+    }
+    let version = run
+        .get("version")
+        .and_then(Value::as_str)
+        .unwrap_or("unknown");
+    let major_minor = |v: &str| v.split('.').take(2).collect::<Vec<_>>().join(".");
+    let ours = env!("CARGO_PKG_VERSION");
+    if major_minor(version) != major_minor(ours) {
+        return Err(read_error(
+            path,
+            format!("written by woodpile {version}, whose run format this woodpile {ours} does not read; re-run `woodpile simulate` with this version"),
+        ));
+    }
+    Ok(())
+}
+
+fn describe_blast(excitation: Option<&Value>) -> String {
+    let get = |k: &str| excitation.and_then(|e| e.get(k)).and_then(Value::as_f64);
+    match (get("peak_force_n"), get("duration_s")) {
+        (Some(f), Some(td)) => format!("blast {f:.0} N / {:.2} ms", td * 1e3),
+        _ => "blast (tabulated load)".to_string(),
+    }
+}
+
+/// Reads a run's samples: the `.npy` files, or the CSV files where those are missing.
+pub fn read_trajectory(dir: &Path, n_elements: usize) -> Result<Trajectory, Error> {
+    let nc = n_elements + 1;
+    let npy = [
+        "time_s.npy",
+        "forces_n.npy",
+        "energy_j.npy",
+        "wall_energy_j.npy",
+    ];
+    if npy.iter().all(|f| dir.join(f).is_file()) {
+        let times = read_npy(&dir.join("time_s.npy"), &[None])?;
+        let ns = times.len();
+        let forces = read_npy(&dir.join("forces_n.npy"), &[Some(ns), Some(nc)])?;
+        let energies = read_npy(&dir.join("energy_j.npy"), &[Some(ns), Some(nc)])?;
+        let wall = read_npy(&dir.join("wall_energy_j.npy"), &[Some(ns)])?;
+        let work = if dir.join("input_work_j.npy").is_file() {
+            read_npy(&dir.join("input_work_j.npy"), &[Some(ns)])?
+        } else {
+            vec![0.0; ns]
+        };
+        return Ok(trajectory(n_elements, times, forces, energies, wall, work));
+    }
+    let forces_csv = dir.join("forces.csv");
+    let energy_csv = dir.join("energy.csv");
+    for f in [&forces_csv, &energy_csv] {
+        if !f.is_file() {
+            return Err(read_error(
+                f,
+                format!(
+                    "missing: the run has neither {} nor this file; re-run `woodpile simulate`",
+                    npy.join(", ")
+                ),
+            ));
+        }
+    }
+    let (times, forces) = read_csv(
+        &forces_csv,
+        &(0..nc)
+            .map(|c| format!("contact_{c}_n"))
+            .collect::<Vec<_>>(),
+    )?;
+    let mut energy_cols: Vec<String> = (0..nc).map(|l| format!("layer_{l}_j")).collect();
+    energy_cols.push("wall_j".into());
+    energy_cols.push("input_work_j".into());
+    let (etimes, e) = read_csv(&energy_csv, &energy_cols)?;
+    if etimes.len() != times.len() {
+        return Err(read_error(
+            &energy_csv,
+            format!(
+                "{} samples, but forces.csv has {}",
+                etimes.len(),
+                times.len()
+            ),
+        ));
+    }
+    let w = nc + 2;
+    let energies = e.chunks(w).flat_map(|r| r[..nc].to_vec()).collect();
+    let wall = e.chunks(w).map(|r| r[nc]).collect();
+    let work = e.chunks(w).map(|r| r[nc + 1]).collect();
+    Ok(trajectory(n_elements, times, forces, energies, wall, work))
+}
+
+fn trajectory(
+    n_elements: usize,
+    times_s: Vec<f64>,
+    contact_forces_n: Vec<f64>,
+    layer_energies_j: Vec<f64>,
+    wall_energy_j: Vec<f64>,
+    input_work_j: Vec<f64>,
+) -> Trajectory {
+    Trajectory {
+        n_elements,
+        times_s,
+        contact_forces_n,
+        layer_energies_j,
+        wall_energy_j,
+        input_work_j,
+        ..Trajectory::default()
+    }
+}
+
+/// Reads a float64 `.npy` file and checks its shape (None: any length).
+fn read_npy(path: &Path, shape: &[Option<usize>]) -> Result<Vec<f64>, Error> {
+    let bytes = fs::read(path).map_err(|e| Error::Read {
+        path: path.to_path_buf(),
+        source: e,
+    })?;
+    let npy = npyz::NpyFile::new(&bytes[..]).map_err(|e| Error::Read {
+        path: path.to_path_buf(),
+        source: e,
+    })?;
+    let actual: Vec<usize> = npy.shape().iter().map(|&d| d as usize).collect();
+    let fits = actual.len() == shape.len()
+        && actual
+            .iter()
+            .zip(shape)
+            .all(|(a, s)| s.is_none_or(|s| s == *a));
+    if !fits {
+        let want: Vec<String> = shape
+            .iter()
+            .map(|s| s.map_or("any".to_string(), |s| s.to_string()))
+            .collect();
+        return Err(read_error(
+            path,
+            format!("array of shape {actual:?}, expected [{}]", want.join(", ")),
+        ));
+    }
+    npy.into_vec::<f64>().map_err(|e| Error::Read {
+        path: path.to_path_buf(),
+        source: e,
+    })
+}
+
+/// Reads `time_s` and the named columns of a CSV file: (times, rows of the columns).
+fn read_csv(path: &Path, columns: &[String]) -> Result<(Vec<f64>, Vec<f64>), Error> {
+    let csv_err = |e: csv::Error| read_error(path, e.to_string());
+    let mut r = csv::Reader::from_path(path).map_err(csv_err)?;
+    let header = r.headers().map_err(csv_err)?.clone();
+    let index = |name: &str| {
+        header
+            .iter()
+            .position(|h| h == name)
+            .ok_or_else(|| read_error(path, format!("no column `{name}`")))
+    };
+    let t_col = index("time_s")?;
+    let cols = columns
+        .iter()
+        .map(|c| index(c))
+        .collect::<Result<Vec<_>, _>>()?;
+    let (mut times, mut data) = (Vec::new(), Vec::new());
+    for (line, rec) in r.records().enumerate() {
+        let rec = rec.map_err(csv_err)?;
+        let num = |i: usize| -> Result<f64, Error> {
+            rec.get(i)
+                .and_then(|s| s.trim().parse().ok())
+                .ok_or_else(|| {
+                    read_error(
+                        path,
+                        format!("line {}: not a number in column {}", line + 2, i + 1),
+                    )
+                })
+        };
+        times.push(num(t_col)?);
+        for &c in &cols {
+            data.push(num(c)?);
+        }
+    }
+    Ok((times, data))
+}

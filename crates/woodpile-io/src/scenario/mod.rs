@@ -1,0 +1,571 @@
+//! The scenario file: a TOML description of a chain, its excitation, its support and the run.
+//!
+//! The structs here mirror the file one to one (`#[serde(deny_unknown_fields)]` everywhere, so a
+//! misspelt key is an error). Every key is optional where docs/physics.md gives a default;
+//! [`Scenario::complete`] fills them all in, and [`resolve`] turns a scenario into the library's
+//! [`woodpile::Chain`], [`woodpile::Excitation`] and [`woodpile::RunSettings`].
+//!
+//! ```
+//! use woodpile_io::scenario::{resolve, Scenario};
+//!
+//! let scenario = Scenario::parse(
+//!     r#"
+//!     [chain]
+//!     rods_mm = [80, 40, 20]
+//!     [run]
+//!     duration_s = 1e-4
+//!     "#,
+//! )?;
+//! let resolved = resolve(&scenario, std::path::Path::new("."))?;
+//! assert_eq!(resolved.chain.len(), 3);
+//! # Ok::<(), woodpile_io::Error>(())
+//! ```
+
+mod builtin;
+mod emit;
+mod resolve;
+
+pub use builtin::{
+    all as builtins, builtin, builtin_names, BuiltinScenario, DEFAULT_SCENARIO, OPTIMIZED_CHAIN_MM,
+};
+pub use resolve::{resolve, Resolved};
+
+use crate::error::Error;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// A whole scenario file.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scenario {
+    /// One line saying what the scenario is.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// The column of elements (`[chain]`).
+    pub chain: ChainSpec,
+    /// What drives the chain (`[excitation]`, default: the paper's impact).
+    #[serde(default)]
+    pub excitation: ExcitationSpec,
+    /// The support under the last element (`[wall]`, default: the paper's sensor).
+    #[serde(default)]
+    pub wall: WallSpec,
+    /// Duration, integrator and sampling (`[run]`).
+    #[serde(default)]
+    pub run: RunSpec,
+}
+
+/// Resonant (Table 1 cell with its resonators) or rigid (one body of the total mass).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ModelSpec {
+    /// Primary mass plus internal resonators (the paper's locally resonant model).
+    #[default]
+    Resonant,
+    /// One rigid body of the total mass (the paper's reference case).
+    Rigid,
+}
+
+impl ModelSpec {
+    /// The library's cell model.
+    pub fn cell_model(self) -> woodpile::CellModel {
+        match self {
+            ModelSpec::Resonant => woodpile::CellModel::Resonant,
+            ModelSpec::Rigid => woodpile::CellModel::Rigid,
+        }
+    }
+
+    /// The name used in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ModelSpec::Resonant => "resonant",
+            ModelSpec::Rigid => "rigid",
+        }
+    }
+}
+
+/// `[chain]`: either `rods_mm` (Table 1 rods) or `elements` (the general form).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChainSpec {
+    /// Table 1 catalogue rods by length \[mm\], top to bottom.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rods_mm: Option<Vec<u32>>,
+    /// General form: one entry per element, top to bottom.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub elements: Option<Vec<ElementSpec>>,
+    /// Cell model of every catalogue rod (default `resonant`); an element may override it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub model: Option<ModelSpec>,
+    /// Angle between the axes of neighbouring rods \[deg\] (default 90).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crossing_angle_deg: Option<f64>,
+    /// Contact coefficients set directly, by contact number (1 = elements 1–2, N = wall).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub contact_beta: Vec<BetaOverride>,
+}
+
+/// `{ contact = 3, beta = 2.5e9 }`: β of one contact set directly.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BetaOverride {
+    /// Contact number in the paper's numbering: 1..N−1 between elements, N = the wall.
+    pub contact: usize,
+    /// Contact coefficient β \[N/m^1.5\].
+    pub beta: f64,
+}
+
+/// What an entry of `chain.elements` is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ElementKind {
+    /// A rod of the Table 1 catalogue (`rod_mm = 40`); the default when `rod_mm` is given.
+    Catalogue,
+    /// A user-defined rod: diameter, length, material and unit cell.
+    Rod,
+    /// A sphere: diameter and material (one rigid body).
+    Sphere,
+}
+
+impl ElementKind {
+    /// The name used in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ElementKind::Catalogue => "catalogue",
+            ElementKind::Rod => "rod",
+            ElementKind::Sphere => "sphere",
+        }
+    }
+}
+
+/// One entry of `chain.elements`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ElementSpec {
+    /// `catalogue` (default when `rod_mm` is given), `rod` or `sphere`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kind: Option<ElementKind>,
+    /// Catalogue rod length \[mm\] (kind `catalogue`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rod_mm: Option<u32>,
+    /// Cell model of this element (default: `chain.model`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub model: Option<ModelSpec>,
+    /// Diameter \[mm\] (kinds `rod`, `sphere`; default 5 for a rod).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diameter_mm: Option<f64>,
+    /// Length \[mm\] (kind `rod`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub length_mm: Option<f64>,
+    /// Material (kinds `rod`, `sphere`; default `fused-quartz`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<MaterialSpec>,
+    /// Unit cell (kind `rod`, required).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cell: Option<CellSpec>,
+}
+
+/// A user-defined unit cell.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CellSpec {
+    /// Primary mass M \[g\].
+    pub primary_mass_g: f64,
+    /// Internal resonators (none: a rigid body).
+    #[serde(default)]
+    pub resonators: Vec<ResonatorSpec>,
+}
+
+/// One internal resonator of a user cell.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ResonatorSpec {
+    /// Auxiliary mass m_j \[g\].
+    pub mass_g: f64,
+    /// Spring stiffness k_j \[kN/mm\].
+    pub stiffness_kn_per_mm: f64,
+}
+
+/// A material: a preset name (`"fused-quartz"`, …) or an inline table of constants.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MaterialSpec {
+    /// A preset of [`woodpile::Material::preset_names`].
+    Preset(String),
+    /// User constants.
+    Custom(CustomMaterial),
+}
+
+/// A user-defined material `{ name, youngs_modulus_pa, poisson_ratio, density_kg_m3 }`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CustomMaterial {
+    /// Name, for reports.
+    pub name: String,
+    /// Young's modulus E \[Pa\].
+    pub youngs_modulus_pa: f64,
+    /// Poisson's ratio ν.
+    pub poisson_ratio: f64,
+    /// Density ρ \[kg/m³\].
+    pub density_kg_m3: f64,
+}
+
+impl MaterialSpec {
+    /// A preset by name.
+    pub fn preset(name: &str) -> Self {
+        MaterialSpec::Preset(name.to_string())
+    }
+}
+
+impl Serialize for MaterialSpec {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            MaterialSpec::Preset(name) => s.serialize_str(name),
+            MaterialSpec::Custom(m) => m.serialize(s),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for MaterialSpec {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = MaterialSpec;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                write!(
+                    f,
+                    "a material preset name ({}) or a table {{ name, youngs_modulus_pa, poisson_ratio, density_kg_m3 }}",
+                    woodpile::Material::preset_names().join(", ")
+                )
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<MaterialSpec, E> {
+                Ok(MaterialSpec::Preset(v.to_string()))
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                map: A,
+            ) -> Result<MaterialSpec, A::Error> {
+                CustomMaterial::deserialize(serde::de::value::MapAccessDeserializer::new(map))
+                    .map(MaterialSpec::Custom)
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
+}
+
+/// `impact` or `blast`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ExcitationKind {
+    /// A striker sphere hits the top element.
+    #[default]
+    Impact,
+    /// A prescribed force acts on the top element.
+    Blast,
+}
+
+/// Shape of a blast force history.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ProfileKind {
+    /// Friedlander positive phase F0 (1 − t/Td) exp(−b t/Td).
+    #[default]
+    Friedlander,
+    /// A (time_s, force_n) table from a CSV file, linearly interpolated.
+    Table,
+}
+
+/// `[excitation]`. Impact keys: `drop_height_m` or `velocity_m_s`, `striker`, `beta`.
+/// Blast keys: `profile`, then `peak_force_n`, `duration_s`, `decay` (Friedlander) or `file` (table).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExcitationSpec {
+    /// `impact` (default) or `blast`.
+    #[serde(default)]
+    pub kind: ExcitationKind,
+    /// Drop height h \[m\] (impact; default 0.20): v0 = sqrt(2 g h).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub drop_height_m: Option<f64>,
+    /// Initial striker velocity v0 \[m/s\] (impact; instead of `drop_height_m`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity_m_s: Option<f64>,
+    /// The striker sphere (impact).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub striker: Option<StrikerSpec>,
+    /// Striker–element 1 contact coefficient β \[N/m^1.5\] (impact; default: Hertz theory).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub beta: Option<f64>,
+    /// `friedlander` (default) or `table` (blast).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile: Option<ProfileKind>,
+    /// Friedlander peak force F0 \[N\] (default 200).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub peak_force_n: Option<f64>,
+    /// Friedlander positive-phase duration Td \[s\] (default 2e-4).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub duration_s: Option<f64>,
+    /// Friedlander decay b (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub decay: Option<f64>,
+    /// Table profile: CSV file with columns `time_s, force_n`, relative to the scenario file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+}
+
+/// The striker sphere.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StrikerSpec {
+    /// Diameter \[mm\] (default 10).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diameter_mm: Option<f64>,
+    /// Material (default `soda-lime-glass`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<MaterialSpec>,
+}
+
+/// What the last element stands on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum WallKind {
+    /// A fixed sensor with a spherical cap (`material`, `cap_radius_mm`): the default.
+    #[default]
+    Cap,
+    /// A fixed flat (`material`): a point contact only under a sphere.
+    Flat,
+    /// A fixed support with its contact coefficient given directly (`beta`).
+    Beta,
+    /// No support: the last element is free.
+    Free,
+}
+
+/// `[wall]`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WallSpec {
+    /// `cap` (default), `flat`, `beta` (implied by a `beta` key) or `free`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kind: Option<WallKind>,
+    /// Material of the cap or flat (default `stainless-steel`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<MaterialSpec>,
+    /// Cap radius R_c \[mm\] (default 5).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cap_radius_mm: Option<f64>,
+    /// Contact coefficient β \[N/m^1.5\] of the wall contact.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub beta: Option<f64>,
+}
+
+/// Integration method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum IntegratorKind {
+    /// Classical RK4 with a fixed step (the paper's method).
+    #[default]
+    Rk4,
+    /// Dormand–Prince 5(4) with error control and dense output.
+    Dopri5,
+}
+
+impl IntegratorKind {
+    /// The name used in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            IntegratorKind::Rk4 => "rk4",
+            IntegratorKind::Dopri5 => "dopri5",
+        }
+    }
+}
+
+/// `[run]`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunSpec {
+    /// Simulated time \[s\] (default 2e-3 for an impact, 3e-3 for a blast).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub duration_s: Option<f64>,
+    /// `rk4` (default) or `dopri5`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub integrator: Option<IntegratorKind>,
+    /// RK4 time step Δt \[s\] (default 1e-7).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time_step_s: Option<f64>,
+    /// DOPRI5 relative tolerance (default 1e-9).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rtol: Option<f64>,
+    /// DOPRI5 absolute tolerance \[m\] (default 1e-15).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub atol: Option<f64>,
+    /// Spacing of the uniform sample grid \[s\] (default 1e-6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sample_interval_s: Option<f64>,
+}
+
+/// Defaults of docs/physics.md.
+pub mod defaults {
+    /// Drop height \[m\] (docs/physics.md §2).
+    pub const DROP_HEIGHT_M: f64 = 0.20;
+    /// Striker diameter \[mm\].
+    pub const STRIKER_DIAMETER_MM: f64 = 10.0;
+    /// Striker material.
+    pub const STRIKER_MATERIAL: &str = "soda-lime-glass";
+    /// Friedlander peak \[N\] (docs/physics.md §6).
+    pub const PEAK_FORCE_N: f64 = 200.0;
+    /// Friedlander duration \[s\].
+    pub const BLAST_DURATION_S: f64 = 2e-4;
+    /// Friedlander decay.
+    pub const DECAY: f64 = 1.0;
+    /// Wall material.
+    pub const WALL_MATERIAL: &str = "stainless-steel";
+    /// Wall cap radius \[mm\].
+    pub const CAP_RADIUS_MM: f64 = 5.0;
+    /// User rod diameter \[mm\] (the paper's rods).
+    pub const ROD_DIAMETER_MM: f64 = 5.0;
+    /// User rod / sphere material.
+    pub const ELEMENT_MATERIAL: &str = "fused-quartz";
+    /// Crossing angle \[deg\].
+    pub const CROSSING_ANGLE_DEG: f64 = 90.0;
+    /// Impact run \[s\] (docs/physics.md §8).
+    pub const IMPACT_DURATION_S: f64 = 2e-3;
+    /// Blast run \[s\].
+    pub const BLAST_RUN_DURATION_S: f64 = 3e-3;
+    /// RK4 step \[s\].
+    pub const TIME_STEP_S: f64 = 1e-7;
+    /// DOPRI5 rtol.
+    pub const RTOL: f64 = 1e-9;
+    /// DOPRI5 atol \[m\].
+    pub const ATOL: f64 = 1e-15;
+    /// Sample interval \[s\].
+    pub const SAMPLE_INTERVAL_S: f64 = 1e-6;
+}
+
+impl Scenario {
+    /// Parses a scenario from TOML text. Syntax errors and unknown keys give the line and column.
+    pub fn parse(text: &str) -> Result<Self, Error> {
+        toml::from_str(text).map_err(|e| Error::Parse {
+            source_name: "scenario".into(),
+            message: e.to_string(),
+        })
+    }
+
+    /// Reads and parses a scenario file.
+    pub fn load(path: &Path) -> Result<Self, Error> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::Read {
+            path: path.to_path_buf(),
+            source: e,
+        })?;
+        toml::from_str(&text).map_err(|e| Error::Parse {
+            source_name: path.display().to_string(),
+            message: e.to_string(),
+        })
+    }
+
+    /// The same scenario with every default written out (the keys that apply to the chosen kinds).
+    /// Resolving it gives the same model as resolving `self`.
+    pub fn complete(&self) -> Scenario {
+        use defaults::*;
+        let mut s = self.clone();
+        // chain
+        let c = &mut s.chain;
+        let chain_model = *c.model.get_or_insert(ModelSpec::Resonant);
+        c.crossing_angle_deg.get_or_insert(CROSSING_ANGLE_DEG);
+        if let Some(elements) = &mut c.elements {
+            for e in elements {
+                let kind = e.kind.unwrap_or(if e.rod_mm.is_some() {
+                    ElementKind::Catalogue
+                } else {
+                    ElementKind::Rod
+                });
+                match kind {
+                    ElementKind::Catalogue => {
+                        e.kind = None;
+                    }
+                    ElementKind::Rod => {
+                        e.kind = Some(kind);
+                        e.diameter_mm.get_or_insert(ROD_DIAMETER_MM);
+                        e.material
+                            .get_or_insert_with(|| MaterialSpec::preset(ELEMENT_MATERIAL));
+                    }
+                    ElementKind::Sphere => {
+                        e.kind = Some(kind);
+                        e.material
+                            .get_or_insert_with(|| MaterialSpec::preset(ELEMENT_MATERIAL));
+                    }
+                }
+                if kind != ElementKind::Sphere {
+                    e.model.get_or_insert(chain_model);
+                }
+            }
+        }
+        // excitation
+        let x = &mut s.excitation;
+        match x.kind {
+            ExcitationKind::Impact => {
+                if x.velocity_m_s.is_none() {
+                    x.drop_height_m.get_or_insert(DROP_HEIGHT_M);
+                }
+                let st = x.striker.get_or_insert_with(StrikerSpec::default);
+                st.diameter_mm.get_or_insert(STRIKER_DIAMETER_MM);
+                st.material
+                    .get_or_insert_with(|| MaterialSpec::preset(STRIKER_MATERIAL));
+            }
+            ExcitationKind::Blast => match *x.profile.get_or_insert(ProfileKind::Friedlander) {
+                ProfileKind::Friedlander => {
+                    x.peak_force_n.get_or_insert(PEAK_FORCE_N);
+                    x.duration_s.get_or_insert(BLAST_DURATION_S);
+                    x.decay.get_or_insert(DECAY);
+                }
+                ProfileKind::Table => {}
+            },
+        }
+        // wall
+        let w = &mut s.wall;
+        let kind = w.effective_kind();
+        w.kind = Some(kind);
+        match kind {
+            WallKind::Cap => {
+                w.material
+                    .get_or_insert_with(|| MaterialSpec::preset(WALL_MATERIAL));
+                w.cap_radius_mm.get_or_insert(CAP_RADIUS_MM);
+            }
+            WallKind::Flat => {
+                w.material
+                    .get_or_insert_with(|| MaterialSpec::preset(WALL_MATERIAL));
+            }
+            WallKind::Beta | WallKind::Free => {}
+        }
+        // run
+        let r = &mut s.run;
+        r.duration_s.get_or_insert(match s.excitation.kind {
+            ExcitationKind::Impact => IMPACT_DURATION_S,
+            ExcitationKind::Blast => BLAST_RUN_DURATION_S,
+        });
+        match *r.integrator.get_or_insert(IntegratorKind::Rk4) {
+            IntegratorKind::Rk4 => {
+                r.time_step_s.get_or_insert(TIME_STEP_S);
+            }
+            IntegratorKind::Dopri5 => {
+                r.rtol.get_or_insert(RTOL);
+                r.atol.get_or_insert(ATOL);
+            }
+        }
+        r.sample_interval_s.get_or_insert(SAMPLE_INTERVAL_S);
+        s
+    }
+
+    /// The scenario as commented TOML with every default written out; `woodpile simulate` accepts
+    /// it and runs exactly the same model.
+    pub fn to_toml(&self) -> String {
+        emit::to_toml(&self.complete())
+    }
+}
+
+impl WallSpec {
+    /// The kind, with `beta` implying [`WallKind::Beta`] when no kind is given.
+    pub fn effective_kind(&self) -> WallKind {
+        self.kind.unwrap_or(if self.beta.is_some() {
+            WallKind::Beta
+        } else {
+            WallKind::Cap
+        })
+    }
+}

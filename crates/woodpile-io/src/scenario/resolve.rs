@@ -1,0 +1,573 @@
+//! From a scenario to the library's model: every value checked under its scenario key.
+
+use super::emit::float;
+use super::{
+    defaults, CellSpec, ElementKind, ElementSpec, ExcitationKind, IntegratorKind, MaterialSpec,
+    ProfileKind, Scenario, WallKind,
+};
+use crate::error::Error;
+use crate::table::load_blast_table;
+use std::path::Path;
+use woodpile::{
+    BlastProfile, Body, Chain, ChainBuilder, Element, Excitation, Material, Method, Resonator,
+    RunSettings, Striker, UnitCell, Wall,
+};
+
+/// A scenario turned into what the library runs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Resolved {
+    /// The chain with every contact coefficient computed.
+    pub chain: Chain,
+    /// The striker or the blast load.
+    pub excitation: Excitation,
+    /// Duration, integrator and sampling.
+    pub settings: RunSettings,
+}
+
+/// Checks that `value` is finite and > 0; the error names `field`.
+fn positive(field: &str, value: f64) -> Result<f64, Error> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::invalid(
+            field,
+            float(value),
+            "must be a finite number > 0",
+        ))
+    }
+}
+
+/// Checks that `value` is finite and >= 0; the error names `field`.
+fn non_negative(field: &str, value: f64) -> Result<f64, Error> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::invalid(
+            field,
+            float(value),
+            "must be a finite number >= 0",
+        ))
+    }
+}
+
+/// A key that does not apply to the chosen kind.
+fn not_applicable(field: &str, value: impl ToString, why: &str) -> Error {
+    Error::invalid(field, value, format!("not used {why}; remove it"))
+}
+
+/// Resolves a material spec; `field` is its key.
+pub fn material(field: &str, spec: &MaterialSpec) -> Result<Material, Error> {
+    match spec {
+        MaterialSpec::Preset(name) => Material::preset(name).map_err(Error::at(field)),
+        MaterialSpec::Custom(m) => {
+            positive(&format!("{field}.youngs_modulus_pa"), m.youngs_modulus_pa)?;
+            positive(&format!("{field}.density_kg_m3"), m.density_kg_m3)?;
+            if !(m.poisson_ratio.is_finite() && m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5) {
+                return Err(Error::invalid(
+                    format!("{field}.poisson_ratio"),
+                    m.poisson_ratio,
+                    "must lie in (-1, 0.5)",
+                ));
+            }
+            Ok(Material::new(
+                &m.name,
+                m.youngs_modulus_pa,
+                m.poisson_ratio,
+                m.density_kg_m3,
+            )?)
+        }
+    }
+}
+
+fn cell(field: &str, spec: &CellSpec) -> Result<UnitCell, Error> {
+    positive(&format!("{field}.primary_mass_g"), spec.primary_mass_g)?;
+    let mut resonators = Vec::with_capacity(spec.resonators.len());
+    for (j, r) in spec.resonators.iter().enumerate() {
+        let f = format!("{field}.resonators[{j}]");
+        positive(&format!("{f}.mass_g"), r.mass_g)?;
+        positive(&format!("{f}.stiffness_kn_per_mm"), r.stiffness_kn_per_mm)?;
+        resonators.push(Resonator {
+            mass_kg: r.mass_g * 1e-3,
+            stiffness_n_per_m: r.stiffness_kn_per_mm * 1e6,
+        });
+    }
+    Ok(UnitCell::new(spec.primary_mass_g * 1e-3, resonators)?)
+}
+
+fn element(i: usize, e: &ElementSpec, chain_model: woodpile::CellModel) -> Result<Element, Error> {
+    let field = |k: &str| format!("chain.elements[{i}].{k}");
+    let kind =
+        match (e.kind, e.rod_mm) {
+            (Some(k), _) => k,
+            (None, Some(_)) => ElementKind::Catalogue,
+            (None, None) => return Err(Error::invalid(
+                format!("chain.elements[{i}]"),
+                "{}",
+                "give `rod_mm = L` for a Table 1 rod, or `kind = \"rod\"` / `kind = \"sphere\"`",
+            )),
+        };
+    let why = format!("with kind = \"{}\"", kind.name());
+    let model = e.model.map(|m| m.cell_model()).unwrap_or(chain_model);
+    match kind {
+        ElementKind::Catalogue => {
+            let Some(l) = e.rod_mm else {
+                return Err(Error::invalid(
+                    field("rod_mm"),
+                    "(missing)",
+                    "a catalogue element needs rod_mm",
+                ));
+            };
+            if let Some(d) = e.diameter_mm {
+                return Err(not_applicable(&field("diameter_mm"), d, &why));
+            }
+            if let Some(d) = e.length_mm {
+                return Err(not_applicable(&field("length_mm"), d, &why));
+            }
+            if e.material.is_some() {
+                return Err(not_applicable(&field("material"), "…", &why));
+            }
+            if e.cell.is_some() {
+                return Err(not_applicable(&field("cell"), "{…}", &why));
+            }
+            Element::table1_rod(l, model).map_err(Error::at(field("rod_mm")))
+        }
+        ElementKind::Rod => {
+            if let Some(l) = e.rod_mm {
+                return Err(not_applicable(
+                    &field("rod_mm"),
+                    l,
+                    "with kind = \"rod\" (use length_mm and cell; or drop kind for a Table 1 rod)",
+                ));
+            }
+            let diameter = positive(
+                &field("diameter_mm"),
+                e.diameter_mm.unwrap_or(defaults::ROD_DIAMETER_MM),
+            )?;
+            let Some(length) = e.length_mm else {
+                return Err(Error::invalid(
+                    field("length_mm"),
+                    "(missing)",
+                    "a user rod needs length_mm",
+                ));
+            };
+            let length = positive(&field("length_mm"), length)?;
+            let mat = element_material(&field("material"), e.material.as_ref())?;
+            let Some(cell_spec) = &e.cell else {
+                return Err(Error::invalid(
+                    field("cell"),
+                    "(missing)",
+                    "a user rod needs cell = { primary_mass_g, resonators = [{ mass_g, stiffness_kn_per_mm }] }; use rod_mm for Table 1 rods",
+                ));
+            };
+            let c = model.apply(cell(&field("cell"), cell_spec)?);
+            Ok(Element {
+                label: format!("rod{}mm", length),
+                body: Body::Rod {
+                    diameter_m: diameter * 1e-3,
+                    length_m: length * 1e-3,
+                },
+                material: mat,
+                cell: c,
+            })
+        }
+        ElementKind::Sphere => {
+            if let Some(l) = e.rod_mm {
+                return Err(not_applicable(&field("rod_mm"), l, &why));
+            }
+            if let Some(l) = e.length_mm {
+                return Err(not_applicable(&field("length_mm"), l, &why));
+            }
+            if e.cell.is_some() {
+                return Err(not_applicable(
+                    &field("cell"),
+                    "{…}",
+                    "with kind = \"sphere\" (a sphere is one rigid body of mass ρπd³/6)",
+                ));
+            }
+            if let Some(m) = e.model {
+                return Err(not_applicable(&field("model"), m.name(), &why));
+            }
+            let Some(d) = e.diameter_mm else {
+                return Err(Error::invalid(
+                    field("diameter_mm"),
+                    "(missing)",
+                    "a sphere needs diameter_mm",
+                ));
+            };
+            let d = positive(&field("diameter_mm"), d)?;
+            let mat = element_material(&field("material"), e.material.as_ref())?;
+            Ok(Element::sphere(d * 1e-3, mat)?)
+        }
+    }
+}
+
+/// An element's material: the one given, or the default rod material.
+fn element_material(field: &str, spec: Option<&MaterialSpec>) -> Result<Material, Error> {
+    match spec {
+        Some(m) => material(field, m),
+        None => Ok(Material::preset(defaults::ELEMENT_MATERIAL)?),
+    }
+}
+
+/// Builds the chain, excitation and run settings of a scenario. `base_dir` is the directory
+/// relative to which files named in the scenario (a blast table) are found.
+///
+/// Every invalid value gives an error naming its key (e.g. `chain.rods_mm[3]`), the value and
+/// what would be valid.
+pub fn resolve(scenario: &Scenario, base_dir: &Path) -> Result<Resolved, Error> {
+    let chain = resolve_chain(scenario)?;
+    let excitation = resolve_excitation(scenario, &chain, base_dir)?;
+    let settings = resolve_run(scenario)?;
+    Ok(Resolved {
+        chain,
+        excitation,
+        settings,
+    })
+}
+
+fn resolve_chain(s: &Scenario) -> Result<Chain, Error> {
+    let c = &s.chain;
+    let model = c.model.unwrap_or_default().cell_model();
+    let elements = match (&c.rods_mm, &c.elements) {
+        (Some(_), Some(_)) => {
+            return Err(Error::invalid(
+                "chain",
+                "both rods_mm and elements",
+                "give either rods_mm (Table 1 rods) or elements (general form), not both",
+            ))
+        }
+        (None, None) => {
+            return Err(Error::invalid(
+                "chain",
+                "(no rods)",
+                "give rods_mm = [80, 40, 20, …] or elements = [{ rod_mm = 40 }, …]",
+            ))
+        }
+        (Some(rods), None) => rods
+            .iter()
+            .enumerate()
+            .map(|(i, &l)| {
+                Element::table1_rod(l, model).map_err(Error::at(format!("chain.rods_mm[{i}]")))
+            })
+            .collect::<Result<Vec<_>, _>>()?,
+        (None, Some(list)) => list
+            .iter()
+            .enumerate()
+            .map(|(i, e)| element(i, e, model))
+            .collect::<Result<Vec<_>, _>>()?,
+    };
+    let n = elements.len();
+    if n == 0 {
+        let key = if c.rods_mm.is_some() {
+            "chain.rods_mm"
+        } else {
+            "chain.elements"
+        };
+        return Err(Error::invalid(
+            key,
+            "[]",
+            "a chain needs at least one element",
+        ));
+    }
+    let angle = c.crossing_angle_deg.unwrap_or(defaults::CROSSING_ANGLE_DEG);
+    if !(angle.is_finite() && angle > 0.0 && angle < 180.0) {
+        return Err(Error::invalid(
+            "chain.crossing_angle_deg",
+            angle,
+            "must lie strictly between 0 and 180 (0 and 180 are parallel rods: a line contact)",
+        ));
+    }
+    if s.wall.effective_kind() == WallKind::Flat {
+        if let Body::Rod { .. } = elements[n - 1].body {
+            return Err(Error::invalid(
+                "wall.kind",
+                "\"flat\"",
+                format!(
+                    "element {n} is a rod, and a rod on a flat is a line contact, not a Hertz point contact; \
+                     use kind = \"cap\" with cap_radius_mm, or kind = \"beta\" with beta = …"
+                ),
+            ));
+        }
+    }
+    let mut builder = ChainBuilder::new(elements)
+        .crossing_angle_rad(angle.to_radians())
+        .wall(resolve_wall(s)?);
+    for (k, o) in c.contact_beta.iter().enumerate() {
+        let f = format!("chain.contact_beta[{k}]");
+        if o.contact == 0 {
+            return Err(Error::invalid(
+                format!("{f}.contact"),
+                0,
+                "contact 0 is the striker: set excitation.beta instead",
+            ));
+        }
+        if o.contact > n {
+            return Err(Error::invalid(
+                format!("{f}.contact"),
+                o.contact,
+                format!("contacts are numbered 1..={n} (1 = elements 1-2, {n} = the wall)"),
+            ));
+        }
+        if o.contact == n && s.wall.effective_kind() == WallKind::Free {
+            return Err(Error::invalid(
+                format!("{f}.contact"),
+                o.contact,
+                "contact N is the wall, but wall.kind = \"free\"",
+            ));
+        }
+        positive(&format!("{f}.beta"), o.beta)?;
+        builder = builder.contact_beta(o.contact, o.beta);
+    }
+    builder.build().map_err(Error::at("chain"))
+}
+
+fn resolve_wall(s: &Scenario) -> Result<Wall, Error> {
+    let w = &s.wall;
+    let kind = w.effective_kind();
+    let why = match kind {
+        WallKind::Cap => "with wall.kind = \"cap\"",
+        WallKind::Flat => "with wall.kind = \"flat\"",
+        WallKind::Beta => "with wall.kind = \"beta\" (a support of given beta)",
+        WallKind::Free => "with wall.kind = \"free\"",
+    };
+    let material_of = |w: &super::WallSpec| match &w.material {
+        Some(m) => material("wall.material", m),
+        None => Ok(Material::preset(defaults::WALL_MATERIAL)?),
+    };
+    if kind != WallKind::Cap {
+        if let Some(r) = w.cap_radius_mm {
+            return Err(not_applicable("wall.cap_radius_mm", r, why));
+        }
+    }
+    if matches!(kind, WallKind::Beta | WallKind::Free) && w.material.is_some() {
+        return Err(not_applicable("wall.material", "…", why));
+    }
+    if kind != WallKind::Beta {
+        if let Some(b) = w.beta {
+            return Err(Error::invalid(
+                "wall.beta",
+                b,
+                format!("not used {why}; drop wall.kind (or set it to \"beta\") to give the wall's beta directly"),
+            ));
+        }
+    }
+    Ok(match kind {
+        WallKind::Cap => Wall::Cap {
+            material: material_of(w)?,
+            radius_m: positive(
+                "wall.cap_radius_mm",
+                w.cap_radius_mm.unwrap_or(defaults::CAP_RADIUS_MM),
+            )? * 1e-3,
+        },
+        WallKind::Flat => Wall::Flat {
+            material: material_of(w)?,
+        },
+        WallKind::Beta => match w.beta {
+            Some(b) => Wall::Beta(positive("wall.beta", b)?),
+            None => {
+                return Err(Error::invalid(
+                    "wall.beta",
+                    "(missing)",
+                    "wall.kind = \"beta\" needs beta = … [N/m^1.5]",
+                ))
+            }
+        },
+        WallKind::Free => Wall::Free,
+    })
+}
+
+fn resolve_excitation(s: &Scenario, chain: &Chain, base_dir: &Path) -> Result<Excitation, Error> {
+    let x = &s.excitation;
+    match x.kind {
+        ExcitationKind::Impact => {
+            let why = "with excitation.kind = \"impact\"";
+            for (key, v) in [
+                ("excitation.peak_force_n", x.peak_force_n),
+                ("excitation.duration_s", x.duration_s),
+                ("excitation.decay", x.decay),
+            ] {
+                if let Some(v) = v {
+                    return Err(not_applicable(key, v, why));
+                }
+            }
+            if let Some(p) = x.profile {
+                return Err(not_applicable(
+                    "excitation.profile",
+                    format!("{p:?}").to_lowercase(),
+                    why,
+                ));
+            }
+            if let Some(f) = &x.file {
+                return Err(not_applicable("excitation.file", f, why));
+            }
+            let velocity = match (x.drop_height_m, x.velocity_m_s) {
+                (Some(h), Some(v)) => {
+                    return Err(Error::invalid(
+                        "excitation.velocity_m_s",
+                        v,
+                        format!("give either drop_height_m (here {h}) or velocity_m_s, not both"),
+                    ))
+                }
+                (_, Some(v)) => positive("excitation.velocity_m_s", v)?,
+                (h, None) => woodpile::velocity_from_drop_height(positive(
+                    "excitation.drop_height_m",
+                    h.unwrap_or(defaults::DROP_HEIGHT_M),
+                )?),
+            };
+            let st = x.striker.clone().unwrap_or_default();
+            let diameter = positive(
+                "excitation.striker.diameter_mm",
+                st.diameter_mm.unwrap_or(defaults::STRIKER_DIAMETER_MM),
+            )?;
+            let mat = match &st.material {
+                Some(m) => material("excitation.striker.material", m)?,
+                None => Material::preset(defaults::STRIKER_MATERIAL)?,
+            };
+            let beta = x.beta.map(|b| positive("excitation.beta", b)).transpose()?;
+            let striker = Striker {
+                diameter_m: diameter * 1e-3,
+                material: mat,
+                velocity_m_s: velocity,
+                beta_override: beta,
+            };
+            // Fails early (as a usage error) when the striker cannot touch the top element.
+            striker
+                .contact_beta(chain)
+                .map_err(Error::at("excitation.striker"))?;
+            Ok(Excitation::Impact(striker))
+        }
+        ExcitationKind::Blast => {
+            let why = "with excitation.kind = \"blast\"";
+            for (key, v) in [
+                ("excitation.drop_height_m", x.drop_height_m),
+                ("excitation.velocity_m_s", x.velocity_m_s),
+                ("excitation.beta", x.beta),
+            ] {
+                if let Some(v) = v {
+                    return Err(not_applicable(key, v, why));
+                }
+            }
+            if x.striker.is_some() {
+                return Err(not_applicable("excitation.striker", "{…}", why));
+            }
+            let profile = match x.profile.unwrap_or_default() {
+                ProfileKind::Friedlander => {
+                    if let Some(f) = &x.file {
+                        return Err(not_applicable(
+                            "excitation.file",
+                            f,
+                            "with excitation.profile = \"friedlander\" (set profile = \"table\")",
+                        ));
+                    }
+                    BlastProfile::Friedlander {
+                        peak_force_n: positive(
+                            "excitation.peak_force_n",
+                            x.peak_force_n.unwrap_or(defaults::PEAK_FORCE_N),
+                        )?,
+                        duration_s: positive(
+                            "excitation.duration_s",
+                            x.duration_s.unwrap_or(defaults::BLAST_DURATION_S),
+                        )?,
+                        decay: non_negative(
+                            "excitation.decay",
+                            x.decay.unwrap_or(defaults::DECAY),
+                        )?,
+                    }
+                }
+                ProfileKind::Table => {
+                    let why =
+                        "with excitation.profile = \"table\" (the table file gives the force)";
+                    for (key, v) in [
+                        ("excitation.peak_force_n", x.peak_force_n),
+                        ("excitation.duration_s", x.duration_s),
+                        ("excitation.decay", x.decay),
+                    ] {
+                        if let Some(v) = v {
+                            return Err(not_applicable(key, v, why));
+                        }
+                    }
+                    let Some(file) = &x.file else {
+                        return Err(Error::invalid(
+                            "excitation.file",
+                            "(missing)",
+                            "profile = \"table\" needs file = \"load.csv\" (columns time_s, force_n; relative to the scenario file)",
+                        ));
+                    };
+                    let path = base_dir.join(file);
+                    load_blast_table(&path).map_err(|e| match e {
+                        Error::Read { path, source } => Error::invalid(
+                            "excitation.file",
+                            format!("{file:?}"),
+                            format!("cannot read {}: {source}", path.display()),
+                        ),
+                        other => other,
+                    })?
+                }
+            };
+            Ok(Excitation::Blast(profile))
+        }
+    }
+}
+
+fn resolve_run(s: &Scenario) -> Result<RunSettings, Error> {
+    let r = &s.run;
+    let duration = positive(
+        "run.duration_s",
+        r.duration_s.unwrap_or(match s.excitation.kind {
+            ExcitationKind::Impact => defaults::IMPACT_DURATION_S,
+            ExcitationKind::Blast => defaults::BLAST_RUN_DURATION_S,
+        }),
+    )?;
+    let sample = positive(
+        "run.sample_interval_s",
+        r.sample_interval_s.unwrap_or(defaults::SAMPLE_INTERVAL_S),
+    )?;
+    let method = match r.integrator.unwrap_or_default() {
+        IntegratorKind::Rk4 => {
+            let why = "with run.integrator = \"rk4\" (a fixed step; set integrator = \"dopri5\" for tolerances)";
+            for (key, v) in [("run.rtol", r.rtol), ("run.atol", r.atol)] {
+                if let Some(v) = v {
+                    return Err(not_applicable(key, v, why));
+                }
+            }
+            let dt = positive(
+                "run.time_step_s",
+                r.time_step_s.unwrap_or(defaults::TIME_STEP_S),
+            )?;
+            if dt >= duration {
+                return Err(Error::invalid(
+                    "run.time_step_s",
+                    float(dt),
+                    format!("must be smaller than run.duration_s = {}", float(duration)),
+                ));
+            }
+            Method::Rk4 { time_step_s: dt }
+        }
+        IntegratorKind::Dopri5 => {
+            if let Some(v) = r.time_step_s {
+                return Err(not_applicable(
+                    "run.time_step_s",
+                    v,
+                    "with run.integrator = \"dopri5\" (adaptive; set rtol/atol)",
+                ));
+            }
+            let rtol = positive("run.rtol", r.rtol.unwrap_or(defaults::RTOL))?;
+            let atol = positive("run.atol", r.atol.unwrap_or(defaults::ATOL))?;
+            Method::Dopri5 { rtol, atol }
+        }
+    };
+    if sample > duration {
+        return Err(Error::invalid(
+            "run.sample_interval_s",
+            float(sample),
+            format!("must not exceed run.duration_s = {}", float(duration)),
+        ));
+    }
+    let settings = RunSettings {
+        duration_s: duration,
+        method,
+        sample_interval_s: sample,
+    };
+    settings.validate()?;
+    Ok(settings)
+}
