@@ -228,7 +228,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         incident_peak_force_n: figures.incident_peak_force_n,
         transmitted_peak_force_n: figures.transmitted_peak_force_n,
         transmission_ratio: figures.transmission_ratio,
-        restitution_coefficient: figures.restitution.map(|r| r.coefficient),
+        restitution_coefficient: figures.restitution_coefficient(),
         seed: problem.settings.seed,
         generations_completed: state.generation,
         evaluations: state.evaluations,
@@ -267,10 +267,12 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
             best.objective
         );
         println!(
-            "forces       incident {:.4} N, transmitted {:.4} N, ratio {:.4}",
+            "forces       incident {:.4} N, transmitted {:.4} N, ratio {}",
             figures.incident_peak_force_n,
             figures.transmitted_peak_force_n,
-            figures.transmission_ratio
+            figures
+                .transmission_ratio
+                .map_or("none".to_string(), |r| format!("{r:.4}"))
         );
         println!("output       {}", out.display());
     }

@@ -530,6 +530,11 @@ fn rods_mm(chain: &Chain) -> Vec<u32> {
         .collect()
 }
 
+/// The transmission ratio, NaN (printed as such) when the run gives none.
+fn ratio(s: &RunSummary) -> f64 {
+    s.transmission_ratio.unwrap_or(f64::NAN)
+}
+
 fn pct(x: f64) -> String {
     format!("{:.1} %", 100.0 * x)
 }
@@ -1143,7 +1148,7 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
     let cr = &optima[0].0.summary;
     let cg = &optima[1].0.summary;
     let restitution = |s: &RunSummary| s.restitution.map_or(f64::NAN, |r| r.coefficient);
-    let better = 1.0 - cr.transmission_ratio / cg.transmission_ratio;
+    let better = 1.0 - ratio(cr) / ratio(cg);
     let first5 = mean_mm(&ga_res.rods[..5]);
     let last5 = mean_mm(&ga_res.rods[15..]);
     doc.h2("How this report was made");
@@ -1212,8 +1217,8 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
     row(
         "Resonant optimum: transmitted / incident",
         "17.9 %".into(),
-        pct(cr.transmission_ratio),
-        pp_diff(cr.transmission_ratio, 0.179),
+        pct(ratio(cr)),
+        pp_diff(ratio(cr), 0.179),
         reason_ga,
     );
     row(
@@ -1233,8 +1238,8 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
     row(
         "Rigid optimum: transmitted / incident",
         "57.6 %".into(),
-        pct(cg.transmission_ratio),
-        pp_diff(cg.transmission_ratio, 0.576),
+        pct(ratio(cg)),
+        pp_diff(ratio(cg), 0.576),
         reason_ga,
     );
     row(
@@ -1407,7 +1412,7 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
             join_mm(&ga.rods),
             format!("{:.2} N", c.summary.incident_peak_force_n),
             format!("{:.2} N", c.summary.transmitted_peak_force_n),
-            pct(c.summary.transmission_ratio),
+            pct(ratio(&c.summary)),
             format!("{:.4}", restitution(&c.summary)),
             format!(
                 "{} generations, {} simulations, {:.1} s{}",
@@ -1551,10 +1556,10 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
         "resonant optimum {:.2} N of {:.2} N ({}), rigid optimum {:.2} N of {:.2} N ({}); blast: 40 mm {}, 80 mm {}, paper optimum {} of the 20 mm chain's peak transmitted energy",
         cr.transmitted_peak_force_n,
         cr.incident_peak_force_n,
-        pct(cr.transmission_ratio),
+        pct(ratio(cr)),
         cg.transmitted_peak_force_n,
         cg.incident_peak_force_n,
-        pct(cg.transmission_ratio),
+        pct(ratio(cg)),
         pct(blast_energy[1].2),
         pct(blast_energy[2].2),
         pct(blast_energy[3].2),

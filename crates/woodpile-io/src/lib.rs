@@ -11,11 +11,13 @@
 //! - [`rundir`]: the run directory (`summary.json`, `run.json`, CSV and `.npy`), written and
 //!   read back.
 //! - [`atomic`]: atomic file replacement and staged run directories.
+//! - [`limits`]: up-front limits (threads, steps, output size) with overrides.
 //! - [`optimize`]: the optimisation config, the problem it defines and its checkpoint.
 //! - [`Error`]: every failure, typed, naming the field, the value and what would be valid.
 
 pub mod atomic;
 pub mod error;
+pub mod limits;
 pub mod optimize;
 pub mod rundir;
 pub mod scenario;

@@ -707,7 +707,7 @@ pub struct SummaryJson<'a> {
     pub best_total_mass_g: f64,
     pub incident_peak_force_n: f64,
     pub transmitted_peak_force_n: f64,
-    pub transmission_ratio: f64,
+    pub transmission_ratio: Option<f64>,
     pub restitution_coefficient: Option<f64>,
     pub seed: u64,
     pub generations_completed: usize,

@@ -75,8 +75,11 @@ pub struct SummaryJson {
     pub incident_peak_force_n: f64,
     /// Peak of contact N (the wall) \[N\].
     pub transmitted_peak_force_n: f64,
-    /// Transmitted / incident.
-    pub transmission_ratio: f64,
+    /// Transmitted / incident; null when the incident force is zero or the wave never reached
+    /// the wall (`wave_arrived` false).
+    pub transmission_ratio: Option<f64>,
+    /// Whether the transmitted peak reached the documented fraction of the incident one.
+    pub wave_arrived: bool,
     /// Striker restitution e (impact; null for a blast).
     pub restitution_coefficient: Option<f64>,
     /// Whether the striker had left for good at the end (impact; null for a blast).
@@ -132,7 +135,8 @@ impl SummaryJson {
             incident_peak_force_n: s.incident_peak_force_n,
             transmitted_peak_force_n: s.transmitted_peak_force_n,
             transmission_ratio: s.transmission_ratio,
-            restitution_coefficient: s.restitution.map(|e| e.coefficient),
+            wave_arrived: s.wave_arrived,
+            restitution_coefficient: s.restitution_coefficient(),
             striker_separated: s.restitution.map(|e| e.separated),
             contact_peak_forces_n: s.contact_peak_forces_n.clone(),
             contact_peak_times_s: s.contact_peak_times_s.clone(),

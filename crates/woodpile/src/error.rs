@@ -52,6 +52,17 @@ pub enum Error {
         /// Largest physical overlap \[m\].
         limit_m: f64,
     },
+    /// The wave never reached the wall within the run, so a transmitted figure would be a
+    /// meaningless number (docs/physics.md §8).
+    #[error("the wave did not reach the wall within run.duration_s = {duration_s:e} s (transmitted peak {transmitted_n:.3e} N against an incident {incident_n:.3e} N): a transmitted figure would mean nothing; increase run.duration_s")]
+    WaveNotArrived {
+        /// Simulated time \[s\].
+        duration_s: f64,
+        /// Peak force at the wall \[N\].
+        transmitted_n: f64,
+        /// Peak force of contact 1 \[N\].
+        incident_n: f64,
+    },
     /// The adaptive integrator could not meet its tolerance.
     #[error("adaptive step size fell to {step_s:.3e} s at t = {time_s:.6e} s; loosen rtol/atol or use rk4 with a small fixed step")]
     StepSizeTooSmall {

@@ -1,10 +1,11 @@
 //! How the chain is loaded: a striker sphere hitting the top element, or a prescribed blast force.
 
+use crate::defaults;
 use crate::error::{require_non_negative, require_positive, Error, Result};
 use crate::model::{hertz_beta, Chain, Material, Surface};
 
 /// Standard gravity g [m/s²] used to turn a drop height into a velocity (docs/physics.md §2).
-pub const STANDARD_GRAVITY_M_S2: f64 = 9.81;
+pub const STANDARD_GRAVITY_M_S2: f64 = defaults::GRAVITY_M_S2;
 
 /// A sphere striking the top element; a body of the simulation with its own Hertz contact.
 #[derive(Debug, Clone, PartialEq)]
@@ -23,9 +24,9 @@ impl Striker {
     /// The paper's striker: a 10 mm soda-lime glass sphere dropped from 0.20 m (docs/physics.md §2).
     pub fn paper() -> Self {
         Striker {
-            diameter_m: 10e-3,
-            material: Material::preset("soda-lime-glass").expect("preset exists"),
-            velocity_m_s: velocity_from_drop_height(0.20),
+            diameter_m: defaults::STRIKER_DIAMETER_MM * 1e-3,
+            material: Material::preset(defaults::STRIKER_MATERIAL).expect("preset exists"),
+            velocity_m_s: velocity_from_drop_height(defaults::DROP_HEIGHT_M),
             beta_override: None,
         }
     }
@@ -87,9 +88,9 @@ impl BlastProfile {
     /// The default blast of docs/physics.md §6: F0 = 200 N, Td = 0.2 ms, b = 1.
     pub fn paper() -> Self {
         BlastProfile::Friedlander {
-            peak_force_n: 200.0,
-            duration_s: 2e-4,
-            decay: 1.0,
+            peak_force_n: defaults::BLAST_PEAK_FORCE_N,
+            duration_s: defaults::BLAST_DURATION_S,
+            decay: defaults::BLAST_DECAY,
         }
     }
 

@@ -156,7 +156,9 @@ pub enum Method {
 impl Method {
     /// The paper's integrator: RK4 at Δt = 0.1 µs (docs/physics.md §8).
     pub fn paper() -> Self {
-        Method::Rk4 { time_step_s: 1e-7 }
+        Method::Rk4 {
+            time_step_s: crate::defaults::TIME_STEP_S,
+        }
     }
 
     /// The tableau this method runs.
@@ -198,6 +200,7 @@ impl Method {
 
 /// Counters of the work an integration did.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct IntegratorStats {
     /// Accepted steps.
     pub steps: u64,

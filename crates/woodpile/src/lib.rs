@@ -41,6 +41,7 @@
 //! (or the load), contact i is element i – element i+1, contact N is element N – wall.
 
 pub mod analysis;
+pub mod defaults;
 pub mod error;
 pub mod excitation;
 pub mod integrate;

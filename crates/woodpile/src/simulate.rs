@@ -1,6 +1,7 @@
 //! Who owns the loop: runs a chain under an excitation, samples on a uniform grid for recorders,
 //! and computes the figures of merit of docs/physics.md §8 over every integration step.
 
+use crate::defaults;
 use crate::error::{require_positive, Error, Result};
 use crate::excitation::Excitation;
 use crate::integrate::{Integrator, IntegratorStats, Method, OdeSystem};
@@ -23,16 +24,16 @@ impl RunSettings {
     /// docs/physics.md §8 for an impact: 2 ms, RK4 at 0.1 µs, samples every 1 µs.
     pub fn paper_impact() -> Self {
         RunSettings {
-            duration_s: 2e-3,
+            duration_s: defaults::IMPACT_DURATION_S,
             method: Method::paper(),
-            sample_interval_s: 1e-6,
+            sample_interval_s: defaults::SAMPLE_INTERVAL_S,
         }
     }
 
     /// docs/physics.md §8 for a blast: 3 ms, RK4 at 0.1 µs, samples every 1 µs.
     pub fn paper_blast() -> Self {
         RunSettings {
-            duration_s: 3e-3,
+            duration_s: defaults::BLAST_RUN_DURATION_S,
             ..Self::paper_impact()
         }
     }
@@ -74,6 +75,7 @@ impl RunSettings {
 
 /// The striker's rebound.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Restitution {
     /// e = −v_s(end)/v0. Without gravity the striker's velocity is constant once it has left.
     pub coefficient: f64,
@@ -84,6 +86,7 @@ pub struct Restitution {
 
 /// Energy bookkeeping of a run (docs/physics.md §7).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct EnergyBalance {
     /// Total energy at t = 0 \[J\].
     pub initial_j: f64,
@@ -96,8 +99,20 @@ pub struct EnergyBalance {
     pub max_relative_error: f64,
 }
 
+impl RunSummary {
+    /// The striker's restitution coefficient, only when it means something: an impact whose
+    /// striker has left for good by the end of the run (`None` for a blast, or when the run
+    /// ended with the striker still in contact or still moving with the chain).
+    pub fn restitution_coefficient(&self) -> Option<f64> {
+        self.restitution
+            .filter(|r| r.separated)
+            .map(|r| r.coefficient)
+    }
+}
+
 /// Figures of merit of one run (docs/physics.md §8).
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RunSummary {
     /// Peak force of every contact 0..=N over the whole run \[N\].
     pub contact_peak_forces_n: Vec<f64>,
@@ -107,8 +122,13 @@ pub struct RunSummary {
     pub incident_peak_force_n: f64,
     /// Transmitted force: the peak of contact N (the wall) \[N\].
     pub transmitted_peak_force_n: f64,
-    /// Transmitted / incident.
-    pub transmission_ratio: f64,
+    /// Transmitted / incident; `None` when it means nothing: a zero incident force, or a wave
+    /// that never reached the wall within the run (see [`RunSummary::wave_arrived`]).
+    pub transmission_ratio: Option<f64>,
+    /// Whether the wave reached the wall: the transmitted peak is at least
+    /// [`defaults::WAVE_ARRIVAL_FRACTION`] of the incident peak. False means the run is too short
+    /// (or the chain too long) for the transmitted force to mean anything: increase the duration.
+    pub wave_arrived: bool,
     /// The striker's rebound (impact only).
     pub restitution: Option<Restitution>,
     /// Energy balance.
@@ -313,6 +333,7 @@ pub fn simulate(
     let n = n_contacts - 1;
     let incident = peak[1.min(n)];
     let transmitted = peak[n];
+    let wave_arrived = incident > 0.0 && transmitted >= defaults::WAVE_ARRIVAL_FRACTION * incident;
     let scale = if ode.has_striker() {
         reference_energy
     } else {
@@ -323,11 +344,8 @@ pub fn simulate(
         contact_peak_times_s: peaks.time.clone(),
         incident_peak_force_n: incident,
         transmitted_peak_force_n: transmitted,
-        transmission_ratio: if incident > 0.0 {
-            transmitted / incident
-        } else {
-            0.0
-        },
+        transmission_ratio: (incident > 0.0 && wave_arrived).then(|| transmitted / incident),
+        wave_arrived,
         restitution,
         energy: EnergyBalance {
             initial_j: initial_energy.total,

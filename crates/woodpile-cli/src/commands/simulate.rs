@@ -136,16 +136,19 @@ pub fn terminal_summary(r: &RunRecord<'_>, dir: &Path) -> String {
         "transmitted  {:.4} N   (peak of contact {}, the wall)\n",
         s.transmitted_peak_force_n, s.n_elements
     ));
-    o.push_str(&format!("ratio        {:.4}\n", s.transmission_ratio));
-    if let (Some(e), Some(sep)) = (s.restitution_coefficient, s.striker_separated) {
-        o.push_str(&format!(
-            "restitution  {e:.4}{}\n",
-            if sep {
-                ""
-            } else {
-                "   (striker still in contact or not yet away at the end)"
-            }
-        ));
+    match s.transmission_ratio {
+        Some(r) => o.push_str(&format!("ratio        {r:.4}\n")),
+        None if !s.wave_arrived => o.push_str(
+            "ratio        none: the wave did not reach the wall within run.duration_s; increase it\n",
+        ),
+        None => o.push_str("ratio        none: the incident force is zero\n"),
+    }
+    match (s.restitution_coefficient, s.striker_separated) {
+        (Some(e), _) => o.push_str(&format!("restitution  {e:.4}\n")),
+        (None, Some(false)) => o.push_str(
+            "restitution  none: the striker is still in contact or moving with the chain at the end; increase run.duration_s\n",
+        ),
+        _ => {}
     }
     o.push_str(&format!(
         "energy       initial {:.4e} J, final {:.4e} J, input work {:.4e} J, max relative error {:.2e}\n",

@@ -48,7 +48,6 @@ fn impact_run_writes_every_file() {
         "incident_peak_force_n",
         "transmitted_peak_force_n",
         "transmission_ratio",
-        "restitution_coefficient",
         "striker_separated",
         "wall_time_s",
     ] {

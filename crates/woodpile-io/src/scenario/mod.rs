@@ -400,42 +400,15 @@ pub struct RunSpec {
     pub sample_interval_s: Option<f64>,
 }
 
-/// Defaults of docs/physics.md.
+/// The model's defaults, from the physics core (their single source).
 pub mod defaults {
-    /// Drop height \[m\] (docs/physics.md §2).
-    pub const DROP_HEIGHT_M: f64 = 0.20;
-    /// Striker diameter \[mm\].
-    pub const STRIKER_DIAMETER_MM: f64 = 10.0;
-    /// Striker material.
-    pub const STRIKER_MATERIAL: &str = "soda-lime-glass";
-    /// Friedlander peak \[N\] (docs/physics.md §6).
-    pub const PEAK_FORCE_N: f64 = 200.0;
-    /// Friedlander duration \[s\].
-    pub const BLAST_DURATION_S: f64 = 2e-4;
-    /// Friedlander decay.
-    pub const DECAY: f64 = 1.0;
-    /// Wall material.
-    pub const WALL_MATERIAL: &str = "stainless-steel";
-    /// Wall cap radius \[mm\].
-    pub const CAP_RADIUS_MM: f64 = 5.0;
-    /// User rod diameter \[mm\] (the paper's rods).
-    pub const ROD_DIAMETER_MM: f64 = 5.0;
-    /// User rod / sphere material.
-    pub const ELEMENT_MATERIAL: &str = "fused-quartz";
-    /// Crossing angle \[deg\].
-    pub const CROSSING_ANGLE_DEG: f64 = 90.0;
-    /// Impact run \[s\] (docs/physics.md §8).
-    pub const IMPACT_DURATION_S: f64 = 2e-3;
-    /// Blast run \[s\].
-    pub const BLAST_RUN_DURATION_S: f64 = 3e-3;
-    /// RK4 step \[s\].
-    pub const TIME_STEP_S: f64 = 1e-7;
-    /// DOPRI5 rtol.
-    pub const RTOL: f64 = 1e-9;
-    /// DOPRI5 atol \[m\].
-    pub const ATOL: f64 = 1e-15;
-    /// Sample interval \[s\].
-    pub const SAMPLE_INTERVAL_S: f64 = 1e-6;
+    pub use woodpile::defaults::*;
+    /// Friedlander peak \[N\] (scenario key `excitation.peak_force_n`).
+    pub const PEAK_FORCE_N: f64 = BLAST_PEAK_FORCE_N;
+    /// Friedlander decay (scenario key `excitation.decay`).
+    pub const DECAY: f64 = BLAST_DECAY;
+    /// Wall cap radius \[mm\] (scenario key `wall.cap_radius_mm`).
+    pub const CAP_RADIUS_MM: f64 = WALL_CAP_RADIUS_MM;
 }
 
 impl Scenario {

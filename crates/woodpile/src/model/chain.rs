@@ -140,8 +140,8 @@ impl Wall {
     /// The paper's sensor: a stainless-steel spherical cap of radius 5 mm (docs/physics.md §2).
     pub fn paper_sensor() -> Self {
         Wall::Cap {
-            material: Material::preset("stainless-steel").expect("preset exists"),
-            radius_m: 5e-3,
+            material: Material::preset(crate::defaults::WALL_MATERIAL).expect("preset exists"),
+            radius_m: crate::defaults::WALL_CAP_RADIUS_MM * 1e-3,
         }
     }
 }

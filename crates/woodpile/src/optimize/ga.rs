@@ -94,6 +94,7 @@ impl GaSettings {
 
 /// A genome and its objective value.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Individual {
     /// Catalogue indices, top to bottom.
     pub genome: Genome,
@@ -103,6 +104,7 @@ pub struct Individual {
 
 /// One line of the history.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct GenerationStats {
     /// Generation (0 = the initial population).
     pub generation: usize,
@@ -165,6 +167,7 @@ impl GaState {
 
 /// Why [`BreederGa::run`] returned.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum StopReason {
     /// The generation limit was reached.
     GenerationLimit,

@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::model::Chain;
 use crate::record::{Layout, Recorder, Sample};
-use crate::simulate::{simulate, RunSettings};
+use crate::simulate::{simulate, RunSettings, RunSummary};
 
 /// A figure of merit to minimise. Implement it to optimise for your own quantity; it must be a
 /// deterministic function of its arguments (the GA caches and compares values bit for bit).
@@ -102,21 +102,36 @@ impl Objective for StandardObjective {
             sample_interval_s: settings.duration_s,
             ..*settings
         };
+        // A transmitted figure of a wave that never reached the wall is a meaningless (tiny)
+        // number the GA would happily "minimise": refuse it, naming the duration to increase.
+        let arrived = |s: RunSummary| -> Result<RunSummary> {
+            if s.wave_arrived {
+                Ok(s)
+            } else {
+                Err(Error::WaveNotArrived {
+                    duration_s: settings.duration_s,
+                    transmitted_n: s.transmitted_peak_force_n,
+                    incident_n: s.incident_peak_force_n,
+                })
+            }
+        };
         match self {
             StandardObjective::TransmittedForce => {
-                Ok(simulate(chain, excitation, &peaks_only, &mut ())?.transmitted_peak_force_n)
+                Ok(arrived(simulate(chain, excitation, &peaks_only, &mut ())?)?
+                    .transmitted_peak_force_n)
             }
             StandardObjective::TransmissionRatio => {
-                Ok(simulate(chain, excitation, &peaks_only, &mut ())?.transmission_ratio)
+                let s = arrived(simulate(chain, excitation, &peaks_only, &mut ())?)?;
+                Ok(s.transmission_ratio.unwrap_or(f64::NAN))
             }
             StandardObjective::TransmittedEnergy => {
                 let mut peak = LayerEnergyPeak::last_layer();
-                simulate(chain, excitation, settings, &mut peak)?;
+                arrived(simulate(chain, excitation, settings, &mut peak)?)?;
                 Ok(peak.peak_j)
             }
             StandardObjective::TransmittedImpulse => {
                 let mut impulse = ContactImpulse::wall();
-                simulate(chain, excitation, settings, &mut impulse)?;
+                arrived(simulate(chain, excitation, settings, &mut impulse)?)?;
                 Ok(impulse.impulse_n_s)
             }
         }

@@ -1,0 +1,53 @@
+//! Every default of the model and of a run, stated once (docs/physics.md gives the reasons).
+//!
+//! The scenario format (`woodpile-io`), the command line and the Python package take their
+//! defaults from here and nowhere else; the constructors of this crate
+//! ([`crate::Striker::paper`], [`crate::BlastProfile::paper`], [`crate::RunSettings::paper_impact`],
+//! [`crate::Wall::paper`], …) are built from the same constants.
+
+/// Drop height h of the striker \[m\] (docs/physics.md §2): v0 = sqrt(2 g h).
+pub const DROP_HEIGHT_M: f64 = 0.20;
+/// Standard gravity g \[m/s²\] used to turn a drop height into an impact velocity.
+pub const GRAVITY_M_S2: f64 = 9.81;
+/// Striker sphere diameter \[mm\] (§2).
+pub const STRIKER_DIAMETER_MM: f64 = 10.0;
+/// Striker material preset (§2; the paper says "glass").
+pub const STRIKER_MATERIAL: &str = "soda-lime-glass";
+/// Friedlander peak force F0 \[N\] (§6; an assumption: the paper gives no number).
+pub const BLAST_PEAK_FORCE_N: f64 = 200.0;
+/// Friedlander positive-phase duration Td \[s\] (§6; an assumption).
+pub const BLAST_DURATION_S: f64 = 2e-4;
+/// Friedlander decay constant b (§6: 1 = classic Friedlander, 0 = triangle).
+pub const BLAST_DECAY: f64 = 1.0;
+/// Material preset of the sensor cap or flat under the chain (§2).
+pub const WALL_MATERIAL: &str = "stainless-steel";
+/// Radius of the sensor's spherical cap R_c \[mm\] (§2; an assumption).
+pub const WALL_CAP_RADIUS_MM: f64 = 5.0;
+/// Diameter of a user rod when none is given \[mm\] (the paper's rods).
+pub const ROD_DIAMETER_MM: f64 = 5.0;
+/// Material preset of a user rod or sphere when none is given (the paper's rods).
+pub const ELEMENT_MATERIAL: &str = "fused-quartz";
+/// Angle between the axes of neighbouring rods \[deg\] (§1).
+pub const CROSSING_ANGLE_DEG: f64 = 90.0;
+/// Simulated time of an impact run \[s\] (§8).
+pub const IMPACT_DURATION_S: f64 = 2e-3;
+/// Simulated time of a blast run \[s\] (§8).
+pub const BLAST_RUN_DURATION_S: f64 = 3e-3;
+/// Fixed RK4 time step Δt \[s\] (§8: converges peak forces to ~1e-6).
+pub const TIME_STEP_S: f64 = 1e-7;
+/// Relative tolerance of the adaptive Dormand–Prince method.
+pub const RTOL: f64 = 1e-9;
+/// Absolute tolerance of the adaptive method \[m\] (displacements; velocities are scaled).
+pub const ATOL: f64 = 1e-15;
+/// Spacing of the uniform sample grid Δs \[s\] (§8).
+pub const SAMPLE_INTERVAL_S: f64 = 1e-6;
+/// Number of positions of the paper's design problem (§11).
+pub const DESIGN_POSITIONS: usize = 20;
+/// A transmitted peak below this fraction of the incident peak means the wave never reached the
+/// wall within the run: the transmission ratio is then not reported (docs/physics.md §8).
+pub const WAVE_ARRIVAL_FRACTION: f64 = 1e-3;
+/// Relative energy-balance error above which a run warns that it may be inaccurate.
+pub const ENERGY_ERROR_WARN: f64 = 1e-4;
+/// Relative energy-balance error above which a run is refused as inaccurate (unless the user
+/// asks for its results anyway).
+pub const ENERGY_ERROR_FAIL: f64 = 1e-2;
