@@ -113,6 +113,8 @@ impl Error {
                 e,
                 woodpile::Error::NonFiniteState { .. }
                     | woodpile::Error::RunawayOverlap { .. }
+                    | woodpile::Error::LoadBeyondContact { .. }
+                    | woodpile::Error::TooManySteps { .. }
                     | woodpile::Error::StepSizeTooSmall { .. }
             ),
             _ => true,

@@ -46,6 +46,12 @@ pub const DESIGN_POSITIONS: usize = 20;
 /// A transmitted peak below this fraction of the incident peak means the wave never reached the
 /// wall within the run: the transmission ratio is then not reported (docs/physics.md §8).
 pub const WAVE_ARRIVAL_FRACTION: f64 = 1e-3;
+/// Smallest step of the adaptive integrator as a fraction of the run's end time: a step below it
+/// (more than 1e10 steps for the run) is refused as [`crate::Error::StepSizeTooSmall`].
+pub const MIN_STEP_FRACTION: f64 = 1e-10;
+/// Most integration steps a run may take before it stops with [`crate::Error::TooManySteps`]
+/// (a backstop for adaptive runs; front ends refuse fixed-step runs above it before starting).
+pub const MAX_STEPS: u64 = 1_000_000_000;
 /// Relative energy-balance error above which a run warns that it may be inaccurate.
 pub const ENERGY_ERROR_WARN: f64 = 1e-4;
 /// Relative energy-balance error above which a run is refused as inaccurate (unless the user

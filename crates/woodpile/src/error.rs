@@ -33,7 +33,7 @@ pub enum Error {
         reason: String,
     },
     /// The state became NaN or infinite.
-    #[error("numerical blow-up at t = {time_s:.6e} s: non-finite state at contact {contact}; reduce the time step (rk4) or tighten rtol/atol (adaptive)")]
+    #[error("numerical blow-up at t = {time_s:.6e} s starting at contact {contact}: the state became non-finite; the step is too large for this contact: reduce run.time_step_s (rk4) or tighten rtol/atol (dopri5)")]
     NonFiniteState {
         /// Simulation time \[s\].
         time_s: f64,
@@ -41,7 +41,7 @@ pub enum Error {
         contact: usize,
     },
     /// A contact overlap grew beyond the range where the Hertz law is physical.
-    #[error("numerical blow-up at t = {time_s:.6e} s: overlap at contact {contact} is {overlap_m:.3e} m, beyond the physical limit {limit_m:.3e} m (10 % of the smallest radius of curvature); reduce the time step (rk4) or tighten rtol/atol (adaptive)")]
+    #[error("numerical blow-up at t = {time_s:.6e} s: overlap at contact {contact} is {overlap_m:.3e} m, beyond the physical limit {limit_m:.3e} m (10 % of the smallest radius of curvature), and a step 256 times smaller stays within it: the step is too large: reduce run.time_step_s (rk4) or tighten rtol/atol (dopri5)")]
     RunawayOverlap {
         /// Simulation time \[s\].
         time_s: f64,
@@ -63,8 +63,36 @@ pub enum Error {
         /// Peak force of contact 1 \[N\].
         incident_n: f64,
     },
+    /// A contact was compressed beyond its physical range even when the failing step was
+    /// re-integrated with much smaller steps: the load is more than the contact can take, and no
+    /// time step will help.
+    #[error("the load exceeds what contact {contact} can take: at t = {time_s:.6e} s its overlap reached {overlap_m:.3e} m, beyond its physical range {limit_m:.3e} m (10 % of the smallest radius of curvature), also with steps 256 times smaller; the {energy_j:.3e} J in the system could compress it by up to {reachable_m:.3e} m. Reduce the impact velocity or the load, or model a stiffer or larger contact (beta, cap radius); a smaller time step will not help")]
+    LoadBeyondContact {
+        /// Simulation time \[s\].
+        time_s: f64,
+        /// Contact index in the paper's numbering.
+        contact: usize,
+        /// Overlap δ reached \[m\].
+        overlap_m: f64,
+        /// Largest physical overlap \[m\].
+        limit_m: f64,
+        /// Total energy in the system at the start of the failing step \[J\].
+        energy_j: f64,
+        /// Overlap that energy could produce at this contact, (5 E / 2β)^{2/5} \[m\].
+        reachable_m: f64,
+    },
+    /// The run needed more integration steps than allowed.
+    #[error("the run stopped after {steps} integration steps at t = {time_s:.6e} s of run.duration_s = {duration_s:e} s (limit {steps}); shorten run.duration_s, use a larger run.time_step_s, or loosen rtol")]
+    TooManySteps {
+        /// Steps taken.
+        steps: u64,
+        /// Simulation time reached \[s\].
+        time_s: f64,
+        /// Requested duration \[s\].
+        duration_s: f64,
+    },
     /// The adaptive integrator could not meet its tolerance.
-    #[error("adaptive step size fell to {step_s:.3e} s at t = {time_s:.6e} s; loosen rtol/atol or use rk4 with a small fixed step")]
+    #[error("adaptive step size fell to {step_s:.3e} s at t = {time_s:.6e} s, below 1e-10 of the run: the system is too stiff for the tolerance (a very stiff resonator or contact?); check the cell's stiffnesses, loosen rtol/atol, or use rk4 with a small fixed step")]
     StepSizeTooSmall {
         /// Simulation time \[s\].
         time_s: f64,

@@ -344,6 +344,11 @@ impl Integrator {
         self.t_prev
     }
 
+    /// State at the start of the last step.
+    pub fn y_prev(&self) -> &[f64] {
+        &self.y_prev
+    }
+
     /// Current state.
     pub fn y(&self) -> &[f64] {
         &self.y
@@ -507,7 +512,11 @@ impl Integrator {
         loop {
             let remaining = t_end - self.t;
             let h_try = h.min(remaining);
-            if h_try < 1e-14 * self.t.abs().max(1e-9) {
+            // A step below MIN_STEP_FRACTION of the run means more than 1/MIN_STEP_FRACTION
+            // steps: a stiff system the tolerance cannot follow in reasonable time.
+            let h_min =
+                (1e-14 * self.t.abs()).max(crate::defaults::MIN_STEP_FRACTION * t_end.abs());
+            if h_try < h_min && h_try < remaining {
                 return Err(Error::StepSizeTooSmall {
                     time_s: self.t,
                     step_s: h_try,

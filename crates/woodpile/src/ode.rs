@@ -175,6 +175,28 @@ impl ChainOde {
         &self.overlap_limit_m[1 - self.shift..]
     }
 
+    /// Contact coefficients β \[N/m^1.5\] of paper contacts 0..=N (NaN for a prescribed load).
+    pub fn contact_betas(&self) -> &[f64] {
+        &self.beta[1 - self.shift..]
+    }
+
+    /// The stiffest closed contact at the last evaluation (paper numbering): the one with the
+    /// highest linearised frequency ω² = (3/2) β δ^{1/2} (1/m_a + 1/m_b) over the primary masses
+    /// it joins, i.e. the one an explicit step leaves stable last. `None` when none is closed.
+    pub fn stiffest_contact(&self) -> Option<(usize, f64)> {
+        let p = self.n_primary;
+        let first = 1 - self.shift;
+        (1..=p)
+            .filter(|&s| self.overlap_m[s] > 0.0 && self.overlap_m[s].is_finite())
+            .map(|s| {
+                let inv_m = self.inv_mass[s - 1] + if s < p { self.inv_mass[s] } else { 0.0 };
+                (s, 1.5 * self.beta[s] * self.overlap_m[s].sqrt() * inv_m)
+            })
+            .filter(|(_, w2)| w2.is_finite())
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(s, w2)| (s - first, w2))
+    }
+
     /// Rates dF/dt [N/s] of paper contacts 0..=N for state `y`, which must be the state of the last
     /// evaluation. The load's rate is NaN (its peak is not refined).
     pub fn contact_force_rates(&self, y: &[f64], out: &mut [f64]) {

@@ -3,7 +3,7 @@
 
 use crate::defaults;
 use crate::error::{require_positive, Error, Result};
-use crate::excitation::Excitation;
+use crate::excitation::{BlastProfile, Excitation};
 use crate::integrate::{Integrator, IntegratorStats, Method, OdeSystem};
 use crate::model::Chain;
 use crate::ode::ChainOde;
@@ -65,6 +65,24 @@ impl RunSettings {
             ));
         }
         self.method.validate(self.duration_s)
+    }
+
+    /// Integration steps the run will take: T/Δt rounded up for a fixed step; `None` for the
+    /// adaptive method (its steps follow the dynamics; [`defaults::MAX_STEPS`] bounds them).
+    pub fn estimated_steps(&self) -> Option<u64> {
+        match self.method {
+            Method::Rk4 { time_step_s } => {
+                // A ratio within rounding of an integer is that integer (the step snaps to T).
+                let ratio = self.duration_s / time_step_s;
+                let n = if (ratio - ratio.round()).abs() <= 1e-9 * ratio {
+                    ratio.round()
+                } else {
+                    ratio.ceil()
+                };
+                Some(n.max(1.0) as u64)
+            }
+            Method::Dopri5 { .. } => None,
+        }
     }
 
     /// Number of samples t_k = k Δs ≤ T, k = 0, 1, …
@@ -291,12 +309,43 @@ pub fn simulate(
     let sample_time = |k: usize| (k as f64 * settings.sample_interval_s).min(settings.duration_s);
     let t_end = settings.duration_s;
     let mut last = initial_energy;
+    // A tabulated load is piecewise linear: its peak over a step lies at an end of the step or at
+    // a breakpoint inside it, which the step grid may miss.
+    let load_table = match excitation {
+        Excitation::Blast(BlastProfile::Table { times_s, forces_n }) => Some((times_s, forces_n)),
+        _ => None,
+    };
+    let mut next_breakpoint = 0usize;
+    let mut recent = RecentStates::new(dim);
     while integrator.t() < t_end * (1.0 - 1e-14) {
         integrator.step(&mut ode, t_end)?;
         let (t0, t1) = (integrator.t_prev(), integrator.t());
-        ode.check_contacts(t1)?;
+        recent.push(t0, integrator.y_prev());
+        if let Err(coarse) = ode.check_contacts(t1) {
+            let culprit = ode.stiffest_contact().map(|c| c.0);
+            return Err(diagnose_blow_up(
+                chain, excitation, &recent, t1, culprit, coarse,
+            ));
+        }
+        if integrator.stats().steps > defaults::MAX_STEPS {
+            return Err(Error::TooManySteps {
+                steps: defaults::MAX_STEPS,
+                time_s: t1,
+                duration_s: settings.duration_s,
+            });
+        }
         ode.contact_force_rates(integrator.y(), &mut peaks.rate);
         peaks.update(t0, t1, ode.contact_forces_n());
+        if let Some((times, forces)) = load_table {
+            while next_breakpoint < times.len() && times[next_breakpoint] <= t1 {
+                let (tb, fb) = (times[next_breakpoint], forces[next_breakpoint]);
+                if tb > t0 && fb > peaks.peak[0] {
+                    peaks.peak[0] = fb;
+                    peaks.time[0] = tb;
+                }
+                next_breakpoint += 1;
+            }
+        }
         while next_sample < n_samples && sample_time(next_sample) <= t1 * (1.0 + 1e-12) {
             let ts = sample_time(next_sample);
             let at_step = (ts - t1).abs() <= 1e-9 * settings.sample_interval_s;
@@ -361,6 +410,192 @@ pub fn simulate(
         n_samples: next_sample,
         wall_time_s: started.elapsed().as_secs_f64(),
     })
+}
+
+/// Finds the contact that blew up and why, from the start states of the last few steps
+/// (`recent`) up to the failed end time `t1`:
+/// - the load is beyond a contact's physical range when those steps re-integrated 256 times finer
+///   also push its overlap past the limit and the energy in the system could compress it so far
+///   ((2/5) β δ^{5/2} ≤ E): that contact is named;
+/// - otherwise the step was too large, and the culprit is the contact that was stiffest at any
+///   stage evaluation of the original steps (the one whose stability limit a step crossed; the
+///   bodies it flings overrun their neighbours' limits a step or two later), falling back to
+///   `culprit`, the stiffest contact of the failed state.
+fn diagnose_blow_up(
+    chain: &Chain,
+    excitation: &Excitation,
+    recent: &RecentStates,
+    t1: f64,
+    culprit: Option<usize>,
+    coarse: Error,
+) -> Error {
+    let Ok(mut ode) = ChainOde::new(chain, excitation) else {
+        return coarse;
+    };
+    let states = recent.oldest_first();
+    let Some(&(t0, y0)) = states.first() else {
+        return coarse;
+    };
+    let mut scratch = vec![0.0; y0.len()];
+    ode.rhs(t0, y0, &mut scratch);
+    let mut layers = vec![0.0; ode.n_layers()];
+    let energy_j = layers_total(&ode, y0, &mut layers);
+    let h = (t1 - t0) / (256.0 * states.len() as f64);
+    let mut fine = Integrator::new(
+        Method::Rk4 { time_step_s: h },
+        &mut ode,
+        t0,
+        y0.to_vec(),
+        &[],
+        h,
+    );
+    let mut fine_failure = None;
+    while fine.t() < t1 * (1.0 - 1e-14) {
+        if fine.step(&mut ode, t1).is_err() {
+            break;
+        }
+        if let Err(e) = ode.check_contacts(fine.t()) {
+            fine_failure = Some(e);
+            break;
+        }
+    }
+    if let Some(Error::RunawayOverlap {
+        time_s,
+        contact,
+        overlap_m,
+        limit_m,
+    }) = fine_failure
+    {
+        let beta = ode.contact_betas()[contact];
+        let reachable_m = (2.5 * energy_j / beta).powf(0.4);
+        if energy_j.is_finite() && reachable_m >= limit_m {
+            return Error::LoadBeyondContact {
+                time_s,
+                contact,
+                overlap_m,
+                limit_m,
+                energy_j,
+                reachable_m,
+            };
+        }
+    }
+    let coarse_contact = match coarse {
+        Error::RunawayOverlap { contact, .. } | Error::NonFiniteState { contact, .. } => contact,
+        _ => 0,
+    };
+    let contact = stiffest_during_steps(chain, excitation, &states, t1)
+        .or(culprit)
+        .unwrap_or(coarse_contact);
+    match coarse {
+        Error::RunawayOverlap {
+            time_s,
+            overlap_m,
+            limit_m,
+            contact: c,
+        } if c == contact => Error::RunawayOverlap {
+            time_s,
+            contact,
+            overlap_m,
+            limit_m,
+        },
+        Error::RunawayOverlap { time_s, .. } | Error::NonFiniteState { time_s, .. } => {
+            Error::NonFiniteState { time_s, contact }
+        }
+        other => other,
+    }
+}
+
+/// Re-takes the last steps, each from its saved start state, as RK4 steps and returns the contact
+/// that was the stiffest at any stage evaluation: the one whose stability limit a step crossed
+/// (its own force may stay moderate while the bodies it flings overrun their neighbours, which is
+/// where the overlap check then fails, a step or two later).
+fn stiffest_during_steps(
+    chain: &Chain,
+    excitation: &Excitation,
+    states: &[(f64, &[f64])],
+    t1: f64,
+) -> Option<usize> {
+    /// Watches every evaluation of the system for its stiffest contact.
+    struct Watch {
+        ode: ChainOde,
+        stiffest: Option<(usize, f64)>,
+    }
+    impl OdeSystem for Watch {
+        fn dimension(&self) -> usize {
+            self.ode.dimension()
+        }
+        fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+            self.ode.rhs(t, y, dydt);
+            if let Some((c, w2)) = self.ode.stiffest_contact() {
+                if self.stiffest.is_none_or(|(_, best)| w2 > best) {
+                    self.stiffest = Some((c, w2));
+                }
+            }
+        }
+    }
+    let mut watch = Watch {
+        ode: ChainOde::new(chain, excitation).ok()?,
+        stiffest: None,
+    };
+    for (k, &(t0, y0)) in states.iter().enumerate() {
+        let t_next = states.get(k + 1).map_or(t1, |s| s.0);
+        let h = t_next - t0;
+        let mut step = Integrator::new(
+            Method::Rk4 { time_step_s: h },
+            &mut watch,
+            t0,
+            y0.to_vec(),
+            &[],
+            h,
+        );
+        let _ = step.step(&mut watch, t_next);
+    }
+    watch.stiffest.map(|(c, _)| c)
+}
+
+/// The start states of the last few steps (a ring allocated once; one copy per step), so that a
+/// blow-up can be traced back to the step where it began.
+struct RecentStates {
+    times: Vec<f64>,
+    states: Vec<Vec<f64>>,
+    next: usize,
+    len: usize,
+}
+
+impl RecentStates {
+    /// Steps kept: a stiff contact flings its neighbours in one step; they overrun the next
+    /// contacts' limits within a step or two.
+    const DEPTH: usize = 4;
+
+    fn new(dim: usize) -> Self {
+        RecentStates {
+            times: vec![0.0; Self::DEPTH],
+            states: vec![vec![0.0; dim]; Self::DEPTH],
+            next: 0,
+            len: 0,
+        }
+    }
+
+    fn push(&mut self, t: f64, y: &[f64]) {
+        self.times[self.next] = t;
+        self.states[self.next].copy_from_slice(y);
+        self.next = (self.next + 1) % Self::DEPTH;
+        self.len = (self.len + 1).min(Self::DEPTH);
+    }
+
+    fn oldest_first(&self) -> Vec<(f64, &[f64])> {
+        (0..self.len)
+            .map(|k| (self.next + Self::DEPTH - self.len + k) % Self::DEPTH)
+            .map(|i| (self.times[i], self.states[i].as_slice()))
+            .collect()
+    }
+}
+
+/// Total energy of the state `y` (all layers and the wall's share) \[J\]; the force cache of
+/// `ode` must be at `y`.
+fn layers_total(ode: &ChainOde, y: &[f64], layers: &mut [f64]) -> f64 {
+    let wall = ode.layer_energies_j(y, layers);
+    layers.iter().sum::<f64>() + wall
 }
 
 #[derive(Debug, Clone, Copy)]

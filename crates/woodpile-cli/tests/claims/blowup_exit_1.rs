@@ -16,7 +16,7 @@ fn numerical_blowup_exits_1_without_output() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(stderr.starts_with("error: "), "{stderr}");
-    for e in ["t = ", "contact", "reduce the time step"] {
+    for e in ["t = ", "contact", "reduce run.time_step_s"] {
         assert!(stderr.contains(e), "expected `{e}` in {stderr}");
     }
     assert!(!dir.path().join("out").exists());

@@ -292,30 +292,9 @@ fn resolve_chain(s: &Scenario) -> Result<Chain, Error> {
     let mut builder = ChainBuilder::new(elements)
         .crossing_angle_rad(angle.to_radians())
         .wall(resolve_wall(s)?);
-    for (k, o) in c.contact_beta.iter().enumerate() {
-        let f = format!("chain.contact_beta[{k}]");
-        if o.contact == 0 {
-            return Err(Error::invalid(
-                format!("{f}.contact"),
-                0,
-                "contact 0 is the striker: set excitation.beta instead",
-            ));
-        }
-        if o.contact > n {
-            return Err(Error::invalid(
-                format!("{f}.contact"),
-                o.contact,
-                format!("contacts are numbered 1..={n} (1 = elements 1-2, {n} = the wall)"),
-            ));
-        }
-        if o.contact == n && s.wall.effective_kind() == WallKind::Free {
-            return Err(Error::invalid(
-                format!("{f}.contact"),
-                o.contact,
-                "contact N is the wall, but wall.kind = \"free\"",
-            ));
-        }
-        positive(&format!("{f}.beta"), o.beta)?;
+    // Indices, duplicates and values of the overrides are checked once, by the builder, under
+    // their scenario keys.
+    for o in &c.contact_beta {
         builder = builder.contact_beta(o.contact, o.beta);
     }
     builder.build().map_err(Error::at("chain"))

@@ -228,23 +228,42 @@ impl ChainBuilder {
                 "must be finite",
             ));
         }
-        for &(c, beta) in &self.beta_overrides {
-            if c == 0 || c > n {
+        for (k, &(c, beta)) in self.beta_overrides.iter().enumerate() {
+            let field = format!("chain.contact_beta[{k}]");
+            if c == 0 {
                 return Err(Error::invalid(
-                    "contact beta override index",
+                    format!("{field}.contact"),
                     c,
-                    format!("contacts are numbered 1..={n} (1 = elements 1-2, {n} = wall)"),
+                    "contact 0 is the striker or the load: set the striker's beta instead (excitation.beta)",
                 ));
             }
-            require_positive(&format!("contact {c} beta"), beta)?;
+            if c > n {
+                return Err(Error::invalid(
+                    format!("{field}.contact"),
+                    c,
+                    format!("contacts are numbered 1..={n} (1 = elements 1-2, {n} = the wall)"),
+                ));
+            }
+            if c == n && matches!(self.wall, Wall::Free) {
+                return Err(Error::invalid(
+                    format!("{field}.contact"),
+                    c,
+                    "contact N is the wall, but the chain has a free end (wall.kind = \"free\")",
+                ));
+            }
+            require_positive(&format!("{field}.beta"), beta)?;
+            if let Some(j) = self.beta_overrides[..k].iter().position(|o| o.0 == c) {
+                return Err(Error::invalid(
+                    format!("{field}.contact"),
+                    c,
+                    format!(
+                        "contact {c} is already set by chain.contact_beta[{j}] (beta = {:e}); give each contact once",
+                        self.beta_overrides[j].1
+                    ),
+                ));
+            }
         }
-        let overridden = |c: usize| {
-            self.beta_overrides
-                .iter()
-                .rev()
-                .find(|o| o.0 == c)
-                .map(|o| o.1)
-        };
+        let overridden = |c: usize| self.beta_overrides.iter().find(|o| o.0 == c).map(|o| o.1);
         let surface = |i: usize| self.elements[i].surface(angle * i as f64);
         let mut inner_betas = Vec::with_capacity(n.saturating_sub(1));
         let mut overlap_limits_m = Vec::with_capacity(n);

@@ -1,29 +1,39 @@
-//! Claim: a numerical blow-up is reported as an error naming the time and the contact, with the
-//! fix (a smaller time step), instead of producing data.
+//! Claim: a numerical blow-up is reported as an error, never as data, and the error names the
+//! contact that actually failed and the right cure.
 //!
-//! Setup: RK4 with Δt = 10 µs, half the striker's contact time (~21 µs), beyond the stability
-//! limit of the stiff Hertz contacts (at 5 µs RK4 still runs, with a 3 % energy error that the
-//! summary reports).
+//! - A step that is simply too large (RK4 at Δt = 10 µs, half the striker's ~21 µs contact time,
+//!   beyond the stability limit of the stiff Hertz contacts) is a step problem: the message says
+//!   to reduce the time step.
+//! - One absurdly stiff contact (β = 1e30 N/m^1.5 on contact 2 of a 5-rod chain: its linearised
+//!   frequency is ~1e11 rad/s, so RK4 at 0.1 µs is unstable there first) is reported at contact 2,
+//!   as a step problem: the energy in the system (2.6 mJ) could compress that contact by only
+//!   (5E/2β)^{2/5} ≈ 1e-13 m, far inside its physical range, so no load is too large for it.
+//! - A striker at 1000 m/s carries 654 J; the 1-2 mm overlap it would need is beyond the physical
+//!   range of the striker contact (10 % of the 2.5 mm rod radius) at any step size: reported as a
+//!   load the contact cannot take, at contact 0, with "a smaller time step will not help".
 
 use woodpile::{
     simulate, CellModel, ChainBuilder, Error, Excitation, Method, RunSettings, Striker,
 };
 
+fn short(time_step_s: f64) -> RunSettings {
+    RunSettings {
+        duration_s: 1e-3,
+        method: Method::Rk4 { time_step_s },
+        sample_interval_s: 1e-5,
+    }
+}
+
 #[test]
-fn oversized_step_is_reported_not_recorded() {
+fn oversized_step_is_reported_as_a_step_problem() {
     let chain = ChainBuilder::table1_rods(&[20; 5], CellModel::Resonant)
         .unwrap()
         .build()
         .unwrap();
-    let settings = RunSettings {
-        duration_s: 1e-3,
-        method: Method::Rk4 { time_step_s: 1e-5 },
-        sample_interval_s: 1e-5,
-    };
     let err = simulate(
         &chain,
         &Excitation::Impact(Striker::paper()),
-        &settings,
+        &short(1e-5),
         &mut (),
     )
     .unwrap_err();
@@ -35,12 +45,65 @@ fn oversized_step_is_reported_not_recorded() {
             assert!(*time_s > 0.0 && *time_s <= 1e-3, "time {time_s}");
             assert!(*contact <= 5, "contact {contact}");
         }
-        other => panic!("expected a blow-up error, got {other:?}"),
+        other => panic!("expected a step-size blow-up, got {other:?}"),
     }
     let msg = err.to_string();
     assert!(
-        msg.contains("reduce the time step") && msg.contains("t ="),
+        msg.contains("reduce run.time_step_s") && msg.contains("t ="),
         "{msg}"
+    );
+}
+
+#[test]
+fn stiff_contact_is_named_where_it_is() {
+    let chain = ChainBuilder::table1_rods(&[20; 5], CellModel::Resonant)
+        .unwrap()
+        .contact_beta(2, 1e30)
+        .build()
+        .unwrap();
+    let err = simulate(
+        &chain,
+        &Excitation::Impact(Striker::paper()),
+        &short(1e-7),
+        &mut (),
+    )
+    .unwrap_err();
+    match err {
+        Error::RunawayOverlap { contact, .. } | Error::NonFiniteState { contact, .. } => {
+            assert_eq!(contact, 2, "{err}")
+        }
+        other => panic!("expected a step-size blow-up at contact 2, got {other:?}"),
+    }
+}
+
+#[test]
+fn impossible_load_is_not_blamed_on_the_step() {
+    let chain = ChainBuilder::table1_rods(&[20; 5], CellModel::Resonant)
+        .unwrap()
+        .build()
+        .unwrap();
+    let striker = Striker {
+        velocity_m_s: 1000.0,
+        ..Striker::paper()
+    };
+    let err = simulate(&chain, &Excitation::Impact(striker), &short(1e-8), &mut ()).unwrap_err();
+    match &err {
+        Error::LoadBeyondContact {
+            contact,
+            overlap_m,
+            limit_m,
+            reachable_m,
+            ..
+        } => {
+            assert_eq!(*contact, 0, "{err}");
+            assert!(overlap_m > limit_m && reachable_m > limit_m, "{err}");
+        }
+        other => panic!("expected a load beyond the contact, got {other:?}"),
+    }
+    assert!(
+        err.to_string()
+            .contains("a smaller time step will not help"),
+        "{err}"
     );
 }
 

@@ -24,3 +24,5 @@ mod optimize_resume;
 mod optimize_thread_determinism;
 mod rk4_dopri5_agreement;
 mod two_body_hertz_impact;
+mod run_limits;
+mod table_load_peak;
