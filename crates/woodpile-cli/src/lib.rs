@@ -8,6 +8,7 @@
 //! - [`CliError`]: every failure, with [`CliError::exit_code`] (2 = bad input, 1 = failed run).
 
 pub mod commands;
+pub mod interrupt;
 pub mod optimize_cmd;
 pub mod plot_cmd;
 pub mod report_cmd;

@@ -49,9 +49,14 @@ fn dispatch(command: &Command, ctx: &Context) -> Result<(), CliError> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    woodpile_cli::interrupt::install();
     let ctx = Context { quiet: cli.quiet };
     match dispatch(&cli.command, &ctx) {
         Ok(()) => ExitCode::SUCCESS,
+        Err(e @ woodpile_cli::CliError::Interrupted { .. }) => {
+            eprintln!("{e}");
+            ExitCode::from(e.exit_code())
+        }
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::from(e.exit_code())

@@ -6,11 +6,10 @@ use crate::CliError;
 use std::fs;
 use std::ops::ControlFlow;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
 use woodpile::optimize::{BreederGa, GaState, Objective, StopReason};
 use woodpile::simulate;
 use woodpile_io::atomic::{io_err, write_atomic};
+use woodpile_io::limits::check_threads;
 use woodpile_io::optimize::*;
 use woodpile_io::scenario::{resolve, ModelSpec};
 
@@ -35,6 +34,9 @@ pub struct Args {
     /// Worker threads for the simulations (default: one per core). Does not change results.
     #[arg(long, value_name = "T", default_value_t = 0)]
     pub threads: usize,
+    /// Allow more than 4 worker threads per core.
+    #[arg(long)]
+    pub allow_many_threads: bool,
     /// Continue the run saved in DIR/checkpoint.json (same config and seed).
     #[arg(long)]
     pub resume: bool,
@@ -98,7 +100,8 @@ pub fn load_config(args: &Args) -> Result<(OptimizeConfig, String, PathBuf), Cli
 /// Runs `woodpile optimize`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let (cfg, name, base_dir) = load_config(args)?;
-    let problem = Problem::new(&cfg, &base_dir, args.threads)?;
+    let threads = check_threads("--threads", args.threads, args.allow_many_threads)?;
+    let problem = Problem::new(&cfg, &base_dir, threads)?;
     let out = &args.out;
     let initial = if args.resume {
         if !out.join(CHECKPOINT_FILE).is_file() {
@@ -137,13 +140,8 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     }
     fs::create_dir_all(out).map_err(io_err(out))?;
 
-    let stop = Arc::new(AtomicBool::new(false));
-    {
-        let stop = Arc::clone(&stop);
-        // Fails only if a handler is already set (e.g. a second call in one process): the
-        // earlier handler stays in charge.
-        let _ = ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst));
-    }
+    crate::interrupt::cooperative();
+    let stop = crate::interrupt::stop_flag();
     let bar = progress_bar(ctx.quiet, problem.settings.generations);
     let unit = problem.objective.unit().to_string();
     let mut write_error: Option<CliError> = None;
@@ -175,7 +173,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         ));
         ControlFlow::Continue(())
     };
-    let outcome = ga.run(initial, &stop, &mut observer);
+    let outcome = ga.run(initial, stop, &mut observer);
     bar.finish_and_clear();
     if let Some(e) = write_error {
         return Err(e);
@@ -277,11 +275,13 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         println!("output       {}", out.display());
     }
     if interrupted {
-        eprintln!(
-            "interrupted: generation {} is saved in {}; continue with the same command and --resume",
-            state.generation,
-            out.join(CHECKPOINT_FILE).display()
-        );
+        return Err(CliError::Interrupted {
+            saved: format!(
+                "generation {} is saved in {}; continue with the same command and --resume",
+                state.generation,
+                out.join(CHECKPOINT_FILE).display()
+            ),
+        });
     }
     Ok(())
 }

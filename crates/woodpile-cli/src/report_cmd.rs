@@ -66,6 +66,9 @@ pub struct Args {
     /// Worker threads (default: one per core). Does not change results.
     #[arg(long, value_name = "T", default_value_t = 0)]
     pub threads: usize,
+    /// Allow more than 4 worker threads per core.
+    #[arg(long)]
+    pub allow_many_threads: bool,
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -768,6 +771,7 @@ fn prepare_out(out: &Path) -> Result<(), CliError> {
 /// Runs `woodpile report`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let started = Instant::now();
+    woodpile_io::limits::check_threads("--threads", args.threads, args.allow_many_threads)?;
     prepare_out(&args.out)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads)

@@ -5,6 +5,7 @@ use crate::error::Error;
 use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 /// The file that marks a directory as a previous `woodpile simulate` run.
 pub const RUN_MARKER: &str = "run.json";
@@ -17,12 +18,84 @@ pub fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
     }
 }
 
-/// What an existing output directory holds.
-fn check_target(target: &Path) -> Result<(), Error> {
+/// Staging directories of this process still in use: an interrupt handler removes them
+/// ([`remove_active_staging`]) before the process exits.
+static ACTIVE_STAGING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Removes every staging directory this process has not committed yet (for a SIGINT/SIGTERM
+/// handler: the output location is left as it was before the command started).
+pub fn remove_active_staging() {
+    let dirs = match ACTIVE_STAGING.lock() {
+        Ok(mut g) => std::mem::take(&mut *g),
+        Err(p) => std::mem::take(&mut *p.into_inner()),
+    };
+    for d in dirs {
+        let _ = fs::remove_dir_all(d);
+    }
+}
+
+fn register(dir: &Path, active: bool) {
+    let mut g = match ACTIVE_STAGING.lock() {
+        Ok(g) => g,
+        Err(p) => p.into_inner(),
+    };
+    g.retain(|d| d != dir);
+    if active {
+        g.push(dir.to_path_buf());
+    }
+}
+
+/// Whether process `pid` is alive. On Linux, /proc tells; elsewhere a staging directory counts
+/// as abandoned only when it is more than a day old.
+fn process_alive(pid: u32, dir: &Path) -> bool {
+    if Path::new("/proc/self").exists() {
+        return Path::new(&format!("/proc/{pid}")).exists();
+    }
+    let age = fs::metadata(dir)
+        .and_then(|m| m.modified())
+        .ok()
+        .and_then(|t| t.elapsed().ok());
+    age.is_none_or(|a| a.as_secs() < 86_400)
+}
+
+/// Removes staging directories `.NAME.partial-PID` beside `target` left by killed runs (their
+/// process is gone). Nothing else is touched.
+fn remove_abandoned_staging(parent: &Path, name: &str) {
+    let prefix = format!(".{name}.partial-");
+    let Ok(entries) = fs::read_dir(parent) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let file_name = e.file_name().to_string_lossy().into_owned();
+        let Some(pid) = file_name
+            .strip_prefix(&prefix)
+            .and_then(|p| p.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        let path = e.path();
+        if pid != std::process::id() && path.is_dir() && !process_alive(pid, &path) {
+            let _ = fs::remove_dir_all(&path);
+        }
+    }
+}
+
+/// What an existing output directory holds, and whether this run may write into it.
+fn check_target(target: &Path, overwrite: bool) -> Result<(), Error> {
     match fs::read_dir(target) {
         Ok(mut entries) => {
-            if entries.next().is_none() || target.join(RUN_MARKER).is_file() {
+            if entries.next().is_none() {
                 Ok(())
+            } else if target.join(RUN_MARKER).is_file() {
+                if overwrite {
+                    Ok(())
+                } else {
+                    Err(Error::invalid(
+                        "--out",
+                        target.display(),
+                        "holds an earlier run: pass --overwrite to replace its run files (your other files and plots/ are kept), or choose another --out",
+                    ))
+                }
             } else {
                 Err(Error::OutputNotEmpty {
                     path: target.to_path_buf(),
@@ -38,19 +111,27 @@ fn check_target(target: &Path) -> Result<(), Error> {
     }
 }
 
-/// A staging directory next to the output directory; removed on drop unless committed.
+/// A staging directory `.NAME.partial-PID` next to the output directory NAME; removed on drop
+/// (and by [`remove_active_staging`] on an interrupt) unless committed.
+///
+/// The policy of every run directory: an absent or empty target is created; a target that holds
+/// an earlier run is written only with `overwrite`, and then only the run's own files
+/// (`own_files`) are replaced or removed — the user's other files and folders (`plots/`, notes)
+/// stay; any other non-empty directory is refused. `run.json` is moved in last, so its presence
+/// marks a complete run.
 #[derive(Debug)]
 pub struct Staging {
     dir: PathBuf,
     target: PathBuf,
+    overwrite: bool,
     committed: bool,
 }
 
 impl Staging {
-    /// Checks that `target` may be written (absent, empty, or a previous run) and creates the
-    /// staging directory beside it (and any missing parents).
-    pub fn prepare(target: &Path) -> Result<Self, Error> {
-        check_target(target)?;
+    /// Checks that `target` may be written, removes staging directories of killed earlier runs
+    /// into the same place, and creates this run's staging directory (and missing parents).
+    pub fn prepare(target: &Path, overwrite: bool) -> Result<Self, Error> {
+        check_target(target, overwrite)?;
         let name = target
             .file_name()
             .ok_or_else(|| Error::Output {
@@ -67,14 +148,17 @@ impl Staging {
             _ => PathBuf::from("."),
         };
         fs::create_dir_all(&parent).map_err(io_err(&parent))?;
+        remove_abandoned_staging(&parent, &name);
         let dir = parent.join(format!(".{name}.partial-{}", std::process::id()));
         if dir.exists() {
             fs::remove_dir_all(&dir).map_err(io_err(&dir))?;
         }
         fs::create_dir(&dir).map_err(io_err(&dir))?;
+        register(&dir, true);
         Ok(Staging {
             dir,
             target: target.to_path_buf(),
+            overwrite,
             committed: false,
         })
     }
@@ -89,36 +173,33 @@ impl Staging {
         &self.target
     }
 
-    /// Moves the staged files into place, replacing a previous run.
-    pub fn commit(mut self) -> Result<PathBuf, Error> {
-        check_target(&self.target)?;
-        let mut old = None;
-        if self.target.exists() {
-            if self.target.join(RUN_MARKER).is_file() {
-                let aside = self.dir.with_file_name(format!(
-                    ".{}.old-{}",
-                    self.target
-                        .file_name()
-                        .unwrap_or_default()
-                        .to_string_lossy(),
-                    std::process::id()
-                ));
-                fs::rename(&self.target, &aside).map_err(io_err(&self.target))?;
-                old = Some(aside);
-            } else {
-                fs::remove_dir(&self.target).map_err(io_err(&self.target))?;
+    /// Moves the staged files into place. A new target is one rename; into an empty directory
+    /// or over an earlier run, each of `own_files` is moved in (or, when this run did not write
+    /// it, an earlier run's copy is removed), `marker` last; nothing else in the target is touched.
+    pub fn commit(mut self, own_files: &[&str], marker: &str) -> Result<PathBuf, Error> {
+        check_target(&self.target, self.overwrite)?;
+        if !self.target.exists() {
+            fs::rename(&self.dir, &self.target).map_err(io_err(&self.target))?;
+        } else {
+            // Without the marker the directory no longer claims to hold a complete run.
+            let old_marker = self.target.join(marker);
+            if old_marker.is_file() {
+                fs::remove_file(&old_marker).map_err(io_err(&old_marker))?;
             }
-        }
-        if let Err(e) = fs::rename(&self.dir, &self.target) {
-            if let Some(aside) = &old {
-                let _ = fs::rename(aside, &self.target);
+            for name in own_files.iter().filter(|n| **n != marker) {
+                let (from, to) = (self.dir.join(name), self.target.join(name));
+                if from.is_file() {
+                    fs::rename(&from, &to).map_err(io_err(&to))?;
+                } else if to.is_file() {
+                    fs::remove_file(&to).map_err(io_err(&to))?;
+                }
             }
-            return Err(io_err(&self.target)(e));
+            let to = self.target.join(marker);
+            fs::rename(self.dir.join(marker), &to).map_err(io_err(&to))?;
+            let _ = fs::remove_dir_all(&self.dir);
         }
         self.committed = true;
-        if let Some(aside) = old {
-            let _ = fs::remove_dir_all(aside);
-        }
+        register(&self.dir, false);
         Ok(self.target.clone())
     }
 }
@@ -127,6 +208,7 @@ impl Drop for Staging {
     fn drop(&mut self) {
         if !self.committed {
             let _ = fs::remove_dir_all(&self.dir);
+            register(&self.dir, false);
         }
     }
 }

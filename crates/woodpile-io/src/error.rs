@@ -73,6 +73,23 @@ pub enum Error {
         /// Why.
         source: std::io::Error,
     },
+    /// The command was interrupted (Ctrl-C or SIGTERM) after saving what lets it continue.
+    #[error("interrupted: {saved}")]
+    Interrupted {
+        /// What was saved and how to continue.
+        saved: String,
+    },
+    /// A run whose energy balance does not close to the stated accuracy: its numbers would not
+    /// mean what they say.
+    #[error("inaccurate run: the energy balance is off by {relative_error:.2e} of {reference}, above the limit {limit:.0e}; use a smaller run.time_step_s (rk4) or a tighter rtol/atol (dopri5), or pass --allow-inaccurate to keep the results anyway")]
+    Inaccurate {
+        /// Largest relative energy error over the samples.
+        relative_error: f64,
+        /// What it is relative to.
+        reference: &'static str,
+        /// The limit it exceeds.
+        limit: f64,
+    },
     /// An error of the library: invalid parameters (usage) or a numerical failure of the run.
     #[error(transparent)]
     Model(#[from] woodpile::Error),
@@ -117,13 +134,17 @@ impl Error {
                     | woodpile::Error::TooManySteps { .. }
                     | woodpile::Error::StepSizeTooSmall { .. }
             ),
+            Error::Inaccurate { .. } | Error::Interrupted { .. } => false,
             _ => true,
         }
     }
 
-    /// The process exit code: 2 for a usage error, 1 for a failed run.
+    /// The process exit code: 2 for a usage error, 1 for a failed or inaccurate run, 130 for
+    /// an interrupted command.
     pub fn exit_code(&self) -> u8 {
-        if self.is_usage() {
+        if matches!(self, Error::Interrupted { .. }) {
+            130
+        } else if self.is_usage() {
             2
         } else {
             1

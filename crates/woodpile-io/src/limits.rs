@@ -28,3 +28,72 @@ pub fn check_threads(field: &str, threads: usize, allow: bool) -> Result<usize, 
     }
     Ok(threads)
 }
+
+/// Most integration steps a run may take without an override (the core's backstop).
+pub const MAX_STEPS: u64 = woodpile::defaults::MAX_STEPS;
+
+/// Largest output a run may write without an override \[bytes\].
+pub const MAX_OUTPUT_BYTES: f64 = 2e9;
+
+/// Bytes per value in the outputs: a CSV field in `{:e}` form (~22 characters with its
+/// separator) plus its 8-byte `.npy` copy.
+const BYTES_PER_VALUE: f64 = 30.0;
+
+/// What a run will cost, estimated before it starts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunSize {
+    /// Integration steps (None for the adaptive method).
+    pub steps: Option<u64>,
+    /// Samples on the output grid.
+    pub samples: usize,
+    /// Size of the run directory \[bytes\].
+    pub output_bytes: f64,
+}
+
+impl RunSize {
+    /// The estimate for `settings` on a chain of `n_elements` elements.
+    pub fn estimate(settings: &woodpile::RunSettings, n_elements: usize) -> Self {
+        let samples = settings.n_samples();
+        // forces (N+2 columns with time), energy (N+5), displacements and velocities (N+1 each),
+        // striker (3).
+        let columns = 4 * n_elements + 12;
+        RunSize {
+            steps: settings.estimated_steps(),
+            samples,
+            output_bytes: samples as f64 * columns as f64 * BYTES_PER_VALUE,
+        }
+    }
+
+    /// Refuses a run of more than [`MAX_STEPS`] steps unless `allow_long`, and an output above
+    /// [`MAX_OUTPUT_BYTES`] unless `allow_large` (`write_output` false: no samples are written).
+    pub fn check(
+        &self,
+        allow_long: bool,
+        allow_large: bool,
+        write_output: bool,
+    ) -> Result<(), Error> {
+        if let Some(steps) = self.steps {
+            if steps > MAX_STEPS && !allow_long {
+                return Err(Error::invalid(
+                    "run.duration_s / run.time_step_s",
+                    format!("{steps:.3e} steps"),
+                    format!(
+                        "more than {MAX_STEPS:.0e} integration steps (the run would not end in reasonable time); \
+                         shorten run.duration_s or enlarge run.time_step_s, or pass --allow-long"
+                    ),
+                ));
+            }
+        }
+        if write_output && self.output_bytes > MAX_OUTPUT_BYTES && !allow_large {
+            return Err(Error::invalid(
+                "run.sample_interval_s",
+                format!("{} samples, about {:.1} GB of output", self.samples, self.output_bytes / 1e9),
+                format!(
+                    "the run directory would exceed {:.0} GB; enlarge run.sample_interval_s or shorten run.duration_s, or pass --allow-large",
+                    MAX_OUTPUT_BYTES / 1e9
+                ),
+            ));
+        }
+        Ok(())
+    }
+}

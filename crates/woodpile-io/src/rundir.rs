@@ -15,6 +15,26 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use woodpile::{Chain, Excitation, Method, Resonator, RunSummary, Trajectory, UnitCell};
 
+/// Every file a run directory may hold, written by [`write_run`] (`run.json` last). Only these
+/// are ever replaced or removed in an existing run directory.
+pub const RUN_FILES: &[&str] = &[
+    "summary.json",
+    "forces.csv",
+    "energy.csv",
+    "displacements.csv",
+    "velocities.csv",
+    "striker.csv",
+    "time_s.npy",
+    "forces_n.npy",
+    "energy_j.npy",
+    "wall_energy_j.npy",
+    "input_work_j.npy",
+    "displacements_m.npy",
+    "velocities_m_s.npy",
+    "striker.npy",
+    RUN_MARKER,
+];
+
 /// Everything a run produced, for the writers.
 #[derive(Debug, Clone, Copy)]
 pub struct RunRecord<'a> {
@@ -80,6 +100,9 @@ pub struct SummaryJson {
     pub transmission_ratio: Option<f64>,
     /// Whether the transmitted peak reached the documented fraction of the incident one.
     pub wave_arrived: bool,
+    /// Whether the energy balance closes to within `woodpile::defaults::ENERGY_ERROR_WARN`
+    /// (false: the run was kept with a warning or with `--allow-inaccurate`).
+    pub energy_balance_ok: bool,
     /// Striker restitution e (impact; null for a blast).
     pub restitution_coefficient: Option<f64>,
     /// Whether the striker had left for good at the end (impact; null for a blast).
@@ -136,6 +159,7 @@ impl SummaryJson {
             transmitted_peak_force_n: s.transmitted_peak_force_n,
             transmission_ratio: s.transmission_ratio,
             wave_arrived: s.wave_arrived,
+            energy_balance_ok: s.energy.max_relative_error <= woodpile::defaults::ENERGY_ERROR_WARN,
             restitution_coefficient: s.restitution_coefficient(),
             striker_separated: s.restitution.map(|e| e.separated),
             contact_peak_forces_n: s.contact_peak_forces_n.clone(),

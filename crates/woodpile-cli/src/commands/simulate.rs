@@ -3,9 +3,11 @@
 use super::Context;
 use crate::CliError;
 use std::path::{Path, PathBuf};
+use woodpile::defaults::{ENERGY_ERROR_FAIL, ENERGY_ERROR_WARN};
 use woodpile::{simulate, Excitation, Trajectory};
-use woodpile_io::atomic::Staging;
-use woodpile_io::rundir::{write_run, RunRecord, SummaryJson};
+use woodpile_io::atomic::{Staging, RUN_MARKER};
+use woodpile_io::limits::RunSize;
+use woodpile_io::rundir::{write_run, RunRecord, SummaryJson, RUN_FILES};
 use woodpile_io::scenario::{resolve, Scenario, DEFAULT_SCENARIO};
 
 /// Arguments of `woodpile simulate`.
@@ -18,9 +20,23 @@ pub struct Args {
     /// A built-in scenario (see `woodpile scenarios`).
     #[arg(long, value_name = "NAME")]
     pub scenario: Option<String>,
-    /// Output directory (default: ./runs/NAME, NAME = scenario name or file stem). Replaced if it holds a previous run.
+    /// Output directory (default: ./runs/NAME, NAME = scenario name or file stem). An existing
+    /// run directory is written only with --overwrite.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Replace the run files of an earlier run in --out (other files and plots/ are kept).
+    #[arg(long)]
+    pub overwrite: bool,
+    /// Keep the results of a run whose energy balance is off by more than 1e-2 (see
+    /// docs/physics.md §8); they are written with a warning.
+    #[arg(long)]
+    pub allow_inaccurate: bool,
+    /// Allow a run of more than 1e9 integration steps.
+    #[arg(long)]
+    pub allow_long: bool,
+    /// Allow an output directory larger than 2 GB.
+    #[arg(long)]
+    pub allow_large: bool,
 }
 
 /// A scenario ready to run: its name, where it came from, and the directory its files are
@@ -69,11 +85,16 @@ pub fn load(args: &Args) -> Result<Loaded, CliError> {
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let loaded = load(args)?;
     let resolved = resolve(&loaded.scenario, &loaded.base_dir)?;
+    RunSize::estimate(&resolved.settings, resolved.chain.len()).check(
+        args.allow_long,
+        args.allow_large,
+        true,
+    )?;
     let out = args
         .out
         .clone()
         .unwrap_or_else(|| Path::new("runs").join(&loaded.name));
-    let staging = Staging::prepare(&out)?;
+    let staging = Staging::prepare(&out, args.overwrite)?;
     let mut trajectory = Trajectory::default();
     let summary = simulate(
         &resolved.chain,
@@ -81,6 +102,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         &resolved.settings,
         &mut trajectory,
     )?;
+    let accuracy = check_accuracy(&summary, &resolved.excitation, args.allow_inaccurate)?;
     let record = RunRecord {
         name: &loaded.name,
         file: loaded.file.as_deref(),
@@ -90,11 +112,49 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         trajectory: &trajectory,
     };
     write_run(staging.path(), &record)?;
-    let dir = staging.commit()?;
+    let dir = staging.commit(RUN_FILES, RUN_MARKER)?;
+    if let Some(warning) = accuracy {
+        eprintln!("warning: {warning}");
+    }
+    if !summary.wave_arrived {
+        eprintln!(
+            "warning: the wave did not reach the wall within run.duration_s = {:e} s (transmitted peak {:.3e} N, incident {:.3e} N): the transmitted force and the ratio mean nothing; increase run.duration_s",
+            resolved.settings.duration_s,
+            summary.transmitted_peak_force_n,
+            summary.incident_peak_force_n
+        );
+    }
     if !ctx.quiet {
         print!("{}", terminal_summary(&record, &dir));
     }
     Ok(())
+}
+
+/// Checks the energy balance against docs/physics.md §8: above [`ENERGY_ERROR_FAIL`] the run is
+/// refused (unless `allow`); above [`ENERGY_ERROR_WARN`] (or when allowed) the warning to print
+/// is returned.
+pub fn check_accuracy(
+    summary: &woodpile::RunSummary,
+    excitation: &Excitation,
+    allow: bool,
+) -> Result<Option<String>, CliError> {
+    let err = summary.energy.max_relative_error;
+    let reference = match excitation {
+        Excitation::Impact(_) => "the initial energy",
+        Excitation::Blast(_) => "the input work",
+    };
+    if !(err <= ENERGY_ERROR_FAIL) && !allow {
+        return Err(CliError::Inaccurate {
+            relative_error: err,
+            reference,
+            limit: ENERGY_ERROR_FAIL,
+        });
+    }
+    Ok((!(err <= ENERGY_ERROR_WARN)).then(|| {
+        format!(
+            "the energy balance is off by {err:.2e} of {reference} (above {ENERGY_ERROR_WARN:.0e}): the results may be inaccurate; use a smaller run.time_step_s (rk4) or a tighter rtol/atol (dopri5)"
+        )
+    }))
 }
 
 /// The short human-readable report printed after a run.

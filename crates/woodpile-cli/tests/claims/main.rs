@@ -11,6 +11,7 @@ mod builtins_run;
 mod cells_table;
 mod common;
 mod default_job;
+mod meaningless_results;
 mod optimize_bad_input;
 mod optimize_best_reruns;
 #[cfg(unix)]
@@ -20,3 +21,4 @@ mod plot_opt_dir;
 mod plot_run_dir;
 mod report_quick;
 mod scenario_roundtrip;
+mod up_front_limits;

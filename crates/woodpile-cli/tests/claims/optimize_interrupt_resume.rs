@@ -1,4 +1,4 @@
-//! Claim: Ctrl-C (SIGINT) stops `woodpile optimize` cleanly after the current generation, with
+//! Claim: Ctrl-C (SIGINT) stops `woodpile optimize` cleanly after the current generation (exit 130), with
 //! its checkpoint written and a message saying how to resume; `--resume` then ends exactly
 //! where an uninterrupted run ends (same population, history, cache and counters), with 1 or
 //! 2 threads.
@@ -71,7 +71,11 @@ fn interrupted_and_resumed_run_equals_uninterrupted_run() {
     assert!(killed.success());
     let out = child.wait_with_output().unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert_eq!(
+        out.status.code(),
+        Some(130),
+        "an interrupted optimize exits 130: {stderr}"
+    );
     let part = common::json(&checkpoint);
     let stopped_at = part["generation"].as_u64().unwrap();
     assert!(stopped_at < 40, "the run ended before the signal");

@@ -23,6 +23,6 @@ mod optimize_operators_feasible;
 mod optimize_resume;
 mod optimize_thread_determinism;
 mod rk4_dopri5_agreement;
-mod two_body_hertz_impact;
 mod run_limits;
 mod table_load_peak;
+mod two_body_hertz_impact;

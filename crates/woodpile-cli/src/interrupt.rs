@@ -1,0 +1,37 @@
+//! Ctrl-C and SIGTERM, one handler for every command.
+//!
+//! A command that can stop cleanly by itself (`optimize`: it finishes the generation, saves its
+//! checkpoint and exits 130) marks itself [`cooperative`] and polls [`stop_flag`]. For every other
+//! command the handler removes the staging directories of unfinished outputs (so the output
+//! location is as it was) and exits at once with [`EXIT_INTERRUPTED`].
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Exit status of an interrupted command (128 + SIGINT), so scripts can tell it from success (0),
+/// a failed run (1) and bad input (2).
+pub const EXIT_INTERRUPTED: u8 = 130;
+
+static STOP: AtomicBool = AtomicBool::new(false);
+static COOPERATIVE: AtomicBool = AtomicBool::new(false);
+
+/// Installs the handler (once per process; later calls do nothing).
+pub fn install() {
+    let _ = ctrlc::set_handler(|| {
+        STOP.store(true, Ordering::SeqCst);
+        if !COOPERATIVE.load(Ordering::SeqCst) {
+            woodpile_io::atomic::remove_active_staging();
+            eprintln!("interrupted: nothing was written");
+            std::process::exit(i32::from(EXIT_INTERRUPTED));
+        }
+    });
+}
+
+/// Declares that the running command polls [`stop_flag`] and stops cleanly by itself.
+pub fn cooperative() {
+    COOPERATIVE.store(true, Ordering::SeqCst);
+}
+
+/// Set once an interrupt has arrived.
+pub fn stop_flag() -> &'static AtomicBool {
+    &STOP
+}
