@@ -143,14 +143,16 @@ pub fn check_accuracy(
         Excitation::Impact(_) => "the initial energy",
         Excitation::Blast(_) => "the input work",
     };
-    if !(err <= ENERGY_ERROR_FAIL) && !allow {
+    // A NaN error counts as a failure: `is_some_and(Le)` is false for it.
+    let within = |limit: f64| err.partial_cmp(&limit).is_some_and(|o| o.is_le());
+    if !within(ENERGY_ERROR_FAIL) && !allow {
         return Err(CliError::Inaccurate {
             relative_error: err,
             reference,
             limit: ENERGY_ERROR_FAIL,
         });
     }
-    Ok((!(err <= ENERGY_ERROR_WARN)).then(|| {
+    Ok((!within(ENERGY_ERROR_WARN)).then(|| {
         format!(
             "the energy balance is off by {err:.2e} of {reference} (above {ENERGY_ERROR_WARN:.0e}): the results may be inaccurate; use a smaller run.time_step_s (rk4) or a tighter rtol/atol (dopri5)"
         )
