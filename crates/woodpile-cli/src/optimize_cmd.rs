@@ -166,7 +166,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         (last_elapsed, last_evals) = (s.elapsed_s, s.evaluations);
         bar.set_position(s.generation as u64);
         bar.set_message(format!(
-            "best {:.6} {unit} | {rate:.0} eval/s | {} evaluations, {} cache hits",
+            "best {:.6e} {unit} | {rate:.0} eval/s | {} evaluations, {} cache hits",
             s.best().objective,
             s.evaluations,
             s.cache_hits
@@ -260,7 +260,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         );
         println!("best         {}", labels.join(" "));
         println!(
-            "objective    {} = {} {unit}",
+            "objective    {} = {:.6e} {unit}",
             problem.objective.as_str(),
             best.objective
         );

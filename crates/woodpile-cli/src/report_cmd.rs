@@ -42,7 +42,7 @@ use woodpile::{
     Striker, Trajectory, UnitCell,
 };
 use woodpile_io::atomic::write_atomic;
-use woodpile_io::optimize::{HistoryJson, OptimizeConfig, Problem};
+use woodpile_io::optimize::{fnv1a64, OptimizeConfig, Problem};
 use woodpile_io::scenario::ModelSpec;
 use woodpile_plot as plot;
 
@@ -312,16 +312,6 @@ fn inline(t: &str) -> String {
 // ---------------------------------------------------------------------------------------------
 // The cache: FNV-1a of the tool version, the entry kind and the complete inputs as JSON.
 
-/// 64-bit FNV-1a: a stable hash (std's `DefaultHasher` may change between Rust releases).
-pub fn fnv1a64(bytes: &[u8]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for &b in bytes {
-        h ^= u64::from(b);
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    h
-}
-
 /// A GA result as kept in the cache.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 struct CachedGa {
@@ -329,7 +319,7 @@ struct CachedGa {
     inputs: String,
     best_genome: Vec<u8>,
     best_objective: f64,
-    history: Vec<HistoryJson>,
+    history: Vec<woodpile::optimize::GenerationStats>,
     generations: usize,
     evaluations: u64,
     cache_hits: u64,
@@ -704,7 +694,7 @@ fn run_ga(
                 inputs: key.clone(),
                 best_genome: s.best().genome.clone(),
                 best_objective: s.best().objective,
-                history: s.history.iter().map(HistoryJson::from).collect(),
+                history: s.history.clone(),
                 generations: s.generation,
                 evaluations: s.evaluations,
                 cache_hits: s.cache_hits,

@@ -209,6 +209,15 @@ impl OptimizeConfig {
         })
     }
 
+    /// Whether two configs pose the same problem: equal in everything but descriptive text.
+    pub fn same_problem(&self, other: &Self) -> bool {
+        let bare = |c: &Self| OptimizeConfig {
+            description: None,
+            ..c.clone()
+        };
+        bare(self) == bare(other)
+    }
+
     /// The same config with every default written out.
     pub fn complete(&self) -> Self {
         let mut c = self.clone();
@@ -376,6 +385,20 @@ impl Problem {
                 "the catalogue needs at least one element, e.g. catalogue_mm = [20, 30, 40, 50, 60, 70, 80]",
             ));
         }
+        if let Some((i, j)) = first_duplicate(d.catalogue_mm.as_deref().unwrap_or_default()) {
+            return Err(Error::invalid(
+                format!("design.catalogue_mm[{j}]"),
+                d.catalogue_mm.as_ref().map_or(0, |c| c[j]),
+                format!("repeats design.catalogue_mm[{i}]; list each rod once"),
+            ));
+        }
+        if let Some((i, j)) = first_duplicate(d.elements.as_deref().unwrap_or_default()) {
+            return Err(Error::invalid(
+                format!("design.elements[{j}]"),
+                "(the same element)",
+                format!("repeats design.elements[{i}]; list each element once"),
+            ));
+        }
         if n_cat > woodpile::optimize::MAX_CATALOGUE_LEN {
             return Err(Error::invalid(
                 "design.catalogue",
@@ -528,43 +551,39 @@ pub fn optimize_error(e: OptimizeError) -> Error {
     }
 }
 
-/// One individual in the checkpoint.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct IndividualJson {
-    /// Catalogue indices, top to bottom.
-    pub genome: Vec<u8>,
-    /// Objective value.
-    pub objective: f64,
+/// The first pair (i, j), i < j, of equal entries.
+fn first_duplicate<T: PartialEq>(list: &[T]) -> Option<(usize, usize)> {
+    (1..list.len()).find_map(|j| list[..j].iter().position(|x| *x == list[j]).map(|i| (i, j)))
 }
 
-/// One line of the history in the checkpoint (and `history.csv`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct HistoryJson {
-    /// Generation.
-    pub generation: usize,
-    /// Best objective.
-    pub best: f64,
-    /// Mean objective.
-    pub mean: f64,
-    /// Worst objective.
-    pub worst: f64,
-    /// Simulations so far.
-    pub evaluations: u64,
-    /// Cache hits so far.
-    pub cache_hits: u64,
-    /// Wall-clock seconds so far.
-    pub elapsed_s: f64,
+/// FNV-1a, 64 bits, of `bytes`: a stable content hash (the same on every platform and version
+/// of Rust), for checkpoint checksums and cache keys. Not a cryptographic hash: it detects edits
+/// and corruption, not a determined forger.
+pub fn fnv1a64(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for &b in bytes {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
 }
 
 /// `checkpoint.json`: the complete config and the GA's whole state. Floats are written with
 /// shortest round-trip digits and read back exactly, so a resumed run continues bit for bit.
+///
+/// It records the version of woodpile that wrote it and a checksum: the FNV-1a 64 hash
+/// ([`fnv1a64`]) of its compact JSON serialisation with `checksum` set to the empty string. A
+/// checkpoint that was edited, written by another version, or saved for a different problem is
+/// refused on resume, with the reason.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Checkpoint {
     /// [`CHECKPOINT_FORMAT`].
     pub format: String,
+    /// Version of woodpile that wrote it.
+    pub tool_version: String,
+    /// FNV-1a 64 of the content, 16 hex digits (see the type's documentation).
+    pub checksum: String,
     /// The completed config the run was started with (seed included).
     pub config: OptimizeConfig,
     /// Generations completed.
@@ -578,63 +597,59 @@ pub struct Checkpoint {
     /// Wall-clock seconds so far.
     pub elapsed_s: f64,
     /// Population, best first.
-    pub population: Vec<IndividualJson>,
+    pub population: Vec<Individual>,
     /// History, one line per generation.
-    pub history: Vec<HistoryJson>,
+    pub history: Vec<GenerationStats>,
     /// Fitness cache, sorted by genome.
-    pub cache: Vec<IndividualJson>,
+    pub cache: Vec<Individual>,
 }
 
 impl Checkpoint {
+    /// The checkpoint of a GA state for `config`, its checksum computed.
     pub fn new(config: &OptimizeConfig, s: &GaState) -> Self {
-        let ind = |genome: &Vec<u8>, objective: f64| IndividualJson {
-            genome: genome.clone(),
-            objective,
-        };
-        let mut cache: Vec<IndividualJson> = s.cache.iter().map(|(g, &v)| ind(g, v)).collect();
+        let mut cache: Vec<Individual> = s
+            .cache
+            .iter()
+            .map(|(g, &objective)| Individual {
+                genome: g.clone(),
+                objective,
+            })
+            .collect();
         cache.sort_by(|a, b| a.genome.cmp(&b.genome));
-        Checkpoint {
+        let mut cp = Checkpoint {
             format: CHECKPOINT_FORMAT.to_string(),
+            tool_version: env!("CARGO_PKG_VERSION").to_string(),
+            checksum: String::new(),
             config: config.clone(),
             generation: s.generation,
             stalled: s.stalled,
             evaluations: s.evaluations,
             cache_hits: s.cache_hits,
             elapsed_s: s.elapsed_s,
-            population: s
-                .population
-                .iter()
-                .map(|i| ind(&i.genome, i.objective))
-                .collect(),
-            history: s.history.iter().map(HistoryJson::from).collect(),
+            population: s.population.clone(),
+            history: s.history.clone(),
             cache,
-        }
+        };
+        cp.checksum = cp.content_checksum();
+        cp
     }
 
+    /// The checksum of the content as it is now (with `checksum` itself left out).
+    pub fn content_checksum(&self) -> String {
+        let unsigned = Checkpoint {
+            checksum: String::new(),
+            ..self.clone()
+        };
+        let json = serde_json::to_vec(&unsigned).unwrap_or_default();
+        format!("{:016x}", fnv1a64(&json))
+    }
+
+    /// The GA state it holds.
     pub fn into_state(self) -> GaState {
         GaState {
             generation: self.generation,
-            population: self
-                .population
-                .into_iter()
-                .map(|i| Individual {
-                    genome: i.genome,
-                    objective: i.objective,
-                })
-                .collect(),
-            history: self
-                .history
-                .iter()
-                .map(|h| GenerationStats {
-                    generation: h.generation,
-                    best: h.best,
-                    mean: h.mean,
-                    worst: h.worst,
-                    evaluations: h.evaluations,
-                    cache_hits: h.cache_hits,
-                    elapsed_s: h.elapsed_s,
-                })
-                .collect(),
+            population: self.population,
+            history: self.history,
             cache: self
                 .cache
                 .into_iter()
@@ -648,20 +663,7 @@ impl Checkpoint {
     }
 }
 
-impl From<&GenerationStats> for HistoryJson {
-    fn from(h: &GenerationStats) -> Self {
-        HistoryJson {
-            generation: h.generation,
-            best: h.best,
-            mean: h.mean,
-            worst: h.worst,
-            evaluations: h.evaluations,
-            cache_hits: h.cache_hits,
-            elapsed_s: h.elapsed_s,
-        }
-    }
-}
-
+/// Writes `history.csv`: one line per generation.
 pub fn history_csv(history: &[GenerationStats]) -> String {
     let mut s = String::from("generation,best,mean,worst,evaluations,cache_hits,elapsed_s\n");
     for h in history {
@@ -747,10 +749,25 @@ pub fn read_checkpoint(dir: &Path, config: &OptimizeConfig) -> Result<GaState, E
             cp.format
         )));
     }
-    if cp.config != *config {
+    let refuse = |reason: String| Error::invalid("--resume", path.display(), reason);
+    let ours = env!("CARGO_PKG_VERSION");
+    if cp.tool_version != ours {
+        return Err(refuse(format!(
+            "the checkpoint was written by woodpile {}, this is woodpile {ours}: a run resumes exactly only with the version that started it; finish it with woodpile {}, or start a new run in another --out",
+            cp.tool_version, cp.tool_version
+        )));
+    }
+    let actual = cp.content_checksum();
+    if cp.checksum != actual {
+        return Err(refuse(format!(
+            "the checkpoint's checksum is {} but its content hashes to {actual}: it was modified after woodpile wrote it, so its objectives cannot be trusted; restore it or start a new run in another --out",
+            cp.checksum
+        )));
+    }
+    if !cp.config.same_problem(config) {
         let json = |v: &OptimizeConfig| serde_json::to_value(v).unwrap_or_default();
         let (a, b) = (json(&cp.config), json(config));
-        let differing: Vec<String> = ["design", "excitation", "wall", "run", "ga", "description"]
+        let differing: Vec<String> = ["design", "excitation", "wall", "run", "ga"]
             .iter()
             .filter(|k| a.get(**k) != b.get(**k))
             .map(|k| {

@@ -9,6 +9,7 @@ mod blast_table;
 mod blowup_exit_1;
 mod builtins_run;
 mod cells_table;
+mod checkpoint_integrity;
 mod common;
 mod default_job;
 mod meaningless_results;

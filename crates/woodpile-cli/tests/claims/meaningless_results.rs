@@ -7,6 +7,8 @@
 //!   has a zero incident force: the ratio is null, not 0/0 printed as 0.
 //! - Restitution is null when the striker has not separated by the end (20 µs: it is still in
 //!   contact), with `striker_separated: false`.
+//! - `optimize` on such a run refuses to minimise the meaningless wall force (exit 2, naming
+//!   run.duration_s) instead of "optimising" a number that is zero for every design.
 //! - Energy accuracy (docs/physics.md §8): the same 5-rod impact at RK4 Δt = 2 µs closes its
 //!   energy balance to 1.6e-3 (measured): above the 1e-4 warning level, below the 1e-2 failure
 //!   level, so it runs and warns; at Δt = 5 µs the error is 5e-2: exit 1, no output, unless
@@ -128,5 +130,22 @@ fn inaccurate_run_fails_unless_allowed() {
     assert_eq!(
         common::json(&dir.path().join("o/summary.json"))["energy_balance_ok"],
         false
+    );
+}
+
+#[test]
+fn optimizer_refuses_a_wave_that_never_arrived() {
+    let dir = tempfile::tempdir().unwrap();
+    common::write(
+        dir.path(),
+        "w.toml",
+        "[design]\npositions = 20\n[run]\nduration_s = 2e-5\n[ga]\npopulation = 4\ngenerations = 1\n",
+    );
+    let out = common::run_in(dir.path(), &["optimize", "w.toml", "--out", "o"]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("did not reach the wall") && stderr.contains("increase run.duration_s"),
+        "{stderr}"
     );
 }
