@@ -11,6 +11,6 @@ pub mod commands;
 pub mod interrupt;
 pub mod optimize_cmd;
 pub mod plot_cmd;
-pub mod report_cmd;
+pub mod report;
 
 pub use woodpile_io::Error as CliError;

@@ -32,7 +32,7 @@ enum Command {
     /// Draw the figures of a `simulate` or `optimize` output directory into DIR/plots (PNG, SVG).
     Plot(woodpile_cli::plot_cmd::Args),
     /// Run everything the paper's figures need; write the figures, report.md and report.html.
-    Report(woodpile_cli::report_cmd::Args),
+    Report(woodpile_cli::report::Args),
 }
 
 fn dispatch(command: &Command, ctx: &Context) -> Result<(), CliError> {
@@ -43,7 +43,7 @@ fn dispatch(command: &Command, ctx: &Context) -> Result<(), CliError> {
         Command::Cells(args) => commands::cells::run(args, ctx),
         Command::Optimize(args) => woodpile_cli::optimize_cmd::run(args, ctx),
         Command::Plot(args) => woodpile_cli::plot_cmd::run(args, ctx),
-        Command::Report(args) => woodpile_cli::report_cmd::run(args, ctx),
+        Command::Report(args) => woodpile_cli::report::run(args, ctx),
     }
 }
 

@@ -13,6 +13,7 @@
 //! - [`atomic`]: atomic file replacement and staged run directories.
 //! - [`limits`]: up-front limits (threads, steps, output size) with overrides.
 //! - [`optimize`]: the optimisation config, the problem it defines and its checkpoint.
+//! - [`study`]: the paper's study as data: the cases the report runs and the paper's numbers.
 //! - [`Error`]: every failure, typed, naming the field, the value and what would be valid.
 
 pub mod atomic;
@@ -21,6 +22,7 @@ pub mod limits;
 pub mod optimize;
 pub mod rundir;
 pub mod scenario;
+pub mod study;
 pub mod table;
 
 pub use error::Error;

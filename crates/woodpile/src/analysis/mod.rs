@@ -36,11 +36,13 @@
 pub mod bands;
 pub mod map;
 pub mod protocol;
+pub mod pulses;
 pub mod spectrum;
 
 pub use bands::{contact_stiffness_n_per_m, linspace, BandStructure, EffectiveMassCurve};
 pub use map::{energy_map, force_map, injected_energy_j, Axis, Map2};
 pub use protocol::{layer_by_layer, sub_chain, LayerByLayer};
+pub use pulses::{arrival_s, band_contrast, peak_layer_energy, separated_peaks, FirstTransit};
 pub use spectrum::{
     contact_spectrum_map, sample_interval_s, Padding, Spectrum, SpectrumPlan, SpectrumSettings,
     Window,

@@ -1,0 +1,173 @@
+//! `woodpile report --out DIR [--quick] [--seed S] [--threads T]`: runs everything the paper's
+//! figures and numbers need, draws every figure into `DIR/figures/` (PNG and SVG), and writes
+//! `DIR/report.md` and a self-contained `DIR/report.html` (figures embedded as data URIs) with a
+//! comparison table: each number the paper reports (docs/physics.md §9) beside ours.
+//!
+//! What runs (docs/physics.md defaults throughout):
+//! - homogeneous 20-rod chains of 20, 40, 80 mm rods (resonant) and 20 mm (rigid) under the
+//!   impact: force and energy maps, force histories, spectra, the separated pulses at the wall
+//!   (paper Figs. 5 a–c, 6);
+//! - the breeder GA for the least wall force under the impact, resonant and rigid (paper Fig. 5
+//!   d, e): convergence, best chain, incident and transmitted force, restitution;
+//! - the layer-by-layer protocol on the resonant optimum (paper Fig. 7 a, b);
+//! - the Friedlander blast on 20, 40, 80 mm chains and the paper's blast-optimised chain: peak
+//!   energy of the last layer, spectra against the negative-mass bands (paper Figs. 8, 9);
+//! - the effective-mass curves of the catalogue (paper Fig. 3).
+//!
+//! The GA results, the only expensive part, are kept in `DIR/cache/` under a stable FNV-1a hash
+//! of the tool version and the complete problem (config, GA settings, seed); a rerun reuses
+//! them. Everything else is re-simulated (well under a second per run). `report.md` and
+//! `report.html` are written under a temporary name and renamed, so a failed run never leaves a
+//! half-written report.
+
+mod doc;
+mod runs;
+mod text;
+
+use crate::commands::Context;
+use crate::plot_cmd::cells_figures;
+use crate::CliError;
+use doc::Doc;
+use runs::{Results, Setup};
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use woodpile_io::atomic::write_atomic;
+
+/// Arguments of `woodpile report`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct Args {
+    /// Output directory: report.md, report.html, figures/, cache/ (created; a directory that
+    /// holds anything else than an earlier report is refused).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// A smaller version for CI: GA of population 20 × 10 generations (the figures keep their
+    /// meaning; the optimum is not converged).
+    #[arg(long)]
+    pub quick: bool,
+    /// Seed of both GAs.
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    pub seed: u64,
+    /// Worker threads (default: one per core). Does not change results.
+    #[arg(long, value_name = "T", default_value_t = 0)]
+    pub threads: usize,
+    /// Allow more than 4 worker threads per core.
+    #[arg(long)]
+    pub allow_many_threads: bool,
+}
+
+/// Checks that `out` can hold the report: created if absent; an existing directory must be
+/// empty or hold an earlier report.
+fn prepare_out(out: &Path) -> Result<(), CliError> {
+    let io = |e: std::io::Error| CliError::Output {
+        path: out.to_path_buf(),
+        source: e,
+    };
+    if out.exists() && !out.is_dir() {
+        return Err(CliError::invalid(
+            "--out",
+            out.display(),
+            "is a file, not a directory; choose a directory",
+        ));
+    }
+    if out.is_dir() {
+        let mut entries = fs::read_dir(out).map_err(io)?;
+        let known = ["report.md", "report.html", "figures", "cache"];
+        let earlier = known.iter().any(|k| out.join(k).exists());
+        if entries.next().is_some() && !earlier {
+            return Err(CliError::invalid(
+                "--out",
+                out.display(),
+                "exists, is not empty and holds no earlier report: refusing to write into it; choose another --out",
+            ));
+        }
+    }
+    for d in [out.to_path_buf(), out.join("figures"), out.join("cache")] {
+        fs::create_dir_all(&d).map_err(|e| CliError::Output { path: d, source: e })?;
+    }
+    // Prove the directory is writable before any work is done.
+    write_atomic(out, ".write-test", b"")?;
+    let _ = fs::remove_file(out.join(".write-test"));
+    Ok(())
+}
+
+/// Runs `woodpile report`.
+pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
+    let started = Instant::now();
+    woodpile_io::limits::check_threads("--threads", args.threads, args.allow_many_threads)?;
+    prepare_out(&args.out)?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads)
+        .build()
+        .map_err(|e| CliError::invalid("--threads", args.threads, e.to_string()))?;
+    let bar = if ctx.quiet {
+        indicatif::ProgressBar::hidden()
+    } else {
+        let bar = indicatif::ProgressBar::new(STEPS);
+        if let Ok(style) = indicatif::ProgressStyle::with_template(
+            "report {pos}/{len} [{bar:25}] {elapsed} | {msg}",
+        ) {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        bar.enable_steady_tick(std::time::Duration::from_millis(200));
+        bar
+    };
+    let result = pool.install(|| build(args, &bar));
+    bar.finish_and_clear();
+    let (doc, summary) = result?;
+    let title = "woodpile: reproduction of Kim, Yang et al. 2017 (impact and blast mitigation with locally resonant woodpiles)";
+    let md = doc.markdown(title);
+    let html = doc.html(title, &args.out)?;
+    write_atomic(&args.out, "report.md", md.as_bytes())?;
+    write_atomic(&args.out, "report.html", html.as_bytes())?;
+    if !ctx.quiet {
+        println!("{summary}");
+        println!(
+            "wrote {} figures, {} and {} in {:.1} s",
+            doc.figures,
+            args.out.join("report.md").display(),
+            args.out.join("report.html").display(),
+            started.elapsed().as_secs_f64()
+        );
+    }
+    Ok(())
+}
+
+/// Progress steps: 4 impact chains, 2 GAs, optimum figures, protocol, 4 blast chains, cells.
+const STEPS: u64 = 13;
+
+/// Runs everything and assembles the document; returns it and a short text summary.
+/// Runs everything and assembles the document; returns it and a short text summary.
+fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), CliError> {
+    let s = Setup::new(args, bar);
+    bar.set_message("homogeneous chains under impact");
+    let (impact_cases, wall_compare, waves) = runs::impact_homogeneous(&s)?;
+    let (ga_res, ga_rig, optima) = runs::optima(&s)?;
+    bar.set_message("layer-by-layer protocol");
+    let (protocol, protocol_map_files, protocol_peak_files) = runs::protocol(&s, &optima[0].0)?;
+    bar.inc(1);
+    bar.set_message("blast cases");
+    let blast = runs::blast(&s)?;
+    bar.set_message("effective-mass curves");
+    let cells_files = cells_figures(&s.figs)?;
+    bar.inc(1);
+    bar.set_message("writing the report");
+    let r = Results {
+        impact_cases,
+        wall_compare,
+        waves,
+        ga_res,
+        ga_rig,
+        optima,
+        protocol,
+        protocol_map_files,
+        protocol_peak_files,
+        blast,
+        cells_files,
+        elapsed: bar.elapsed().as_secs_f64(),
+    };
+    let mut doc = Doc::default();
+    text::write(&mut doc, &s, &r);
+    bar.inc(1);
+    Ok((doc, text::summary(&r)))
+}

@@ -1,0 +1,713 @@
+//! The runs behind the report: every simulation and GA the paper's figures need, drawn into
+//! figures/, with the GA results cached. Cases and reference values come from
+//! `woodpile_io::study`; this module only runs and draws them.
+
+use super::Args;
+use crate::plot_cmd::objective_label;
+use crate::plot_cmd::plot_err;
+use crate::CliError;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::fs;
+use std::ops::ControlFlow;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
+use woodpile::analysis::{
+    band_contrast, contact_spectrum_map, energy_map, force_map, layer_by_layer, peak_layer_energy,
+    FirstTransit, LayerByLayer, Spectrum, SpectrumSettings,
+};
+use woodpile::optimize::{BreederGa, GaState, Objective};
+use woodpile::{
+    simulate, BlastProfile, CellModel, Chain, ChainBuilder, Excitation, RunSettings, RunSummary,
+    Striker, Trajectory, UnitCell,
+};
+use woodpile_io::atomic::write_atomic;
+use woodpile_io::optimize::{fnv1a64, Problem};
+use woodpile_io::scenario::ModelSpec;
+use woodpile_io::study;
+use woodpile_plot as plot;
+
+/// Tag of the cache entries' format (part of every key).
+const CACHE_FORMAT: &str = "woodpile-report-cache/1";
+
+/// What every run of the report shares: the command's arguments, where figures go, the loads.
+pub struct Setup<'a> {
+    /// The command's arguments.
+    pub args: &'a Args,
+    /// The progress bar.
+    pub bar: &'a indicatif::ProgressBar,
+    /// `OUT/figures`.
+    pub figs: PathBuf,
+    /// The GA cache in `OUT/cache`.
+    pub cache: Cache,
+    /// The paper's impact and its run settings.
+    pub impact: Excitation,
+    /// Run settings of the impact.
+    pub impact_settings: RunSettings,
+    /// The impact in words.
+    pub impact_text: String,
+    /// The default blast and its run settings.
+    pub blast: Excitation,
+    /// Run settings of the blast.
+    pub blast_settings: RunSettings,
+    /// The blast in words.
+    pub blast_text: String,
+    /// Highest frequency of the spectra \[Hz\].
+    pub max_hz: f64,
+}
+
+impl<'a> Setup<'a> {
+    /// The paper's loads with the defaults of docs/physics.md.
+    pub fn new(args: &'a Args, bar: &'a indicatif::ProgressBar) -> Self {
+        let striker = Striker::paper();
+        let (f0, td) = match BlastProfile::paper() {
+            BlastProfile::Friedlander {
+                peak_force_n,
+                duration_s,
+                ..
+            } => (peak_force_n, duration_s),
+            BlastProfile::Table { .. } => (f64::NAN, f64::NAN),
+        };
+        Setup {
+            args,
+            bar,
+            figs: args.out.join("figures"),
+            cache: Cache {
+                dir: args.out.join("cache"),
+            },
+            impact_text: format!(
+                "impact of a {} mm glass sphere at {:.2} m/s",
+                striker.diameter_m * 1e3,
+                striker.velocity_m_s
+            ),
+            impact: Excitation::Impact(striker),
+            impact_settings: RunSettings::paper_impact(),
+            blast: Excitation::Blast(BlastProfile::paper()),
+            blast_settings: RunSettings::paper_blast(),
+            blast_text: format!("Friedlander blast {f0} N / {} ms", td * 1e3),
+            max_hz: 80e3,
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The cache: FNV-1a of the tool version, the entry kind and the complete inputs as JSON.
+
+/// A GA result as kept in the cache.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct CachedGa {
+    /// The key's text (tool version, format, inputs): checked on load against collisions.
+    pub inputs: String,
+    pub best_genome: Vec<u8>,
+    pub best_objective: f64,
+    pub history: Vec<woodpile::optimize::GenerationStats>,
+    pub generations: usize,
+    pub evaluations: u64,
+    pub cache_hits: u64,
+    pub elapsed_s: f64,
+    pub stop_reason: String,
+}
+
+/// GA results kept between runs of the report.
+pub struct Cache {
+    dir: PathBuf,
+}
+
+impl Cache {
+    fn key_text(kind: &str, inputs: &impl Serialize) -> String {
+        format!(
+            "woodpile {} {CACHE_FORMAT} {kind}\n{}",
+            env!("CARGO_PKG_VERSION"),
+            serde_json::to_string(inputs).unwrap_or_default()
+        )
+    }
+
+    fn file(&self, text: &str) -> (PathBuf, String) {
+        let name = format!("{:016x}.json", fnv1a64(text.as_bytes()));
+        (self.dir.join(&name), name)
+    }
+
+    /// The cached GA for these inputs, if an entry with exactly this key text exists.
+    fn get(&self, text: &str) -> Option<CachedGa> {
+        let (path, _) = self.file(text);
+        let entry: CachedGa = serde_json::from_str(&fs::read_to_string(path).ok()?).ok()?;
+        (entry.inputs == text).then_some(entry)
+    }
+
+    fn put(&self, entry: &CachedGa) -> Result<(), CliError> {
+        let (path, name) = self.file(&entry.inputs);
+        let json = serde_json::to_vec(entry).map_err(|e| CliError::Output {
+            path,
+            source: std::io::Error::other(e),
+        })?;
+        write_atomic(&self.dir, &name, &json)
+    }
+}
+
+pub fn rods_mm(chain: &Chain) -> Vec<u32> {
+    chain
+        .elements()
+        .iter()
+        .map(|e| match e.body {
+            woodpile::Body::Rod { length_m, .. } => (length_m * 1e3).round() as u32,
+            woodpile::Body::Sphere { diameter_m } => (diameter_m * 1e3).round() as u32,
+        })
+        .collect()
+}
+
+/// The transmission ratio, NaN (printed as such) when the run gives none.
+pub fn ratio(s: &RunSummary) -> f64 {
+    s.transmission_ratio.unwrap_or(f64::NAN)
+}
+
+/// A fraction in percent; n/a for a value that is not defined (NaN).
+pub fn pct(x: f64) -> String {
+    if !x.is_finite() {
+        return "n/a".to_string();
+    }
+    format!("{:.1} %", 100.0 * x)
+}
+
+pub fn join_mm(rods: &[u32]) -> String {
+    rods.iter()
+        .map(u32::to_string)
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+// ---------------------------------------------------------------------------------------------
+// The runs.
+
+/// One simulated chain with what the report needs of it.
+pub struct Case {
+    /// Short name, e.g. `20 mm`.
+    pub name: String,
+    /// File stem part, e.g. `20mm`.
+    pub slug: String,
+    /// Title part naming the chain, e.g. `20 × 20 mm rods (resonant)`.
+    pub chain_title: String,
+    pub chain: Chain,
+    pub summary: RunSummary,
+    pub trajectory: Trajectory,
+    /// Negative-mass bands of the chain's cells (when it has at most two kinds).
+    pub bands: Vec<(f64, f64)>,
+}
+
+fn homogeneous(length_mm: u32, model: CellModel) -> Result<Chain, CliError> {
+    Ok(ChainBuilder::table1_rods(&[length_mm; 20], model)?.build()?)
+}
+
+fn simulate_case(
+    name: &str,
+    slug: &str,
+    chain_title: &str,
+    chain: Chain,
+    excitation: &Excitation,
+    settings: &RunSettings,
+) -> Result<Case, CliError> {
+    let mut trajectory = Trajectory::default();
+    let summary = simulate(&chain, excitation, settings, &mut trajectory)?;
+    let mut cells: Vec<&UnitCell> = Vec::new();
+    for e in chain.elements() {
+        if !cells.contains(&&e.cell) {
+            cells.push(&e.cell);
+        }
+    }
+    let bands = if cells.len() <= 2 {
+        let mut b: Vec<(f64, f64)> = cells
+            .iter()
+            .flat_map(|c| c.negative_mass_bands_hz())
+            .collect();
+        b.sort_by(|a, b| a.0.total_cmp(&b.0));
+        b
+    } else {
+        Vec::new()
+    };
+    Ok(Case {
+        name: name.to_string(),
+        slug: slug.to_string(),
+        chain_title: chain_title.to_string(),
+        chain,
+        summary,
+        trajectory,
+        bands,
+    })
+}
+
+/// Spectra of contact 1, the middle contact and the wall, with the chain's bands shaded.
+fn draw_spectra(
+    case: &Case,
+    title: &str,
+    max_hz: f64,
+    stem: &Path,
+) -> Result<Vec<PathBuf>, CliError> {
+    let t = &case.trajectory;
+    let n = t.n_elements;
+    let dt = woodpile::analysis::sample_interval_s(t)?;
+    let settings = SpectrumSettings::default();
+    let spectra = [
+        (1, "contact 1 (incident)".to_string()),
+        (n / 2, format!("contact {} (middle)", n / 2)),
+        (n, format!("contact {n} (wall)")),
+    ]
+    .into_iter()
+    .map(|(c, l)| Ok((l, Spectrum::of(&t.contact_force_n(c), dt, &settings)?)))
+    .collect::<Result<Vec<_>, woodpile::Error>>()?;
+    let refs: Vec<(String, &Spectrum)> = spectra.iter().map(|(l, s)| (l.clone(), s)).collect();
+    plot::spectra(&refs, &case.bands, title, max_hz, stem).map_err(plot_err)
+}
+
+/// A GA run (from the cache when it holds one for the same inputs).
+pub struct GaRun {
+    pub model: &'static str,
+    pub chain: Chain,
+    pub rods: Vec<u32>,
+    pub cached: bool,
+    pub result: CachedGa,
+    pub population: usize,
+    pub generations_limit: usize,
+    pub stall: Option<usize>,
+    pub objective: String,
+    pub unit: String,
+}
+
+fn run_ga(
+    model: ModelSpec,
+    quick: bool,
+    seed: u64,
+    threads: usize,
+    cache: &Cache,
+    bar: &indicatif::ProgressBar,
+) -> Result<GaRun, CliError> {
+    let cfg = study::ga_problem(model, seed, quick)?;
+    let problem = Problem::new(&cfg, Path::new("."), threads)?;
+    let model_name = match model {
+        ModelSpec::Resonant => "resonant",
+        ModelSpec::Rigid => "rigid",
+    };
+    let key = Cache::key_text("ga", &problem.config);
+    let objective = problem.objective;
+    let (result, cached) = match cache.get(&key) {
+        Some(entry) if entry.best_genome.len() == problem.space.positions => (entry, true),
+        _ => {
+            let ga = BreederGa::new(problem.space.clone(), Box::new(objective), problem.settings)
+                .map_err(|e| CliError::invalid("ga", "(report)", e.to_string()))?;
+            let total = problem.settings.generations;
+            let unit = objective.unit().to_string();
+            let mut observer = |s: &GaState| {
+                bar.set_message(format!(
+                    "{model_name} GA: generation {}/{total}, best {:.3} {unit}, {} evaluations",
+                    s.generation,
+                    s.best().objective,
+                    s.evaluations
+                ));
+                ControlFlow::Continue(())
+            };
+            let outcome = ga
+                .run(None, &AtomicBool::new(false), &mut observer)
+                .map_err(|e| match e {
+                    woodpile::optimize::OptimizeError::Simulation { source, .. } => {
+                        CliError::Model(source)
+                    }
+                    other => CliError::invalid("ga", "(report)", other.to_string()),
+                })?;
+            let s = &outcome.state;
+            let entry = CachedGa {
+                inputs: key.clone(),
+                best_genome: s.best().genome.clone(),
+                best_objective: s.best().objective,
+                history: s.history.clone(),
+                generations: s.generation,
+                evaluations: s.evaluations,
+                cache_hits: s.cache_hits,
+                elapsed_s: s.elapsed_s,
+                stop_reason: format!("{:?}", outcome.reason),
+            };
+            cache.put(&entry)?;
+            (entry, false)
+        }
+    };
+    let chain = problem.space.chain(&result.best_genome)?;
+    Ok(GaRun {
+        model: model_name,
+        rods: rods_mm(&chain),
+        chain,
+        cached,
+        result,
+        population: problem.settings.population,
+        generations_limit: problem.settings.generations,
+        stall: problem.settings.stall_generations,
+        objective: objective.as_str().to_string(),
+        unit: objective.unit().to_string(),
+    })
+}
+
+/// The homogeneous chains under the impact: their cases and figures, the wall forces compared,
+/// and the first transit of each wave at the wall.
+#[allow(clippy::type_complexity)]
+pub fn impact_homogeneous(
+    s: &Setup,
+) -> Result<
+    (
+        Vec<(Case, Vec<Vec<PathBuf>>)>,
+        Vec<PathBuf>,
+        Vec<FirstTransit>,
+    ),
+    CliError,
+> {
+    let fig = |name: &str| s.figs.join(name);
+    let (bar, max_hz) = (s.bar, s.max_hz);
+    let (impact, impact_settings, impact_text) = (&s.impact, &s.impact_settings, &s.impact_text);
+    let impact_cases: Vec<(Case, Vec<Vec<PathBuf>>)> = study::IMPACT_HOMOGENEOUS
+        .par_iter()
+        .map(|h| {
+            let (l, model, name, slug) = (h.rod_mm, h.model, h.name, h.slug);
+            let model_name = if model == CellModel::Rigid {
+                "rigid"
+            } else {
+                "resonant"
+            };
+            let chain_title = format!("20 × {l} mm rods ({model_name})");
+            let case = simulate_case(
+                name,
+                slug,
+                &chain_title,
+                homogeneous(l, model)?,
+                impact,
+                impact_settings,
+            )?;
+            let title = format!("{chain_title}, {impact_text}");
+            let t = &case.trajectory;
+            let n = t.n_elements;
+            let mut files = Vec::new();
+            files.push(
+                plot::force_map(
+                    &force_map(t)?,
+                    &title,
+                    &fig(&format!("impact_{slug}_force_map")),
+                )
+                .map_err(plot_err)?,
+            );
+            files.push(
+                plot::energy_map(
+                    &energy_map(t)?,
+                    &title,
+                    &fig(&format!("impact_{slug}_energy_map")),
+                )
+                .map_err(plot_err)?,
+            );
+            let series = [
+                (0, "contact 0 (striker)".to_string()),
+                (1, "contact 1 (incident)".to_string()),
+                (n / 2, format!("contact {} (middle)", n / 2)),
+                (n, format!("contact {n} (wall)")),
+            ]
+            .map(|(c, l)| plot::Series::new(l, t.contact_force_n(c)));
+            files.push(
+                plot::force_histories(
+                    &t.times_s,
+                    &series,
+                    &title,
+                    &fig(&format!("impact_{slug}_force_histories")),
+                )
+                .map_err(plot_err)?,
+            );
+            files.push(draw_spectra(
+                &case,
+                &title,
+                max_hz,
+                &fig(&format!("impact_{slug}_spectra")),
+            )?);
+            bar.inc(1);
+            Ok((case, files))
+        })
+        .collect::<Result<Vec<_>, CliError>>()?;
+    let wall_series: Vec<plot::Series> = impact_cases
+        .iter()
+        .map(|(c, _)| {
+            plot::Series::new(
+                format!("{}: wall (contact 20)", c.name),
+                c.trajectory.contact_force_n(c.trajectory.n_elements),
+            )
+        })
+        .collect();
+    let wall_compare = plot::force_histories(
+        &impact_cases[0].0.trajectory.times_s,
+        &wall_series,
+        &format!("Wall force of homogeneous 20-rod chains, {impact_text}"),
+        &fig("impact_homogeneous_wall_forces"),
+    )
+    .map_err(plot_err)?;
+
+    // Pulses at the wall and at the middle contact, first transit only: up to the arrival of
+    // the first pulse at the wall plus 0.6 ms.
+    let waves: Vec<FirstTransit> = impact_cases
+        .iter()
+        .map(|(c, _)| FirstTransit::of(&c.name, &c.trajectory))
+        .collect();
+
+    Ok((impact_cases, wall_compare, waves))
+}
+
+/// The resonant and rigid GAs and the figures of their optima.
+#[allow(clippy::type_complexity)]
+pub fn optima(s: &Setup) -> Result<(GaRun, GaRun, Vec<(Case, Vec<Vec<PathBuf>>)>), CliError> {
+    let fig = |name: &str| s.figs.join(name);
+    let bar = s.bar;
+    let (impact, impact_settings, impact_text) = (&s.impact, &s.impact_settings, &s.impact_text);
+    bar.set_message("resonant GA");
+    let ga_res = run_ga(
+        ModelSpec::Resonant,
+        s.args.quick,
+        s.args.seed,
+        s.args.threads,
+        &s.cache,
+        bar,
+    )?;
+    bar.inc(1);
+    bar.set_message("rigid GA");
+    let ga_rig = run_ga(
+        ModelSpec::Rigid,
+        s.args.quick,
+        s.args.seed,
+        s.args.threads,
+        &s.cache,
+        bar,
+    )?;
+    bar.inc(1);
+    bar.set_message("figures of the optima");
+    let optima: Vec<(Case, Vec<Vec<PathBuf>>)> = [&ga_res, &ga_rig]
+        .par_iter()
+        .map(|ga| {
+            let chain_title = format!("GA optimum ({}): {}", ga.model, join_mm(&ga.rods));
+            let case = simulate_case(
+                &format!("{} optimum", ga.model),
+                &format!("optimum_{}", ga.model),
+                &chain_title,
+                ga.chain.clone(),
+                impact,
+                impact_settings,
+            )?;
+            let short = format!("GA optimum, {} model, {impact_text}", ga.model);
+            let t = &case.trajectory;
+            let n = t.n_elements;
+            let slug = &case.slug;
+            let points: Vec<plot::ConvergencePoint> = ga
+                .result
+                .history
+                .iter()
+                .map(|h| plot::ConvergencePoint {
+                    generation: h.generation,
+                    best: h.best,
+                    mean: h.mean,
+                })
+                .collect();
+            let mut files = Vec::new();
+            files.push(
+                plot::convergence(
+                    &points,
+                    &objective_label(&ga.objective, &ga.unit),
+                    &format!(
+                        "Breeder GA, 20 rods, {} model, impact (population {}, seed {})",
+                        ga.model, ga.population, s.args.seed
+                    ),
+                    &fig(&format!("{slug}_convergence")),
+                )
+                .map_err(plot_err)?,
+            );
+            files.push(
+                plot::chain_picture(
+                    &case.chain,
+                    &format!("GA optimum, {} model, impact", ga.model),
+                    &fig(&format!("{slug}_chain")),
+                )
+                .map_err(plot_err)?,
+            );
+            let series = [
+                (1, "contact 1: incident".to_string()),
+                (n, format!("contact {n}: transmitted (wall)")),
+            ]
+            .map(|(c, l)| plot::Series::new(l, t.contact_force_n(c)));
+            files.push(
+                plot::force_histories(&t.times_s, &series, &short, &fig(&format!("{slug}_forces")))
+                    .map_err(plot_err)?,
+            );
+            files.push(
+                plot::force_map(&force_map(t)?, &short, &fig(&format!("{slug}_force_map")))
+                    .map_err(plot_err)?,
+            );
+            Ok((case, files))
+        })
+        .collect::<Result<Vec<_>, CliError>>()?;
+    bar.inc(1);
+    Ok((ga_res, ga_rig, optima))
+}
+
+/// The layer-by-layer protocol on the resonant optimum: the protocol and its two figures.
+pub fn protocol(
+    s: &Setup,
+    res_case: &Case,
+) -> Result<(LayerByLayer, Vec<PathBuf>, Vec<PathBuf>), CliError> {
+    let fig = |name: &str| s.figs.join(name);
+    let (impact, impact_settings, impact_text) = (&s.impact, &s.impact_settings, &s.impact_text);
+    let protocol = layer_by_layer(&res_case.chain, impact, impact_settings)?;
+    let ptitle = format!("Layer-by-layer protocol, resonant GA optimum, {impact_text}");
+    let protocol_map_files =
+        plot::protocol_map(&protocol.wall_force_map, &ptitle, &fig("protocol_map"))
+            .map_err(plot_err)?;
+    let full_peaks = res_case.summary.contact_peak_forces_n[1..].to_vec();
+    let protocol_peak_files = plot::peaks_per_layer(
+        &[
+            plot::Series::new(
+                "protocol: wall force of the first k rods on the sensor",
+                protocol.peak_wall_force_n.clone(),
+            ),
+            plot::Series::new("full chain: peak of contact k", full_peaks.clone()),
+        ],
+        &ptitle,
+        "peak force [N]",
+        &fig("protocol_peaks"),
+    )
+    .map_err(plot_err)?;
+    Ok((protocol, protocol_map_files, protocol_peak_files))
+}
+
+/// What the blast runs give the report.
+pub struct BlastRuns {
+    /// Each chain and its figures.
+    pub cases: Vec<(Case, Vec<Vec<PathBuf>>)>,
+    /// The load and the wall forces compared.
+    pub compare: Vec<PathBuf>,
+    /// (chain, peak energy of the last layer \[J\], relative to the 20 mm chain).
+    pub energy: Vec<(String, f64, f64)>,
+    /// (chain, negative-mass band \[Hz\], band contrast of its spectra).
+    pub bands: Vec<(String, (f64, f64), f64)>,
+}
+
+/// The blast on the homogeneous chains and the paper's blast-optimised chain.
+pub fn blast(s: &Setup) -> Result<BlastRuns, CliError> {
+    let fig = |name: &str| s.figs.join(name);
+    let (bar, max_hz) = (s.bar, s.max_hz);
+    let (blast, blast_settings, blast_text) = (&s.blast, &s.blast_settings, &s.blast_text);
+    let blast_cases: Vec<(Case, Vec<Vec<PathBuf>>)> = study::BLAST_CHAINS
+        .par_iter()
+        .map(|&(rod_mm, name, slug)| {
+            let (rods, chain_title) = match rod_mm {
+                Some(l) => (
+                    vec![l; study::CHAIN_LENGTH],
+                    format!("{} × {l} mm rods (resonant)", study::CHAIN_LENGTH),
+                ),
+                None => (
+                    woodpile::PAPER_OPTIMIZED_CHAIN_MM.to_vec(),
+                    "paper's blast-optimised chain (resonant)".to_string(),
+                ),
+            };
+            let chain_title = &chain_title;
+            let chain = ChainBuilder::table1_rods(&rods, CellModel::Resonant)?.build()?;
+            let case = simulate_case(name, slug, chain_title, chain, blast, blast_settings)?;
+            let title = format!("{chain_title}, {blast_text}");
+            let t = &case.trajectory;
+            let mut files = Vec::new();
+            files.push(
+                plot::force_map(
+                    &force_map(t)?,
+                    &title,
+                    &fig(&format!("blast_{slug}_force_map")),
+                )
+                .map_err(plot_err)?,
+            );
+            files.push(
+                plot::energy_map(
+                    &energy_map(t)?,
+                    &title,
+                    &fig(&format!("blast_{slug}_energy_map")),
+                )
+                .map_err(plot_err)?,
+            );
+            files.push(
+                plot::spectrum_map(
+                    &contact_spectrum_map(t, &SpectrumSettings::default())?,
+                    &title,
+                    max_hz,
+                    &fig(&format!("blast_{slug}_spectrum_map")),
+                )
+                .map_err(plot_err)?,
+            );
+            files.push(draw_spectra(
+                &case,
+                &title,
+                max_hz,
+                &fig(&format!("blast_{slug}_spectra")),
+            )?);
+            bar.inc(1);
+            Ok((case, files))
+        })
+        .collect::<Result<Vec<_>, CliError>>()?;
+    let mut blast_series = vec![plot::Series::new(
+        "load (contact 0)",
+        blast_cases[0].0.trajectory.contact_force_n(0),
+    )];
+    for (c, _) in &blast_cases {
+        blast_series.push(plot::Series::new(
+            format!("{}: wall", c.name),
+            c.trajectory.contact_force_n(c.trajectory.n_elements),
+        ));
+    }
+    let blast_compare = plot::force_histories(
+        &blast_cases[0].0.trajectory.times_s,
+        &blast_series,
+        &format!("Blast load and wall forces of the 20-rod chains, {blast_text}"),
+        &fig("blast_wall_forces"),
+    )
+    .map_err(plot_err)?;
+    let e_ref = peak_layer_energy(&blast_cases[0].0.trajectory, 20);
+    let blast_energy: Vec<(String, f64, f64)> = blast_cases
+        .iter()
+        .map(|(c, _)| {
+            let e = peak_layer_energy(&c.trajectory, c.trajectory.n_elements);
+            (c.name.clone(), e, e / e_ref)
+        })
+        .collect();
+    // Band contrast: the homogeneous chains' negative-mass bands.
+    let mut band_rows = Vec::new();
+    for (c, _) in blast_cases.iter().take(3) {
+        for &b in &c.bands {
+            band_rows.push((c.name.clone(), b, band_contrast(&c.trajectory, b)?));
+        }
+    }
+
+    Ok(BlastRuns {
+        cases: blast_cases,
+        compare: blast_compare,
+        energy: blast_energy,
+        bands: band_rows,
+    })
+}
+
+/// Everything the report's text needs from the runs.
+pub struct Results {
+    /// Homogeneous chains under the impact, with their figures.
+    pub impact_cases: Vec<(Case, Vec<Vec<PathBuf>>)>,
+    /// Wall forces of the homogeneous chains compared.
+    pub wall_compare: Vec<PathBuf>,
+    /// First transit of each homogeneous chain's wave at the wall.
+    pub waves: Vec<FirstTransit>,
+    /// The resonant GA.
+    pub ga_res: GaRun,
+    /// The rigid GA.
+    pub ga_rig: GaRun,
+    /// The two optima re-simulated, with their figures.
+    pub optima: Vec<(Case, Vec<Vec<PathBuf>>)>,
+    /// The layer-by-layer protocol on the resonant optimum.
+    pub protocol: LayerByLayer,
+    /// Its map.
+    pub protocol_map_files: Vec<PathBuf>,
+    /// Its peaks per layer.
+    pub protocol_peak_files: Vec<PathBuf>,
+    /// The blast runs.
+    pub blast: BlastRuns,
+    /// The effective-mass figures.
+    pub cells_files: Vec<PathBuf>,
+    /// Wall-clock time of the runs \[s\].
+    pub elapsed: f64,
+}

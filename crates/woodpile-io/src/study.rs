@@ -1,0 +1,268 @@
+//! The paper's study as data: the cases `woodpile report` runs, and every number the paper
+//! reports (docs/physics.md §9), each stated once. A table shows a reference value through
+//! [`PaperValue::text`], derived from the number, so the text and the number cannot disagree.
+
+use crate::optimize::OptimizeConfig;
+use crate::scenario::ModelSpec;
+use woodpile::CellModel;
+
+/// How a reference value is read and compared.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// A force \[N\], shown with one decimal; compared in percent of the paper's value.
+    ForceN,
+    /// A fraction, shown in percent with one decimal; compared in percentage points.
+    Fraction,
+    /// A dimensionless coefficient, shown with four decimals; compared in percent.
+    Coefficient,
+    /// A time \[s\], shown in ms; compared in percent.
+    DurationS,
+}
+
+/// One number the paper reports.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PaperValue {
+    /// What it is.
+    pub what: &'static str,
+    /// The value, in SI units (a fraction for percentages).
+    pub value: f64,
+    /// How to read and compare it.
+    pub quantity: Quantity,
+    /// Whether the paper gives it only approximately ("~70 %").
+    pub approximate: bool,
+}
+
+impl PaperValue {
+    /// The value as the paper states it.
+    pub fn text(&self) -> String {
+        let number = match self.quantity {
+            Quantity::ForceN => format!("{:.1} N", self.value),
+            // "~70 %": an approximate value is stated to the percent.
+            Quantity::Fraction if self.approximate => format!("{:.0} %", 100.0 * self.value),
+            Quantity::Fraction => format!("{:.1} %", 100.0 * self.value),
+            Quantity::Coefficient => format!("{:.4}", self.value),
+            Quantity::DurationS => format!("{} ms", self.value * 1e3),
+        };
+        if self.approximate {
+            format!("~{number}")
+        } else {
+            number
+        }
+    }
+
+    /// A measured value in the same form as [`PaperValue::text`].
+    pub fn format(&self, ours: f64) -> String {
+        PaperValue {
+            value: ours,
+            approximate: false,
+            ..*self
+        }
+        .text()
+    }
+
+    /// Our value against the paper's: percent of the paper's value, or percentage points for a
+    /// fraction.
+    pub fn difference(&self, ours: f64) -> String {
+        match self.quantity {
+            Quantity::Fraction => format!("{:+.1} pp", 100.0 * (ours - self.value)),
+            _ => format!("{:+.1} %", 100.0 * (ours - self.value) / self.value),
+        }
+    }
+}
+
+const fn value(what: &'static str, value: f64, quantity: Quantity) -> PaperValue {
+    PaperValue {
+        what,
+        value,
+        quantity,
+        approximate: false,
+    }
+}
+
+/// Impact, resonant GA optimum: the force on the sensor.
+pub const RESONANT_TRANSMITTED: PaperValue = value(
+    "Resonant optimum: transmitted (wall) force",
+    28.5,
+    Quantity::ForceN,
+);
+/// Impact, resonant GA optimum: the incident force (contact 1).
+pub const RESONANT_INCIDENT: PaperValue = value(
+    "Resonant optimum: incident force (contact 1)",
+    159.6,
+    Quantity::ForceN,
+);
+/// Impact, resonant GA optimum: transmitted / incident.
+pub const RESONANT_RATIO: PaperValue = value(
+    "Resonant optimum: transmitted / incident",
+    0.179,
+    Quantity::Fraction,
+);
+/// Impact, rigid GA optimum: the force on the sensor.
+pub const RIGID_TRANSMITTED: PaperValue = value(
+    "Rigid optimum: transmitted (wall) force",
+    85.5,
+    Quantity::ForceN,
+);
+/// Impact, rigid GA optimum: the incident force.
+pub const RIGID_INCIDENT: PaperValue = value(
+    "Rigid optimum: incident force (contact 1)",
+    148.4,
+    Quantity::ForceN,
+);
+/// Impact, rigid GA optimum: transmitted / incident.
+pub const RIGID_RATIO: PaperValue = value(
+    "Rigid optimum: transmitted / incident",
+    0.576,
+    Quantity::Fraction,
+);
+/// How much less the resonant optimum transmits than the rigid one: 1 − ratio_res/ratio_rigid.
+pub const RESONANT_ADVANTAGE: PaperValue = value(
+    "Resonant better than rigid (1 − ratio_res / ratio_rigid)",
+    0.689,
+    Quantity::Fraction,
+);
+/// Striker restitution of the resonant optimum.
+pub const RESONANT_RESTITUTION: PaperValue = value(
+    "Striker restitution, resonant optimum",
+    0.2570,
+    Quantity::Coefficient,
+);
+/// Striker restitution of the rigid optimum.
+pub const RIGID_RESTITUTION: PaperValue = value(
+    "Striker restitution, rigid optimum",
+    0.4991,
+    Quantity::Coefficient,
+);
+/// Impact on 80 mm rods: time between the two groups of the split wave.
+pub const GAP_80MM: PaperValue = value(
+    "Impact on 20 × 80 mm rods: time between the two pulse groups",
+    0.2e-3,
+    Quantity::DurationS,
+);
+/// Blast: peak transmitted energy of the 40 mm chain over the 20 mm chain's.
+pub const BLAST_40MM: PaperValue = PaperValue {
+    approximate: true,
+    ..value(
+        "Blast: peak transmitted energy (last layer), 40 mm chain / 20 mm chain",
+        0.70,
+        Quantity::Fraction,
+    )
+};
+/// Blast: peak transmitted energy of the 80 mm chain over the 20 mm chain's.
+pub const BLAST_80MM: PaperValue = PaperValue {
+    approximate: true,
+    ..value(
+        "Blast: peak transmitted energy (last layer), 80 mm chain / 20 mm chain",
+        0.70,
+        Quantity::Fraction,
+    )
+};
+/// Blast: peak transmitted energy of the paper's optimised chain over the 20 mm chain's.
+pub const BLAST_OPTIMUM: PaperValue = value(
+    "Blast: peak transmitted energy (last layer), paper optimum chain / 20 mm chain",
+    0.083,
+    Quantity::Fraction,
+);
+
+/// What the paper says of the wave at the wall of homogeneous chains under the impact, by rod
+/// length \[mm\] (qualitative).
+pub const WAVE_SHAPES: [(u32, &str); 3] = [
+    (20, "one solitary wave with a small oscillating tail"),
+    (40, "wave split into groups separated in time"),
+    (80, "two groups ~0.2 ms apart"),
+];
+
+/// The low-energy bands the paper sees in the blast spectra, by rod length \[mm\] (as printed).
+pub const BLAST_BANDS: [(u32, &str); 3] = [
+    (20, "38–55 kHz"),
+    (40, "10–15 kHz"),
+    (80, "2.7–3.9 and 15–20 kHz"),
+];
+
+/// A homogeneous chain the report runs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HomogeneousCase {
+    /// Rod length \[mm\] (Table 1).
+    pub rod_mm: u32,
+    /// Cell model.
+    pub model: CellModel,
+    /// Short name for tables.
+    pub name: &'static str,
+    /// File-name part.
+    pub slug: &'static str,
+}
+
+/// Number of rods in every chain of the paper.
+pub const CHAIN_LENGTH: usize = 20;
+
+/// The impact runs on homogeneous chains (paper Figs. 5 a–c, 6).
+pub const IMPACT_HOMOGENEOUS: [HomogeneousCase; 4] = [
+    HomogeneousCase {
+        rod_mm: 20,
+        model: CellModel::Resonant,
+        name: "20 mm",
+        slug: "20mm",
+    },
+    HomogeneousCase {
+        rod_mm: 40,
+        model: CellModel::Resonant,
+        name: "40 mm",
+        slug: "40mm",
+    },
+    HomogeneousCase {
+        rod_mm: 80,
+        model: CellModel::Resonant,
+        name: "80 mm",
+        slug: "80mm",
+    },
+    HomogeneousCase {
+        rod_mm: 20,
+        model: CellModel::Rigid,
+        name: "20 mm rigid",
+        slug: "20mm_rigid",
+    },
+];
+
+/// The blast runs (paper Figs. 8, 9): homogeneous 20, 40, 80 mm resonant chains, and the
+/// paper's blast-optimised chain (`None`: [`woodpile::PAPER_OPTIMIZED_CHAIN_MM`]).
+pub const BLAST_CHAINS: [(Option<u32>, &str, &str); 4] = [
+    (Some(20), "20 mm", "20mm"),
+    (Some(40), "40 mm", "40mm"),
+    (Some(80), "80 mm", "80mm"),
+    (None, "paper optimum", "paper_optimum"),
+];
+
+/// The GA problem of the paper's Fig. 5 d, e: the built-in `paper-impact` problem with the given
+/// cell model and seed; `quick` shrinks the GA to population 20 × 10 generations (for CI).
+pub fn ga_problem(
+    model: ModelSpec,
+    seed: u64,
+    quick: bool,
+) -> Result<OptimizeConfig, crate::Error> {
+    let mut cfg = OptimizeConfig::builtin("paper-impact")?;
+    cfg.design.model = Some(model);
+    cfg.ga.seed = Some(seed);
+    if quick {
+        cfg.ga.population = Some(20);
+        cfg.ga.generations = Some(10);
+    }
+    Ok(cfg)
+}
+
+/// Mean rod length of a chain \[mm\].
+pub fn mean_length_mm(rods_mm: &[u32]) -> f64 {
+    rods_mm.iter().map(|&r| f64::from(r)).sum::<f64>() / rods_mm.len().max(1) as f64
+}
+
+/// Fraction of interior positions whose rod is longer or shorter than both neighbours (1 for a
+/// strictly alternating heavy/light chain, the paper's rigid optimum).
+pub fn alternation(rods_mm: &[u32]) -> f64 {
+    if rods_mm.len() < 3 {
+        return 0.0;
+    }
+    let n = rods_mm
+        .windows(3)
+        .filter(|w| (w[1] > w[0] && w[1] > w[2]) || (w[1] < w[0] && w[1] < w[2]))
+        .count();
+    n as f64 / (rods_mm.len() - 2) as f64
+}
