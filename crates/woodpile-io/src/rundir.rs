@@ -8,7 +8,7 @@
 use crate::atomic::{io_err, RUN_MARKER};
 use crate::error::Error;
 use crate::scenario::{resolve, Resolved, Scenario};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::fs;
 use std::io::{BufWriter, Write};
@@ -66,10 +66,10 @@ pub struct EnergyJson {
 }
 
 /// Integrator work in `summary.json` / `run.json`.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct IntegratorJson {
     /// `rk4` or `dopri5`.
-    pub method: &'static str,
+    pub method: String,
     /// Accepted steps.
     pub steps: u64,
     /// Right-hand-side evaluations.
@@ -172,7 +172,7 @@ impl SummaryJson {
                 max_relative_error: s.energy.max_relative_error,
             },
             integrator: IntegratorJson {
-                method: method_name(&r.resolved.settings.method),
+                method: method_name(&r.resolved.settings.method).to_string(),
                 steps: s.stats.steps,
                 rhs_evaluations: s.stats.rhs_evaluations,
                 rejected_steps: s.stats.rejected_steps,
@@ -183,40 +183,62 @@ impl SummaryJson {
 }
 
 /// Contact coefficients of a run in `run.json` \[N/m^1.5\].
-#[derive(Debug, Clone, Serialize)]
-struct BetasJson {
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BetasJson {
     /// Striker – element 1 (impact).
-    striker: Option<f64>,
+    pub striker: Option<f64>,
     /// Contacts 1..N−1, element i – element i+1.
-    inner: Vec<f64>,
+    pub inner: Vec<f64>,
     /// Contact N, element N – wall (null for a free end).
-    wall: Option<f64>,
+    pub wall: Option<f64>,
 }
 
-#[derive(Debug, Clone, Serialize)]
-struct ElementJson {
-    label: String,
-    total_mass_kg: f64,
-    primary_mass_kg: f64,
-    resonator_masses_kg: Vec<f64>,
-    resonator_stiffnesses_n_per_m: Vec<f64>,
+/// One element of the chain in `run.json`: its label and unit cell.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ElementJson {
+    /// Label, e.g. `80mm`.
+    pub label: String,
+    /// Total mass \[kg\].
+    pub total_mass_kg: f64,
+    /// Primary mass M \[kg\].
+    pub primary_mass_kg: f64,
+    /// Resonator masses m_j \[kg\].
+    pub resonator_masses_kg: Vec<f64>,
+    /// Resonator stiffnesses k_j \[N/m\].
+    pub resonator_stiffnesses_n_per_m: Vec<f64>,
 }
 
-#[derive(Debug, Clone, Serialize)]
-struct RunJson<'a> {
-    tool: &'static str,
-    version: &'static str,
-    scenario_name: &'a str,
-    scenario_file: Option<String>,
+/// `run.json`: what was run, completely — written by [`write_run`] and read back by
+/// [`read_run_info`] through the same type.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunJson {
+    /// `woodpile`.
+    pub tool: String,
+    /// [`RUN_FORMAT`] (absent in runs written before the tag existed).
+    #[serde(default)]
+    pub format: Option<String>,
+    /// Version of woodpile that wrote it.
+    pub version: String,
+    /// Scenario name (built-in name or file stem).
+    pub scenario_name: String,
+    /// The scenario file, if the run came from one.
+    pub scenario_file: Option<String>,
     /// The scenario with every default filled in (the same structure as the TOML file).
-    scenario: Scenario,
-    contact_betas_n_per_m1_5: BetasJson,
-    striker_mass_kg: Option<f64>,
-    striker_velocity_m_s: Option<f64>,
-    elements: Vec<ElementJson>,
-    integrator: IntegratorJson,
-    n_samples: usize,
-    wall_time_s: f64,
+    pub scenario: Scenario,
+    /// Every contact coefficient.
+    pub contact_betas_n_per_m1_5: BetasJson,
+    /// Striker mass \[kg\] (impact).
+    pub striker_mass_kg: Option<f64>,
+    /// Striker initial velocity \[m/s\] (impact).
+    pub striker_velocity_m_s: Option<f64>,
+    /// The elements, top to bottom.
+    pub elements: Vec<ElementJson>,
+    /// Integrator statistics.
+    pub integrator: IntegratorJson,
+    /// Number of samples.
+    pub n_samples: usize,
+    /// Wall-clock time of the run \[s\].
+    pub wall_time_s: f64,
 }
 
 fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<(), Error> {
@@ -287,9 +309,10 @@ pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), Error> {
     };
     let s = r.summary;
     let run = RunJson {
-        tool: "woodpile",
-        version: env!("CARGO_PKG_VERSION"),
-        scenario_name: r.name,
+        tool: "woodpile".to_string(),
+        format: Some(RUN_FORMAT.to_string()),
+        version: env!("CARGO_PKG_VERSION").to_string(),
+        scenario_name: r.name.to_string(),
         scenario_file: r.file.map(|p| p.display().to_string()),
         scenario: r.scenario.complete(),
         contact_betas_n_per_m1_5: BetasJson {
@@ -316,7 +339,7 @@ pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), Error> {
             })
             .collect(),
         integrator: IntegratorJson {
-            method: method_name(&r.resolved.settings.method),
+            method: method_name(&r.resolved.settings.method).to_string(),
             steps: s.stats.steps,
             rhs_evaluations: s.stats.rhs_evaluations,
             rejected_steps: s.stats.rejected_steps,
@@ -478,71 +501,48 @@ pub fn read_run_info(dir: &Path) -> Result<RunInfo, Error> {
         message: e.to_string(),
     })?;
     check_format(&path, &run)?;
-    let field = |key: &str| {
-        run.get(key).ok_or_else(|| {
-            read_error(
-                &path,
-                format!("no `{key}` key: not a complete woodpile run.json"),
-            )
+    // The format and version are checked on the raw JSON first, so a foreign or older file gets
+    // that explanation rather than a missing-field message.
+    let run: RunJson = serde_json::from_value(run).map_err(|e| {
+        read_error(
+            &path,
+            format!("not a complete woodpile run.json ({e}); re-run `woodpile simulate`"),
+        )
+    })?;
+    let cells = run
+        .elements
+        .iter()
+        .map(|e| {
+            let resonators = e
+                .resonator_masses_kg
+                .iter()
+                .zip(&e.resonator_stiffnesses_n_per_m)
+                .map(|(&mass_kg, &stiffness_n_per_m)| Resonator {
+                    mass_kg,
+                    stiffness_n_per_m,
+                })
+                .collect();
+            UnitCell::new(e.primary_mass_kg, resonators).map_err(Error::Model)
         })
+        .collect::<Result<Vec<_>, _>>()?;
+    let x = &run.scenario.excitation;
+    let excitation = match (run.striker_velocity_m_s, x.peak_force_n, x.duration_s) {
+        (Some(v), _, _) => format!("impact {v:.2} m/s"),
+        (None, Some(f), Some(td)) => format!("blast {f:.0} N / {:.2} ms", td * 1e3),
+        (None, _, _) => "blast (tabulated load)".to_string(),
     };
-    let name = field("scenario_name")?
-        .as_str()
-        .unwrap_or("run")
-        .to_string();
-    let elements = field("elements")?
-        .as_array()
-        .ok_or_else(|| read_error(&path, "`elements` is not a list"))?;
-    let mut labels = Vec::with_capacity(elements.len());
-    let mut cells = Vec::with_capacity(elements.len());
-    for (i, e) in elements.iter().enumerate() {
-        labels.push(
-            e.get("label")
-                .and_then(Value::as_str)
-                .unwrap_or("?")
-                .to_string(),
-        );
-        let num = |k: &str| e.get(k).and_then(Value::as_f64);
-        let list = |k: &str| -> Vec<f64> {
-            e.get(k)
-                .and_then(Value::as_array)
-                .map(|a| a.iter().filter_map(Value::as_f64).collect())
-                .unwrap_or_default()
-        };
-        let primary = num("primary_mass_kg")
-            .ok_or_else(|| read_error(&path, format!("elements[{i}] has no primary_mass_kg")))?;
-        let resonators = list("resonator_masses_kg")
-            .into_iter()
-            .zip(list("resonator_stiffnesses_n_per_m"))
-            .map(|(m, k)| Resonator {
-                mass_kg: m,
-                stiffness_n_per_m: k,
-            })
-            .collect();
-        cells.push(UnitCell::new(primary, resonators).map_err(Error::Model)?);
-    }
-    let excitation = match run.get("striker_velocity_m_s").and_then(Value::as_f64) {
-        Some(v) => format!("impact {v:.2} m/s"),
-        None => describe_blast(run.pointer("/scenario/excitation")),
-    };
-    // The chain itself (element bodies, for the picture) comes from the completed scenario.
-    let chain = run
-        .get("scenario")
-        .cloned()
-        .and_then(|s| serde_json::from_value::<Scenario>(s).ok())
-        .and_then(|s| {
-            let base = run
-                .get("scenario_file")
-                .and_then(Value::as_str)
-                .and_then(|f| Path::new(f).parent().map(Path::to_path_buf))
-                .filter(|p| !p.as_os_str().is_empty())
-                .unwrap_or_else(|| PathBuf::from("."));
-            resolve(&s, &base).ok()
-        })
-        .map(|r| r.chain);
+    // The chain itself (element bodies, for the picture) comes from the completed scenario,
+    // when it still resolves (a blast table may have moved).
+    let base = run
+        .scenario_file
+        .as_deref()
+        .and_then(|f| Path::new(f).parent().map(Path::to_path_buf))
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or_else(|| PathBuf::from("."));
+    let chain = resolve(&run.scenario, &base).ok().map(|r| r.chain);
     Ok(RunInfo {
-        name,
-        labels,
+        name: run.scenario_name,
+        labels: run.elements.into_iter().map(|e| e.label).collect(),
         cells,
         excitation,
         chain,
@@ -582,14 +582,6 @@ fn check_format(path: &Path, run: &Value) -> Result<(), Error> {
         ));
     }
     Ok(())
-}
-
-fn describe_blast(excitation: Option<&Value>) -> String {
-    let get = |k: &str| excitation.and_then(|e| e.get(k)).and_then(Value::as_f64);
-    match (get("peak_force_n"), get("duration_s")) {
-        (Some(f), Some(td)) => format!("blast {f:.0} N / {:.2} ms", td * 1e3),
-        _ => "blast (tabulated load)".to_string(),
-    }
 }
 
 /// Reads a run's samples: the `.npy` files, or the CSV files where those are missing.

@@ -95,12 +95,21 @@ fn bad_run_directories_are_clear_errors() {
 
     let run = simulate(tmp.path());
     let json = std::fs::read_to_string(run.join("run.json")).unwrap();
-    let old = json.replacen(
-        &format!("\"version\": \"{}\"", env!("CARGO_PKG_VERSION")),
-        "\"version\": \"0.0.1\"",
-        1,
-    );
-    assert_ne!(old, json, "run.json carries the version");
+    // Another run format is refused, naming it.
+    let other = json.replacen("\"woodpile-run/1\"", "\"woodpile-run/0\"", 1);
+    assert_ne!(other, json, "run.json carries its format");
+    std::fs::write(run.join("run.json"), &other).unwrap();
+    let o = woodpile(&["plot", run.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("woodpile-run/0"), "{}", stderr(&o));
+    // A run.json without a format tag (older files) is judged by its version.
+    let old = json
+        .replacen("\"format\": \"woodpile-run/1\",", "", 1)
+        .replacen(
+            &format!("\"version\": \"{}\"", env!("CARGO_PKG_VERSION")),
+            "\"version\": \"0.0.1\"",
+            1,
+        );
     std::fs::write(run.join("run.json"), &old).unwrap();
     let o = woodpile(&["plot", run.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));

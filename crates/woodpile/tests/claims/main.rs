@@ -8,6 +8,7 @@ mod analysis_energy_map;
 mod analysis_fft_vs_dft;
 mod analysis_layer_protocol;
 mod analysis_parseval;
+mod analysis_pulses;
 mod analysis_sine_spectrum;
 mod blast_energy_balance;
 mod blowup_detection;

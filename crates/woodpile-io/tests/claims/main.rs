@@ -1,0 +1,7 @@
+//! Claims of the file formats and the study data shared by every front end.
+//!
+//! One test binary per crate (link time dominates the suite): each module below is one claim,
+//! and opens with the claim it checks and the reason for its tolerance.
+
+mod paper_values_stated_once;
+mod run_directory_roundtrip;
