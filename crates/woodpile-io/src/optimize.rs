@@ -53,6 +53,8 @@ pub const CHECKPOINT_FORMAT: &str = "woodpile-optimize-checkpoint/1";
 /// The file that marks a directory as an optimisation run.
 pub const CHECKPOINT_FILE: &str = "checkpoint.json";
 
+/// An optimisation config file: what to search (`[design]`), under which load, support and run
+/// (the scenario's `[excitation]`, `[wall]`, `[run]`) and how (`[ga]`).
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OptimizeConfig {
@@ -675,6 +677,7 @@ pub fn history_csv(history: &[GenerationStats]) -> String {
     s
 }
 
+/// Writes `population.csv`: the final population, best first, one column per layer.
 pub fn population_csv(space: &DesignSpace, population: &[Individual]) -> String {
     let mut s = String::from("rank,objective");
     for l in 1..=space.positions {
@@ -692,34 +695,58 @@ pub fn population_csv(space: &DesignSpace, population: &[Individual]) -> String 
     s
 }
 
-/// `summary.json`.
+/// `summary.json` of an optimisation.
 #[derive(Debug, Clone, Serialize)]
 pub struct SummaryJson<'a> {
+    /// `woodpile optimize`.
     pub tool: &'static str,
+    /// Version of woodpile.
     pub version: &'static str,
+    /// Problem name (config file stem or built-in name).
     pub problem: &'a str,
+    /// `finished` or `interrupted`.
     pub status: &'static str,
+    /// Why the GA stopped.
     pub stop_reason: &'static str,
+    /// Objective name.
     pub objective: &'a str,
+    /// Unit of the objective.
     pub objective_unit: &'a str,
+    /// Objective of the best design.
     pub best_objective: f64,
+    /// Element labels of the best design, top to bottom.
     pub best_chain_labels: Vec<String>,
+    /// Rod lengths of the best design \[mm\] (catalogue rods only).
     pub best_rods_mm: Option<Vec<u32>>,
+    /// Catalogue indices of the best design.
     pub best_genome: &'a [u8],
+    /// Total mass of the best design \[g\].
     pub best_total_mass_g: f64,
+    /// Incident peak force of the best design \[N\].
     pub incident_peak_force_n: f64,
+    /// Transmitted peak force of the best design \[N\].
     pub transmitted_peak_force_n: f64,
+    /// Transmitted / incident (null when it means nothing).
     pub transmission_ratio: Option<f64>,
+    /// Striker restitution (null unless the striker had left).
     pub restitution_coefficient: Option<f64>,
+    /// Seed of the GA.
     pub seed: u64,
+    /// Generations completed.
     pub generations_completed: usize,
+    /// Simulations run.
     pub evaluations: u64,
+    /// Designs found in the cache.
     pub cache_hits: u64,
+    /// Wall-clock time \[s\].
     pub elapsed_s: f64,
+    /// Simulations per second.
     pub evaluations_per_s: f64,
+    /// The completed config.
     pub config: &'a OptimizeConfig,
 }
 
+/// Why a GA stopped, in words.
 pub fn stop_text(reason: StopReason) -> &'static str {
     match reason {
         StopReason::GenerationLimit => "generation limit",

@@ -466,10 +466,12 @@ pub struct RunInfo {
     pub chain: Option<Chain>,
 }
 
+/// The error for a directory that is not a run (named as `RUN_DIR`).
 pub fn bad_dir(dir: &Path, reason: impl Into<String>) -> Error {
     Error::invalid("RUN_DIR", dir.display(), reason)
 }
 
+/// The error for a run file that cannot be read as expected.
 pub fn read_error(path: &Path, reason: impl Into<String>) -> Error {
     Error::Read {
         path: path.to_path_buf(),

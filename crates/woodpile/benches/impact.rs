@@ -3,6 +3,9 @@
 //! rtol = 1e-6 (both accurate to 1e-5 on the transmitted peak, see bench/README.md), each with
 //! full 1 µs sampling and with peaks only.
 
+// criterion_group! generates an undocumented entry point.
+#![allow(missing_docs)]
+
 use criterion::{criterion_group, criterion_main, Criterion};
 use woodpile::{
     simulate, CellModel, ChainBuilder, Excitation, Method, RunSettings, Striker,

@@ -4,6 +4,9 @@
 //! GA's own thread pool; criterion reports the throughput in elements (= evaluations) per second.
 //! Run: `cargo bench -p woodpile --bench optimize` (about a minute).
 
+// criterion_group! generates an undocumented entry point.
+#![allow(missing_docs)]
+
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::time::Duration;
 use woodpile::optimize::{BreederGa, DesignSpace, GaSettings, StandardObjective};

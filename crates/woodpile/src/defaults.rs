@@ -3,7 +3,7 @@
 //! The scenario format (`woodpile-io`), the command line and the Python package take their
 //! defaults from here and nowhere else; the constructors of this crate
 //! ([`crate::Striker::paper`], [`crate::BlastProfile::paper`], [`crate::RunSettings::paper_impact`],
-//! [`crate::Wall::paper`], …) are built from the same constants.
+//! [`crate::Wall::paper_sensor`], …) are built from the same constants.
 
 /// Drop height h of the striker \[m\] (docs/physics.md §2): v0 = sqrt(2 g h).
 pub const DROP_HEIGHT_M: f64 = 0.20;

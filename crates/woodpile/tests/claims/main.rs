@@ -25,5 +25,6 @@ mod optimize_resume;
 mod optimize_thread_determinism;
 mod rk4_dopri5_agreement;
 mod run_limits;
+mod simd_step_bit_identical;
 mod table_load_peak;
 mod two_body_hertz_impact;
