@@ -7,11 +7,10 @@ use std::fs;
 use std::ops::ControlFlow;
 use std::path::PathBuf;
 use woodpile::optimize::{BreederGa, GaState, Objective, StopReason};
-use woodpile::simulate;
 use woodpile_io::atomic::{io_err, write_atomic};
 use woodpile_io::limits::check_threads;
 use woodpile_io::optimize::*;
-use woodpile_io::scenario::{resolve, ModelSpec};
+use woodpile_io::scenario::ModelSpec;
 
 /// Arguments of `woodpile optimize`.
 #[derive(Debug, Clone, clap::Args)]
@@ -180,68 +179,10 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     }
     let outcome = outcome.map_err(optimize_error)?;
     let state = &outcome.state;
-    let best = state.best();
-
-    // Final outputs: the population, the best design as a scenario, the summary.
-    write_atomic(
-        out,
-        "population.csv",
-        population_csv(&problem.space, &state.population).as_bytes(),
-    )?;
-    let labels = problem.space.labels(&best.genome);
-    let description = format!(
-        "best design of `woodpile optimize` ({name}, seed {}, {} generations): {} = {} {unit}",
-        problem.settings.seed,
-        state.generation,
-        problem.objective.as_str(),
-        best.objective
-    );
-    let scenario = problem.scenario(&best.genome, Some(description));
-    write_atomic(out, "best.toml", scenario.to_toml().as_bytes())?;
-    let resolved = resolve(&scenario, &problem.base_dir)?;
-    let figures = simulate(
-        &resolved.chain,
-        &resolved.excitation,
-        &resolved.settings,
-        &mut (),
-    )?;
     let interrupted = outcome.reason == StopReason::Interrupted;
-    let summary = SummaryJson {
-        tool: "woodpile optimize",
-        version: env!("CARGO_PKG_VERSION"),
-        problem: &name,
-        status: if interrupted {
-            "interrupted"
-        } else {
-            "finished"
-        },
-        stop_reason: stop_text(outcome.reason),
-        objective: problem.objective.as_str(),
-        objective_unit: &unit,
-        best_objective: best.objective,
-        best_chain_labels: labels.clone(),
-        best_rods_mm: scenario.chain.rods_mm.clone(),
-        best_genome: &best.genome,
-        best_total_mass_g: problem.space.mass_kg(&best.genome) * 1e3,
-        incident_peak_force_n: figures.incident_peak_force_n,
-        transmitted_peak_force_n: figures.transmitted_peak_force_n,
-        transmission_ratio: figures.transmission_ratio,
-        restitution_coefficient: figures.restitution_coefficient(),
-        seed: problem.settings.seed,
-        generations_completed: state.generation,
-        evaluations: state.evaluations,
-        cache_hits: state.cache_hits,
-        elapsed_s: state.elapsed_s,
-        evaluations_per_s: if state.elapsed_s > 0.0 {
-            state.evaluations as f64 / state.elapsed_s
-        } else {
-            0.0
-        },
-        config: &problem.config,
-    };
-    let json = serde_json::to_vec_pretty(&summary)
-        .map_err(|e| io_err(&out.join("summary.json"))(std::io::Error::other(e)))?;
-    write_atomic(out, "summary.json", &json)?;
+    let figures = write_final_outputs(&problem, &name, &outcome, out)?;
+    let best = state.best();
+    let labels = problem.space.labels(&best.genome);
 
     if !ctx.quiet {
         println!(

@@ -22,8 +22,8 @@ use woodpile::analysis::{
 };
 use woodpile::model::TABLE1_LENGTHS_MM;
 use woodpile::{EffectiveMassCurve, UnitCell};
-use woodpile_io::atomic::RUN_MARKER;
-use woodpile_io::rundir::{bad_dir, read_error, read_run_info, read_trajectory};
+use woodpile_io::optimize::read_history;
+use woodpile_io::rundir::{detect_dir, read_error, read_run_info, read_trajectory, DirKind};
 use woodpile_io::scenario::{resolve, Scenario};
 use woodpile_plot as plot;
 
@@ -299,50 +299,6 @@ pub fn cells_figures(dir: &Path) -> Result<Vec<PathBuf>, CliError> {
     Ok(files)
 }
 
-/// What kind of output directory `woodpile plot` was given.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum DirKind {
-    /// A `woodpile simulate` run: it holds `run.json`.
-    Run,
-    /// A `woodpile optimize` output: it holds `history.csv` and one of `summary.json`,
-    /// `best.toml`, `checkpoint.json`.
-    Optimization,
-}
-
-/// Files that mark an optimisation output (besides `history.csv`).
-const OPT_MARKERS: [&str; 3] = [
-    "summary.json",
-    "best.toml",
-    woodpile_io::optimize::CHECKPOINT_FILE,
-];
-
-/// Tells a simulate run from an optimisation output; anything else is a usage error that says
-/// what was expected.
-pub fn detect_dir(dir: &Path) -> Result<DirKind, CliError> {
-    if !dir.is_dir() {
-        return Err(bad_dir(
-            dir,
-            "is not a directory; give a directory written by `woodpile simulate` or `woodpile optimize`",
-        ));
-    }
-    if dir.join(RUN_MARKER).is_file() {
-        return Ok(DirKind::Run);
-    }
-    let history = dir.join("history.csv").is_file();
-    let marker = OPT_MARKERS.iter().any(|m| dir.join(m).is_file());
-    match (history, marker) {
-        (true, true) => Ok(DirKind::Optimization),
-        (false, true) => Err(bad_dir(
-            dir,
-            "looks like a `woodpile optimize` output but holds no history.csv: it was written by another version or is incomplete; re-run `woodpile optimize`",
-        )),
-        _ => Err(bad_dir(
-            dir,
-            "is neither a woodpile run (no run.json) nor a `woodpile optimize` output (no history.csv with summary.json, best.toml or checkpoint.json)",
-        )),
-    }
-}
-
 /// The objective's axis label, from its name and unit.
 pub fn objective_label(name: &str, unit: &str) -> String {
     match name {
@@ -355,60 +311,6 @@ pub fn objective_label(name: &str, unit: &str) -> String {
     }
 }
 
-/// Reads `history.csv` of `woodpile optimize`: one point per generation.
-pub fn read_history(path: &Path) -> Result<Vec<plot::ConvergencePoint>, CliError> {
-    let cols = ["best".to_string(), "mean".to_string()];
-    let csv_err = |e: csv::Error| read_error(path, e.to_string());
-    let mut r = csv::Reader::from_path(path).map_err(csv_err)?;
-    let header = r.headers().map_err(csv_err)?.clone();
-    let index = |name: &str| {
-        header.iter().position(|h| h == name).ok_or_else(|| {
-            read_error(
-                path,
-                format!("no column `{name}`: not a history.csv of `woodpile optimize`"),
-            )
-        })
-    };
-    let g_col = index("generation")?;
-    let (b_col, m_col) = (index(&cols[0])?, index(&cols[1])?);
-    let mut points = Vec::new();
-    for (line, rec) in r.records().enumerate() {
-        let rec = rec.map_err(csv_err)?;
-        let field = |i: usize| {
-            rec.get(i).map(str::trim).ok_or_else(|| {
-                read_error(path, format!("line {}: missing column {}", line + 2, i + 1))
-            })
-        };
-        let not_number = |i: usize| {
-            read_error(
-                path,
-                format!("line {}: not a number in column {}", line + 2, i + 1),
-            )
-        };
-        let generation = field(g_col)?
-            .parse::<usize>()
-            .map_err(|_| not_number(g_col))?;
-        let best = field(b_col)?
-            .parse::<f64>()
-            .map_err(|_| not_number(b_col))?;
-        let mean = field(m_col)?
-            .parse::<f64>()
-            .map_err(|_| not_number(m_col))?;
-        points.push(plot::ConvergencePoint {
-            generation,
-            best,
-            mean,
-        });
-    }
-    if points.is_empty() {
-        return Err(read_error(
-            path,
-            "no generation recorded yet: nothing to plot",
-        ));
-    }
-    Ok(points)
-}
-
 /// Draws the figures of a `woodpile optimize` output into `out`: `convergence` (best and mean
 /// objective per generation) and, once the run has written `best.toml`, `best_chain` (rods to
 /// scale, top to bottom). Returns the files written and a note when the chain could not be drawn.
@@ -416,7 +318,14 @@ pub fn plot_optimization(
     dir: &Path,
     out: &Path,
 ) -> Result<(Vec<PathBuf>, Option<String>), CliError> {
-    let points = read_history(&dir.join("history.csv"))?;
+    let points: Vec<plot::ConvergencePoint> = read_history(&dir.join("history.csv"))?
+        .into_iter()
+        .map(|h| plot::ConvergencePoint {
+            generation: h.generation,
+            best: h.best,
+            mean: h.mean,
+        })
+        .collect();
     // What was optimised: summary.json of a finished run, else the checkpoint's config.
     let read_json = |name: &str| -> Result<Option<Value>, CliError> {
         let path = dir.join(name);

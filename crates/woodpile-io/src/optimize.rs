@@ -29,6 +29,7 @@
 //! the same figures) and `summary.json`. A directory that holds anything is never written
 //! into unless `--resume` continues the run it holds, with the same config.
 
+use crate::atomic::{io_err, write_atomic};
 use crate::error::Error;
 use crate::scenario::{
     resolve, ChainSpec, ElementSpec, ExcitationKind, ExcitationSpec, ModelSpec, RunSpec, Scenario,
@@ -42,7 +43,8 @@ use woodpile::optimize::{
     Constraints, DesignSpace, GaSettings, GaState, GenerationStats, Individual, OptimizeError,
     StandardObjective, StopReason,
 };
-use woodpile::TABLE1_LENGTHS_MM;
+use woodpile::optimize::{Objective, Outcome};
+use woodpile::{simulate, TABLE1_LENGTHS_MM};
 
 /// Names of the built-in problems.
 pub const BUILTIN_PROBLEMS: [&str; 2] = ["paper-impact", "paper-blast"];
@@ -815,4 +817,147 @@ pub fn read_checkpoint(dir: &Path, config: &OptimizeConfig) -> Result<GaState, E
         ));
     }
     Ok(cp.into_state())
+}
+
+/// One line of `history.csv` as `woodpile plot` needs it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HistoryPoint {
+    /// Generation (0 = the initial population).
+    pub generation: usize,
+    /// Best objective.
+    pub best: f64,
+    /// Mean objective.
+    pub mean: f64,
+}
+
+/// Reads `history.csv` of `woodpile optimize`: one point per generation.
+pub fn read_history(path: &Path) -> Result<Vec<HistoryPoint>, Error> {
+    let cols = ["best".to_string(), "mean".to_string()];
+    let csv_err = |e: csv::Error| crate::rundir::read_error(path, e.to_string());
+    let mut r = csv::Reader::from_path(path).map_err(csv_err)?;
+    let header = r.headers().map_err(csv_err)?.clone();
+    let index = |name: &str| {
+        header.iter().position(|h| h == name).ok_or_else(|| {
+            crate::rundir::read_error(
+                path,
+                format!("no column `{name}`: not a history.csv of `woodpile optimize`"),
+            )
+        })
+    };
+    let g_col = index("generation")?;
+    let (b_col, m_col) = (index(&cols[0])?, index(&cols[1])?);
+    let mut points = Vec::new();
+    for (line, rec) in r.records().enumerate() {
+        let rec = rec.map_err(csv_err)?;
+        let field = |i: usize| {
+            rec.get(i).map(str::trim).ok_or_else(|| {
+                crate::rundir::read_error(
+                    path,
+                    format!("line {}: missing column {}", line + 2, i + 1),
+                )
+            })
+        };
+        let not_number = |i: usize| {
+            crate::rundir::read_error(
+                path,
+                format!("line {}: not a number in column {}", line + 2, i + 1),
+            )
+        };
+        let generation = field(g_col)?
+            .parse::<usize>()
+            .map_err(|_| not_number(g_col))?;
+        let best = field(b_col)?
+            .parse::<f64>()
+            .map_err(|_| not_number(b_col))?;
+        let mean = field(m_col)?
+            .parse::<f64>()
+            .map_err(|_| not_number(m_col))?;
+        points.push(HistoryPoint {
+            generation,
+            best,
+            mean,
+        });
+    }
+    if points.is_empty() {
+        return Err(crate::rundir::read_error(
+            path,
+            "no generation recorded yet: nothing to plot",
+        ));
+    }
+    Ok(points)
+}
+
+/// Writes the final outputs of an optimisation into `out`: `population.csv`, `best.toml` (the
+/// best design as a scenario that `woodpile simulate` re-runs to the same figures) and
+/// `summary.json`; returns the best design's figures of merit (re-simulated).
+pub fn write_final_outputs(
+    problem: &Problem,
+    name: &str,
+    outcome: &Outcome,
+    out: &Path,
+) -> Result<woodpile::RunSummary, Error> {
+    let state = &outcome.state;
+    let best = state.best();
+    let unit = problem.objective.unit().to_string();
+    let interrupted = outcome.reason == StopReason::Interrupted;
+    write_atomic(
+        out,
+        "population.csv",
+        population_csv(&problem.space, &state.population).as_bytes(),
+    )?;
+    let labels = problem.space.labels(&best.genome);
+    let description = format!(
+        "best design of `woodpile optimize` ({name}, seed {}, {} generations): {} = {} {unit}",
+        problem.settings.seed,
+        state.generation,
+        problem.objective.as_str(),
+        best.objective
+    );
+    let scenario = problem.scenario(&best.genome, Some(description));
+    write_atomic(out, "best.toml", scenario.to_toml().as_bytes())?;
+    let resolved = resolve(&scenario, &problem.base_dir)?;
+    let figures = simulate(
+        &resolved.chain,
+        &resolved.excitation,
+        &resolved.settings,
+        &mut (),
+    )?;
+    let summary = SummaryJson {
+        tool: "woodpile optimize",
+        version: env!("CARGO_PKG_VERSION"),
+        problem: name,
+        status: if interrupted {
+            "interrupted"
+        } else {
+            "finished"
+        },
+        stop_reason: stop_text(outcome.reason),
+        objective: problem.objective.as_str(),
+        objective_unit: &unit,
+        best_objective: best.objective,
+        best_chain_labels: labels.clone(),
+        best_rods_mm: scenario.chain.rods_mm.clone(),
+        best_genome: &best.genome,
+        best_total_mass_g: problem.space.mass_kg(&best.genome) * 1e3,
+        incident_peak_force_n: figures.incident_peak_force_n,
+        transmitted_peak_force_n: figures.transmitted_peak_force_n,
+        transmission_ratio: figures.transmission_ratio,
+        restitution_coefficient: figures.restitution_coefficient(),
+        seed: problem.settings.seed,
+        generations_completed: state.generation,
+        evaluations: state.evaluations,
+        cache_hits: state.cache_hits,
+        elapsed_s: state.elapsed_s,
+        evaluations_per_s: if state.elapsed_s > 0.0 {
+            state.evaluations as f64 / state.elapsed_s
+        } else {
+            0.0
+        },
+        config: &problem.config,
+    };
+    let json = serde_json::to_vec_pretty(&summary)
+        .map_err(|e| io_err(&out.join("summary.json"))(std::io::Error::other(e)))?;
+    write_atomic(out, "summary.json", &json)?;
+
+    Ok(figures)
 }

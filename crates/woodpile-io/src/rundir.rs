@@ -735,3 +735,47 @@ fn read_csv(path: &Path, columns: &[String]) -> Result<(Vec<f64>, Vec<f64>), Err
     }
     Ok((times, data))
 }
+
+/// What kind of output directory a command was given (`woodpile plot` tells them apart).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DirKind {
+    /// A `woodpile simulate` run: it holds `run.json`.
+    Run,
+    /// A `woodpile optimize` output: it holds `history.csv` and one of `summary.json`,
+    /// `best.toml`, `checkpoint.json`.
+    Optimization,
+}
+
+/// Files that mark an optimisation output (besides `history.csv`).
+const OPT_MARKERS: [&str; 3] = [
+    "summary.json",
+    "best.toml",
+    crate::optimize::CHECKPOINT_FILE,
+];
+
+/// Tells a simulate run from an optimisation output; anything else is a usage error that says
+/// what was expected.
+pub fn detect_dir(dir: &Path) -> Result<DirKind, Error> {
+    if !dir.is_dir() {
+        return Err(bad_dir(
+            dir,
+            "is not a directory; give a directory written by `woodpile simulate` or `woodpile optimize`",
+        ));
+    }
+    if dir.join(RUN_MARKER).is_file() {
+        return Ok(DirKind::Run);
+    }
+    let history = dir.join("history.csv").is_file();
+    let marker = OPT_MARKERS.iter().any(|m| dir.join(m).is_file());
+    match (history, marker) {
+        (true, true) => Ok(DirKind::Optimization),
+        (false, true) => Err(bad_dir(
+            dir,
+            "looks like a `woodpile optimize` output but holds no history.csv: it was written by another version or is incomplete; re-run `woodpile optimize`",
+        )),
+        _ => Err(bad_dir(
+            dir,
+            "is neither a woodpile run (no run.json) nor a `woodpile optimize` output (no history.csv with summary.json, best.toml or checkpoint.json)",
+        )),
+    }
+}

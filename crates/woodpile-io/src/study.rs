@@ -2,8 +2,12 @@
 //! reports (docs/physics.md §9), each stated once. A table shows a reference value through
 //! [`PaperValue::text`], derived from the number, so the text and the number cannot disagree.
 
-use crate::optimize::OptimizeConfig;
+use crate::atomic::write_atomic;
+use crate::optimize::{fnv1a64, OptimizeConfig};
 use crate::scenario::ModelSpec;
+use serde::{Deserialize, Serialize};
+use std::fs;
+use std::path::PathBuf;
 use woodpile::CellModel;
 
 /// How a reference value is read and compared.
@@ -265,4 +269,70 @@ pub fn alternation(rods_mm: &[u32]) -> f64 {
         .filter(|w| (w[1] > w[0] && w[1] > w[2]) || (w[1] < w[0] && w[1] < w[2]))
         .count();
     n as f64 / (rods_mm.len() - 2) as f64
+}
+
+/// Tag of the report cache's format (part of every key).
+const CACHE_FORMAT: &str = "woodpile-report-cache/1";
+
+/// A GA result as kept in the cache.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct CachedGa {
+    /// The key's text (tool version, format, inputs): checked on load against collisions.
+    pub inputs: String,
+    /// Catalogue indices of the best design.
+    pub best_genome: Vec<u8>,
+    /// Its objective.
+    pub best_objective: f64,
+    /// One line per generation.
+    pub history: Vec<woodpile::optimize::GenerationStats>,
+    /// Generations completed.
+    pub generations: usize,
+    /// Simulations run.
+    pub evaluations: u64,
+    /// Cache hits.
+    pub cache_hits: u64,
+    /// Wall-clock time \[s\].
+    pub elapsed_s: f64,
+    /// Why the GA stopped.
+    pub stop_reason: String,
+}
+
+/// GA results kept between runs of the report.
+pub struct Cache {
+    /// The directory of the entries (`OUT/cache`).
+    pub dir: PathBuf,
+}
+
+impl Cache {
+    /// The key of an entry: the tool version, the format, the kind and the inputs as JSON.
+    pub fn key_text(kind: &str, inputs: &impl Serialize) -> String {
+        format!(
+            "woodpile {} {CACHE_FORMAT} {kind}\n{}",
+            env!("CARGO_PKG_VERSION"),
+            serde_json::to_string(inputs).unwrap_or_default()
+        )
+    }
+
+    /// The entry file of a key: its FNV-1a hash.
+    fn file(&self, text: &str) -> (PathBuf, String) {
+        let name = format!("{:016x}.json", fnv1a64(text.as_bytes()));
+        (self.dir.join(&name), name)
+    }
+
+    /// The cached GA for these inputs, if an entry with exactly this key text exists.
+    pub fn get(&self, text: &str) -> Option<CachedGa> {
+        let (path, _) = self.file(text);
+        let entry: CachedGa = serde_json::from_str(&fs::read_to_string(path).ok()?).ok()?;
+        (entry.inputs == text).then_some(entry)
+    }
+
+    /// Stores an entry atomically.
+    pub fn put(&self, entry: &CachedGa) -> Result<(), crate::Error> {
+        let (path, name) = self.file(&entry.inputs);
+        let json = serde_json::to_vec(entry).map_err(|e| crate::Error::Output {
+            path,
+            source: std::io::Error::other(e),
+        })?;
+        write_atomic(&self.dir, &name, &json)
+    }
 }

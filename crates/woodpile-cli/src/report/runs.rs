@@ -7,8 +7,6 @@ use crate::plot_cmd::objective_label;
 use crate::plot_cmd::plot_err;
 use crate::CliError;
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
-use std::fs;
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
@@ -21,14 +19,10 @@ use woodpile::{
     simulate, BlastProfile, CellModel, Chain, ChainBuilder, Excitation, RunSettings, RunSummary,
     Striker, Trajectory, UnitCell,
 };
-use woodpile_io::atomic::write_atomic;
-use woodpile_io::optimize::{fnv1a64, Problem};
+use woodpile_io::optimize::Problem;
 use woodpile_io::scenario::ModelSpec;
-use woodpile_io::study;
+use woodpile_io::study::{self, Cache, CachedGa};
 use woodpile_plot as plot;
-
-/// Tag of the cache entries' format (part of every key).
-const CACHE_FORMAT: &str = "woodpile-report-cache/1";
 
 /// What every run of the report shares: the command's arguments, where figures go, the loads.
 pub struct Setup<'a> {
@@ -87,60 +81,6 @@ impl<'a> Setup<'a> {
             blast_text: format!("Friedlander blast {f0} N / {} ms", td * 1e3),
             max_hz: 80e3,
         }
-    }
-}
-
-// ---------------------------------------------------------------------------------------------
-// The cache: FNV-1a of the tool version, the entry kind and the complete inputs as JSON.
-
-/// A GA result as kept in the cache.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct CachedGa {
-    /// The key's text (tool version, format, inputs): checked on load against collisions.
-    pub inputs: String,
-    pub best_genome: Vec<u8>,
-    pub best_objective: f64,
-    pub history: Vec<woodpile::optimize::GenerationStats>,
-    pub generations: usize,
-    pub evaluations: u64,
-    pub cache_hits: u64,
-    pub elapsed_s: f64,
-    pub stop_reason: String,
-}
-
-/// GA results kept between runs of the report.
-pub struct Cache {
-    dir: PathBuf,
-}
-
-impl Cache {
-    fn key_text(kind: &str, inputs: &impl Serialize) -> String {
-        format!(
-            "woodpile {} {CACHE_FORMAT} {kind}\n{}",
-            env!("CARGO_PKG_VERSION"),
-            serde_json::to_string(inputs).unwrap_or_default()
-        )
-    }
-
-    fn file(&self, text: &str) -> (PathBuf, String) {
-        let name = format!("{:016x}.json", fnv1a64(text.as_bytes()));
-        (self.dir.join(&name), name)
-    }
-
-    /// The cached GA for these inputs, if an entry with exactly this key text exists.
-    fn get(&self, text: &str) -> Option<CachedGa> {
-        let (path, _) = self.file(text);
-        let entry: CachedGa = serde_json::from_str(&fs::read_to_string(path).ok()?).ok()?;
-        (entry.inputs == text).then_some(entry)
-    }
-
-    fn put(&self, entry: &CachedGa) -> Result<(), CliError> {
-        let (path, name) = self.file(&entry.inputs);
-        let json = serde_json::to_vec(entry).map_err(|e| CliError::Output {
-            path,
-            source: std::io::Error::other(e),
-        })?;
-        write_atomic(&self.dir, &name, &json)
     }
 }
 
