@@ -174,6 +174,19 @@ fn simulate_case(
     })
 }
 
+/// The force map and the energy map of a run: `STEM_force_map` and `STEM_energy_map`.
+fn draw_maps(t: &Trajectory, title: &str, stem: &Path) -> Result<Vec<Vec<PathBuf>>, CliError> {
+    let with = |suffix: &str| {
+        let mut s = stem.as_os_str().to_owned();
+        s.push(suffix);
+        PathBuf::from(s)
+    };
+    Ok(vec![
+        plot::force_map(&force_map(t)?, title, &with("_force_map")).map_err(plot_err)?,
+        plot::energy_map(&energy_map(t)?, title, &with("_energy_map")).map_err(plot_err)?,
+    ])
+}
+
 /// Spectra of contact 1, the middle contact and the wall, with the chain's bands shaded.
 fn draw_spectra(
     case: &Case,
@@ -319,23 +332,7 @@ pub fn impact_homogeneous(
             let title = format!("{chain_title}, {impact_text}");
             let t = &case.trajectory;
             let n = t.n_elements;
-            let mut files = Vec::new();
-            files.push(
-                plot::force_map(
-                    &force_map(t)?,
-                    &title,
-                    &fig(&format!("impact_{slug}_force_map")),
-                )
-                .map_err(plot_err)?,
-            );
-            files.push(
-                plot::energy_map(
-                    &energy_map(t)?,
-                    &title,
-                    &fig(&format!("impact_{slug}_energy_map")),
-                )
-                .map_err(plot_err)?,
-            );
+            let mut files = draw_maps(t, &title, &fig(&format!("impact_{slug}")))?;
             let series = [
                 (0, "contact 0 (striker)".to_string()),
                 (1, "contact 1 (incident)".to_string()),
@@ -547,23 +544,7 @@ pub fn blast(s: &Setup) -> Result<BlastRuns, CliError> {
             let case = simulate_case(name, slug, chain_title, chain, blast, blast_settings)?;
             let title = format!("{chain_title}, {blast_text}");
             let t = &case.trajectory;
-            let mut files = Vec::new();
-            files.push(
-                plot::force_map(
-                    &force_map(t)?,
-                    &title,
-                    &fig(&format!("blast_{slug}_force_map")),
-                )
-                .map_err(plot_err)?,
-            );
-            files.push(
-                plot::energy_map(
-                    &energy_map(t)?,
-                    &title,
-                    &fig(&format!("blast_{slug}_energy_map")),
-                )
-                .map_err(plot_err)?,
-            );
+            let mut files = draw_maps(t, &title, &fig(&format!("blast_{slug}")))?;
             files.push(
                 plot::spectrum_map(
                     &contact_spectrum_map(t, &SpectrumSettings::default())?,

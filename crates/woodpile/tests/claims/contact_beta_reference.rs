@@ -25,7 +25,7 @@ fn assert_rel(actual: f64, expected: f64, tol: f64, what: &str) {
 }
 
 #[test]
-fn reference_table_of_model_md() {
+fn reference_table_of_physics_doc() {
     let quartz = Material::preset("fused-quartz").unwrap();
     let glass = Material::preset("soda-lime-glass").unwrap();
     let steel = Material::preset("stainless-steel").unwrap();

@@ -5,15 +5,15 @@
 //!
 //! Note on the contact time: energy conservation gives δ̇² = v0² (1 − (δ/δ_max)^{5/2}), so
 //! t_c = 2 (δ_max/v0) ∫₀¹ (1 − x^{5/2})^{−1/2} dx = 2.9432 δ_max/v0 = 3.2181 (μ/β)^{2/5} v0^{−1/5}
-//! (Johnson, Contact Mechanics, eq. 11.24: 2.87 (μ²/(R E*² v0))^{1/5}, the same number). docs/physics.md
-//! §10 prints the coefficient 2.9432 in front of (μ/β)^{2/5} v0^{−1/5}, which drops the factor
-//! (5/4)^{2/5} = 1.0934, and so quotes t_c ≈ 21.5 µs instead of 23.5 µs. We test the derivation;
-//! the quadrature is recomputed below so the constant is not taken on trust.
+//! (Johnson, Contact Mechanics, eq. 11.24: 2.87 (μ²/(R E*² v0))^{1/5}, the same number). Writing
+//! 2.9432 in front of (μ/β)^{2/5} v0^{−1/5} drops the factor (5/4)^{2/5} = 1.0934 and gives
+//! 21.5 µs instead of 23.5 µs (docs/physics.md §10). We test the derivation; the quadrature is
+//! recomputed below so the constant is not taken on trust.
 //!
 //! Tolerance: with RK4 at Δt = 1 ns (≈ 2e4 steps per contact) the integration error is far
 //! below 1e-9; 0.5 % covers only the 5-digit constant 2.9432 and the sampling of the overlap's
-//! zero crossing (linear interpolation on a 10 ns grid, error ~1e-4 of t_c). The docs/physics.md
-//! numbers for the 20 mm rod (15.8 µm, 162 N, 21.5 µs) are checked to their printed precision.
+//! zero crossing (linear interpolation on a 10 ns grid, error ~1e-4 of t_c). The docs/physics.md §10
+//! numbers for the 20 mm rod (15.8 µm, 162 N, 23.5 µs) are checked to their printed precision.
 
 use woodpile::{
     simulate, CellModel, ChainBuilder, Element, Excitation, Method, RunSettings, Striker,
