@@ -90,6 +90,14 @@ pub enum Error {
         /// The limit it exceeds.
         limit: f64,
     },
+    /// A design of an optimisation could not be simulated.
+    #[error("while evaluating design [{design}]: {source}")]
+    Evaluation {
+        /// The design, as its element labels.
+        design: String,
+        /// The library's error.
+        source: woodpile::Error,
+    },
     /// An error of the library: invalid parameters (usage) or a numerical failure of the run.
     #[error(transparent)]
     Model(#[from] woodpile::Error),
@@ -126,7 +134,7 @@ impl Error {
     /// opposed to a run that failed numerically.
     pub fn is_usage(&self) -> bool {
         match self {
-            Error::Model(e) => !matches!(
+            Error::Model(e) | Error::Evaluation { source: e, .. } => !matches!(
                 e,
                 woodpile::Error::NonFiniteState { .. }
                     | woodpile::Error::RunawayOverlap { .. }

@@ -32,8 +32,8 @@
 use crate::atomic::{io_err, write_atomic};
 use crate::error::Error;
 use crate::scenario::{
-    resolve, ChainSpec, ElementSpec, ExcitationKind, ExcitationSpec, ModelSpec, RunSpec, Scenario,
-    WallSpec,
+    resolve, resolve_with_keys, ChainKeys, ChainSpec, ElementSpec, ExcitationKind, ExcitationSpec,
+    ModelSpec, RunSpec, Scenario, WallSpec,
 };
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -410,8 +410,8 @@ impl Problem {
                 format!("at most {} entries", woodpile::optimize::MAX_CATALOGUE_LEN),
             ));
         }
-        // The catalogue as a chain resolves every element, the wall, the load and the run
-        // under the scenario keys; its errors are renamed to the design keys.
+        // The catalogue as a chain resolves every element, the wall, the load and the run;
+        // the catalogue's errors name the design keys.
         let catalogue_chain = ChainSpec {
             rods_mm: d.catalogue_mm.clone(),
             elements: d.elements.clone(),
@@ -420,7 +420,7 @@ impl Problem {
             ..ChainSpec::default()
         };
         let resolved =
-            resolve(&cfg.scenario(catalogue_chain, None), base_dir).map_err(rename_chain_keys)?;
+            resolve_with_keys(&cfg.scenario(catalogue_chain, None), base_dir, &DESIGN_KEYS)?;
         let catalogue = resolved.chain.elements().to_vec();
         let c = &d.constraints;
         let mut constraints = Constraints {
@@ -494,39 +494,12 @@ impl Problem {
     }
 }
 
-/// Renames `chain.*` keys of a resolution error to the `design.*` keys of the config.
-pub fn rename_chain_keys(e: Error) -> Error {
-    let rename = |f: String| {
-        f.replace("chain.rods_mm", "design.catalogue_mm")
-            .replace("chain.elements", "design.elements")
-            .replace("chain.crossing_angle_deg", "design.crossing_angle_deg")
-    };
-    match e {
-        Error::Invalid {
-            field,
-            value,
-            reason,
-        } => Error::Invalid {
-            field: rename(field),
-            value,
-            reason,
-        },
-        Error::Field { field, source } => Error::Field {
-            field: rename(field),
-            source,
-        },
-        Error::Model(woodpile::Error::InvalidParameter {
-            field,
-            value,
-            reason,
-        }) => Error::Model(woodpile::Error::InvalidParameter {
-            field: rename(field),
-            value,
-            reason,
-        }),
-        other => other,
-    }
-}
+/// Where the catalogue of an optimisation config lives: errors of its elements name these keys.
+pub const DESIGN_KEYS: ChainKeys = ChainKeys {
+    rods_mm: "design.catalogue_mm",
+    elements: "design.elements",
+    crossing_angle_deg: "design.crossing_angle_deg",
+};
 
 /// The command line's error for a library optimisation error.
 pub fn optimize_error(e: OptimizeError) -> Error {
@@ -537,10 +510,7 @@ pub fn optimize_error(e: OptimizeError) -> Error {
             "(as given)",
             format!("no design meets them: {reason}"),
         ),
-        OptimizeError::Simulation { design, source } => {
-            eprintln!("error while evaluating design [{design}]");
-            Error::Model(source)
-        }
+        OptimizeError::Simulation { design, source } => Error::Evaluation { design, source },
         OptimizeError::NotANumber { objective, design } => Error::invalid(
             "ga.objective",
             objective,
@@ -697,23 +667,24 @@ pub fn population_csv(space: &DesignSpace, population: &[Individual]) -> String 
     s
 }
 
-/// `summary.json` of an optimisation.
-#[derive(Debug, Clone, Serialize)]
-pub struct SummaryJson<'a> {
+/// `summary.json` of an optimisation: written by [`write_final_outputs`], read back by
+/// [`read_output`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct OptimizeSummary {
     /// `woodpile optimize`.
-    pub tool: &'static str,
+    pub tool: String,
     /// Version of woodpile.
-    pub version: &'static str,
+    pub version: String,
     /// Problem name (config file stem or built-in name).
-    pub problem: &'a str,
+    pub problem: String,
     /// `finished` or `interrupted`.
-    pub status: &'static str,
-    /// Why the GA stopped.
-    pub stop_reason: &'static str,
+    pub status: String,
+    /// Why the GA stopped ([`stop_text`]).
+    pub stop_reason: String,
     /// Objective name.
-    pub objective: &'a str,
+    pub objective: String,
     /// Unit of the objective.
-    pub objective_unit: &'a str,
+    pub objective_unit: String,
     /// Objective of the best design.
     pub best_objective: f64,
     /// Element labels of the best design, top to bottom.
@@ -721,7 +692,7 @@ pub struct SummaryJson<'a> {
     /// Rod lengths of the best design \[mm\] (catalogue rods only).
     pub best_rods_mm: Option<Vec<u32>>,
     /// Catalogue indices of the best design.
-    pub best_genome: &'a [u8],
+    pub best_genome: Vec<u8>,
     /// Total mass of the best design \[g\].
     pub best_total_mass_g: f64,
     /// Incident peak force of the best design \[N\].
@@ -745,7 +716,7 @@ pub struct SummaryJson<'a> {
     /// Simulations per second.
     pub evaluations_per_s: f64,
     /// The completed config.
-    pub config: &'a OptimizeConfig,
+    pub config: OptimizeConfig,
 }
 
 /// Why a GA stopped, in words.
@@ -922,22 +893,23 @@ pub fn write_final_outputs(
         &resolved.settings,
         &mut (),
     )?;
-    let summary = SummaryJson {
-        tool: "woodpile optimize",
-        version: env!("CARGO_PKG_VERSION"),
-        problem: name,
+    let summary = OptimizeSummary {
+        tool: "woodpile optimize".into(),
+        version: env!("CARGO_PKG_VERSION").into(),
+        problem: name.into(),
         status: if interrupted {
             "interrupted"
         } else {
             "finished"
-        },
-        stop_reason: stop_text(outcome.reason),
-        objective: problem.objective.as_str(),
-        objective_unit: &unit,
+        }
+        .into(),
+        stop_reason: stop_text(outcome.reason).into(),
+        objective: problem.objective.as_str().into(),
+        objective_unit: unit,
         best_objective: best.objective,
         best_chain_labels: labels.clone(),
         best_rods_mm: scenario.chain.rods_mm.clone(),
-        best_genome: &best.genome,
+        best_genome: best.genome.clone(),
         best_total_mass_g: problem.space.mass_kg(&best.genome) * 1e3,
         incident_peak_force_n: figures.incident_peak_force_n,
         transmitted_peak_force_n: figures.transmitted_peak_force_n,
@@ -953,11 +925,71 @@ pub fn write_final_outputs(
         } else {
             0.0
         },
-        config: &problem.config,
+        config: problem.config.clone(),
     };
     let json = serde_json::to_vec_pretty(&summary)
         .map_err(|e| io_err(&out.join("summary.json"))(std::io::Error::other(e)))?;
     write_atomic(out, "summary.json", &json)?;
 
     Ok(figures)
+}
+
+/// What an optimisation output directory holds, read back (for `woodpile plot` and notebooks).
+#[derive(Debug, Clone, PartialEq)]
+pub struct OptimizeOutput {
+    /// `history.csv`: one point per generation.
+    pub history: Vec<HistoryPoint>,
+    /// `summary.json`, once the run has finished or stopped.
+    pub summary: Option<OptimizeSummary>,
+    /// The completed config: the summary's, else the checkpoint's.
+    pub config: Option<OptimizeConfig>,
+    /// `best.toml` and its path, once the run has finished or stopped.
+    pub best: Option<(PathBuf, Scenario)>,
+}
+
+/// Reads `path` as JSON of type `T`; `None` when there is no such file.
+fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<Option<T>, Error> {
+    if !path.is_file() {
+        return Ok(None);
+    }
+    let text = fs::read_to_string(path).map_err(|e| Error::Read {
+        path: path.to_path_buf(),
+        source: e,
+    })?;
+    serde_json::from_str(&text)
+        .map(Some)
+        .map_err(|e| Error::Parse {
+            source_name: path.display().to_string(),
+            message: e.to_string(),
+        })
+}
+
+/// Reads an optimisation output directory: `history.csv` (required), and `summary.json`,
+/// `best.toml` and the config (the summary's, else the checkpoint's) where present.
+pub fn read_output(dir: &Path) -> Result<OptimizeOutput, Error> {
+    let history = read_history(&dir.join("history.csv"))?;
+    let summary: Option<OptimizeSummary> = read_json(&dir.join("summary.json"))?;
+    let config = match &summary {
+        Some(s) => Some(s.config.clone()),
+        None => {
+            // Only the config is needed: a checkpoint of any version that has one will do.
+            #[derive(Deserialize)]
+            struct ConfigOnly {
+                config: OptimizeConfig,
+            }
+            read_json::<ConfigOnly>(&dir.join(CHECKPOINT_FILE))?.map(|c| c.config)
+        }
+    };
+    let best_path = dir.join("best.toml");
+    let best = if best_path.is_file() {
+        Some((best_path.clone(), Scenario::load(&best_path)?))
+    } else {
+        None
+    };
+    Ok(OptimizeOutput {
+        history,
+        summary,
+        config,
+        best,
+    })
 }

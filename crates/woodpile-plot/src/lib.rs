@@ -18,9 +18,13 @@
 //!
 //! Every function takes a file *stem* (`dir/force_map`) and writes `stem.png` and `stem.svg`,
 //! returning the two paths.
+//!
+//! [`dirs`] draws the figure set of a whole output directory (a `woodpile simulate` run or a
+//! `woodpile optimize` output), read back through [`woodpile_io`].
 
 mod chain;
 mod colormap;
+pub mod dirs;
 mod heatmap;
 mod lines;
 
@@ -106,11 +110,17 @@ pub(crate) fn render(figure: &impl Figure, stem: &Path) -> Result<Vec<PathBuf>> 
         move |e: DrawFailure| PlotError::Draw { path, reason: e.0 }
     };
     {
-        let root = BitMapBackend::new(&png, size).into_drawing_area();
-        figure.draw(&root).map_err(fail(&png))?;
-        root.present()
-            .map_err(|e| DrawFailure(e.to_string()))
-            .map_err(fail(&png))?;
+        // Drawn into an RGB buffer and encoded with the `png` crate: plotters' own encoder
+        // would pull in the whole `image` crate (a fifth of the test build's dependencies).
+        let mut rgb = vec![0u8; 3 * size.0 as usize * size.1 as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
+            figure.draw(&root).map_err(fail(&png))?;
+            root.present()
+                .map_err(|e| DrawFailure(e.to_string()))
+                .map_err(fail(&png))?;
+        }
+        write_png(&png, size, &rgb).map_err(fail(&png))?;
     }
     {
         let root = SVGBackend::new(&svg, size).into_drawing_area();
@@ -120,6 +130,18 @@ pub(crate) fn render(figure: &impl Figure, stem: &Path) -> Result<Vec<PathBuf>> 
             .map_err(fail(&svg))?;
     }
     Ok(vec![png, svg])
+}
+
+/// Encodes an 8-bit RGB buffer of `size` pixels as the PNG file `path`.
+fn write_png(path: &Path, size: (u32, u32), rgb: &[u8]) -> std::result::Result<(), DrawFailure> {
+    let fail = |e: &dyn std::fmt::Display| DrawFailure(e.to_string());
+    let file = std::fs::File::create(path).map_err(|e| fail(&e))?;
+    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), size.0, size.1);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header().map_err(|e| fail(&e))?;
+    writer.write_image_data(rgb).map_err(|e| fail(&e))?;
+    writer.finish().map_err(|e| fail(&e))
 }
 
 /// `stem` + `.ext`, keeping any dots already in the file name.

@@ -69,7 +69,7 @@ pub fn table() -> Result<String, CliError> {
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     print!("{}", table()?);
     if let Some(dir) = &args.plot {
-        let files = crate::plot_cmd::cells_figures(dir)?;
+        let files = woodpile_plot::dirs::cells_figures(dir)?;
         if !ctx.quiet {
             println!("wrote {} files to {}", files.len(), dir.display());
         }

@@ -25,7 +25,6 @@ mod runs;
 mod text;
 
 use crate::commands::Context;
-use crate::plot_cmd::cells_figures;
 use crate::CliError;
 use doc::Doc;
 use runs::{Results, Setup};
@@ -33,6 +32,7 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use woodpile_io::atomic::write_atomic;
+use woodpile_plot::dirs::cells_figures;
 
 /// Arguments of `woodpile report`.
 #[derive(Debug, Clone, clap::Args)]

@@ -3,8 +3,6 @@
 //! `woodpile_io::study`; this module only runs and draws them.
 
 use super::Args;
-use crate::plot_cmd::objective_label;
-use crate::plot_cmd::plot_err;
 use crate::CliError;
 use rayon::prelude::*;
 use std::ops::ControlFlow;
@@ -23,6 +21,7 @@ use woodpile_io::optimize::Problem;
 use woodpile_io::scenario::ModelSpec;
 use woodpile_io::study::{self, Cache, CachedGa};
 use woodpile_plot as plot;
+use woodpile_plot::dirs::objective_label;
 
 /// What every run of the report shares: the command's arguments, where figures go, the loads.
 pub struct Setup<'a> {
@@ -182,8 +181,8 @@ fn draw_maps(t: &Trajectory, title: &str, stem: &Path) -> Result<Vec<Vec<PathBuf
         PathBuf::from(s)
     };
     Ok(vec![
-        plot::force_map(&force_map(t)?, title, &with("_force_map")).map_err(plot_err)?,
-        plot::energy_map(&energy_map(t)?, title, &with("_energy_map")).map_err(plot_err)?,
+        plot::force_map(&force_map(t)?, title, &with("_force_map"))?,
+        plot::energy_map(&energy_map(t)?, title, &with("_energy_map"))?,
     ])
 }
 
@@ -207,7 +206,7 @@ fn draw_spectra(
     .map(|(c, l)| Ok((l, Spectrum::of(&t.contact_force_n(c), dt, &settings)?)))
     .collect::<Result<Vec<_>, woodpile::Error>>()?;
     let refs: Vec<(String, &Spectrum)> = spectra.iter().map(|(l, s)| (l.clone(), s)).collect();
-    plot::spectra(&refs, &case.bands, title, max_hz, stem).map_err(plot_err)
+    Ok(plot::spectra(&refs, &case.bands, title, max_hz, stem)?)
 }
 
 /// A GA run (from the cache when it holds one for the same inputs).
@@ -340,15 +339,12 @@ pub fn impact_homogeneous(
                 (n, format!("contact {n} (wall)")),
             ]
             .map(|(c, l)| plot::Series::new(l, t.contact_force_n(c)));
-            files.push(
-                plot::force_histories(
-                    &t.times_s,
-                    &series,
-                    &title,
-                    &fig(&format!("impact_{slug}_force_histories")),
-                )
-                .map_err(plot_err)?,
-            );
+            files.push(plot::force_histories(
+                &t.times_s,
+                &series,
+                &title,
+                &fig(&format!("impact_{slug}_force_histories")),
+            )?);
             files.push(draw_spectra(
                 &case,
                 &title,
@@ -373,8 +369,7 @@ pub fn impact_homogeneous(
         &wall_series,
         &format!("Wall force of homogeneous 20-rod chains, {impact_text}"),
         &fig("impact_homogeneous_wall_forces"),
-    )
-    .map_err(plot_err)?;
+    )?;
 
     // Pulses at the wall and at the middle contact, first transit only: up to the arrival of
     // the first pulse at the wall plus 0.6 ms.
@@ -440,39 +435,36 @@ pub fn optima(s: &Setup) -> Result<(GaRun, GaRun, Vec<(Case, Vec<Vec<PathBuf>>)>
                 })
                 .collect();
             let mut files = Vec::new();
-            files.push(
-                plot::convergence(
-                    &points,
-                    &objective_label(&ga.objective, &ga.unit),
-                    &format!(
-                        "Breeder GA, 20 rods, {} model, impact (population {}, seed {})",
-                        ga.model, ga.population, s.args.seed
-                    ),
-                    &fig(&format!("{slug}_convergence")),
-                )
-                .map_err(plot_err)?,
-            );
-            files.push(
-                plot::chain_picture(
-                    &case.chain,
-                    &format!("GA optimum, {} model, impact", ga.model),
-                    &fig(&format!("{slug}_chain")),
-                )
-                .map_err(plot_err)?,
-            );
+            files.push(plot::convergence(
+                &points,
+                &objective_label(&ga.objective, &ga.unit),
+                &format!(
+                    "Breeder GA, 20 rods, {} model, impact (population {}, seed {})",
+                    ga.model, ga.population, s.args.seed
+                ),
+                &fig(&format!("{slug}_convergence")),
+            )?);
+            files.push(plot::chain_picture(
+                &case.chain,
+                &format!("GA optimum, {} model, impact", ga.model),
+                &fig(&format!("{slug}_chain")),
+            )?);
             let series = [
                 (1, "contact 1: incident".to_string()),
                 (n, format!("contact {n}: transmitted (wall)")),
             ]
             .map(|(c, l)| plot::Series::new(l, t.contact_force_n(c)));
-            files.push(
-                plot::force_histories(&t.times_s, &series, &short, &fig(&format!("{slug}_forces")))
-                    .map_err(plot_err)?,
-            );
-            files.push(
-                plot::force_map(&force_map(t)?, &short, &fig(&format!("{slug}_force_map")))
-                    .map_err(plot_err)?,
-            );
+            files.push(plot::force_histories(
+                &t.times_s,
+                &series,
+                &short,
+                &fig(&format!("{slug}_forces")),
+            )?);
+            files.push(plot::force_map(
+                &force_map(t)?,
+                &short,
+                &fig(&format!("{slug}_force_map")),
+            )?);
             Ok((case, files))
         })
         .collect::<Result<Vec<_>, CliError>>()?;
@@ -490,8 +482,7 @@ pub fn protocol(
     let protocol = layer_by_layer(&res_case.chain, impact, impact_settings)?;
     let ptitle = format!("Layer-by-layer protocol, resonant GA optimum, {impact_text}");
     let protocol_map_files =
-        plot::protocol_map(&protocol.wall_force_map, &ptitle, &fig("protocol_map"))
-            .map_err(plot_err)?;
+        plot::protocol_map(&protocol.wall_force_map, &ptitle, &fig("protocol_map"))?;
     let full_peaks = res_case.summary.contact_peak_forces_n[1..].to_vec();
     let protocol_peak_files = plot::peaks_per_layer(
         &[
@@ -504,8 +495,7 @@ pub fn protocol(
         &ptitle,
         "peak force [N]",
         &fig("protocol_peaks"),
-    )
-    .map_err(plot_err)?;
+    )?;
     Ok((protocol, protocol_map_files, protocol_peak_files))
 }
 
@@ -545,15 +535,12 @@ pub fn blast(s: &Setup) -> Result<BlastRuns, CliError> {
             let title = format!("{chain_title}, {blast_text}");
             let t = &case.trajectory;
             let mut files = draw_maps(t, &title, &fig(&format!("blast_{slug}")))?;
-            files.push(
-                plot::spectrum_map(
-                    &contact_spectrum_map(t, &SpectrumSettings::default())?,
-                    &title,
-                    max_hz,
-                    &fig(&format!("blast_{slug}_spectrum_map")),
-                )
-                .map_err(plot_err)?,
-            );
+            files.push(plot::spectrum_map(
+                &contact_spectrum_map(t, &SpectrumSettings::default())?,
+                &title,
+                max_hz,
+                &fig(&format!("blast_{slug}_spectrum_map")),
+            )?);
             files.push(draw_spectra(
                 &case,
                 &title,
@@ -579,8 +566,7 @@ pub fn blast(s: &Setup) -> Result<BlastRuns, CliError> {
         &blast_series,
         &format!("Blast load and wall forces of the 20-rod chains, {blast_text}"),
         &fig("blast_wall_forces"),
-    )
-    .map_err(plot_err)?;
+    )?;
     let e_ref = peak_layer_energy(&blast_cases[0].0.trajectory, 20);
     let blast_energy: Vec<(String, f64, f64)> = blast_cases
         .iter()

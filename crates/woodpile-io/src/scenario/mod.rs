@@ -28,7 +28,7 @@ mod resolve;
 pub use builtin::{
     all as builtins, builtin, builtin_names, BuiltinScenario, DEFAULT_SCENARIO, OPTIMIZED_CHAIN_MM,
 };
-pub use resolve::{resolve, Resolved};
+pub use resolve::{resolve, resolve_with_keys, ChainKeys, Resolved};
 
 use crate::error::Error;
 use serde::{Deserialize, Serialize};
@@ -260,6 +260,16 @@ pub enum ExcitationKind {
     Impact,
     /// A prescribed force acts on the top element.
     Blast,
+}
+
+impl ExcitationKind {
+    /// The name used in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ExcitationKind::Impact => "impact",
+            ExcitationKind::Blast => "blast",
+        }
+    }
 }
 
 /// Shape of a blast force history.

@@ -94,14 +94,20 @@ fn cell(field: &str, spec: &CellSpec) -> Result<UnitCell, Error> {
     Ok(UnitCell::new(spec.primary_mass_g * 1e-3, resonators)?)
 }
 
-fn element(i: usize, e: &ElementSpec, chain_model: woodpile::CellModel) -> Result<Element, Error> {
-    let field = |k: &str| format!("chain.elements[{i}].{k}");
+fn element(
+    keys: &ChainKeys,
+    i: usize,
+    e: &ElementSpec,
+    chain_model: woodpile::CellModel,
+) -> Result<Element, Error> {
+    let list = keys.elements;
+    let field = |k: &str| format!("{list}[{i}].{k}");
     let kind =
         match (e.kind, e.rod_mm) {
             (Some(k), _) => k,
             (None, Some(_)) => ElementKind::Catalogue,
             (None, None) => return Err(Error::invalid(
-                format!("chain.elements[{i}]"),
+                format!("{list}[{i}]"),
                 "{}",
                 "give `rod_mm = L` for a Table 1 rod, or `kind = \"rod\"` / `kind = \"sphere\"`",
             )),
@@ -209,13 +215,45 @@ fn element_material(field: &str, spec: Option<&MaterialSpec>) -> Result<Material
     }
 }
 
+/// Where the keys of a chain live in the file being resolved: the `[chain]` table of a
+/// scenario ([`ChainKeys::SCENARIO`]) or the catalogue of an optimisation config's `[design]`
+/// table. Errors name these keys directly, so nothing downstream rewrites a message.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ChainKeys {
+    /// The Table 1 rod list (`chain.rods_mm`).
+    pub rods_mm: &'static str,
+    /// The general element list (`chain.elements`).
+    pub elements: &'static str,
+    /// The crossing angle (`chain.crossing_angle_deg`).
+    pub crossing_angle_deg: &'static str,
+}
+
+impl ChainKeys {
+    /// The keys of a scenario's `[chain]` table.
+    pub const SCENARIO: ChainKeys = ChainKeys {
+        rods_mm: "chain.rods_mm",
+        elements: "chain.elements",
+        crossing_angle_deg: "chain.crossing_angle_deg",
+    };
+}
+
 /// Builds the chain, excitation and run settings of a scenario. `base_dir` is the directory
 /// relative to which files named in the scenario (a blast table) are found.
 ///
 /// Every invalid value gives an error naming its key (e.g. `chain.rods_mm[3]`), the value and
 /// what would be valid.
 pub fn resolve(scenario: &Scenario, base_dir: &Path) -> Result<Resolved, Error> {
-    let chain = resolve_chain(scenario)?;
+    resolve_with_keys(scenario, base_dir, &ChainKeys::SCENARIO)
+}
+
+/// [`resolve`], naming the chain's keys as `keys` says (for a chain that comes from another
+/// table of another file, such as an optimisation's catalogue).
+pub fn resolve_with_keys(
+    scenario: &Scenario,
+    base_dir: &Path,
+    keys: &ChainKeys,
+) -> Result<Resolved, Error> {
+    let chain = resolve_chain(scenario, keys)?;
     let excitation = resolve_excitation(scenario, &chain, base_dir)?;
     let settings = resolve_run(scenario)?;
     Ok(Resolved {
@@ -225,7 +263,7 @@ pub fn resolve(scenario: &Scenario, base_dir: &Path) -> Result<Resolved, Error> 
     })
 }
 
-fn resolve_chain(s: &Scenario) -> Result<Chain, Error> {
+fn resolve_chain(s: &Scenario, keys: &ChainKeys) -> Result<Chain, Error> {
     let c = &s.chain;
     let model = c.model.unwrap_or_default().cell_model();
     let elements = match (&c.rods_mm, &c.elements) {
@@ -247,21 +285,21 @@ fn resolve_chain(s: &Scenario) -> Result<Chain, Error> {
             .iter()
             .enumerate()
             .map(|(i, &l)| {
-                Element::table1_rod(l, model).map_err(Error::at(format!("chain.rods_mm[{i}]")))
+                Element::table1_rod(l, model).map_err(Error::at(format!("{}[{i}]", keys.rods_mm)))
             })
             .collect::<Result<Vec<_>, _>>()?,
         (None, Some(list)) => list
             .iter()
             .enumerate()
-            .map(|(i, e)| element(i, e, model))
+            .map(|(i, e)| element(keys, i, e, model))
             .collect::<Result<Vec<_>, _>>()?,
     };
     let n = elements.len();
     if n == 0 {
         let key = if c.rods_mm.is_some() {
-            "chain.rods_mm"
+            keys.rods_mm
         } else {
-            "chain.elements"
+            keys.elements
         };
         return Err(Error::invalid(
             key,
@@ -272,7 +310,7 @@ fn resolve_chain(s: &Scenario) -> Result<Chain, Error> {
     let angle = c.crossing_angle_deg.unwrap_or(defaults::CROSSING_ANGLE_DEG);
     if !(angle.is_finite() && angle > 0.0 && angle < 180.0) {
         return Err(Error::invalid(
-            "chain.crossing_angle_deg",
+            keys.crossing_angle_deg,
             angle,
             "must lie strictly between 0 and 180 (0 and 180 are parallel rods: a line contact)",
         ));
