@@ -1,4 +1,4 @@
-//! `cargo bench -p woodpile-bench --bench impact`: one 20-rod resonant impact run (docs/physics.md §9 chain,
+//! `cargo bench --manifest-path crates/woodpile-bench/Cargo.toml --bench impact`: one 20-rod resonant impact run (docs/physics.md §9 chain,
 //! default striker, 2 ms) with the paper's RK4 at 0.1 µs, with RK4 at 0.5 µs and with DOPRI5 at
 //! rtol = 1e-6 (both accurate to 1e-5 on the transmitted peak, see bench/README.md), each with
 //! full 1 µs sampling and with peaks only.

@@ -2,7 +2,7 @@
 //! model, 2 ms of RK4 at 0.1 µs), with 1 and 2 worker threads. One iteration is
 //! `BreederGa::initialize` with a population of 8 and the cache off: 8 simulations through the
 //! GA's own thread pool; criterion reports the throughput in elements (= evaluations) per second.
-//! Run: `cargo bench -p woodpile-bench --bench optimize` (about a minute).
+//! Run: `cargo bench --manifest-path crates/woodpile-bench/Cargo.toml --bench optimize` (about a minute).
 
 // criterion_group! generates an undocumented entry point.
 #![allow(missing_docs)]

@@ -2,9 +2,9 @@
 //!
 //! Criterion benchmarks of the woodpile engine, in `benches/`:
 //!
-//! - `cargo bench -p woodpile-bench --bench impact`: one 20-rod resonant impact run with the
+//! - `cargo bench --manifest-path crates/woodpile-bench/Cargo.toml --bench impact`: one 20-rod resonant impact run with the
 //!   paper's RK4 and with cheaper accurate settings;
-//! - `cargo bench -p woodpile-bench --bench optimize`: GA evaluations per second on 1 and 2
+//! - `cargo bench --manifest-path crates/woodpile-bench/Cargo.toml --bench optimize`: GA evaluations per second on 1 and 2
 //!   threads.
 //!
 //! The package is separate from `woodpile` so that `cargo test` never builds criterion; this
