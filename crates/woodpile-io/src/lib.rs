@@ -10,6 +10,7 @@
 //! - [`table`]: blast force tables from CSV.
 //! - [`rundir`]: the run directory (`summary.json`, `run.json`, CSV and `.npy`), written and
 //!   read back.
+//! - [`npy`]: NumPy `.npy` float64 arrays, written and read.
 //! - [`atomic`]: atomic file replacement and staged run directories.
 //! - [`limits`]: up-front limits (threads, steps, output size) with overrides.
 //! - [`optimize`]: the optimisation config, the problem it defines and its checkpoint.
@@ -19,6 +20,7 @@
 pub mod atomic;
 pub mod error;
 pub mod limits;
+pub mod npy;
 pub mod optimize;
 pub mod rundir;
 pub mod scenario;

@@ -271,16 +271,9 @@ fn write_csv(
 
 /// Writes a C-order float64 `.npy` array of the given shape.
 pub fn write_npy(path: &Path, shape: &[u64], data: &[f64]) -> Result<(), Error> {
-    use npyz::WriterBuilder;
-    let file = BufWriter::new(fs::File::create(path).map_err(io_err(path))?);
-    let mut w = npyz::WriteOptions::<f64>::new()
-        .default_dtype()
-        .shape(shape)
-        .writer(file)
-        .begin_nd()
-        .map_err(io_err(path))?;
-    w.extend(data.iter().copied()).map_err(io_err(path))?;
-    w.finish().map_err(io_err(path))
+    let mut file = BufWriter::new(fs::File::create(path).map_err(io_err(path))?);
+    crate::npy::write(&mut file, shape, data).map_err(io_err(path))?;
+    file.flush().map_err(io_err(path))
 }
 
 /// Writes every output file of a run into `dir`.
@@ -673,11 +666,8 @@ fn read_npy(path: &Path, shape: &[Option<usize>]) -> Result<Vec<f64>, Error> {
         path: path.to_path_buf(),
         source: e,
     })?;
-    let npy = npyz::NpyFile::new(&bytes[..]).map_err(|e| Error::Read {
-        path: path.to_path_buf(),
-        source: e,
-    })?;
-    let actual: Vec<usize> = npy.shape().iter().map(|&d| d as usize).collect();
+    let (actual, values) = crate::npy::read(&bytes).map_err(|e| read_error(path, e))?;
+    let actual: Vec<usize> = actual.iter().map(|&d| d as usize).collect();
     let fits = actual.len() == shape.len()
         && actual
             .iter()
@@ -693,10 +683,7 @@ fn read_npy(path: &Path, shape: &[Option<usize>]) -> Result<Vec<f64>, Error> {
             format!("array of shape {actual:?}, expected [{}]", want.join(", ")),
         ));
     }
-    npy.into_vec::<f64>().map_err(|e| Error::Read {
-        path: path.to_path_buf(),
-        source: e,
-    })
+    Ok(values)
 }
 
 /// Reads `time_s` and the named columns of a CSV file: (times, rows of the columns).

@@ -27,6 +27,10 @@ pub const WALL_CAP_RADIUS_MM: f64 = 5.0;
 pub const ROD_DIAMETER_MM: f64 = 5.0;
 /// Material preset of a user rod or sphere when none is given (the paper's rods).
 pub const ELEMENT_MATERIAL: &str = "fused-quartz";
+/// A rod's derived unit cell gets one resonator per centre-blocked bending mode below this
+/// frequency \[Hz\] (at least one, at most four; docs/physics.md §13). 38 kHz gives the paper's
+/// choice for all seven Table 1 rods: one mode for 20–40 mm, two for 50–80 mm.
+pub const CELL_MODE_CUTOFF_HZ: f64 = 38e3;
 /// Angle between the axes of neighbouring rods \[deg\] (§1).
 pub const CROSSING_ANGLE_DEG: f64 = 90.0;
 /// Simulated time of an impact run \[s\] (§8).

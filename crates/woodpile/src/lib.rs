@@ -7,8 +7,9 @@
 //!
 //! 1. **Build a chain** — [`model`]: [`Material`] presets, exact Hertz contact coefficients
 //!    ([`model::hertz_beta`]), unit cells with internal resonators ([`UnitCell`], the paper's
-//!    Table 1 catalogue, effective mass and band edges), and the [`Chain`] of elements on a
-//!    [`Wall`], built by [`ChainBuilder`].
+//!    Table 1 catalogue, effective mass and band edges), cells of any rod from Timoshenko beam
+//!    theory ([`Rod`], [`UnitCell::from_rod`]), and the [`Chain`] of elements on a [`Wall`],
+//!    built by [`ChainBuilder`].
 //! 2. **Excite it** — [`excitation`]: a [`Striker`] sphere or a [`BlastProfile`] force.
 //! 3. **Integrate** — [`ode`] compiles the chain into y' = f(t, y) on flat `f64` slices;
 //!    [`integrate`] advances it with a Butcher [`Tableau`] (RK4, Dormand–Prince 5(4)).
@@ -57,8 +58,8 @@ pub use error::{Error, Result};
 pub use excitation::{velocity_from_drop_height, BlastProfile, Excitation, Striker};
 pub use integrate::{Integrator, IntegratorStats, Method, OdeSystem, Tableau};
 pub use model::{
-    Body, CellModel, Chain, ChainBuilder, Element, Material, Resonator, Surface, UnitCell, Wall,
-    PAPER_OPTIMIZED_CHAIN_MM, TABLE1_LENGTHS_MM,
+    BeamTheory, Body, CellModel, Chain, ChainBuilder, Element, Material, Reduction, Resonator, Rod,
+    Surface, UnitCell, Wall, PAPER_OPTIMIZED_CHAIN_MM, TABLE1_LENGTHS_MM,
 };
 pub use optimize::{BreederGa, DesignSpace, GaSettings, Objective, StandardObjective};
 pub use record::{Layout, Recorder, Sample, Trajectory};

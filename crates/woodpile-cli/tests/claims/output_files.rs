@@ -9,11 +9,39 @@ use crate::common;
 
 use std::path::Path;
 
+/// Shape and values of a `.npy` file, read by the letter of the NPY 1.0 specification (magic,
+/// version 1.0, u16 header length, a dict with '<f8' C-order data starting at a multiple of 64
+/// bytes), independently of woodpile's own reader.
 fn npy_shape_and_data(path: &Path) -> (Vec<u64>, Vec<f64>) {
     let bytes = std::fs::read(path).unwrap();
-    let npy = npyz::NpyFile::new(&bytes[..]).unwrap();
-    let shape = npy.shape().to_vec();
-    (shape, npy.into_vec::<f64>().unwrap())
+    assert_eq!(&bytes[..8], b"\x93NUMPY\x01\x00", "{}", path.display());
+    let len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+    assert_eq!(
+        (10 + len) % 64,
+        0,
+        "data of {} not 64-byte aligned",
+        path.display()
+    );
+    let header = std::str::from_utf8(&bytes[10..10 + len]).unwrap();
+    assert!(header.starts_with("{'descr': '<f8', 'fortran_order': False, 'shape': ("));
+    assert!(header.ends_with('\n'));
+    let dims = header
+        .split("'shape': (")
+        .nth(1)
+        .unwrap()
+        .split(')')
+        .next()
+        .unwrap();
+    let shape: Vec<u64> = dims
+        .split(',')
+        .filter(|d| !d.trim().is_empty())
+        .map(|d| d.trim().parse().unwrap())
+        .collect();
+    let data = bytes[10 + len..]
+        .chunks_exact(8)
+        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+        .collect();
+    (shape, data)
 }
 
 #[test]

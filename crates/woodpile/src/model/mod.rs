@@ -1,10 +1,12 @@
 //! What is solved: materials, Hertz contacts, unit cells and chains.
 
+pub mod beam;
 pub mod cell;
 pub mod chain;
 pub mod contact;
 pub mod material;
 
+pub use beam::{BeamTheory, Reduction, Rod};
 pub use cell::{CellModel, Resonator, UnitCell, PAPER_OPTIMIZED_CHAIN_MM, TABLE1_LENGTHS_MM};
 pub use chain::{Body, Chain, ChainBuilder, Element, Wall, PAPER_ROD_DIAMETER_M};
 pub use contact::{
