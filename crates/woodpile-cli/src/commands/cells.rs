@@ -1,9 +1,13 @@
-//! `woodpile cells`: the unit-cell catalogue of the paper's Table 1 (docs/physics.md §3).
+//! `woodpile cells`: the unit-cell catalogue of the paper's Table 1 (docs/physics.md §3), or
+//! the cell of any rod derived from Timoshenko beam theory (`--rod`, docs/physics.md §13).
 
 use super::Context;
 use crate::CliError;
 use woodpile::model::TABLE1_LENGTHS_MM;
-use woodpile::UnitCell;
+use woodpile::{BeamTheory, UnitCell};
+use woodpile_io::scenario::{
+    resolve_element, CellSpec, ElementKind, ElementSpec, MaterialSpec, ReductionSpec,
+};
 
 /// Arguments of `woodpile cells`.
 #[derive(Debug, Clone, clap::Args)]
@@ -11,6 +15,176 @@ pub struct Args {
     /// Also draw the effective-mass curves (paper Fig. 3) into this directory (PNG and SVG).
     #[arg(long, value_name = "DIR")]
     pub plot: Option<std::path::PathBuf>,
+    /// Derive the cell of a rod of this length [mm] from Timoshenko beam theory instead of
+    /// printing the catalogue.
+    #[arg(long, value_name = "LENGTH_MM", allow_negative_numbers = true)]
+    pub rod: Option<f64>,
+    /// Outer diameter of the rod [mm].
+    #[arg(long, value_name = "MM", default_value_t = woodpile::defaults::ROD_DIAMETER_MM)]
+    pub diameter_mm: f64,
+    /// Inner diameter [mm] of a tube (default: a solid rod).
+    #[arg(long, value_name = "MM")]
+    pub inner_diameter_mm: Option<f64>,
+    /// Material preset of the rod.
+    #[arg(long, value_name = "NAME", default_value = woodpile::defaults::ELEMENT_MATERIAL)]
+    pub material: String,
+    /// Number of resonators, 1–4 (default: one per centre-blocked mode below 38 kHz).
+    #[arg(long, value_name = "L")]
+    pub modes: Option<usize>,
+    /// Reduction: pole-zero (total mass, poles and zeros exact) or modal-mass.
+    #[arg(long, value_name = "NAME", default_value = "pole-zero")]
+    pub reduction: String,
+    /// Print the derived cell as one JSON object.
+    #[arg(long, requires = "rod")]
+    pub json: bool,
+}
+
+/// A derived cell as `--json` prints it.
+#[derive(Debug, serde::Serialize)]
+struct DerivedCellJson {
+    length_mm: f64,
+    diameter_mm: f64,
+    inner_diameter_mm: f64,
+    material: String,
+    reduction: String,
+    total_mass_g: f64,
+    primary_mass_g: f64,
+    resonators: Vec<ResonatorJson>,
+    /// Zeros of the cell's effective mass (its free resonances).
+    free_resonances_khz: Vec<f64>,
+    /// The rod's symmetric free-free bending frequencies (Timoshenko).
+    rod_free_free_khz: Vec<f64>,
+    /// The rod's centre-blocked frequencies (Timoshenko).
+    rod_centre_blocked_khz: Vec<f64>,
+}
+
+#[derive(Debug, serde::Serialize)]
+struct ResonatorJson {
+    mass_g: f64,
+    stiffness_kn_per_mm: f64,
+    frequency_khz: f64,
+}
+
+/// The derived cell of `--rod`, resolved exactly as a scenario's `{ kind = "rod" }` element
+/// without a given cell; errors name the flags.
+fn derived(args: &Args, length_mm: f64) -> Result<DerivedCellJson, CliError> {
+    let reduction = match args.reduction.as_str() {
+        "pole-zero" => ReductionSpec::PoleZero,
+        "modal-mass" => ReductionSpec::ModalMass,
+        other => {
+            return Err(CliError::invalid(
+                "--reduction",
+                other,
+                "valid: pole-zero, modal-mass",
+            ))
+        }
+    };
+    let spec = ElementSpec {
+        kind: Some(ElementKind::Rod),
+        length_mm: Some(length_mm),
+        diameter_mm: Some(args.diameter_mm),
+        inner_diameter_mm: args.inner_diameter_mm,
+        material: Some(MaterialSpec::preset(&args.material)),
+        cell: Some(CellSpec {
+            modes: args.modes,
+            reduction: Some(reduction),
+            ..CellSpec::default()
+        }),
+        ..ElementSpec::default()
+    };
+    let flag = |k: &str| {
+        match k {
+            "length_mm" => "--rod",
+            "diameter_mm" => "--diameter-mm",
+            "inner_diameter_mm" => "--inner-diameter-mm",
+            "material" => "--material",
+            "cell.modes" => "--modes",
+            _ => "--rod",
+        }
+        .to_string()
+    };
+    let element = resolve_element(&spec, &flag, woodpile::CellModel::Resonant, &mut Vec::new())?;
+    let cell = &element.cell;
+    let rod = woodpile::Rod::new(
+        length_mm * 1e-3,
+        args.diameter_mm * 1e-3,
+        args.inner_diameter_mm.unwrap_or(0.0) * 1e-3,
+        element.material.clone(),
+    )?;
+    let l = cell.resonators.len();
+    let khz = |v: Vec<f64>| v.into_iter().map(|f| f * 1e-3).collect::<Vec<_>>();
+    Ok(DerivedCellJson {
+        length_mm,
+        diameter_mm: args.diameter_mm,
+        inner_diameter_mm: args.inner_diameter_mm.unwrap_or(0.0),
+        material: args.material.clone(),
+        reduction: reduction.reduction().name().to_string(),
+        total_mass_g: cell.total_mass_kg() * 1e3,
+        primary_mass_g: cell.primary_mass_kg * 1e3,
+        resonators: cell
+            .resonators
+            .iter()
+            .map(|r| ResonatorJson {
+                mass_g: r.mass_kg * 1e3,
+                stiffness_kn_per_mm: r.stiffness_n_per_m * 1e-6,
+                frequency_khz: r.angular_frequency() / (2.0 * std::f64::consts::PI) * 1e-3,
+            })
+            .collect(),
+        free_resonances_khz: khz(cell.free_resonances_hz()),
+        rod_free_free_khz: khz(rod.free_symmetric_frequencies_hz(BeamTheory::Timoshenko, l)?),
+        rod_centre_blocked_khz: khz(rod.centre_blocked_frequencies_hz(BeamTheory::Timoshenko, l)?),
+    })
+}
+
+/// A derived cell as text.
+fn derived_text(c: &DerivedCellJson) -> String {
+    let list = |v: &[f64], digits: usize| {
+        v.iter()
+            .map(|x| format!("{x:.digits$}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let tube = if c.inner_diameter_mm > 0.0 {
+        format!(" (tube, inner {} mm)", c.inner_diameter_mm)
+    } else {
+        String::new()
+    };
+    format!(
+        "rod {} mm × {} mm{tube}, {}: {} resonator(s), {} reduction (docs/physics.md §13)\n\
+         total mass {:.4} g, primary mass M {:.4} g\n\
+         m_j [g]      {}\n\
+         k_j [kN/mm]  {}\n\
+         f_j [kHz]    {}   (rod centre-blocked: {})\n\
+         F_j [kHz]    {}   (rod free-free symmetric: {})\n",
+        c.length_mm,
+        c.diameter_mm,
+        c.material,
+        c.resonators.len(),
+        c.reduction,
+        c.total_mass_g,
+        c.primary_mass_g,
+        list(
+            &c.resonators.iter().map(|r| r.mass_g).collect::<Vec<_>>(),
+            4
+        ),
+        list(
+            &c.resonators
+                .iter()
+                .map(|r| r.stiffness_kn_per_mm)
+                .collect::<Vec<_>>(),
+            4
+        ),
+        list(
+            &c.resonators
+                .iter()
+                .map(|r| r.frequency_khz)
+                .collect::<Vec<_>>(),
+            2
+        ),
+        list(&c.rod_centre_blocked_khz, 2),
+        list(&c.free_resonances_khz, 2),
+        list(&c.rod_free_free_khz, 2),
+    )
 }
 
 fn khz(values: &[f64]) -> String {
@@ -65,8 +239,19 @@ pub fn table() -> Result<String, CliError> {
     Ok(out)
 }
 
-/// Prints the catalogue.
+/// Prints the catalogue, or the derived cell of `--rod`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
+    if let Some(length_mm) = args.rod {
+        let cell = derived(args, length_mm)?;
+        if args.json {
+            let text = serde_json::to_string_pretty(&cell)
+                .map_err(|e| CliError::invalid("--json", "", e.to_string()))?;
+            println!("{text}");
+        } else {
+            print!("{}", derived_text(&cell));
+        }
+        return Ok(());
+    }
     print!("{}", table()?);
     if let Some(dir) = &args.plot {
         let files = woodpile_plot::dirs::cells_figures(dir)?;

@@ -85,6 +85,9 @@ pub fn load(args: &Args) -> Result<Loaded, CliError> {
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let loaded = load(args)?;
     let resolved = resolve(&loaded.scenario, &loaded.base_dir)?;
+    for warning in &resolved.warnings {
+        eprintln!("warning: {warning}");
+    }
     RunSize::estimate(&resolved.settings, resolved.chain.len()).check(
         args.allow_long,
         args.allow_large,

@@ -8,6 +8,7 @@ mod bad_input_exit_2;
 mod blast_table;
 mod blowup_exit_1;
 mod builtins_run;
+mod cells_from_rod;
 mod cells_table;
 mod checkpoint_integrity;
 mod common;

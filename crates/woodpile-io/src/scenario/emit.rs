@@ -46,22 +46,30 @@ fn material(m: &MaterialSpec) -> String {
 }
 
 fn cell(c: &CellSpec) -> String {
-    let res: Vec<String> = c
-        .resonators
-        .iter()
-        .map(|r| {
-            format!(
-                "{{ mass_g = {}, stiffness_kn_per_mm = {} }}",
-                float(r.mass_g),
-                float(r.stiffness_kn_per_mm)
-            )
-        })
-        .collect();
-    format!(
-        "{{ primary_mass_g = {}, resonators = [{}] }}",
-        float(c.primary_mass_g),
-        res.join(", ")
-    )
+    let mut parts = Vec::new();
+    if let Some(m) = c.primary_mass_g {
+        parts.push(format!("primary_mass_g = {}", float(m)));
+        let res: Vec<String> = c
+            .resonators
+            .iter()
+            .map(|r| {
+                format!(
+                    "{{ mass_g = {}, stiffness_kn_per_mm = {} }}",
+                    float(r.mass_g),
+                    float(r.stiffness_kn_per_mm)
+                )
+            })
+            .collect();
+        parts.push(format!("resonators = [{}]", res.join(", ")));
+    }
+    if let Some(l) = c.modes {
+        parts.push(format!("modes = {l}"));
+    }
+    if let Some(r) = c.reduction {
+        let name = r.reduction().name();
+        parts.push(format!("reduction = {}", string(name)));
+    }
+    format!("{{ {} }}", parts.join(", "))
 }
 
 fn element(e: &ElementSpec) -> String {
@@ -79,6 +87,9 @@ fn element(e: &ElementSpec) -> String {
     }
     if let Some(l) = e.length_mm {
         parts.push(format!("length_mm = {}", float(l)));
+    }
+    if let Some(d) = e.inner_diameter_mm {
+        parts.push(format!("inner_diameter_mm = {}", float(d)));
     }
     if let Some(m) = &e.material {
         parts.push(format!("material = {}", material(m)));

@@ -28,7 +28,7 @@ mod resolve;
 pub use builtin::{
     all as builtins, builtin, builtin_names, BuiltinScenario, DEFAULT_SCENARIO, OPTIMIZED_CHAIN_MM,
 };
-pub use resolve::{resolve, resolve_with_keys, ChainKeys, Resolved};
+pub use resolve::{resolve, resolve_element, resolve_with_keys, ChainKeys, Resolved};
 
 use crate::error::Error;
 use serde::{Deserialize, Serialize};
@@ -150,29 +150,62 @@ pub struct ElementSpec {
     /// Cell model of this element (default: `chain.model`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub model: Option<ModelSpec>,
-    /// Diameter \[mm\] (kinds `rod`, `sphere`; default 5 for a rod).
+    /// Diameter \[mm\] (kinds `rod`, `sphere`; default 5 for a rod); the outer one of a tube.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub diameter_mm: Option<f64>,
+    /// Inner diameter of a tube \[mm\] (kind `rod`; default: a solid rod).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inner_diameter_mm: Option<f64>,
     /// Length \[mm\] (kind `rod`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub length_mm: Option<f64>,
     /// Material (kinds `rod`, `sphere`; default `fused-quartz`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<MaterialSpec>,
-    /// Unit cell (kind `rod`, required).
+    /// Unit cell (kind `rod`): given (`primary_mass_g`, `resonators`) or derived from the rod
+    /// by beam theory (absent, or `{ modes = l, reduction = "…" }`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cell: Option<CellSpec>,
 }
 
-/// A user-defined unit cell.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// The unit cell of a user rod: given by its masses and springs, or derived from the rod's
+/// geometry and material (docs/physics.md §13).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CellSpec {
-    /// Primary mass M \[g\].
-    pub primary_mass_g: f64,
-    /// Internal resonators (none: a rigid body).
-    #[serde(default)]
+    /// Primary mass M \[g\] of a given cell.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub primary_mass_g: Option<f64>,
+    /// Internal resonators of a given cell (none: a rigid body).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub resonators: Vec<ResonatorSpec>,
+    /// Resonators of a derived cell, 1–4 (default: one per centre-blocked mode below 38 kHz).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modes: Option<usize>,
+    /// Reduction of a derived cell: `pole-zero` (default) or `modal-mass`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reduction: Option<ReductionSpec>,
+}
+
+/// How a derived cell is reduced ([`woodpile::Reduction`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ReductionSpec {
+    /// Total mass, first l poles and first l zeros exactly.
+    #[default]
+    PoleZero,
+    /// First l poles exactly; modal effective masses.
+    ModalMass,
+}
+
+impl ReductionSpec {
+    /// The library's reduction.
+    pub fn reduction(self) -> woodpile::Reduction {
+        match self {
+            ReductionSpec::PoleZero => woodpile::Reduction::PoleZero,
+            ReductionSpec::ModalMass => woodpile::Reduction::ModalMass,
+        }
+    }
 }
 
 /// One internal resonator of a user cell.

@@ -9,7 +9,7 @@ use crate::error::Error;
 use crate::table::load_blast_table;
 use std::path::Path;
 use woodpile::{
-    BlastProfile, Body, Chain, ChainBuilder, Element, Excitation, Material, Method, Resonator,
+    BlastProfile, Body, Chain, ChainBuilder, Element, Excitation, Material, Method, Resonator, Rod,
     RunSettings, Striker, UnitCell, Wall,
 };
 
@@ -22,7 +22,14 @@ pub struct Resolved {
     pub excitation: Excitation,
     /// Duration, integrator and sampling.
     pub settings: RunSettings,
+    /// What is valid but probably not meant (e.g. a given cell whose mass is not the rod's),
+    /// one sentence each, naming the key; front ends print them as warnings.
+    pub warnings: Vec<String>,
 }
+
+/// A given cell whose total mass is further than this (relative) from the rod's ρ·A·L is
+/// reported.
+const MASS_MISMATCH_WARN: f64 = 0.01;
 
 /// Checks that `value` is finite and > 0; the error names `field`.
 fn positive(field: &str, value: f64) -> Result<f64, Error> {
@@ -79,8 +86,9 @@ pub fn material(field: &str, spec: &MaterialSpec) -> Result<Material, Error> {
     }
 }
 
-fn cell(field: &str, spec: &CellSpec) -> Result<UnitCell, Error> {
-    positive(&format!("{field}.primary_mass_g"), spec.primary_mass_g)?;
+/// A given cell (`primary_mass_g` \[g\] and its resonators).
+fn cell(field: &str, primary_mass_g: f64, spec: &CellSpec) -> Result<UnitCell, Error> {
+    positive(&format!("{field}.primary_mass_g"), primary_mass_g)?;
     let mut resonators = Vec::with_capacity(spec.resonators.len());
     for (j, r) in spec.resonators.iter().enumerate() {
         let f = format!("{field}.resonators[{j}]");
@@ -91,23 +99,24 @@ fn cell(field: &str, spec: &CellSpec) -> Result<UnitCell, Error> {
             stiffness_n_per_m: r.stiffness_kn_per_mm * 1e6,
         });
     }
-    Ok(UnitCell::new(spec.primary_mass_g * 1e-3, resonators)?)
+    Ok(UnitCell::new(primary_mass_g * 1e-3, resonators)?)
 }
 
-fn element(
-    keys: &ChainKeys,
-    i: usize,
+/// Resolves one element; `key("rod_mm")` names its keys in errors (`key("")` the element);
+/// what is valid but probably not meant is added to `warnings`.
+pub fn resolve_element(
     e: &ElementSpec,
+    key: &dyn Fn(&str) -> String,
     chain_model: woodpile::CellModel,
+    warnings: &mut Vec<String>,
 ) -> Result<Element, Error> {
-    let list = keys.elements;
-    let field = |k: &str| format!("{list}[{i}].{k}");
+    let field = key;
     let kind =
         match (e.kind, e.rod_mm) {
             (Some(k), _) => k,
             (None, Some(_)) => ElementKind::Catalogue,
             (None, None) => return Err(Error::invalid(
-                format!("{list}[{i}]"),
+                key(""),
                 "{}",
                 "give `rod_mm = L` for a Table 1 rod, or `kind = \"rod\"` / `kind = \"sphere\"`",
             )),
@@ -128,6 +137,9 @@ fn element(
             }
             if let Some(d) = e.length_mm {
                 return Err(not_applicable(&field("length_mm"), d, &why));
+            }
+            if let Some(d) = e.inner_diameter_mm {
+                return Err(not_applicable(&field("inner_diameter_mm"), d, &why));
             }
             if e.material.is_some() {
                 return Err(not_applicable(&field("material"), "…", &why));
@@ -157,15 +169,71 @@ fn element(
                 ));
             };
             let length = positive(&field("length_mm"), length)?;
+            let inner = non_negative(
+                &field("inner_diameter_mm"),
+                e.inner_diameter_mm.unwrap_or(0.0),
+            )?;
             let mat = element_material(&field("material"), e.material.as_ref())?;
-            let Some(cell_spec) = &e.cell else {
-                return Err(Error::invalid(
-                    field("cell"),
-                    "(missing)",
-                    "a user rod needs cell = { primary_mass_g, resonators = [{ mass_g, stiffness_kn_per_mm }] }; use rod_mm for Table 1 rods",
-                ));
+            let default_cell = CellSpec::default();
+            let cell_spec = e.cell.as_ref().unwrap_or(&default_cell);
+            let c = match cell_spec.primary_mass_g {
+                Some(primary_mass_g) => {
+                    if let Some(l) = cell_spec.modes {
+                        return Err(not_applicable(
+                            &field("cell.modes"),
+                            l,
+                            "with a given cell (primary_mass_g): modes derive a cell from the rod",
+                        ));
+                    }
+                    if cell_spec.reduction.is_some() {
+                        return Err(not_applicable(
+                            &field("cell.reduction"),
+                            "…",
+                            "with a given cell (primary_mass_g)",
+                        ));
+                    }
+                    let given = cell(&field("cell"), primary_mass_g, cell_spec)?;
+                    let area = std::f64::consts::PI / 4.0 * (diameter.powi(2) - inner.powi(2));
+                    let rod_mass_g = mat.density_kg_m3 * area * length * 1e-6;
+                    let cell_mass_g = given.total_mass_kg() * 1e3;
+                    let off = (cell_mass_g - rod_mass_g) / rod_mass_g;
+                    if off.abs() > MASS_MISMATCH_WARN {
+                        warnings.push(format!(
+                            "{}: the cell's total mass {cell_mass_g:.4} g is {:+.1} % off the rod's ρ·A·L = {rod_mass_g:.4} g ({}); the run uses the cell's masses. Drop `cell` to derive it from the rod (docs/physics.md §13), or correct the masses",
+                            field("cell"),
+                            100.0 * off,
+                            mat.name
+                        ));
+                    }
+                    given
+                }
+                None => {
+                    if !cell_spec.resonators.is_empty() {
+                        return Err(Error::invalid(field("cell.primary_mass_g"), "(missing)", "a given cell needs primary_mass_g with its resonators; or drop resonators to derive the cell from the rod"));
+                    }
+                    if inner >= diameter {
+                        return Err(Error::invalid(
+                            field("inner_diameter_mm"),
+                            float(inner),
+                            format!(
+                                "must be smaller than {} ({})",
+                                field("diameter_mm"),
+                                float(diameter)
+                            ),
+                        ));
+                    }
+                    let rod = Rod::new(length * 1e-3, diameter * 1e-3, inner * 1e-3, mat.clone())?;
+                    let reduction = cell_spec.reduction.unwrap_or_default().reduction();
+                    // The only invalid parameter left is the number of modes.
+                    UnitCell::from_rod(&rod, cell_spec.modes, reduction).map_err(|e| match e {
+                        woodpile::Error::InvalidParameter { value, reason, .. } => {
+                            Error::invalid(field("cell.modes"), value, reason)
+                        }
+                        other => Error::Model(other),
+                    })?
+                }
             };
-            let c = model.apply(cell(&field("cell"), cell_spec)?);
+            let c = model.apply(c);
             Ok(Element {
                 label: format!("rod{}mm", length),
                 body: Body::Rod {
@@ -182,6 +250,9 @@ fn element(
             }
             if let Some(l) = e.length_mm {
                 return Err(not_applicable(&field("length_mm"), l, &why));
+            }
+            if let Some(d) = e.inner_diameter_mm {
+                return Err(not_applicable(&field("inner_diameter_mm"), d, &why));
             }
             if e.cell.is_some() {
                 return Err(not_applicable(
@@ -253,17 +324,23 @@ pub fn resolve_with_keys(
     base_dir: &Path,
     keys: &ChainKeys,
 ) -> Result<Resolved, Error> {
-    let chain = resolve_chain(scenario, keys)?;
+    let mut warnings = Vec::new();
+    let chain = resolve_chain(scenario, keys, &mut warnings)?;
     let excitation = resolve_excitation(scenario, &chain, base_dir)?;
     let settings = resolve_run(scenario)?;
     Ok(Resolved {
         chain,
         excitation,
         settings,
+        warnings,
     })
 }
 
-fn resolve_chain(s: &Scenario, keys: &ChainKeys) -> Result<Chain, Error> {
+fn resolve_chain(
+    s: &Scenario,
+    keys: &ChainKeys,
+    warnings: &mut Vec<String>,
+) -> Result<Chain, Error> {
     let c = &s.chain;
     let model = c.model.unwrap_or_default().cell_model();
     let elements = match (&c.rods_mm, &c.elements) {
@@ -291,7 +368,14 @@ fn resolve_chain(s: &Scenario, keys: &ChainKeys) -> Result<Chain, Error> {
         (None, Some(list)) => list
             .iter()
             .enumerate()
-            .map(|(i, e)| element(keys, i, e, model))
+            .map(|(i, e)| {
+                let list = keys.elements;
+                let key = move |k: &str| match k {
+                    "" => format!("{list}[{i}]"),
+                    _ => format!("{list}[{i}].{k}"),
+                };
+                resolve_element(e, &key, model, warnings)
+            })
             .collect::<Result<Vec<_>, _>>()?,
     };
     let n = elements.len();
