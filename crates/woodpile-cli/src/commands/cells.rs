@@ -15,14 +15,14 @@ pub struct Args {
     /// Also draw the effective-mass curves (paper Fig. 3) into this directory (PNG and SVG).
     #[arg(long, value_name = "DIR")]
     pub plot: Option<std::path::PathBuf>,
-    /// Derive the cell of a rod of this length [mm] from Timoshenko beam theory instead of
+    /// Derive the cell of a rod of this length, in mm, from Timoshenko beam theory instead of
     /// printing the catalogue.
     #[arg(long, value_name = "LENGTH_MM", allow_negative_numbers = true)]
     pub rod: Option<f64>,
-    /// Outer diameter of the rod [mm].
+    /// Outer diameter of the rod, in mm.
     #[arg(long, value_name = "MM", default_value_t = woodpile::defaults::ROD_DIAMETER_MM)]
     pub diameter_mm: f64,
-    /// Inner diameter [mm] of a tube (default: a solid rod).
+    /// Inner diameter of a tube, in mm (default: a solid rod).
     #[arg(long, value_name = "MM")]
     pub inner_diameter_mm: Option<f64>,
     /// Material preset of the rod.
