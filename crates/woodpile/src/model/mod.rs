@@ -4,6 +4,7 @@ pub mod beam;
 pub mod cell;
 pub mod chain;
 pub mod contact;
+pub mod fe_beam;
 pub mod material;
 
 pub use beam::{BeamTheory, Reduction, Rod};
