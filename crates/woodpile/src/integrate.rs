@@ -11,6 +11,11 @@
 
 use crate::error::{require_positive, Error, Result};
 
+/// Largest |h ω| for which the classical RK4 method is stable on an undamped oscillation of
+/// frequency ω: its stability region meets the imaginary axis at ±2√2 (Hairer & Wanner, *Solving
+/// ODEs II*, §IV.2). A fixed step above 2√2/ω makes that oscillation grow without bound.
+pub const RK4_STABILITY_LIMIT: f64 = 2.0 * std::f64::consts::SQRT_2;
+
 /// A first-order ODE system y' = f(t, y). `rhs` takes `&mut self` so that a system can keep
 /// per-evaluation quantities (our chain keeps its contact forces).
 pub trait OdeSystem {

@@ -48,6 +48,27 @@ pub struct ChainOde {
 }
 
 impl ChainOde {
+    /// The resonator with the highest frequency of oscillation against its (fixed) primary
+    /// mass, ω = sqrt(k (1/m + 1/M)): (element number from 1, resonator index in its cell, ω
+    /// \[rad/s\]). None without resonators.
+    pub fn stiffest_resonator(&self) -> Option<(usize, usize, f64)> {
+        let mut best: Option<(usize, usize, f64)> = None;
+        let mut index_in_cell = 0;
+        for j in 0..self.res_owner.len() {
+            let owner = self.res_owner[j];
+            if j > 0 && self.res_owner[j - 1] == owner {
+                index_in_cell += 1;
+            } else {
+                index_in_cell = 0;
+            }
+            let omega = (self.res_omega2[j] + self.res_coupling[j]).sqrt();
+            if best.is_none_or(|b| omega > b.2) {
+                best = Some((owner + self.shift, index_in_cell, omega));
+            }
+        }
+        best
+    }
+
     /// Compiles a chain and its excitation. Validates the excitation.
     pub fn new(chain: &Chain, excitation: &Excitation) -> Result<Self> {
         excitation.validate()?;

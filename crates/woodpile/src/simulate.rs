@@ -270,6 +270,7 @@ pub fn simulate(
     settings.validate()?;
     let started = std::time::Instant::now();
     let mut ode = ChainOde::new(chain, excitation)?;
+    check_resonator_stability(&ode, settings.method)?;
     let n_contacts = ode.n_layers();
     let n_samples = settings.n_samples();
     let y0 = ode.initial_state();
@@ -634,5 +635,30 @@ fn observe(
     Energies {
         total: sample.total_energy_j(),
         work,
+    }
+}
+
+/// Refuses a fixed step beyond RK4's stability limit on the stiffest resonator: resonators are
+/// linear, so such a run would blow up for certain (docs/physics.md §12). Cells with many stiff
+/// modes (the finite-element rod of §13) need a smaller step than the paper's.
+fn check_resonator_stability(ode: &ChainOde, method: Method) -> Result<()> {
+    let Method::Rk4 { time_step_s } = method else {
+        return Ok(());
+    };
+    match ode.stiffest_resonator() {
+        Some((element, resonator, omega))
+            if time_step_s * omega > crate::integrate::RK4_STABILITY_LIMIT =>
+        {
+            Err(Error::invalid(
+                "run.time_step_s",
+                time_step_s,
+                format!(
+                    "RK4 is unstable on resonator {resonator} of element {element} (ω = sqrt(k (1/m + 1/M)) = {omega:.3e} rad/s, Δt ω = {:.2} > 2√2): use run.time_step_s < {:.3e} s, or integrator = \"dopri5\", or check that resonator's stiffness and mass",
+                    time_step_s * omega,
+                    crate::integrate::RK4_STABILITY_LIMIT / omega
+                ),
+            ))
+        }
+        _ => Ok(()),
     }
 }

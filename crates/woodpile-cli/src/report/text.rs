@@ -111,17 +111,18 @@ fn optimum_rows(s: &Setup, r: &Results, row: &mut dyn FnMut(&str, String, String
             better,
             "follows from the two ratios",
         ),
-        (study::RESONANT_RESTITUTION, restitution_of(cr), rebound_of(cr)),
+        (
+            study::RESONANT_RESTITUTION,
+            restitution_of(cr),
+            rebound_of(cr),
+        ),
         (study::RIGID_RESTITUTION, restitution_of(cg), rebound_of(cg)),
     ];
     for (p, ours, why) in values {
         let (text, diff) = if ours.is_finite() {
             (p.format(ours), p.difference(ours))
         } else {
-            (
-                "n/a".to_string(),
-                "–".to_string(),
-            )
+            ("n/a".to_string(), "–".to_string())
         };
         row(p.what, p.text(), text, diff, why);
     }

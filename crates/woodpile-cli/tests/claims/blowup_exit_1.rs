@@ -1,6 +1,8 @@
-//! Claim: a run that blows up numerically (here RK4 with a step 100× too large, so the striker
-//! overruns rod 1) stops with exit code 1 and a message naming the time, the contact and the fix,
-//! and leaves no output directory behind. Bad input is exit 2; a failed run is exit 1.
+//! Claim: a run that blows up numerically (here RK4 with a step 200× too large on rigid rods, so
+//! the striker overruns rod 1) stops with exit code 1 and a message naming the time, the contact
+//! and the fix, and leaves no output directory behind. Bad input is exit 2; a failed run is
+//! exit 1. (With resonant rods such a step is refused before the run, as bad input, because it
+//! is beyond RK4's stability limit on a resonator: exit 2 naming run.time_step_s.)
 
 use crate::common;
 
@@ -10,7 +12,19 @@ fn numerical_blowup_exits_1_without_output() {
     common::write(
         dir.path(),
         "s.toml",
+        "[chain]\nrods_mm = [20, 20]\nmodel = \"rigid\"\n[run]\ntime_step_s = 2e-5\n",
+    );
+    common::write(
+        dir.path(),
+        "r.toml",
         "[chain]\nrods_mm = [20, 20]\n[run]\ntime_step_s = 1e-5\n",
+    );
+    let refused = common::run_in(dir.path(), &["simulate", "r.toml", "--out", "out"]);
+    let err = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("run.time_step_s") && err.contains("resonator"),
+        "{err}"
     );
     let out = common::run_in(dir.path(), &["simulate", "s.toml", "--out", "out"]);
     let stderr = String::from_utf8_lossy(&out.stderr);

@@ -313,6 +313,18 @@ impl Rod {
             .collect())
     }
 
+    /// The most resonators a derived cell of this rod can have: [`MAX_MODES`], or fewer when
+    /// fewer centre-blocked and free–free modes lie below the shear cutoff (3 for the 20 mm
+    /// quartz rod).
+    pub fn max_modes(&self) -> usize {
+        let t = BeamTheory::Timoshenko;
+        let poles = self
+            .scan(t, MAX_MODES, f64::INFINITY, Rod::centre_blocked)
+            .len();
+        let zeros = self.scan(t, MAX_MODES, f64::INFINITY, Rod::free_free).len();
+        poles.min(zeros)
+    }
+
     /// The number of resonators of the default rule: one per centre-blocked mode below
     /// [`crate::defaults::CELL_MODE_CUTOFF_HZ`], at least 1 and at most [`MAX_MODES`].
     pub fn default_modes(&self) -> usize {

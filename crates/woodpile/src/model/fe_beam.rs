@@ -33,9 +33,19 @@ fn element_matrices(rod: &Rod, h: f64) -> ([[f64; 4]; 4], [[f64; 4]; 4]) {
     let (h2, p2) = (h * h, phi * phi);
     let k = [
         [12.0 * c, 6.0 * h * c, -12.0 * c, 6.0 * h * c],
-        [6.0 * h * c, (4.0 + phi) * h2 * c, -6.0 * h * c, (2.0 - phi) * h2 * c],
+        [
+            6.0 * h * c,
+            (4.0 + phi) * h2 * c,
+            -6.0 * h * c,
+            (2.0 - phi) * h2 * c,
+        ],
         [-12.0 * c, -6.0 * h * c, 12.0 * c, -6.0 * h * c],
-        [6.0 * h * c, (2.0 - phi) * h2 * c, -6.0 * h * c, (4.0 + phi) * h2 * c],
+        [
+            6.0 * h * c,
+            (2.0 - phi) * h2 * c,
+            -6.0 * h * c,
+            (4.0 + phi) * h2 * c,
+        ],
     ];
     let t = rho * a * h / (1.0 + phi).powi(2);
     let m11 = t * (13.0 / 35.0 + 7.0 * phi / 10.0 + p2 / 3.0);
@@ -163,7 +173,11 @@ impl Rod {
         };
         let (ki, mi) = (interior(&k), interior(&m));
         let l = cholesky(&mi, n).ok_or_else(|| {
-            Error::invalid("rod.fe_elements", elements, "the mass matrix is not positive definite")
+            Error::invalid(
+                "rod.fe_elements",
+                elements,
+                "the mass matrix is not positive definite",
+            )
         })?;
         // A = L⁻¹ K L⁻ᵀ by forward substitution on the columns, then on the rows.
         let solve_lower = |b: &mut [f64], stride: usize, offset: usize| {
@@ -187,7 +201,10 @@ impl Rod {
         let mut modes: Vec<(f64, f64)> = (0..n)
             .map(|j| {
                 let participation: f64 = (0..n).map(|i| vectors[i * n + j] * r[i]).sum();
-                (values[j].max(0.0).sqrt(), 2.0 * participation * participation)
+                (
+                    values[j].max(0.0).sqrt(),
+                    2.0 * participation * participation,
+                )
             })
             .collect();
         modes.sort_by(|x, y| x.0.total_cmp(&y.0));
