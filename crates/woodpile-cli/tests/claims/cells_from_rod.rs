@@ -5,7 +5,8 @@
 //! are rounded to 4 digits), the default rule gives it two resonators, and out-of-range flags
 //! exit 2 naming the flag. In a scenario, a `kind = "rod"` element without a cell gets the same
 //! derived cell (run.json records it), so a rod's length changes the result; a given cell whose
-//! mass is not the rod's is reported on stderr.
+//! mass is not the rod's is reported on stderr. A finite-element rod (`cell = { fe_elements = 16 }`)
+//! runs at a step its stiffest mode allows and is refused, naming run.time_step_s, at the paper's.
 
 use crate::common;
 
@@ -115,5 +116,43 @@ fn scenario_rods_derive_their_cells_and_length_matters() {
     assert!(
         err.contains("warning: chain.elements[0].cell") && err.contains("ρ·A·L"),
         "{err}"
+    );
+}
+
+#[test]
+fn finite_element_rods_need_a_small_step() {
+    let dir = tempfile::tempdir().unwrap();
+    let chain = "[chain]\nelements = [{ kind = \"rod\", length_mm = 20.0, cell = { fe_elements = 16 } }, { rod_mm = 40 }]\n";
+    common::write(
+        dir.path(),
+        "paper.toml",
+        &format!("{chain}[run]\nduration_s = 1e-4\n"),
+    );
+    let out = common::run_in(dir.path(), &["simulate", "paper.toml", "--out", "a"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("run.time_step_s") && err.contains("element 1"),
+        "{err}"
+    );
+    common::write(
+        dir.path(),
+        "fine.toml",
+        &format!("{chain}[run]\nduration_s = 1e-4\ntime_step_s = 1e-8\n"),
+    );
+    let out = common::run_in(dir.path(), &["simulate", "fine.toml", "--out", "b"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let run = common::json(&dir.path().join("b").join("run.json"));
+    let resonators = run
+        .pointer("/elements/0/resonator_masses_kg")
+        .and_then(serde_json::Value::as_array)
+        .map_or(0, Vec::len);
+    assert_eq!(
+        resonators, 32,
+        "16 elements per half: 32 modes of the held half rod"
     );
 }

@@ -19,6 +19,8 @@ elements = [
     { rod_mm = 80, model = "resonant" },
     { kind = "rod", diameter_mm = 6.0, length_mm = 45.0, material = "borosilicate-glass", cell = { primary_mass_g = 0.5, resonators = [{ mass_g = 0.7, stiffness_kn_per_mm = 5.0 }] } },
     { rod_mm = 20 },
+    { kind = "rod", length_mm = 30.0, diameter_mm = 6.0, inner_diameter_mm = 4.0, material = "steel", cell = { modes = 2, reduction = "modal-mass" } },
+    { kind = "rod", length_mm = 50.0, model = "resonant" },
     { kind = "sphere", diameter_mm = 8.0, material = { name = "pmma", youngs_modulus_pa = 3.1e9, poisson_ratio = 0.35, density_kg_m3 = 1180.0 } },
 ]
 contact_beta = [{ contact = 2, beta = 2.5e9 }]

@@ -69,6 +69,9 @@ fn cell(c: &CellSpec) -> String {
         let name = r.reduction().name();
         parts.push(format!("reduction = {}", string(name)));
     }
+    if let Some(n) = c.fe_elements {
+        parts.push(format!("fe_elements = {n}"));
+    }
     format!("{{ {} }}", parts.join(", "))
 }
 

@@ -162,8 +162,9 @@ pub struct ElementSpec {
     /// Material (kinds `rod`, `sphere`; default `fused-quartz`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<MaterialSpec>,
-    /// Unit cell (kind `rod`): given (`primary_mass_g`, `resonators`) or derived from the rod
-    /// by beam theory (absent, or `{ modes = l, reduction = "…" }`).
+    /// Unit cell (kind `rod`): given (`primary_mass_g`, `resonators`), derived from the rod by
+    /// beam theory (absent, or `{ modes = l, reduction = "…" }`), or the finite-element rod
+    /// (`{ fe_elements = n }`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cell: Option<CellSpec>,
 }
@@ -185,6 +186,10 @@ pub struct CellSpec {
     /// Reduction of a derived cell: `pole-zero` (default) or `modal-mass`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reduction: Option<ReductionSpec>,
+    /// The rod itself as a finite-element beam with this many elements per half rod (1–64):
+    /// one resonator per mode; needs a small RK4 step or dopri5 (docs/physics.md §12, §13).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fe_elements: Option<usize>,
 }
 
 /// How a derived cell is reduced ([`woodpile::Reduction`]).

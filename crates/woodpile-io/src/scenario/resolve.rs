@@ -185,6 +185,13 @@ pub fn resolve_element(
                             "with a given cell (primary_mass_g): modes derive a cell from the rod",
                         ));
                     }
+                    if let Some(n) = cell_spec.fe_elements {
+                        return Err(not_applicable(
+                            &field("cell.fe_elements"),
+                            n,
+                            "with a given cell (primary_mass_g)",
+                        ));
+                    }
                     if cell_spec.reduction.is_some() {
                         return Err(not_applicable(
                             &field("cell.reduction"),
@@ -223,14 +230,40 @@ pub fn resolve_element(
                         ));
                     }
                     let rod = Rod::new(length * 1e-3, diameter * 1e-3, inner * 1e-3, mat.clone())?;
-                    let reduction = cell_spec.reduction.unwrap_or_default().reduction();
-                    // The only invalid parameter left is the number of modes.
-                    UnitCell::from_rod(&rod, cell_spec.modes, reduction).map_err(|e| match e {
-                        woodpile::Error::InvalidParameter { value, reason, .. } => {
-                            Error::invalid(field("cell.modes"), value, reason)
+                    // The only invalid parameter left is the number of modes or of elements.
+                    let at = |key: &str| {
+                        let key = field(key);
+                        move |e| match e {
+                            woodpile::Error::InvalidParameter { value, reason, .. } => {
+                                Error::invalid(key, value, reason)
+                            }
+                            other => Error::Model(other),
                         }
-                        other => Error::Model(other),
-                    })?
+                    };
+                    match cell_spec.fe_elements {
+                        Some(n) => {
+                            if let Some(l) = cell_spec.modes {
+                                return Err(not_applicable(
+                                    &field("cell.modes"),
+                                    l,
+                                    "with fe_elements (the finite-element rod keeps every mode)",
+                                ));
+                            }
+                            if cell_spec.reduction.is_some() {
+                                return Err(not_applicable(
+                                    &field("cell.reduction"),
+                                    "…",
+                                    "with fe_elements",
+                                ));
+                            }
+                            UnitCell::from_rod_fe(&rod, n).map_err(at("cell.fe_elements"))?
+                        }
+                        None => {
+                            let reduction = cell_spec.reduction.unwrap_or_default().reduction();
+                            UnitCell::from_rod(&rod, cell_spec.modes, reduction)
+                                .map_err(at("cell.modes"))?
+                        }
+                    }
                 }
             };
             let c = model.apply(c);
