@@ -32,7 +32,7 @@
 use crate::atomic::{io_err, write_atomic};
 use crate::error::Error;
 use crate::scenario::{
-    resolve, resolve_with_keys, ChainKeys, ChainSpec, ElementSpec, ExcitationKind, ExcitationSpec,
+    resolve, resolve_with_keys, ChainKeys, ChainSpec, ElementKind, ElementSpec, ExcitationKind, ExcitationSpec,
     ModelSpec, RunSpec, Scenario, WallSpec,
 };
 use serde::{Deserialize, Serialize};
@@ -93,6 +93,11 @@ pub struct DesignSpec {
     /// General catalogue, as a scenario's `chain.elements` entries (instead of catalogue_mm).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub elements: Option<Vec<ElementSpec>>,
+    /// A fine design space: rods of every length in a range (and the listed diameters and
+    /// materials), each with its cell derived by beam theory (docs/physics.md §13). Expanded into
+    /// `elements` when the config is completed; instead of catalogue_mm and elements.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rod_range: Option<RodRangeSpec>,
     /// Cell model of the catalogue rods (default `resonant`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub model: Option<ModelSpec>,
@@ -102,6 +107,92 @@ pub struct DesignSpec {
     /// `[design.constraints]`.
     #[serde(default)]
     pub constraints: ConstraintsSpec,
+}
+
+/// `[design.rod_range]`: lengths `from_mm`, `from_mm + step_mm`, … up to `to_mm`, for every
+/// listed diameter and material; cells derived from the rods (`cell = { modes }` when given).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RodRangeSpec {
+    /// Shortest rod \[mm\].
+    pub from_mm: f64,
+    /// Longest rod \[mm\] (included when the steps reach it).
+    pub to_mm: f64,
+    /// Step in length \[mm\].
+    pub step_mm: f64,
+    /// Diameters \[mm\] (default: the paper's 5 mm).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub diameters_mm: Vec<f64>,
+    /// Material presets (default: fused quartz).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub materials: Vec<String>,
+    /// Resonators per derived cell (default: the rule of docs/physics.md §13).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modes: Option<usize>,
+}
+
+impl RodRangeSpec {
+    /// The catalogue: every length for every diameter and material, lengths ascending within
+    /// each (so that the GA's mutation, which moves by catalogue index, changes length by steps).
+    pub fn elements(&self) -> Result<Vec<ElementSpec>, Error> {
+        let key = |k: &str| format!("design.rod_range.{k}");
+        for (k, v) in [("from_mm", self.from_mm), ("to_mm", self.to_mm), ("step_mm", self.step_mm)] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(Error::invalid(key(k), v, "must be a finite number > 0"));
+            }
+        }
+        if self.to_mm < self.from_mm {
+            return Err(Error::invalid(
+                key("to_mm"),
+                self.to_mm,
+                format!("must not be below from_mm ({})", self.from_mm),
+            ));
+        }
+        // Tolerate rounding in (to − from)/step: 20..80 by 0.1 has 601 lengths, not 600.
+        let steps = ((self.to_mm - self.from_mm) / self.step_mm + 1e-9).floor() as usize;
+        let diameters = if self.diameters_mm.is_empty() {
+            vec![woodpile::defaults::ROD_DIAMETER_MM]
+        } else {
+            self.diameters_mm.clone()
+        };
+        let materials = if self.materials.is_empty() {
+            vec![woodpile::defaults::ELEMENT_MATERIAL.to_string()]
+        } else {
+            self.materials.clone()
+        };
+        let count = (steps + 1) * diameters.len() * materials.len();
+        if count > woodpile::optimize::MAX_CATALOGUE_LEN {
+            return Err(Error::invalid(
+                "design.rod_range",
+                format!("{count} rods"),
+                format!(
+                    "at most {} catalogue entries: use a larger step_mm or fewer diameters or materials",
+                    woodpile::optimize::MAX_CATALOGUE_LEN
+                ),
+            ));
+        }
+        let mut out = Vec::with_capacity(count);
+        for material in &materials {
+            for &diameter in &diameters {
+                for i in 0..=steps {
+                    // Rounded to 1e-9 mm so that labels and files read 21 rather than 21.000000000000004.
+                    let length = ((self.from_mm + i as f64 * self.step_mm) * 1e9).round() / 1e9;
+                    out.push(ElementSpec {
+                        kind: Some(ElementKind::Rod),
+                        length_mm: Some(length),
+                        diameter_mm: Some(diameter),
+                        material: Some(crate::scenario::MaterialSpec::preset(material)),
+                        cell: self.modes.map(|l| crate::scenario::CellSpec {
+                            modes: Some(l),
+                            ..crate::scenario::CellSpec::default()
+                        }),
+                        ..ElementSpec::default()
+                    });
+                }
+            }
+        }
+        Ok(out)
+    }
 }
 
 /// `[design.constraints]`.
@@ -222,7 +313,18 @@ impl OptimizeConfig {
         bare(self) == bare(other)
     }
 
-    /// The same config with every default written out.
+    /// [`OptimizeConfig::complete`], with a `rod_range` expanded into `elements` (its errors
+    /// name its keys).
+    pub fn complete_checked(&self) -> Result<Self, Error> {
+        let mut c = self.clone();
+        if let (Some(range), None, None) = (&c.design.rod_range, &c.design.catalogue_mm, &c.design.elements) {
+            c.design.elements = Some(range.elements()?);
+        }
+        Ok(c.complete())
+    }
+
+    /// The same config with every default written out (a `rod_range` is expanded by
+    /// [`OptimizeConfig::complete_checked`]).
     pub fn complete(&self) -> Self {
         let mut c = self.clone();
         let d = &mut c.design;
@@ -358,7 +460,16 @@ fn catalogue_index(
 impl Problem {
     /// Validates a config (after the command line's overrides) and builds the design space.
     pub fn new(config: &OptimizeConfig, base_dir: &Path, threads: usize) -> Result<Self, Error> {
-        let cfg = config.complete();
+        if config.design.rod_range.is_some()
+            && (config.design.catalogue_mm.is_some() || config.design.elements.is_some())
+        {
+            return Err(Error::invalid(
+                "design.rod_range",
+                "with catalogue_mm or elements",
+                "give one catalogue: rod_range, catalogue_mm or elements",
+            ));
+        }
+        let cfg = config.complete_checked()?;
         let d = &cfg.design;
         let positions = d.positions.unwrap_or(20);
         if positions == 0 {

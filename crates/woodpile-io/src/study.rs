@@ -253,6 +253,30 @@ pub fn ga_problem(
     Ok(cfg)
 }
 
+/// The paper's impact problem (20 positions, resonant) over rods with cells derived from beam
+/// theory (docs/physics.md §13): lengths 20–80 mm every `step_mm` (10: the paper's seven lengths;
+/// 1: the fine design space of 61 lengths).
+pub fn derived_ga_problem(
+    step_mm: f64,
+    seed: u64,
+    quick: bool,
+) -> Result<OptimizeConfig, crate::Error> {
+    let mut cfg = ga_problem(ModelSpec::Resonant, seed, quick)?;
+    cfg.description = Some(format!(
+        "paper impact problem over rods 20-80 mm every {step_mm} mm, cells from beam theory"
+    ));
+    cfg.design.catalogue_mm = None;
+    cfg.design.rod_range = Some(crate::optimize::RodRangeSpec {
+        from_mm: 20.0,
+        to_mm: 80.0,
+        step_mm,
+        diameters_mm: Vec::new(),
+        materials: Vec::new(),
+        modes: None,
+    });
+    Ok(cfg)
+}
+
 /// Mean rod length of a chain \[mm\].
 pub fn mean_length_mm(rods_mm: &[u32]) -> f64 {
     rods_mm.iter().map(|&r| f64::from(r)).sum::<f64>() / rods_mm.len().max(1) as f64

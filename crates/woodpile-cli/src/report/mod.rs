@@ -133,8 +133,9 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Progress steps: 4 impact chains, 2 GAs, optimum figures, protocol, 4 blast chains, cells.
-const STEPS: u64 = 13;
+/// Progress steps: 4 impact chains, 2 GAs, optimum figures, protocol, 4 blast chains, 2 GAs
+/// over derived cells, cells.
+const STEPS: u64 = 15;
 
 /// Runs everything and assembles the document; returns it and a short text summary.
 /// Runs everything and assembles the document; returns it and a short text summary.
@@ -148,6 +149,7 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
     bar.inc(1);
     bar.set_message("blast cases");
     let blast = runs::blast(&s)?;
+    let fine = runs::fine(&s)?;
     bar.set_message("effective-mass curves");
     let cells_files = cells_figures(&s.figs)?;
     bar.inc(1);
@@ -163,6 +165,7 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
         protocol_map_files,
         protocol_peak_files,
         blast,
+        fine,
         cells_files,
         elapsed: bar.elapsed().as_secs_f64(),
     };

@@ -17,7 +17,7 @@ use woodpile::{
     simulate, BlastProfile, CellModel, Chain, ChainBuilder, Excitation, RunSettings, RunSummary,
     Striker, Trajectory, UnitCell,
 };
-use woodpile_io::optimize::Problem;
+use woodpile_io::optimize::{OptimizeConfig, Problem};
 use woodpile_io::scenario::ModelSpec;
 use woodpile_io::study::{self, Cache, CachedGa};
 use woodpile_plot as plot;
@@ -224,19 +224,13 @@ pub struct GaRun {
 }
 
 fn run_ga(
-    model: ModelSpec,
-    quick: bool,
-    seed: u64,
+    cfg: &OptimizeConfig,
+    model_name: &'static str,
     threads: usize,
     cache: &Cache,
     bar: &indicatif::ProgressBar,
 ) -> Result<GaRun, CliError> {
-    let cfg = study::ga_problem(model, seed, quick)?;
-    let problem = Problem::new(&cfg, Path::new("."), threads)?;
-    let model_name = match model {
-        ModelSpec::Resonant => "resonant",
-        ModelSpec::Rigid => "rigid",
-    };
+    let problem = Problem::new(cfg, Path::new("."), threads)?;
     let key = Cache::key_text("ga", &problem.config);
     let objective = problem.objective;
     let (result, cached) = match cache.get(&key) {
@@ -387,25 +381,14 @@ pub fn optima(s: &Setup) -> Result<(GaRun, GaRun, Vec<(Case, Vec<Vec<PathBuf>>)>
     let fig = |name: &str| s.figs.join(name);
     let bar = s.bar;
     let (impact, impact_settings, impact_text) = (&s.impact, &s.impact_settings, &s.impact_text);
+    let (quick, seed, threads) = (s.args.quick, s.args.seed, s.args.threads);
     bar.set_message("resonant GA");
-    let ga_res = run_ga(
-        ModelSpec::Resonant,
-        s.args.quick,
-        s.args.seed,
-        s.args.threads,
-        &s.cache,
-        bar,
-    )?;
+    let cfg = study::ga_problem(ModelSpec::Resonant, seed, quick)?;
+    let ga_res = run_ga(&cfg, "resonant", threads, &s.cache, bar)?;
     bar.inc(1);
     bar.set_message("rigid GA");
-    let ga_rig = run_ga(
-        ModelSpec::Rigid,
-        s.args.quick,
-        s.args.seed,
-        s.args.threads,
-        &s.cache,
-        bar,
-    )?;
+    let cfg = study::ga_problem(ModelSpec::Rigid, seed, quick)?;
+    let ga_rig = run_ga(&cfg, "rigid", threads, &s.cache, bar)?;
     bar.inc(1);
     bar.set_message("figures of the optima");
     let optima: Vec<(Case, Vec<Vec<PathBuf>>)> = [&ga_res, &ga_rig]
@@ -613,8 +596,48 @@ pub struct Results {
     pub protocol_peak_files: Vec<PathBuf>,
     /// The blast runs.
     pub blast: BlastRuns,
+    /// The GAs over derived cells (beyond the paper).
+    pub fine: FineRuns,
     /// The effective-mass figures.
     pub cells_files: Vec<PathBuf>,
     /// Wall-clock time of the runs \[s\].
     pub elapsed: f64,
+}
+
+/// Beyond the paper: the resonant GA over rods with cells from beam theory, at the paper's seven
+/// lengths and at every length 20–80 mm by 1 mm; their optima re-simulated, and the fine
+/// optimum's chain picture.
+pub struct FineRuns {
+    /// The seven lengths, derived cells.
+    pub seven: GaRun,
+    /// Every length by 1 mm, derived cells.
+    pub fine: GaRun,
+    /// The two optima re-simulated under the paper's impact (seven, fine).
+    pub summaries: [RunSummary; 2],
+    /// The fine optimum's chain picture.
+    pub files: Vec<PathBuf>,
+}
+
+/// Runs the two GAs over derived cells (docs/physics.md §13).
+pub fn fine(s: &Setup) -> Result<FineRuns, CliError> {
+    let (quick, seed, threads) = (s.args.quick, s.args.seed, s.args.threads);
+    s.bar.set_message("GA over derived cells, 7 lengths");
+    let seven = run_ga(&study::derived_ga_problem(10.0, seed, quick)?, "derived, 7 lengths", threads, &s.cache, s.bar)?;
+    s.bar.inc(1);
+    s.bar.set_message("GA over derived cells, every length by 1 mm");
+    let fine = run_ga(&study::derived_ga_problem(1.0, seed, quick)?, "derived, 1 mm steps", threads, &s.cache, s.bar)?;
+    s.bar.inc(1);
+    let run = |ga: &GaRun| simulate(&ga.chain, &s.impact, &s.impact_settings, &mut ());
+    let summaries = [run(&seven)?, run(&fine)?];
+    let files = plot::chain_picture(
+        &fine.chain,
+        "GA optimum over rods of every length 20-80 mm (1 mm), cells from beam theory",
+        &s.figs.join("optimum_fine_chain"),
+    )?;
+    Ok(FineRuns {
+        seven,
+        fine,
+        summaries,
+        files,
+    })
 }
