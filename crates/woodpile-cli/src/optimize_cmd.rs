@@ -7,7 +7,7 @@ use std::fs;
 use std::ops::ControlFlow;
 use std::path::PathBuf;
 use woodpile::optimize::{BreederGa, GaState, Objective, StopReason};
-use woodpile_io::atomic::{io_err, write_atomic};
+use woodpile_io::atomic::io_err;
 use woodpile_io::limits::check_threads;
 use woodpile_io::optimize::*;
 use woodpile_io::scenario::ModelSpec;
@@ -102,32 +102,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let threads = check_threads("--threads", args.threads, args.allow_many_threads)?;
     let problem = Problem::new(&cfg, &base_dir, threads)?;
     let out = &args.out;
-    let initial = if args.resume {
-        if !out.join(CHECKPOINT_FILE).is_file() {
-            return Err(CliError::invalid(
-                "--resume",
-                out.display(),
-                format!("holds no {CHECKPOINT_FILE}: nothing to resume; drop --resume to start a new run"),
-            ));
-        }
-        Some(read_checkpoint(out, &problem.config)?)
-    } else {
-        match fs::read_dir(out) {
-            Ok(mut entries) => {
-                if entries.next().is_some() {
-                    let what = if out.join(CHECKPOINT_FILE).is_file() {
-                        "holds an earlier optimisation run: add --resume to continue it (same config and seed), or choose another --out"
-                    } else {
-                        "exists and is not empty: refusing to write into it; choose another --out"
-                    };
-                    return Err(CliError::invalid("--out", out.display(), what));
-                }
-            }
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
-            Err(e) => return Err(io_err(out)(e)),
-        }
-        None
-    };
+    let initial = prepare_output(out, args.resume, &problem.config)?;
     let ga = BreederGa::new(
         problem.space.clone(),
         Box::new(problem.objective),
@@ -147,11 +122,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let mut last_elapsed = initial.as_ref().map_or(0.0, |s| s.elapsed_s);
     let mut last_evals = initial.as_ref().map_or(0, |s| s.evaluations);
     let mut observer = |s: &GaState| {
-        let cp = Checkpoint::new(&problem.config, s);
-        let written = serde_json::to_vec(&cp)
-            .map_err(|e| io_err(&out.join(CHECKPOINT_FILE))(std::io::Error::other(e)))
-            .and_then(|json| write_atomic(out, CHECKPOINT_FILE, &json))
-            .and_then(|_| write_atomic(out, "history.csv", history_csv(&s.history).as_bytes()));
+        let written = write_generation(out, &problem.config, s);
         if let Err(e) = written {
             write_error = Some(e);
             return ControlFlow::Break(());
@@ -181,39 +152,11 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let state = &outcome.state;
     let interrupted = outcome.reason == StopReason::Interrupted;
     let figures = write_final_outputs(&problem, &name, &outcome, out)?;
-    let best = state.best();
-    let labels = problem.space.labels(&best.genome);
-
     if !ctx.quiet {
-        println!(
-            "problem      {name} ({} positions, {} catalogue entries, seed {})",
-            problem.space.positions,
-            problem.space.catalogue.len(),
-            problem.settings.seed
+        print!(
+            "{}",
+            terminal_summary(&problem, &name, &outcome, &figures, out)
         );
-        println!(
-            "stopped      {} after generation {}: {} evaluations, {} cache hits, {:.1} s",
-            stop_text(outcome.reason),
-            state.generation,
-            state.evaluations,
-            state.cache_hits,
-            state.elapsed_s
-        );
-        println!("best         {}", labels.join(" "));
-        println!(
-            "objective    {} = {:.6e} {unit}",
-            problem.objective.as_str(),
-            best.objective
-        );
-        println!(
-            "forces       incident {:.4} N, transmitted {:.4} N, ratio {}",
-            figures.incident_peak_force_n,
-            figures.transmitted_peak_force_n,
-            figures
-                .transmission_ratio
-                .map_or("none".to_string(), |r| format!("{r:.4}"))
-        );
-        println!("output       {}", out.display());
     }
     if interrupted {
         return Err(CliError::Interrupted {
@@ -225,6 +168,44 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         });
     }
     Ok(())
+}
+
+/// What `woodpile optimize` prints when it stops.
+fn terminal_summary(
+    problem: &Problem,
+    name: &str,
+    outcome: &woodpile::optimize::Outcome,
+    figures: &woodpile::RunSummary,
+    out: &std::path::Path,
+) -> String {
+    let state = &outcome.state;
+    let best = state.best();
+    let ratio = figures
+        .transmission_ratio
+        .map_or("none".to_string(), |r| format!("{r:.4}"));
+    format!(
+        "problem      {name} ({} positions, {} catalogue entries, seed {})\n\
+         stopped      {} after generation {}: {} evaluations, {} cache hits, {:.1} s\n\
+         best         {}\n\
+         objective    {} = {:.6e} {}\n\
+         forces       incident {:.4} N, transmitted {:.4} N, ratio {ratio}\n\
+         output       {}\n",
+        problem.space.positions,
+        problem.space.catalogue.len(),
+        problem.settings.seed,
+        stop_text(outcome.reason),
+        state.generation,
+        state.evaluations,
+        state.cache_hits,
+        state.elapsed_s,
+        problem.space.labels(&best.genome).join(" "),
+        problem.objective.as_str(),
+        best.objective,
+        problem.objective.unit(),
+        figures.incident_peak_force_n,
+        figures.transmitted_peak_force_n,
+        out.display()
+    )
 }
 
 fn progress_bar(quiet: bool, generations: usize) -> indicatif::ProgressBar {

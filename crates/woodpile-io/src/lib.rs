@@ -8,6 +8,7 @@
 //!   defaults, the built-in scenarios, TOML emission and [`scenario::resolve`] into a
 //!   [`woodpile::Chain`], [`woodpile::Excitation`] and [`woodpile::RunSettings`].
 //! - [`table`]: blast force tables from CSV.
+//! - [`cells`]: a rod's unit cell derived by beam theory, as one typed record.
 //! - [`rundir`]: the run directory (`summary.json`, `run.json`, CSV and `.npy`), written and
 //!   read back.
 //! - [`npy`]: NumPy `.npy` float64 arrays, written and read.
@@ -18,6 +19,7 @@
 //! - [`Error`]: every failure, typed, naming the field, the value and what would be valid.
 
 pub mod atomic;
+pub mod cells;
 pub mod error;
 pub mod limits;
 pub mod npy;

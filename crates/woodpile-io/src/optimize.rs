@@ -32,8 +32,8 @@
 use crate::atomic::{io_err, write_atomic};
 use crate::error::Error;
 use crate::scenario::{
-    resolve, resolve_with_keys, ChainKeys, ChainSpec, ElementKind, ElementSpec, ExcitationKind, ExcitationSpec,
-    ModelSpec, RunSpec, Scenario, WallSpec,
+    resolve, resolve_with_keys, ChainKeys, ChainSpec, ElementKind, ElementSpec, ExcitationKind,
+    ExcitationSpec, ModelSpec, RunSpec, Scenario, WallSpec,
 };
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -136,7 +136,11 @@ impl RodRangeSpec {
     /// each (so that the GA's mutation, which moves by catalogue index, changes length by steps).
     pub fn elements(&self) -> Result<Vec<ElementSpec>, Error> {
         let key = |k: &str| format!("design.rod_range.{k}");
-        for (k, v) in [("from_mm", self.from_mm), ("to_mm", self.to_mm), ("step_mm", self.step_mm)] {
+        for (k, v) in [
+            ("from_mm", self.from_mm),
+            ("to_mm", self.to_mm),
+            ("step_mm", self.step_mm),
+        ] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(Error::invalid(key(k), v, "must be a finite number > 0"));
             }
@@ -317,7 +321,11 @@ impl OptimizeConfig {
     /// name its keys).
     pub fn complete_checked(&self) -> Result<Self, Error> {
         let mut c = self.clone();
-        if let (Some(range), None, None) = (&c.design.rod_range, &c.design.catalogue_mm, &c.design.elements) {
+        if let (Some(range), None, None) = (
+            &c.design.rod_range,
+            &c.design.catalogue_mm,
+            &c.design.elements,
+        ) {
             c.design.elements = Some(range.elements()?);
         }
         Ok(c.complete())
@@ -838,6 +846,51 @@ pub fn stop_text(reason: StopReason) -> &'static str {
         StopReason::Interrupted => "interrupted",
         StopReason::Observer => "output error",
     }
+}
+
+/// The output directory policy of `woodpile optimize`: with `resume`, the checkpoint in `out`
+/// (checked against `config`); without, `out` must be absent or empty (an earlier run there is
+/// named, with --resume as the way to continue it). Nothing is written.
+pub fn prepare_output(
+    out: &Path,
+    resume: bool,
+    config: &OptimizeConfig,
+) -> Result<Option<GaState>, Error> {
+    if resume {
+        if !out.join(CHECKPOINT_FILE).is_file() {
+            return Err(Error::invalid(
+                "--resume",
+                out.display(),
+                format!("holds no {CHECKPOINT_FILE}: nothing to resume; drop --resume to start a new run"),
+            ));
+        }
+        return read_checkpoint(out, config).map(Some);
+    }
+    match fs::read_dir(out) {
+        Ok(mut entries) => {
+            if entries.next().is_some() {
+                let what = if out.join(CHECKPOINT_FILE).is_file() {
+                    "holds an earlier optimisation run: add --resume to continue it (same config and seed), or choose another --out"
+                } else {
+                    "exists and is not empty: refusing to write into it; choose another --out"
+                };
+                return Err(Error::invalid("--out", out.display(), what));
+            }
+            Ok(None)
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
+        Err(e) => Err(io_err(out)(e)),
+    }
+}
+
+/// Writes what changes after every generation, each file replaced atomically: the checkpoint
+/// and `history.csv`.
+pub fn write_generation(out: &Path, config: &OptimizeConfig, state: &GaState) -> Result<(), Error> {
+    let checkpoint = Checkpoint::new(config, state);
+    let json = serde_json::to_vec(&checkpoint)
+        .map_err(|e| io_err(&out.join(CHECKPOINT_FILE))(std::io::Error::other(e)))?;
+    write_atomic(out, CHECKPOINT_FILE, &json)?;
+    write_atomic(out, "history.csv", history_csv(&state.history).as_bytes())
 }
 
 /// Reads and checks the checkpoint in `dir` against the config of this invocation.

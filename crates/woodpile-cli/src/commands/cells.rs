@@ -4,10 +4,9 @@
 use super::Context;
 use crate::CliError;
 use woodpile::model::TABLE1_LENGTHS_MM;
-use woodpile::{BeamTheory, UnitCell};
-use woodpile_io::scenario::{
-    resolve_element, CellSpec, ElementKind, ElementSpec, MaterialSpec, ReductionSpec,
-};
+use woodpile::UnitCell;
+use woodpile_io::cells::{derive, DerivedCell, RodRequest};
+use woodpile_io::scenario::ReductionSpec;
 
 /// Arguments of `woodpile cells`.
 #[derive(Debug, Clone, clap::Args)]
@@ -39,35 +38,8 @@ pub struct Args {
     pub json: bool,
 }
 
-/// A derived cell as `--json` prints it.
-#[derive(Debug, serde::Serialize)]
-struct DerivedCellJson {
-    length_mm: f64,
-    diameter_mm: f64,
-    inner_diameter_mm: f64,
-    material: String,
-    reduction: String,
-    total_mass_g: f64,
-    primary_mass_g: f64,
-    resonators: Vec<ResonatorJson>,
-    /// Zeros of the cell's effective mass (its free resonances).
-    free_resonances_khz: Vec<f64>,
-    /// The rod's symmetric free-free bending frequencies (Timoshenko).
-    rod_free_free_khz: Vec<f64>,
-    /// The rod's centre-blocked frequencies (Timoshenko).
-    rod_centre_blocked_khz: Vec<f64>,
-}
-
-#[derive(Debug, serde::Serialize)]
-struct ResonatorJson {
-    mass_g: f64,
-    stiffness_kn_per_mm: f64,
-    frequency_khz: f64,
-}
-
-/// The derived cell of `--rod`, resolved exactly as a scenario's `{ kind = "rod" }` element
-/// without a given cell; errors name the flags.
-fn derived(args: &Args, length_mm: f64) -> Result<DerivedCellJson, CliError> {
+/// The derived cell of `--rod`; errors name the flags.
+fn derived(args: &Args, length_mm: f64) -> Result<DerivedCell, CliError> {
     let reduction = match args.reduction.as_str() {
         "pole-zero" => ReductionSpec::PoleZero,
         "modal-mass" => ReductionSpec::ModalMass,
@@ -79,22 +51,16 @@ fn derived(args: &Args, length_mm: f64) -> Result<DerivedCellJson, CliError> {
             ))
         }
     };
-    let spec = ElementSpec {
-        kind: Some(ElementKind::Rod),
-        length_mm: Some(length_mm),
-        diameter_mm: Some(args.diameter_mm),
+    let request = RodRequest {
+        length_mm,
+        diameter_mm: args.diameter_mm,
         inner_diameter_mm: args.inner_diameter_mm,
-        material: Some(MaterialSpec::preset(&args.material)),
-        cell: Some(CellSpec {
-            modes: args.modes,
-            reduction: Some(reduction),
-            ..CellSpec::default()
-        }),
-        ..ElementSpec::default()
+        material: args.material.clone(),
+        modes: args.modes,
+        reduction,
     };
     let flag = |k: &str| {
         match k {
-            "length_mm" => "--rod",
             "diameter_mm" => "--diameter-mm",
             "inner_diameter_mm" => "--inner-diameter-mm",
             "material" => "--material",
@@ -103,41 +69,11 @@ fn derived(args: &Args, length_mm: f64) -> Result<DerivedCellJson, CliError> {
         }
         .to_string()
     };
-    let element = resolve_element(&spec, &flag, woodpile::CellModel::Resonant, &mut Vec::new())?;
-    let cell = &element.cell;
-    let rod = woodpile::Rod::new(
-        length_mm * 1e-3,
-        args.diameter_mm * 1e-3,
-        args.inner_diameter_mm.unwrap_or(0.0) * 1e-3,
-        element.material.clone(),
-    )?;
-    let l = cell.resonators.len();
-    let khz = |v: Vec<f64>| v.into_iter().map(|f| f * 1e-3).collect::<Vec<_>>();
-    Ok(DerivedCellJson {
-        length_mm,
-        diameter_mm: args.diameter_mm,
-        inner_diameter_mm: args.inner_diameter_mm.unwrap_or(0.0),
-        material: args.material.clone(),
-        reduction: reduction.reduction().name().to_string(),
-        total_mass_g: cell.total_mass_kg() * 1e3,
-        primary_mass_g: cell.primary_mass_kg * 1e3,
-        resonators: cell
-            .resonators
-            .iter()
-            .map(|r| ResonatorJson {
-                mass_g: r.mass_kg * 1e3,
-                stiffness_kn_per_mm: r.stiffness_n_per_m * 1e-6,
-                frequency_khz: r.angular_frequency() / (2.0 * std::f64::consts::PI) * 1e-3,
-            })
-            .collect(),
-        free_resonances_khz: khz(cell.free_resonances_hz()),
-        rod_free_free_khz: khz(rod.free_symmetric_frequencies_hz(BeamTheory::Timoshenko, l)?),
-        rod_centre_blocked_khz: khz(rod.centre_blocked_frequencies_hz(BeamTheory::Timoshenko, l)?),
-    })
+    derive(&request, &flag)
 }
 
 /// A derived cell as text.
-fn derived_text(c: &DerivedCellJson) -> String {
+fn derived_text(c: &DerivedCell) -> String {
     let list = |v: &[f64], digits: usize| {
         v.iter()
             .map(|x| format!("{x:.digits$}"))

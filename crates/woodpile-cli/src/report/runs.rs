@@ -622,10 +622,23 @@ pub struct FineRuns {
 pub fn fine(s: &Setup) -> Result<FineRuns, CliError> {
     let (quick, seed, threads) = (s.args.quick, s.args.seed, s.args.threads);
     s.bar.set_message("GA over derived cells, 7 lengths");
-    let seven = run_ga(&study::derived_ga_problem(10.0, seed, quick)?, "derived, 7 lengths", threads, &s.cache, s.bar)?;
+    let seven = run_ga(
+        &study::derived_ga_problem(10.0, seed, quick)?,
+        "derived, 7 lengths",
+        threads,
+        &s.cache,
+        s.bar,
+    )?;
     s.bar.inc(1);
-    s.bar.set_message("GA over derived cells, every length by 1 mm");
-    let fine = run_ga(&study::derived_ga_problem(1.0, seed, quick)?, "derived, 1 mm steps", threads, &s.cache, s.bar)?;
+    s.bar
+        .set_message("GA over derived cells, every length by 1 mm");
+    let fine = run_ga(
+        &study::derived_ga_problem(1.0, seed, quick)?,
+        "derived, 1 mm steps",
+        threads,
+        &s.cache,
+        s.bar,
+    )?;
     s.bar.inc(1);
     let run = |ga: &GaRun| simulate(&ga.chain, &s.impact, &s.impact_settings, &mut ());
     let summaries = [run(&seven)?, run(&fine)?];

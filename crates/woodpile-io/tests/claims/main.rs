@@ -4,4 +4,5 @@
 //! and opens with the claim it checks and the reason for its tolerance.
 
 mod paper_values_stated_once;
+mod rod_range_catalogue;
 mod run_directory_roundtrip;
