@@ -1,5 +1,6 @@
 //! Up-front limits on what a command may start, each with a clear message and an override, so
-//! that a typo (`--threads 100000`, `duration_s = 1e6`) is an error at once rather than a hang.
+//! that a typo (`--threads 100000`, `duration_s = 1e6`) is an error at once rather than a hang;
+//! and the accuracy check after a run ([`check_accuracy`]).
 
 use crate::error::Error;
 
@@ -96,4 +97,34 @@ impl RunSize {
         }
         Ok(())
     }
+}
+
+/// Checks the energy balance against docs/physics.md §8: above [`ENERGY_ERROR_FAIL`](woodpile::defaults::ENERGY_ERROR_FAIL) the run is
+/// refused (unless `allow`); above [`ENERGY_ERROR_WARN`](woodpile::defaults::ENERGY_ERROR_WARN) (or when allowed) the warning to print
+/// is returned.
+pub fn check_accuracy(
+    summary: &woodpile::RunSummary,
+    excitation: &woodpile::Excitation,
+    allow: bool,
+) -> Result<Option<String>, Error> {
+    let err = summary.energy.max_relative_error;
+    let reference = match excitation {
+        woodpile::Excitation::Impact(_) => "the initial energy",
+        woodpile::Excitation::Blast(_) => "the input work",
+    };
+    // A NaN error counts as a failure: `is_some_and(Le)` is false for it.
+    let within = |limit: f64| err.partial_cmp(&limit).is_some_and(|o| o.is_le());
+    if !within(woodpile::defaults::ENERGY_ERROR_FAIL) && !allow {
+        return Err(Error::Inaccurate {
+            relative_error: err,
+            reference,
+            limit: woodpile::defaults::ENERGY_ERROR_FAIL,
+        });
+    }
+    Ok((!within(woodpile::defaults::ENERGY_ERROR_WARN)).then(|| {
+        format!(
+            "the energy balance is off by {err:.2e} of {reference} (above {:.0e}): the results may be inaccurate; use a smaller run.time_step_s (rk4) or a tighter rtol/atol (dopri5)",
+            woodpile::defaults::ENERGY_ERROR_WARN
+        )
+    }))
 }

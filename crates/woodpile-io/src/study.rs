@@ -7,7 +7,7 @@ use crate::optimize::{fnv1a64, OptimizeConfig};
 use crate::scenario::ModelSpec;
 use serde::{Deserialize, Serialize};
 use std::fs;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use woodpile::CellModel;
 
 /// How a reference value is read and compared.
@@ -359,4 +359,83 @@ impl Cache {
         })?;
         write_atomic(&self.dir, &name, &json)
     }
+}
+
+/// The output policy of `woodpile report`: `out` is created if absent; an existing directory must
+/// be empty or hold an earlier report (report.md, report.html, figures/, cache/), which is then
+/// updated in place; `figures/` and `cache/` are created and the directory is proved writable
+/// before any work is done.
+pub fn prepare_report_dir(out: &Path) -> Result<(), crate::Error> {
+    if out.exists() && !out.is_dir() {
+        return Err(crate::Error::invalid(
+            "--out",
+            out.display(),
+            "is a file, not a directory; choose a directory",
+        ));
+    }
+    if out.is_dir() {
+        let mut entries = fs::read_dir(out).map_err(crate::atomic::io_err(out))?;
+        let known = ["report.md", "report.html", "figures", "cache"];
+        let earlier = known.iter().any(|k| out.join(k).exists());
+        if entries.next().is_some() && !earlier {
+            return Err(crate::Error::invalid(
+                "--out",
+                out.display(),
+                "exists, is not empty and holds no earlier report: refusing to write into it; choose another --out",
+            ));
+        }
+    }
+    for d in [out.to_path_buf(), out.join("figures"), out.join("cache")] {
+        fs::create_dir_all(&d).map_err(crate::atomic::io_err(&d))?;
+    }
+    write_atomic(out, ".write-test", b"")?;
+    let _ = fs::remove_file(out.join(".write-test"));
+    Ok(())
+}
+
+/// The result of `problem`'s GA: from `cache` when it holds one for the same inputs (`true`),
+/// else run now (with `progress` after every generation) and stored.
+pub fn cached_ga(
+    problem: &crate::optimize::Problem,
+    cache: &Cache,
+    progress: &mut dyn FnMut(&woodpile::optimize::GaState),
+) -> Result<(CachedGa, bool), crate::Error> {
+    use woodpile::optimize::BreederGa;
+    let key = Cache::key_text("ga", &problem.config);
+    if let Some(entry) = cache.get(&key) {
+        if entry.best_genome.len() == problem.space.positions {
+            return Ok((entry, true));
+        }
+    }
+    let ga = BreederGa::new(
+        problem.space.clone(),
+        Box::new(problem.objective),
+        problem.settings,
+    )
+    .map_err(crate::optimize::optimize_error)?;
+    let mut observer = |s: &woodpile::optimize::GaState| {
+        progress(s);
+        std::ops::ControlFlow::Continue(())
+    };
+    let outcome = ga
+        .run(
+            None,
+            &std::sync::atomic::AtomicBool::new(false),
+            &mut observer,
+        )
+        .map_err(crate::optimize::optimize_error)?;
+    let s = &outcome.state;
+    let entry = CachedGa {
+        inputs: key,
+        best_genome: s.best().genome.clone(),
+        best_objective: s.best().objective,
+        history: s.history.clone(),
+        generations: s.generation,
+        evaluations: s.evaluations,
+        cache_hits: s.cache_hits,
+        elapsed_s: s.elapsed_s,
+        stop_reason: format!("{:?}", outcome.reason),
+    };
+    cache.put(&entry)?;
+    Ok((entry, false))
 }

@@ -3,7 +3,6 @@
 use super::Context;
 use crate::CliError;
 use std::path::{Path, PathBuf};
-use woodpile::defaults::{ENERGY_ERROR_FAIL, ENERGY_ERROR_WARN};
 use woodpile::{simulate, Excitation, Trajectory};
 use woodpile_io::atomic::{Staging, RUN_MARKER};
 use woodpile_io::limits::RunSize;
@@ -105,7 +104,8 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         &resolved.settings,
         &mut trajectory,
     )?;
-    let accuracy = check_accuracy(&summary, &resolved.excitation, args.allow_inaccurate)?;
+    let accuracy =
+        woodpile_io::limits::check_accuracy(&summary, &resolved.excitation, args.allow_inaccurate)?;
     let record = RunRecord {
         name: &loaded.name,
         file: loaded.file.as_deref(),
@@ -131,35 +131,6 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         print!("{}", terminal_summary(&record, &dir));
     }
     Ok(())
-}
-
-/// Checks the energy balance against docs/physics.md §8: above [`ENERGY_ERROR_FAIL`] the run is
-/// refused (unless `allow`); above [`ENERGY_ERROR_WARN`] (or when allowed) the warning to print
-/// is returned.
-pub fn check_accuracy(
-    summary: &woodpile::RunSummary,
-    excitation: &Excitation,
-    allow: bool,
-) -> Result<Option<String>, CliError> {
-    let err = summary.energy.max_relative_error;
-    let reference = match excitation {
-        Excitation::Impact(_) => "the initial energy",
-        Excitation::Blast(_) => "the input work",
-    };
-    // A NaN error counts as a failure: `is_some_and(Le)` is false for it.
-    let within = |limit: f64| err.partial_cmp(&limit).is_some_and(|o| o.is_le());
-    if !within(ENERGY_ERROR_FAIL) && !allow {
-        return Err(CliError::Inaccurate {
-            relative_error: err,
-            reference,
-            limit: ENERGY_ERROR_FAIL,
-        });
-    }
-    Ok((!within(ENERGY_ERROR_WARN)).then(|| {
-        format!(
-            "the energy balance is off by {err:.2e} of {reference} (above {ENERGY_ERROR_WARN:.0e}): the results may be inaccurate; use a smaller run.time_step_s (rk4) or a tighter rtol/atol (dopri5)"
-        )
-    }))
 }
 
 /// The short human-readable report printed after a run.

@@ -28,8 +28,7 @@ use crate::commands::Context;
 use crate::CliError;
 use doc::Doc;
 use runs::{Results, Setup};
-use std::fs;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 use woodpile_io::atomic::write_atomic;
 use woodpile_plot::dirs::cells_figures;
@@ -56,46 +55,11 @@ pub struct Args {
     pub allow_many_threads: bool,
 }
 
-/// Checks that `out` can hold the report: created if absent; an existing directory must be
-/// empty or hold an earlier report.
-fn prepare_out(out: &Path) -> Result<(), CliError> {
-    let io = |e: std::io::Error| CliError::Output {
-        path: out.to_path_buf(),
-        source: e,
-    };
-    if out.exists() && !out.is_dir() {
-        return Err(CliError::invalid(
-            "--out",
-            out.display(),
-            "is a file, not a directory; choose a directory",
-        ));
-    }
-    if out.is_dir() {
-        let mut entries = fs::read_dir(out).map_err(io)?;
-        let known = ["report.md", "report.html", "figures", "cache"];
-        let earlier = known.iter().any(|k| out.join(k).exists());
-        if entries.next().is_some() && !earlier {
-            return Err(CliError::invalid(
-                "--out",
-                out.display(),
-                "exists, is not empty and holds no earlier report: refusing to write into it; choose another --out",
-            ));
-        }
-    }
-    for d in [out.to_path_buf(), out.join("figures"), out.join("cache")] {
-        fs::create_dir_all(&d).map_err(|e| CliError::Output { path: d, source: e })?;
-    }
-    // Prove the directory is writable before any work is done.
-    write_atomic(out, ".write-test", b"")?;
-    let _ = fs::remove_file(out.join(".write-test"));
-    Ok(())
-}
-
 /// Runs `woodpile report`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let started = Instant::now();
     woodpile_io::limits::check_threads("--threads", args.threads, args.allow_many_threads)?;
-    prepare_out(&args.out)?;
+    woodpile_io::study::prepare_report_dir(&args.out)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads)
         .build()

@@ -5,14 +5,12 @@
 use super::Args;
 use crate::CliError;
 use rayon::prelude::*;
-use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::AtomicBool;
 use woodpile::analysis::{
     band_contrast, contact_spectrum_map, energy_map, force_map, layer_by_layer, peak_layer_energy,
     FirstTransit, LayerByLayer, Spectrum, SpectrumSettings,
 };
-use woodpile::optimize::{BreederGa, GaState, Objective};
+use woodpile::optimize::{GaState, Objective};
 use woodpile::{
     simulate, BlastProfile, CellModel, Chain, ChainBuilder, Excitation, RunSettings, RunSummary,
     Striker, Trajectory, UnitCell,
@@ -231,48 +229,17 @@ fn run_ga(
     bar: &indicatif::ProgressBar,
 ) -> Result<GaRun, CliError> {
     let problem = Problem::new(cfg, Path::new("."), threads)?;
-    let key = Cache::key_text("ga", &problem.config);
     let objective = problem.objective;
-    let (result, cached) = match cache.get(&key) {
-        Some(entry) if entry.best_genome.len() == problem.space.positions => (entry, true),
-        _ => {
-            let ga = BreederGa::new(problem.space.clone(), Box::new(objective), problem.settings)
-                .map_err(|e| CliError::invalid("ga", "(report)", e.to_string()))?;
-            let total = problem.settings.generations;
-            let unit = objective.unit().to_string();
-            let mut observer = |s: &GaState| {
-                bar.set_message(format!(
-                    "{model_name} GA: generation {}/{total}, best {:.3} {unit}, {} evaluations",
-                    s.generation,
-                    s.best().objective,
-                    s.evaluations
-                ));
-                ControlFlow::Continue(())
-            };
-            let outcome = ga
-                .run(None, &AtomicBool::new(false), &mut observer)
-                .map_err(|e| match e {
-                    woodpile::optimize::OptimizeError::Simulation { source, .. } => {
-                        CliError::Model(source)
-                    }
-                    other => CliError::invalid("ga", "(report)", other.to_string()),
-                })?;
-            let s = &outcome.state;
-            let entry = CachedGa {
-                inputs: key.clone(),
-                best_genome: s.best().genome.clone(),
-                best_objective: s.best().objective,
-                history: s.history.clone(),
-                generations: s.generation,
-                evaluations: s.evaluations,
-                cache_hits: s.cache_hits,
-                elapsed_s: s.elapsed_s,
-                stop_reason: format!("{:?}", outcome.reason),
-            };
-            cache.put(&entry)?;
-            (entry, false)
-        }
-    };
+    let total = problem.settings.generations;
+    let unit = objective.unit().to_string();
+    let (result, cached) = study::cached_ga(&problem, cache, &mut |s: &GaState| {
+        bar.set_message(format!(
+            "{model_name} GA: generation {}/{total}, best {:.3} {unit}, {} evaluations",
+            s.generation,
+            s.best().objective,
+            s.evaluations
+        ))
+    })?;
     let chain = problem.space.chain(&result.best_genome)?;
     Ok(GaRun {
         model: model_name,
