@@ -94,6 +94,9 @@ fn element(e: &ElementSpec) -> String {
     if let Some(d) = e.inner_diameter_mm {
         parts.push(format!("inner_diameter_mm = {}", float(d)));
     }
+    if let Some(a) = e.crossing_angle_deg {
+        parts.push(format!("crossing_angle_deg = {}", float(a)));
+    }
     if let Some(m) = &e.material {
         parts.push(format!("material = {}", material(m)));
     }

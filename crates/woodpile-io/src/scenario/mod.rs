@@ -153,6 +153,10 @@ pub struct ElementSpec {
     /// Diameter \[mm\] (kinds `rod`, `sphere`; default 5 for a rod); the outer one of a tube.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub diameter_mm: Option<f64>,
+    /// Angle between this rod's axis and the axis of the rod above it \[deg\] (rods below the
+    /// top; default `chain.crossing_angle_deg`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crossing_angle_deg: Option<f64>,
     /// Inner diameter of a tube \[mm\] (kind `rod`; default: a solid rod).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub inner_diameter_mm: Option<f64>,

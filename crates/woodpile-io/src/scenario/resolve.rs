@@ -31,6 +31,20 @@ pub struct Resolved {
 /// reported.
 const MASS_MISMATCH_WARN: f64 = 0.01;
 
+/// Reports a given cell whose total mass is more than [`MASS_MISMATCH_WARN`] off the element's
+/// own (`what` says how that is computed).
+fn warn_mass(warnings: &mut Vec<String>, key: &str, cell_kg: f64, body_kg: f64, what: &str) {
+    let off = (cell_kg - body_kg) / body_kg;
+    if off.abs() > MASS_MISMATCH_WARN {
+        warnings.push(format!(
+            "{key}: the cell's total mass {:.4} g is {:+.1} % off the element's {what} = {:.4} g; the run uses the cell's masses. For a rod, drop `cell` to derive it from the rod (docs/physics.md §13); otherwise correct the masses",
+            cell_kg * 1e3,
+            100.0 * off,
+            body_kg * 1e3
+        ));
+    }
+}
+
 /// Checks that `value` is finite and > 0; the error names `field`.
 fn positive(field: &str, value: f64) -> Result<f64, Error> {
     if value.is_finite() && value > 0.0 {
@@ -201,17 +215,14 @@ pub fn resolve_element(
                     }
                     let given = cell(&field("cell"), primary_mass_g, cell_spec)?;
                     let area = std::f64::consts::PI / 4.0 * (diameter.powi(2) - inner.powi(2));
-                    let rod_mass_g = mat.density_kg_m3 * area * length * 1e-6;
-                    let cell_mass_g = given.total_mass_kg() * 1e3;
-                    let off = (cell_mass_g - rod_mass_g) / rod_mass_g;
-                    if off.abs() > MASS_MISMATCH_WARN {
-                        warnings.push(format!(
-                            "{}: the cell's total mass {cell_mass_g:.4} g is {:+.1} % off the rod's ρ·A·L = {rod_mass_g:.4} g ({}); the run uses the cell's masses. Drop `cell` to derive it from the rod (docs/physics.md §13), or correct the masses",
-                            field("cell"),
-                            100.0 * off,
-                            mat.name
-                        ));
-                    }
+                    let rod_mass_kg = mat.density_kg_m3 * area * length * 1e-9;
+                    warn_mass(
+                        warnings,
+                        &field("cell"),
+                        given.total_mass_kg(),
+                        rod_mass_kg,
+                        "ρ·A·L",
+                    );
                     given
                 }
                 None => {
@@ -287,13 +298,6 @@ pub fn resolve_element(
             if let Some(d) = e.inner_diameter_mm {
                 return Err(not_applicable(&field("inner_diameter_mm"), d, &why));
             }
-            if e.cell.is_some() {
-                return Err(not_applicable(
-                    &field("cell"),
-                    "{…}",
-                    "with kind = \"sphere\" (a sphere is one rigid body of mass ρπd³/6)",
-                ));
-            }
             if let Some(m) = e.model {
                 return Err(not_applicable(&field("model"), m.name(), &why));
             }
@@ -306,7 +310,34 @@ pub fn resolve_element(
             };
             let d = positive(&field("diameter_mm"), d)?;
             let mat = element_material(&field("material"), e.material.as_ref())?;
-            Ok(Element::sphere(d * 1e-3, mat)?)
+            let mut sphere = Element::sphere(d * 1e-3, mat)?;
+            if let Some(spec) = &e.cell {
+                // A mass-in-mass sphere: a given cell (shell and internal resonators).
+                let Some(primary_mass_g) = spec.primary_mass_g else {
+                    return Err(Error::invalid(
+                        field("cell.primary_mass_g"),
+                        "(missing)",
+                        "a sphere's cell is given: primary_mass_g and resonators (cells are derived for rods only)",
+                    ));
+                };
+                if spec.modes.is_some() || spec.reduction.is_some() || spec.fe_elements.is_some() {
+                    return Err(not_applicable(
+                        &field("cell"),
+                        "{ modes / reduction / fe_elements }",
+                        "with kind = \"sphere\" (cells are derived for rods only)",
+                    ));
+                }
+                let given = cell(&field("cell"), primary_mass_g, spec)?;
+                warn_mass(
+                    warnings,
+                    &field("cell"),
+                    given.total_mass_kg(),
+                    sphere.cell.total_mass_kg(),
+                    "ρπd³/6",
+                );
+                sphere.cell = chain_model.apply(given);
+            }
+            Ok(sphere)
         }
     }
 }
@@ -447,6 +478,23 @@ fn resolve_chain(
     let mut builder = ChainBuilder::new(elements)
         .crossing_angle_rad(angle.to_radians())
         .wall(resolve_wall(s)?);
+    for (i, e) in c.elements.iter().flatten().enumerate() {
+        let Some(a) = e.crossing_angle_deg else {
+            continue;
+        };
+        let key = format!("{}[{i}].crossing_angle_deg", keys.elements);
+        if i == 0 {
+            return Err(Error::invalid(key, float(a), "the top element has no element above it; set chain.crossing_angle_deg or give the angle on the element below"));
+        }
+        if !(a.is_finite() && a > 0.0 && a < 180.0) {
+            return Err(Error::invalid(
+                key,
+                float(a),
+                "must lie strictly between 0 and 180 (0 and 180 are parallel rods: a line contact)",
+            ));
+        }
+        builder = builder.element_crossing_angle_rad(i, a.to_radians());
+    }
     // Indices, duplicates and values of the overrides are checked once, by the builder, under
     // their scenario keys.
     for o in &c.contact_beta {

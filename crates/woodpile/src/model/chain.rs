@@ -166,6 +166,8 @@ pub struct ChainBuilder {
     elements: Vec<Element>,
     wall: Wall,
     crossing_angle_rad: f64,
+    /// (element index from 0, angle to the element above \[rad\]).
+    angle_overrides: Vec<(usize, f64)>,
     beta_overrides: Vec<(usize, f64)>,
 }
 
@@ -176,6 +178,7 @@ impl ChainBuilder {
             elements,
             wall: Wall::paper_sensor(),
             crossing_angle_rad: std::f64::consts::FRAC_PI_2,
+            angle_overrides: Vec::new(),
             beta_overrides: Vec::new(),
         }
     }
@@ -198,6 +201,13 @@ impl ChainBuilder {
     /// Angle between the axes of neighbouring rods \[rad\] (default π/2).
     pub fn crossing_angle_rad(mut self, angle: f64) -> Self {
         self.crossing_angle_rad = angle;
+        self
+    }
+
+    /// The angle between the axis of element `element` (0-based, ≥ 1) and the axis of the element
+    /// above it \[rad\], instead of [`ChainBuilder::crossing_angle_rad`] for that pair.
+    pub fn element_crossing_angle_rad(mut self, element: usize, angle: f64) -> Self {
+        self.angle_overrides.push((element, angle));
         self
     }
 
@@ -263,8 +273,35 @@ impl ChainBuilder {
                 ));
             }
         }
+        for &(i, a) in &self.angle_overrides {
+            let field = format!("chain.elements[{i}].crossing_angle_deg");
+            if i == 0 || i >= n {
+                return Err(Error::invalid(
+                    field,
+                    a.to_degrees(),
+                    format!(
+                        "elements 1..={} have an element above them; element 0 is the top",
+                        n.saturating_sub(1)
+                    ),
+                ));
+            }
+            if !a.is_finite() {
+                return Err(Error::invalid(field, a.to_degrees(), "must be finite"));
+            }
+        }
+        // Each rod's axis from the top: element i is turned from element i − 1 by its own angle
+        // or the chain's. Written as angle · i plus the overrides' departures, so that a chain
+        // without overrides gets exactly the axes (and contact coefficients) it always had.
+        let mut axis_rad: Vec<f64> = (0..n).map(|i| angle * i as f64).collect();
+        let mut departure = 0.0;
+        for (i, axis) in axis_rad.iter_mut().enumerate().skip(1) {
+            if let Some(o) = self.angle_overrides.iter().rev().find(|o| o.0 == i) {
+                departure += o.1 - angle;
+            }
+            *axis += departure;
+        }
         let overridden = |c: usize| self.beta_overrides.iter().find(|o| o.0 == c).map(|o| o.1);
-        let surface = |i: usize| self.elements[i].surface(angle * i as f64);
+        let surface = |i: usize| self.elements[i].surface(axis_rad[i]);
         let mut inner_betas = Vec::with_capacity(n.saturating_sub(1));
         let mut overlap_limits_m = Vec::with_capacity(n);
         for i in 0..n.saturating_sub(1) {
