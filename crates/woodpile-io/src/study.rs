@@ -265,6 +265,11 @@ pub fn derived_ga_problem(
     cfg.description = Some(format!(
         "paper impact problem over rods 20-80 mm every {step_mm} mm, cells from beam theory"
     ));
+    if quick {
+        // The quick report only checks that the section is produced.
+        cfg.ga.population = Some(10);
+        cfg.ga.generations = Some(5);
+    }
     cfg.design.catalogue_mm = None;
     cfg.design.rod_range = Some(crate::optimize::RodRangeSpec {
         from_mm: 20.0,

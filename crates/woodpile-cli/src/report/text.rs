@@ -135,7 +135,7 @@ fn intro(doc: &mut Doc, s: &Setup, r: &Results) {
             }
         },
         if args.quick {
-            " — QUICK version: the GAs ran with population 20 × 10 generations and are not converged, so the optimisation numbers are not the full report's"
+            " — QUICK version: the GAs ran with population 20 × 10 generations (10 × 5 over derived cells) and are not converged, so the optimisation numbers are not the full report's"
         } else {
             ""
         },

@@ -31,6 +31,28 @@ pub struct Resolved {
 /// reported.
 const MASS_MISMATCH_WARN: f64 = 0.01;
 
+/// Refuses the first of `keys` (`modes`, `reduction`, `fe_elements`) that `spec` sets, as not
+/// applicable `why`.
+fn refuse_cell_keys(
+    field: &dyn Fn(&str) -> String,
+    spec: &CellSpec,
+    keys: &[&str],
+    why: &str,
+) -> Result<(), Error> {
+    let set = [
+        ("modes", spec.modes.map(|l| l.to_string())),
+        (
+            "reduction",
+            spec.reduction.map(|r| r.reduction().name().to_string()),
+        ),
+        ("fe_elements", spec.fe_elements.map(|n| n.to_string())),
+    ];
+    match set.iter().find(|(k, v)| keys.contains(k) && v.is_some()) {
+        Some((k, Some(v))) => Err(not_applicable(&field(&format!("cell.{k}")), v, why)),
+        _ => Ok(()),
+    }
+}
+
 /// Reports a given cell whose total mass is more than [`MASS_MISMATCH_WARN`] off the element's
 /// own (`what` says how that is computed).
 fn warn_mass(warnings: &mut Vec<String>, key: &str, cell_kg: f64, body_kg: f64, what: &str) {
@@ -192,27 +214,12 @@ pub fn resolve_element(
             let cell_spec = e.cell.as_ref().unwrap_or(&default_cell);
             let c = match cell_spec.primary_mass_g {
                 Some(primary_mass_g) => {
-                    if let Some(l) = cell_spec.modes {
-                        return Err(not_applicable(
-                            &field("cell.modes"),
-                            l,
-                            "with a given cell (primary_mass_g): modes derive a cell from the rod",
-                        ));
-                    }
-                    if let Some(n) = cell_spec.fe_elements {
-                        return Err(not_applicable(
-                            &field("cell.fe_elements"),
-                            n,
-                            "with a given cell (primary_mass_g)",
-                        ));
-                    }
-                    if cell_spec.reduction.is_some() {
-                        return Err(not_applicable(
-                            &field("cell.reduction"),
-                            "…",
-                            "with a given cell (primary_mass_g)",
-                        ));
-                    }
+                    refuse_cell_keys(
+                        field,
+                        cell_spec,
+                        &["modes", "reduction", "fe_elements"],
+                        "with a given cell (primary_mass_g): these derive a cell from the rod",
+                    )?;
                     let given = cell(&field("cell"), primary_mass_g, cell_spec)?;
                     let area = std::f64::consts::PI / 4.0 * (diameter.powi(2) - inner.powi(2));
                     let rod_mass_kg = mat.density_kg_m3 * area * length * 1e-9;
@@ -253,20 +260,12 @@ pub fn resolve_element(
                     };
                     match cell_spec.fe_elements {
                         Some(n) => {
-                            if let Some(l) = cell_spec.modes {
-                                return Err(not_applicable(
-                                    &field("cell.modes"),
-                                    l,
-                                    "with fe_elements (the finite-element rod keeps every mode)",
-                                ));
-                            }
-                            if cell_spec.reduction.is_some() {
-                                return Err(not_applicable(
-                                    &field("cell.reduction"),
-                                    "…",
-                                    "with fe_elements",
-                                ));
-                            }
+                            refuse_cell_keys(
+                                field,
+                                cell_spec,
+                                &["modes", "reduction"],
+                                "with fe_elements (the finite-element rod keeps every mode)",
+                            )?;
                             UnitCell::from_rod_fe(&rod, n).map_err(at("cell.fe_elements"))?
                         }
                         None => {
@@ -320,13 +319,12 @@ pub fn resolve_element(
                         "a sphere's cell is given: primary_mass_g and resonators (cells are derived for rods only)",
                     ));
                 };
-                if spec.modes.is_some() || spec.reduction.is_some() || spec.fe_elements.is_some() {
-                    return Err(not_applicable(
-                        &field("cell"),
-                        "{ modes / reduction / fe_elements }",
-                        "with kind = \"sphere\" (cells are derived for rods only)",
-                    ));
-                }
+                refuse_cell_keys(
+                    field,
+                    spec,
+                    &["modes", "reduction", "fe_elements"],
+                    "with kind = \"sphere\" (cells are derived for rods only)",
+                )?;
                 let given = cell(&field("cell"), primary_mass_g, spec)?;
                 warn_mass(
                     warnings,
