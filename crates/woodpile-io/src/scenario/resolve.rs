@@ -209,6 +209,17 @@ pub fn resolve_element(
                 &field("inner_diameter_mm"),
                 e.inner_diameter_mm.unwrap_or(0.0),
             )?;
+            if inner >= diameter {
+                return Err(Error::invalid(
+                    field("inner_diameter_mm"),
+                    float(inner),
+                    format!(
+                        "must be smaller than {} ({})",
+                        field("diameter_mm"),
+                        float(diameter)
+                    ),
+                ));
+            }
             let mat = element_material(&field("material"), e.material.as_ref())?;
             let default_cell = CellSpec::default();
             let cell_spec = e.cell.as_ref().unwrap_or(&default_cell);
@@ -235,17 +246,6 @@ pub fn resolve_element(
                 None => {
                     if !cell_spec.resonators.is_empty() {
                         return Err(Error::invalid(field("cell.primary_mass_g"), "(missing)", "a given cell needs primary_mass_g with its resonators; or drop resonators to derive the cell from the rod"));
-                    }
-                    if inner >= diameter {
-                        return Err(Error::invalid(
-                            field("inner_diameter_mm"),
-                            float(inner),
-                            format!(
-                                "must be smaller than {} ({})",
-                                field("diameter_mm"),
-                                float(diameter)
-                            ),
-                        ));
                     }
                     let rod = Rod::new(length * 1e-3, diameter * 1e-3, inner * 1e-3, mat.clone())?;
                     // The only invalid parameter left is the number of modes or of elements.
