@@ -444,3 +444,238 @@ pub fn cached_ga(
     cache.put(&entry)?;
     Ok((entry, false))
 }
+
+/// Peak forces F0 \[N\] of the blast sweep (docs/physics.md §6: the paper gives none).
+pub const BLAST_SWEEP_PEAKS_N: [f64; 8] = [50.0, 100.0, 150.0, 200.0, 300.0, 400.0, 800.0, 1600.0];
+/// Positive-phase durations Td \[s\] of the blast sweep (the paper says its blast lasted about
+/// 0.5 ms; the default is 0.2 ms).
+pub const BLAST_SWEEP_DURATIONS_S: [f64; 6] = [1e-4, 2e-4, 3e-4, 4e-4, 5e-4, 6e-4];
+
+/// One Friedlander load of the blast sweep and the paper's three blast ratios it gives.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct BlastSweepPoint {
+    /// F0 \[N\].
+    pub peak_force_n: f64,
+    /// Td \[s\].
+    pub duration_s: f64,
+    /// Peak energy of the last layer over the 20 mm chain's: 40 mm chain, 80 mm chain, the
+    /// paper's blast-optimised chain (the paper: ~70 %, ~70 %, 8.3 %).
+    pub ratios: [f64; 3],
+    /// The largest factor by which one of the three misses the paper's value
+    /// (max over the three of max(ours/paper, paper/ours)): 1 when all three agree.
+    pub worst_factor: f64,
+}
+
+/// The paper's three blast ratios (40 mm, 80 mm, optimised chain over the 20 mm chain).
+pub const BLAST_RATIOS: [PaperValue; 3] = [BLAST_40MM, BLAST_80MM, BLAST_OPTIMUM];
+
+/// The blast sweep: every F0 × Td of a grid (rows F0, columns Td).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlastSweep {
+    /// F0 of the rows \[N\].
+    pub peaks_n: Vec<f64>,
+    /// Td of the columns \[s\].
+    pub durations_s: Vec<f64>,
+    /// The points, row-major.
+    pub points: Vec<BlastSweepPoint>,
+}
+
+impl BlastSweep {
+    /// The points, closest to the paper first.
+    pub fn ranked(&self) -> Vec<&BlastSweepPoint> {
+        let mut v: Vec<&BlastSweepPoint> = self.points.iter().collect();
+        v.sort_by(|a, b| a.worst_factor.total_cmp(&b.worst_factor));
+        v
+    }
+
+    /// The smallest and largest of ratio `k` (0: 40 mm, 1: 80 mm, 2: optimum) over the loads
+    /// lasting at least `min_duration_s`.
+    pub fn ratio_range(&self, k: usize, min_duration_s: f64) -> Option<(f64, f64)> {
+        self.points
+            .iter()
+            .filter(|p| p.duration_s >= min_duration_s)
+            .map(|p| p.ratios[k])
+            .fold(None, |acc, r| match acc {
+                None => Some((r, r)),
+                Some((lo, hi)) => Some((lo.min(r), hi.max(r))),
+            })
+    }
+
+    /// The worst factor over F0 (rows) × Td (columns), for a heat map.
+    pub fn worst_factor_map(&self) -> Result<woodpile::analysis::Map2, crate::Error> {
+        use woodpile::analysis::{Axis, Map2};
+        Ok(Map2::new(
+            Axis::new("peak force F0", "N", self.peaks_n.clone()),
+            Axis::new("duration Td", "s", self.durations_s.clone()),
+            "worst factor off the paper",
+            "1",
+            self.points.iter().map(|p| p.worst_factor).collect(),
+        )?)
+    }
+}
+
+/// Runs the four blast chains (20, 40, 80 mm and the paper's optimum, resonant Table 1 rods, on
+/// the paper's sensor) under a Friedlander load (decay 1) for every F0 × Td, in parallel, each
+/// for `settings` (the run must outlast the slowest wave: 3 ms by default).
+pub fn blast_sweep(
+    peaks_n: &[f64],
+    durations_s: &[f64],
+    settings: &woodpile::RunSettings,
+) -> Result<BlastSweep, crate::Error> {
+    use rayon::prelude::*;
+    use woodpile::{analysis::peak_layer_energy, ChainBuilder, Excitation, Trajectory};
+    let chains = BLAST_CHAINS
+        .iter()
+        .map(|&(rod_mm, _, _)| {
+            let rods = rod_mm.map_or(woodpile::PAPER_OPTIMIZED_CHAIN_MM.to_vec(), |l| {
+                vec![l; CHAIN_LENGTH]
+            });
+            Ok(ChainBuilder::table1_rods(&rods, CellModel::Resonant)?.build()?)
+        })
+        .collect::<Result<Vec<_>, crate::Error>>()?;
+    let grid: Vec<(f64, f64)> = peaks_n
+        .iter()
+        .flat_map(|&f| durations_s.iter().map(move |&t| (f, t)))
+        .collect();
+    grid.par_iter()
+        .map(|&(peak_force_n, duration_s)| {
+            let load = Excitation::Blast(woodpile::BlastProfile::Friedlander {
+                peak_force_n,
+                duration_s,
+                decay: 1.0,
+            });
+            let energies = chains
+                .iter()
+                .map(|chain| {
+                    let mut t = Trajectory::default();
+                    woodpile::simulate(chain, &load, settings, &mut t)?;
+                    Ok(peak_layer_energy(&t, chain.len()))
+                })
+                .collect::<Result<Vec<f64>, crate::Error>>()?;
+            let ratios = [1, 2, 3].map(|k| energies[k] / energies[0]);
+            let worst_factor = ratios
+                .iter()
+                .zip(&BLAST_RATIOS)
+                .map(|(r, p)| (r / p.value).max(p.value / r))
+                .fold(1.0, f64::max);
+            Ok(BlastSweepPoint {
+                peak_force_n,
+                duration_s,
+                ratios,
+                worst_factor,
+            })
+        })
+        .collect::<Result<Vec<_>, crate::Error>>()
+        .map(|points| BlastSweep {
+            peaks_n: peaks_n.to_vec(),
+            durations_s: durations_s.to_vec(),
+            points,
+        })
+}
+
+/// Rod lengths of a chain, top to bottom \[mm\] (sphere diameters for spheres), rounded.
+pub fn rods_mm(chain: &woodpile::Chain) -> Vec<u32> {
+    chain
+        .elements()
+        .iter()
+        .map(|e| match e.body {
+            woodpile::Body::Rod { length_m, .. } => (length_m * 1e3).round() as u32,
+            woodpile::Body::Sphere { diameter_m } => (diameter_m * 1e3).round() as u32,
+        })
+        .collect()
+}
+
+/// A GA of the paper study, with what the report says of it.
+#[derive(Debug, Clone)]
+pub struct GaRun {
+    /// Its label (`resonant`, `rigid`, …).
+    pub model: &'static str,
+    /// The best chain.
+    pub chain: woodpile::Chain,
+    /// The best chain's rod lengths \[mm\].
+    pub rods: Vec<u32>,
+    /// Whether the result came from the cache.
+    pub cached: bool,
+    /// The result.
+    pub result: CachedGa,
+    /// Population size.
+    pub population: usize,
+    /// Generation limit.
+    pub generations_limit: usize,
+    /// Stall limit.
+    pub stall: Option<usize>,
+    /// The objective's name.
+    pub objective: String,
+    /// Its unit.
+    pub unit: String,
+}
+
+/// Builds `cfg`'s problem and gets its GA result through [`cached_ga`]; `progress` gets each
+/// generation's state and the generation limit.
+pub fn ga_run(
+    cfg: &OptimizeConfig,
+    label: &'static str,
+    threads: usize,
+    cache: &Cache,
+    progress: &mut dyn FnMut(&woodpile::optimize::GaState, usize),
+) -> Result<GaRun, crate::Error> {
+    use woodpile::optimize::Objective;
+    let problem = crate::optimize::Problem::new(cfg, Path::new("."), threads)?;
+    let total = problem.settings.generations;
+    let (result, cached) = cached_ga(&problem, cache, &mut |s| progress(s, total))?;
+    let chain = problem.space.chain(&result.best_genome)?;
+    Ok(GaRun {
+        model: label,
+        rods: rods_mm(&chain),
+        chain,
+        cached,
+        result,
+        population: problem.settings.population,
+        generations_limit: total,
+        stall: problem.settings.stall_generations,
+        objective: problem.objective.as_str().to_string(),
+        unit: problem.objective.unit().to_string(),
+    })
+}
+
+/// One run of the study, kept with its trajectory for the figures.
+#[derive(Debug, Clone)]
+pub struct Case {
+    /// Short name, e.g. `20 mm`.
+    pub name: String,
+    /// File stem part, e.g. `20mm`.
+    pub slug: String,
+    /// Title part naming the chain, e.g. `20 × 20 mm rods (resonant)`.
+    pub chain_title: String,
+    /// The chain.
+    pub chain: woodpile::Chain,
+    /// Its figures of merit.
+    pub summary: woodpile::RunSummary,
+    /// Its trajectory on the sample grid.
+    pub trajectory: woodpile::Trajectory,
+    /// The chain's negative-mass bands to mark ([`woodpile::analysis::chain_bands_hz`]).
+    pub bands: Vec<(f64, f64)>,
+}
+
+/// Runs `chain` under `excitation` for a [`Case`].
+pub fn simulate_case(
+    name: &str,
+    slug: &str,
+    chain_title: &str,
+    chain: woodpile::Chain,
+    excitation: &woodpile::Excitation,
+    settings: &woodpile::RunSettings,
+) -> Result<Case, crate::Error> {
+    let mut trajectory = woodpile::Trajectory::default();
+    let summary = woodpile::simulate(&chain, excitation, settings, &mut trajectory)?;
+    let bands = woodpile::analysis::chain_bands_hz(chain.elements().iter().map(|e| &e.cell));
+    Ok(Case {
+        name: name.to_string(),
+        slug: slug.to_string(),
+        chain_title: chain_title.to_string(),
+        chain,
+        summary,
+        trajectory,
+        bands,
+    })
+}

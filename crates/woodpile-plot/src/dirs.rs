@@ -62,26 +62,6 @@ pub fn describe_chain(labels: &[String]) -> String {
     }
 }
 
-/// The negative-mass bands to shade: those of the chain's cells when it has at most two
-/// different cells (more would cover the whole axis; paper §5: no common band then).
-pub fn bands_to_shade(cells: &[UnitCell]) -> Vec<(f64, f64)> {
-    let mut distinct: Vec<&UnitCell> = Vec::new();
-    for c in cells {
-        if !distinct.contains(&c) {
-            distinct.push(c);
-        }
-    }
-    if distinct.len() > 2 {
-        return Vec::new();
-    }
-    let mut bands: Vec<(f64, f64)> = distinct
-        .iter()
-        .flat_map(|c| c.negative_mass_bands_hz())
-        .collect();
-    bands.sort_by(|a, b| a.0.total_cmp(&b.0));
-    bands
-}
-
 /// Draws every figure of a run directory into `out`; returns the files written.
 pub fn plot_run(
     dir: &Path,
@@ -168,7 +148,7 @@ pub fn plot_run(
     let refs: Vec<(String, &Spectrum)> = spectra.iter().map(|(l, s)| (l.clone(), s)).collect();
     files.extend(crate::spectra(
         &refs,
-        &bands_to_shade(&info.cells),
+        &woodpile::analysis::chain_bands_hz(&info.cells),
         &title,
         max_frequency_hz,
         &stem("spectra"),

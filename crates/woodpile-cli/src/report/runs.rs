@@ -10,14 +10,14 @@ use woodpile::analysis::{
     band_contrast, contact_spectrum_map, energy_map, force_map, layer_by_layer, peak_layer_energy,
     FirstTransit, LayerByLayer, Spectrum, SpectrumSettings,
 };
-use woodpile::optimize::{GaState, Objective};
+use woodpile::optimize::GaState;
 use woodpile::{
     simulate, BlastProfile, CellModel, Chain, ChainBuilder, Excitation, RunSettings, RunSummary,
-    Striker, Trajectory, UnitCell,
+    Striker, Trajectory,
 };
-use woodpile_io::optimize::{OptimizeConfig, Problem};
+use woodpile_io::optimize::OptimizeConfig;
 use woodpile_io::scenario::ModelSpec;
-use woodpile_io::study::{self, Cache, CachedGa};
+use woodpile_io::study::{self, simulate_case, Cache, Case, GaRun};
 use woodpile_plot as plot;
 use woodpile_plot::dirs::objective_label;
 
@@ -81,17 +81,6 @@ impl<'a> Setup<'a> {
     }
 }
 
-pub fn rods_mm(chain: &Chain) -> Vec<u32> {
-    chain
-        .elements()
-        .iter()
-        .map(|e| match e.body {
-            woodpile::Body::Rod { length_m, .. } => (length_m * 1e3).round() as u32,
-            woodpile::Body::Sphere { diameter_m } => (diameter_m * 1e3).round() as u32,
-        })
-        .collect()
-}
-
 /// The transmission ratio, NaN (printed as such) when the run gives none.
 pub fn ratio(s: &RunSummary) -> f64 {
     s.transmission_ratio.unwrap_or(f64::NAN)
@@ -115,60 +104,8 @@ pub fn join_mm(rods: &[u32]) -> String {
 // ---------------------------------------------------------------------------------------------
 // The runs.
 
-/// One simulated chain with what the report needs of it.
-pub struct Case {
-    /// Short name, e.g. `20 mm`.
-    pub name: String,
-    /// File stem part, e.g. `20mm`.
-    pub slug: String,
-    /// Title part naming the chain, e.g. `20 × 20 mm rods (resonant)`.
-    pub chain_title: String,
-    pub chain: Chain,
-    pub summary: RunSummary,
-    pub trajectory: Trajectory,
-    /// Negative-mass bands of the chain's cells (when it has at most two kinds).
-    pub bands: Vec<(f64, f64)>,
-}
-
 fn homogeneous(length_mm: u32, model: CellModel) -> Result<Chain, CliError> {
     Ok(ChainBuilder::table1_rods(&[length_mm; 20], model)?.build()?)
-}
-
-fn simulate_case(
-    name: &str,
-    slug: &str,
-    chain_title: &str,
-    chain: Chain,
-    excitation: &Excitation,
-    settings: &RunSettings,
-) -> Result<Case, CliError> {
-    let mut trajectory = Trajectory::default();
-    let summary = simulate(&chain, excitation, settings, &mut trajectory)?;
-    let mut cells: Vec<&UnitCell> = Vec::new();
-    for e in chain.elements() {
-        if !cells.contains(&&e.cell) {
-            cells.push(&e.cell);
-        }
-    }
-    let bands = if cells.len() <= 2 {
-        let mut b: Vec<(f64, f64)> = cells
-            .iter()
-            .flat_map(|c| c.negative_mass_bands_hz())
-            .collect();
-        b.sort_by(|a, b| a.0.total_cmp(&b.0));
-        b
-    } else {
-        Vec::new()
-    };
-    Ok(Case {
-        name: name.to_string(),
-        slug: slug.to_string(),
-        chain_title: chain_title.to_string(),
-        chain,
-        summary,
-        trajectory,
-        bands,
-    })
 }
 
 /// The force map and the energy map of a run: `STEM_force_map` and `STEM_energy_map`.
@@ -207,52 +144,28 @@ fn draw_spectra(
     Ok(plot::spectra(&refs, &case.bands, title, max_hz, stem)?)
 }
 
-/// A GA run (from the cache when it holds one for the same inputs).
-pub struct GaRun {
-    pub model: &'static str,
-    pub chain: Chain,
-    pub rods: Vec<u32>,
-    pub cached: bool,
-    pub result: CachedGa,
-    pub population: usize,
-    pub generations_limit: usize,
-    pub stall: Option<usize>,
-    pub objective: String,
-    pub unit: String,
-}
-
+/// A GA of the report: from the cache or run now, with the progress bar's message.
 fn run_ga(
     cfg: &OptimizeConfig,
-    model_name: &'static str,
+    label: &'static str,
     threads: usize,
     cache: &Cache,
     bar: &indicatif::ProgressBar,
 ) -> Result<GaRun, CliError> {
-    let problem = Problem::new(cfg, Path::new("."), threads)?;
-    let objective = problem.objective;
-    let total = problem.settings.generations;
-    let unit = objective.unit().to_string();
-    let (result, cached) = study::cached_ga(&problem, cache, &mut |s: &GaState| {
-        bar.set_message(format!(
-            "{model_name} GA: generation {}/{total}, best {:.3} {unit}, {} evaluations",
-            s.generation,
-            s.best().objective,
-            s.evaluations
-        ))
-    })?;
-    let chain = problem.space.chain(&result.best_genome)?;
-    Ok(GaRun {
-        model: model_name,
-        rods: rods_mm(&chain),
-        chain,
-        cached,
-        result,
-        population: problem.settings.population,
-        generations_limit: problem.settings.generations,
-        stall: problem.settings.stall_generations,
-        objective: objective.as_str().to_string(),
-        unit: objective.unit().to_string(),
-    })
+    study::ga_run(
+        cfg,
+        label,
+        threads,
+        cache,
+        &mut |s: &GaState, total: usize| {
+            bar.set_message(format!(
+                "{label} GA: generation {}/{total}, best {:.3}, {} evaluations",
+                s.generation,
+                s.best().objective,
+                s.evaluations
+            ))
+        },
+    )
 }
 
 /// The homogeneous chains under the impact: their cases and figures, the wall forces compared,
@@ -459,6 +372,10 @@ pub struct BlastRuns {
     pub energy: Vec<(String, f64, f64)>,
     /// (chain, negative-mass band \[Hz\], band contrast of its spectra).
     pub bands: Vec<(String, (f64, f64), f64)>,
+    /// The paper's three blast ratios over a grid of Friedlander loads.
+    pub sweep: study::BlastSweep,
+    /// The sweep's figure (worst factor over F0 × Td).
+    pub sweep_files: Vec<PathBuf>,
 }
 
 /// The blast on the homogeneous chains and the paper's blast-optimised chain.
@@ -532,12 +449,34 @@ pub fn blast(s: &Setup) -> Result<BlastRuns, CliError> {
             band_rows.push((c.name.clone(), b, band_contrast(&c.trajectory, b)?));
         }
     }
-
+    bar.set_message("blast sweep (F0 × Td)");
+    // The quick report checks only that the sweep is made: four loads.
+    let (peaks, durations): (&[f64], &[f64]) = if s.args.quick {
+        (&[100.0, 400.0], &[2e-4, 5e-4])
+    } else {
+        (&study::BLAST_SWEEP_PEAKS_N, &study::BLAST_SWEEP_DURATIONS_S)
+    };
+    let sweep = study::blast_sweep(peaks, durations, blast_settings)?;
+    let map = sweep.worst_factor_map()?;
+    let sweep_files = plot::Heatmap {
+        x_scale: 1e3,
+        x_label: "positive-phase duration Td [ms]".into(),
+        y_label: "peak force F0 [N]".into(),
+        value_label: "largest factor by which a blast ratio misses the paper's".into(),
+        log_decades: Some(2.0),
+        ..plot::Heatmap::new(
+            &map,
+            "Friedlander blast: how far the three energy ratios are from the paper's",
+        )
+    }
+    .write(&fig("blast_sweep"))?;
     Ok(BlastRuns {
         cases: blast_cases,
         compare: blast_compare,
         energy: blast_energy,
         bands: band_rows,
+        sweep,
+        sweep_files,
     })
 }
 

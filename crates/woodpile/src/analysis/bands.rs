@@ -181,3 +181,24 @@ fn crossing_of_one(s: &dyn Fn(f64) -> f64, lo: f64, hi: Option<f64>) -> Option<f
     // Below the crossing s < 1 (including s = +0 at a zero of M_eff).
     Some(crate::root::bisect(lo, hi, |w| s(w) < 1.0))
 }
+
+/// The negative-effective-mass bands to mark on a chain's spectra \[Hz\], ascending: those of its
+/// cells when it has at most two different cells; none with more (their bands would cover the
+/// whole axis, and a chain of many kinds has no common band: paper §5).
+pub fn chain_bands_hz<'a>(cells: impl IntoIterator<Item = &'a UnitCell>) -> Vec<(f64, f64)> {
+    let mut distinct: Vec<&UnitCell> = Vec::new();
+    for c in cells {
+        if !distinct.contains(&c) {
+            distinct.push(c);
+        }
+    }
+    if distinct.len() > 2 {
+        return Vec::new();
+    }
+    let mut bands: Vec<(f64, f64)> = distinct
+        .iter()
+        .flat_map(|c| c.negative_mass_bands_hz())
+        .collect();
+    bands.sort_by(|a, b| a.0.total_cmp(&b.0));
+    bands
+}

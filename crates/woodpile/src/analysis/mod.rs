@@ -39,7 +39,9 @@ pub mod protocol;
 pub mod pulses;
 pub mod spectrum;
 
-pub use bands::{contact_stiffness_n_per_m, linspace, BandStructure, EffectiveMassCurve};
+pub use bands::{
+    chain_bands_hz, contact_stiffness_n_per_m, linspace, BandStructure, EffectiveMassCurve,
+};
 pub use map::{energy_map, force_map, injected_energy_j, Axis, Map2};
 pub use protocol::{layer_by_layer, sub_chain, LayerByLayer};
 pub use pulses::{arrival_s, band_contrast, peak_layer_energy, separated_peaks, FirstTransit};
