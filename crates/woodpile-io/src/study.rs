@@ -237,7 +237,7 @@ pub const BLAST_CHAINS: [(Option<u32>, &str, &str); 4] = [
 ];
 
 /// The GA problem of the paper's Fig. 5 d, e: the built-in `paper-impact` problem with the given
-/// cell model and seed; `quick` shrinks the GA to population 20 × 10 generations (for CI).
+/// cell model and seed; `quick` shrinks the GA to population 10 × 5 generations (for CI).
 pub fn ga_problem(
     model: ModelSpec,
     seed: u64,
@@ -247,8 +247,8 @@ pub fn ga_problem(
     cfg.design.model = Some(model);
     cfg.ga.seed = Some(seed);
     if quick {
-        cfg.ga.population = Some(20);
-        cfg.ga.generations = Some(10);
+        cfg.ga.population = Some(10);
+        cfg.ga.generations = Some(5);
     }
     Ok(cfg)
 }
@@ -265,11 +265,6 @@ pub fn derived_ga_problem(
     cfg.description = Some(format!(
         "paper impact problem over rods 20-80 mm every {step_mm} mm, cells from beam theory"
     ));
-    if quick {
-        // The quick report only checks that the section is produced.
-        cfg.ga.population = Some(10);
-        cfg.ga.generations = Some(5);
-    }
     cfg.design.catalogue_mm = None;
     cfg.design.rod_range = Some(crate::optimize::RodRangeSpec {
         from_mm: 20.0,

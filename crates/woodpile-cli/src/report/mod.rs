@@ -40,8 +40,8 @@ pub struct Args {
     /// holds anything else than an earlier report is refused).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
-    /// A smaller version for CI: GAs of population 20 × 10 generations, 10 × 5 over derived
-    /// cells (the figures keep their meaning; the optima are not converged).
+    /// A smaller version for CI: GAs of population 10 × 5 generations, a 2 × 2 blast sweep (the
+    /// figures keep their meaning; the optima are not converged).
     #[arg(long)]
     pub quick: bool,
     /// Seed of both GAs.

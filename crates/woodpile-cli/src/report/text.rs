@@ -198,7 +198,7 @@ fn intro(doc: &mut Doc, s: &Setup, r: &Results) {
             }
         },
         if args.quick {
-            " — QUICK version: the GAs ran with population 20 × 10 generations (10 × 5 over derived cells) and are not converged, so the optimisation numbers are not the full report's"
+            " — QUICK version: the GAs ran with population 10 × 5 generations and are not converged, so the optimisation numbers are not the full report's"
         } else {
             ""
         },
@@ -222,7 +222,7 @@ fn optimum_rows(s: &Setup, r: &Results, row: &mut dyn FnMut(&str, String, String
     let (cr, cg) = (&r.optima[0].0.summary, &r.optima[1].0.summary);
     let reason_constants = "the paper's wall and striker contact constants were lost: we use a 5 mm steel cap and a soda-lime sphere (docs/physics.md §2, §5)";
     let reason_ga = if s.args.quick {
-        "quick GA (20 × 10), not converged; GA settings of the paper unknown"
+        "quick GA (10 × 5), not converged; GA settings of the paper unknown"
     } else {
         "the paper's GA settings (population, generations, seed) are unknown; another optimum of a rugged landscape"
     };
