@@ -187,7 +187,7 @@ impl Spectrum {
             .iter()
             .enumerate()
             .map(|(k, x)| {
-                let twice = k != 0 && !(l % 2 == 0 && k == l / 2);
+                let twice = k != 0 && !(l.is_multiple_of(2) && k == l / 2);
                 let p = x.norm_sqr();
                 if twice {
                     2.0 * p
@@ -326,7 +326,7 @@ impl SpectrumPlan {
             .iter()
             .enumerate()
             .map(|(k, x)| {
-                let single = k == 0 || (l % 2 == 0 && k == l / 2);
+                let single = k == 0 || (l.is_multiple_of(2) && k == l / 2);
                 let c = if single { 1.0 } else { 2.0 };
                 c * x.norm() / self.window_sum
             })

@@ -50,7 +50,7 @@ fn fft_bins_match_a_naive_dft() {
                     (bin.re - re).abs() < 1e-9 && (bin.im - im).abs() < 1e-9,
                     "n = {n}, {window:?}, bin {k}: {bin} vs {re} + {im}i"
                 );
-                let single = k == 0 || (s.n_fft % 2 == 0 && k == s.n_fft / 2);
+                let single = k == 0 || (s.n_fft.is_multiple_of(2) && k == s.n_fft / 2);
                 let c = if single { 1.0 } else { 2.0 };
                 let a = c * re.hypot(*im) / wsum;
                 assert!((s.amplitudes[k] - a).abs() < 1e-9);
