@@ -337,7 +337,9 @@ impl OptimizeConfig {
         let mut c = self.clone();
         let d = &mut c.design;
         d.positions.get_or_insert(20);
-        if d.elements.is_none() {
+        // The default catalogue is Table 1, unless a rod range (expanded by complete_checked)
+        // or a general list says otherwise.
+        if d.elements.is_none() && d.rod_range.is_none() {
             d.catalogue_mm
                 .get_or_insert_with(|| TABLE1_LENGTHS_MM.to_vec());
         }

@@ -285,6 +285,18 @@ impl Rod {
         Ok(roots)
     }
 
+    /// [`Rod::roots`] in Hz.
+    fn frequencies_hz(
+        &self,
+        theory: BeamTheory,
+        count: usize,
+        what: &str,
+        equation: impl Fn(&Self, BeamTheory, f64) -> f64,
+    ) -> Result<Vec<f64>> {
+        let roots = self.roots(theory, count, what, equation)?;
+        Ok(roots.into_iter().map(|w| w / (2.0 * PI)).collect())
+    }
+
     /// The first `count` symmetric free–free bending frequencies Ω_j/2π \[Hz\]: the zeros of the
     /// effective mass at the centre.
     pub fn free_symmetric_frequencies_hz(
@@ -292,11 +304,7 @@ impl Rod {
         theory: BeamTheory,
         count: usize,
     ) -> Result<Vec<f64>> {
-        Ok(self
-            .roots(theory, count, "free-free", Rod::free_free)?
-            .into_iter()
-            .map(|w| w / (2.0 * PI))
-            .collect())
+        self.frequencies_hz(theory, count, "free-free", Rod::free_free)
     }
 
     /// The first `count` frequencies ω_j/2π \[Hz\] of the rod with its centre held (the
@@ -306,11 +314,7 @@ impl Rod {
         theory: BeamTheory,
         count: usize,
     ) -> Result<Vec<f64>> {
-        Ok(self
-            .roots(theory, count, "centre-blocked", Rod::centre_blocked)?
-            .into_iter()
-            .map(|w| w / (2.0 * PI))
-            .collect())
+        self.frequencies_hz(theory, count, "centre-blocked", Rod::centre_blocked)
     }
 
     /// The most resonators a derived cell of this rod can have: [`MAX_MODES`], or fewer when
@@ -337,9 +341,9 @@ impl Rod {
         below.len().max(1)
     }
 
-    /// The modal effective masses \[kg\] of the first `count` centre-blocked modes of the whole
-    /// rod: (∫ρA W dx)² / ∫(ρA W² + ρI Ψ²) dx over both halves.
-    fn modal_masses_kg(&self, theory: BeamTheory, count: usize) -> Result<Vec<f64>> {
+    /// The modal effective masses \[kg\] of the centre-blocked modes at `omegas` \[rad/s\] of the
+    /// whole rod: (∫ρA W dx)² / ∫(ρA W² + ρI Ψ²) dx over both halves.
+    fn modal_masses_kg(&self, theory: BeamTheory, omegas: &[f64]) -> Vec<f64> {
         let rho = self.material.density_kg_m3;
         let rho_a = rho * self.area_m2();
         let rho_i = match theory {
@@ -347,10 +351,9 @@ impl Rod {
             BeamTheory::EulerBernoulli => 0.0,
         };
         let half = 0.5 * self.length_m;
-        let omegas = self.roots(theory, count, "centre-blocked", Rod::centre_blocked)?;
-        Ok(omegas
-            .into_iter()
-            .map(|omega| {
+        omegas
+            .iter()
+            .map(|&omega| {
                 let w = self.wave(theory, omega);
                 let (a, b, al, be) = (w.a, w.b, w.alpha, w.beta);
                 let (s, c) = (be * half).sin_cos();
@@ -383,7 +386,7 @@ impl Rod {
                 let (first, second) = (2.0 * first * h / 3.0, 2.0 * second * h / 3.0);
                 first * first / second
             })
-            .collect())
+            .collect()
     }
 }
 
@@ -405,11 +408,8 @@ impl UnitCell {
         }
         let theory = BeamTheory::Timoshenko;
         let total = rod.mass_kg();
-        let poles: Vec<f64> = rod
-            .roots(theory, l, "centre-blocked", Rod::centre_blocked)?
-            .into_iter()
-            .map(|w| w * w)
-            .collect();
+        let omegas = rod.roots(theory, l, "centre-blocked", Rod::centre_blocked)?;
+        let poles: Vec<f64> = omegas.iter().map(|w| w * w).collect();
         let (primary, masses) = match reduction {
             Reduction::PoleZero => {
                 let zeros: Vec<f64> = rod
@@ -420,7 +420,7 @@ impl UnitCell {
                 pole_zero_masses(total, &poles, &zeros)
             }
             Reduction::ModalMass => {
-                let masses = rod.modal_masses_kg(theory, l)?;
+                let masses = rod.modal_masses_kg(theory, &omegas);
                 (total - masses.iter().sum::<f64>(), masses)
             }
         };
