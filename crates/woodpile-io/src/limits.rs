@@ -111,6 +111,9 @@ pub fn check_accuracy(
     let reference = match excitation {
         woodpile::Excitation::Impact(_) => "the initial energy",
         woodpile::Excitation::Blast(_) => "the input work",
+        woodpile::Excitation::Drive(_) | woodpile::Excitation::Rest => {
+            "the larger of the initial energy and the input work"
+        }
     };
     // A NaN error counts as a failure: `is_some_and(Le)` is false for it.
     let within = |limit: f64| err.partial_cmp(&limit).is_some_and(|o| o.is_le());

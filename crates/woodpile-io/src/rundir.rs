@@ -142,10 +142,7 @@ impl SummaryJson {
         }
         SummaryJson {
             scenario: r.name.to_string(),
-            excitation: match r.resolved.excitation {
-                Excitation::Impact(_) => "impact",
-                Excitation::Blast(_) => "blast",
-            },
+            excitation: r.resolved.excitation.kind_name(),
             chain_labels: r
                 .resolved
                 .chain
@@ -298,7 +295,7 @@ pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), Error> {
             Some(s.mass_kg()),
             Some(s.velocity_m_s),
         ),
-        Excitation::Blast(_) => (None, None, None),
+        Excitation::Blast(_) | Excitation::Drive(_) | Excitation::Rest => (None, None, None),
     };
     let s = r.summary;
     let run = RunJson {

@@ -1,4 +1,5 @@
-//! How the chain is loaded: a striker sphere hitting the top element, or a prescribed blast force.
+//! How the chain is loaded: a striker sphere hitting the top element, a prescribed blast force, an
+//! actuator driving the top element with a signal (docs/physics.md §14), or nothing.
 
 use crate::defaults;
 use crate::error::{require_non_negative, require_positive, Error, Result};
@@ -185,6 +186,11 @@ pub enum Excitation {
     Impact(Striker),
     /// A prescribed force on the top element.
     Blast(BlastProfile),
+    /// An actuator driving the top element with a signal (a force, or a displacement through a
+    /// Hertz contact).
+    Drive(Drive),
+    /// Nothing: the column is left at rest (with a preload, a check of its static equilibrium).
+    Rest,
 }
 
 impl Excitation {
@@ -193,6 +199,238 @@ impl Excitation {
         match self {
             Excitation::Impact(s) => s.validate(),
             Excitation::Blast(b) => b.validate(),
+            Excitation::Drive(d) => d.validate(),
+            Excitation::Rest => Ok(()),
         }
+    }
+
+    /// The name used in files: `impact`, `blast`, `drive` or `rest`.
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Excitation::Impact(_) => "impact",
+            Excitation::Blast(_) => "blast",
+            Excitation::Drive(_) => "drive",
+            Excitation::Rest => "rest",
+        }
+    }
+}
+
+/// How a drive's frequency moves through a chirp.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Sweep {
+    /// f(t) = f0 + (f1 − f0) t/T.
+    #[default]
+    Linear,
+    /// f(t) = f0 (f1/f0)^{t/T}.
+    Logarithmic,
+}
+
+/// The time history of a drive, before its ramp: a force \[N\] or a displacement \[m\].
+#[derive(Debug, Clone, PartialEq)]
+pub enum Signal {
+    /// A sin(2π f t).
+    Harmonic {
+        /// Amplitude A (N or m).
+        amplitude: f64,
+        /// Frequency f \[Hz\].
+        frequency_hz: f64,
+    },
+    /// A sin φ(t) on [0, T], zero after, with φ' = 2π f(t) sweeping f0 → f1.
+    Chirp {
+        /// Amplitude A (N or m).
+        amplitude: f64,
+        /// Start frequency f0 \[Hz\].
+        start_hz: f64,
+        /// End frequency f1 \[Hz\].
+        end_hz: f64,
+        /// Sweep duration T \[s\].
+        duration_s: f64,
+        /// Linear or logarithmic.
+        sweep: Sweep,
+    },
+    /// A table (t_k, s_k), linearly interpolated, zero outside [t_0, t_last].
+    Table {
+        /// Times, strictly increasing \[s\].
+        times_s: Vec<f64>,
+        /// Values (N or m).
+        values: Vec<f64>,
+    },
+}
+
+impl Signal {
+    /// Value s(t) and rate ds/dt.
+    pub fn value_and_rate(&self, t: f64) -> (f64, f64) {
+        use std::f64::consts::TAU;
+        match self {
+            Signal::Harmonic {
+                amplitude,
+                frequency_hz,
+            } => {
+                let w = TAU * frequency_hz;
+                let (s, c) = (w * t).sin_cos();
+                (amplitude * s, amplitude * w * c)
+            }
+            Signal::Chirp {
+                amplitude,
+                start_hz,
+                end_hz,
+                duration_s,
+                sweep,
+            } => {
+                if !(0.0..=*duration_s).contains(&t) {
+                    return (0.0, 0.0);
+                }
+                let (phase, f) = match sweep {
+                    Sweep::Linear => {
+                        let k = (end_hz - start_hz) / duration_s;
+                        (TAU * (start_hz * t + 0.5 * k * t * t), start_hz + k * t)
+                    }
+                    Sweep::Logarithmic => {
+                        let r = (end_hz / start_hz).ln();
+                        let g = (r * t / duration_s).exp();
+                        (TAU * start_hz * duration_s / r * (g - 1.0), start_hz * g)
+                    }
+                };
+                let (s, c) = phase.sin_cos();
+                (amplitude * s, amplitude * TAU * f * c)
+            }
+            Signal::Table { times_s, values } => {
+                let n = times_s.len();
+                if t < times_s[0] || t > times_s[n - 1] {
+                    return (0.0, 0.0);
+                }
+                let k = times_s.partition_point(|&tk| tk <= t).clamp(1, n - 1);
+                let (t0, t1) = (times_s[k - 1], times_s[k]);
+                let (v0, v1) = (values[k - 1], values[k]);
+                let rate = (v1 - v0) / (t1 - t0);
+                (v0 + rate * (t - t0), rate)
+            }
+        }
+    }
+
+    /// The ramp a signal gets when none is given: three periods for a harmonic signal, 5 % of the
+    /// sweep at each end of a chirp, none for a table (docs/physics.md §14).
+    pub fn default_ramp_s(&self) -> f64 {
+        match self {
+            Signal::Harmonic { frequency_hz, .. } => 3.0 / frequency_hz,
+            Signal::Chirp { duration_s, .. } => 0.05 * duration_s,
+            Signal::Table { .. } => 0.0,
+        }
+    }
+
+    fn validate(&self) -> Result<()> {
+        match self {
+            Signal::Harmonic {
+                amplitude,
+                frequency_hz,
+            } => {
+                require_non_negative("excitation.amplitude", *amplitude)?;
+                require_positive("excitation.frequency_hz", *frequency_hz)?;
+            }
+            Signal::Chirp {
+                amplitude,
+                start_hz,
+                end_hz,
+                duration_s,
+                sweep,
+            } => {
+                require_non_negative("excitation.amplitude", *amplitude)?;
+                require_positive("excitation.start_hz", *start_hz)?;
+                require_positive("excitation.end_hz", *end_hz)?;
+                require_positive("excitation.sweep_duration_s", *duration_s)?;
+                if *sweep == Sweep::Logarithmic && start_hz == end_hz {
+                    return Err(Error::invalid(
+                        "excitation.end_hz",
+                        end_hz,
+                        "a logarithmic sweep needs end_hz different from start_hz (or use a harmonic signal)",
+                    ));
+                }
+            }
+            Signal::Table { times_s, values } => {
+                BlastProfile::Table {
+                    times_s: times_s.clone(),
+                    forces_n: values.clone(),
+                }
+                .validate()?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// What an actuator prescribes.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DriveQuantity {
+    /// A force on the top element \[N\] (added to any preload force).
+    Force,
+    /// The displacement \[m\] of an actuator whose tip (a fixed-geometry support like the
+    /// sensor) touches the top element through a Hertz contact; a preload is applied through it.
+    Displacement {
+        /// The actuator's tip.
+        tip: crate::model::Wall,
+    },
+}
+
+/// An actuator on the top element: s(t) r(t), with the smooth ramp
+/// r(t) = sin²(π t / (2 T_r)) for t < T_r (and, for a chirp, the mirror image over its last T_r).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Drive {
+    /// Force or displacement.
+    pub quantity: DriveQuantity,
+    /// The signal.
+    pub signal: Signal,
+    /// Ramp time T_r \[s\] (0 = none).
+    pub ramp_s: f64,
+}
+
+impl Drive {
+    /// A force drive with the signal's default ramp.
+    pub fn force(signal: Signal) -> Self {
+        Drive {
+            quantity: DriveQuantity::Force,
+            ramp_s: signal.default_ramp_s(),
+            signal,
+        }
+    }
+
+    /// Value and rate of the ramped signal at t.
+    #[inline]
+    pub fn value_and_rate(&self, t: f64) -> (f64, f64) {
+        let (s, ds) = self.signal.value_and_rate(t);
+        let tr = self.ramp_s;
+        if tr <= 0.0 {
+            return (s, ds);
+        }
+        // Distance to the nearer ramped end: the start, and for a chirp also its end.
+        let (tau, sign) = match &self.signal {
+            Signal::Chirp { duration_s, .. } if t > duration_s - tr => (duration_s - t, -1.0),
+            _ => (t, 1.0),
+        };
+        if tau >= tr || tau < 0.0 {
+            return (s, ds);
+        }
+        let a = std::f64::consts::FRAC_PI_2 * tau / tr;
+        let (sa, ca) = a.sin_cos();
+        let r = sa * sa;
+        let dr = sign * 2.0 * sa * ca * std::f64::consts::FRAC_PI_2 / tr;
+        (s * r, ds * r + s * dr)
+    }
+
+    /// Validates the fields (named as in a scenario's `[excitation]` table).
+    pub fn validate(&self) -> Result<()> {
+        self.signal.validate()?;
+        require_non_negative("excitation.ramp_s", self.ramp_s)?;
+        if let Signal::Chirp { duration_s, .. } = self.signal {
+            if 2.0 * self.ramp_s > duration_s {
+                return Err(Error::invalid(
+                    "excitation.ramp_s",
+                    self.ramp_s,
+                    format!(
+                        "a chirp is ramped at both ends: at most half its sweep ({duration_s} s)"
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 }

@@ -10,7 +10,10 @@
 //!    Table 1 catalogue, effective mass and band edges), cells of any rod from Timoshenko beam
 //!    theory ([`Rod`], [`UnitCell::from_rod`]), and the [`Chain`] of elements on a [`Wall`],
 //!    built by [`ChainBuilder`].
-//! 2. **Excite it** — [`excitation`]: a [`Striker`] sphere or a [`BlastProfile`] force.
+//!    Lab physics (docs/physics.md §14): contact, resonator and on-site [`Damping`]; a static
+//!    [`Preload`] and gravity, from whose exact equilibrium a run starts.
+//! 2. **Excite it** — [`excitation`]: a [`Striker`] sphere, a [`BlastProfile`] force, or an
+//!    actuator [`Drive`] (force or displacement; harmonic, chirp or table [`Signal`]).
 //! 3. **Integrate** — [`ode`] compiles the chain into y' = f(t, y) on flat `f64` slices;
 //!    [`integrate`] advances it with a Butcher [`Tableau`] (RK4, Dormand–Prince 5(4)).
 //! 4. **Run and record** — [`simulate()`] owns the loop, samples on a uniform grid for a
@@ -55,11 +58,15 @@ pub mod simulate;
 
 pub use analysis::{BandStructure, EffectiveMassCurve, LayerByLayer, Map2, Spectrum};
 pub use error::{Error, Result};
-pub use excitation::{velocity_from_drop_height, BlastProfile, Excitation, Striker};
+pub use excitation::{
+    velocity_from_drop_height, BlastProfile, Drive, DriveQuantity, Excitation, Signal, Striker,
+    Sweep,
+};
 pub use integrate::{Integrator, IntegratorStats, Method, OdeSystem, Tableau};
 pub use model::{
-    BeamTheory, Body, CellModel, Chain, ChainBuilder, Element, Material, Reduction, Resonator, Rod,
-    Surface, UnitCell, Wall, PAPER_OPTIMIZED_CHAIN_MM, TABLE1_LENGTHS_MM,
+    BeamTheory, Body, CellModel, Chain, ChainBuilder, ContactDamping, Damping, Element, Material,
+    Preload, Reduction, Resonator, ResonatorDamping, Rod, Surface, UnitCell, Wall,
+    PAPER_OPTIMIZED_CHAIN_MM, TABLE1_LENGTHS_MM,
 };
 pub use optimize::{BreederGa, DesignSpace, GaSettings, Objective, StandardObjective};
 pub use record::{Layout, Recorder, Sample, Trajectory};

@@ -10,15 +10,87 @@
 //! with the index of their primary. W is the work done by the blast load, ∫ F(t) u̇_1 dt, integrated
 //! with the motion so that the energy balance can be closed to the integrator's accuracy.
 //!
+//! With the physics of docs/physics.md §14 (damping, a preload or gravity, a drive, or a column at
+//! rest) the state ends in two integrals instead, `[… | W | D]`: W the work of every external force
+//! (load, actuator, preload, gravity) and D the energy dissipated; those runs take a separate
+//! evaluation ([`ChainOde`]'s lab path), so that the paper's model keeps its code and its bits.
+//!
 //! Contact forces are computed once per evaluation into "slots": slot i acts on top of primary i,
 //! slot i+1 below it; slot 0 is the load (blast) or nothing (impact, above the striker), slot P the
 //! wall. The paper's contact c is slot c + 1 − s and its layer L is primary L − s, where s = 1 for a
 //! blast (no striker body) and 0 for an impact.
 
 use crate::error::{Error, Result};
-use crate::excitation::{BlastProfile, Excitation};
+use crate::excitation::{BlastProfile, Drive, DriveQuantity, Excitation};
 use crate::integrate::OdeSystem;
-use crate::model::Chain;
+use crate::model::{Chain, ContactDamping};
+
+/// A contact's damping law, compiled for one slot.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum SlotLaw {
+    None,
+    /// η = coef δ^{1/4}.
+    Restitution {
+        coef: f64,
+    },
+    /// F = β δ^{3/2} (1 + λ δ̇), λ = χ / v_in [s/m].
+    HuntCrossley {
+        lambda: f64,
+    },
+    /// F_d = coef δ^{1/2} δ̇.
+    Viscoelastic {
+        coef: f64,
+    },
+}
+
+impl SlotLaw {
+    fn new(law: ContactDamping, beta: f64, reduced_mass_kg: f64, impact_speed_m_s: f64) -> Self {
+        match law {
+            ContactDamping::None => SlotLaw::None,
+            ContactDamping::Restitution { coefficient } if coefficient < 1.0 => {
+                SlotLaw::Restitution {
+                    coef: ContactDamping::restitution_prefactor(coefficient)
+                        * (beta * reduced_mass_kg).sqrt(),
+                }
+            }
+            ContactDamping::HuntCrossley { restitution } if restitution < 1.0 => {
+                SlotLaw::HuntCrossley {
+                    lambda: 8.0 * (1.0 - restitution) / (5.0 * restitution) / impact_speed_m_s,
+                }
+            }
+            ContactDamping::Viscoelastic { time_s } if time_s > 0.0 => SlotLaw::Viscoelastic {
+                coef: 1.5 * time_s * beta,
+            },
+            _ => SlotLaw::None,
+        }
+    }
+}
+
+/// The terms of docs/physics.md §14, present only when a run uses them.
+#[derive(Debug, Clone)]
+struct Lab {
+    /// Damping law per slot 0..=P.
+    law: Vec<SlotLaw>,
+    allow_pull: bool,
+    /// Resonator damping c_j [kg/s], c_j/m_j and c_j/M_owner [1/s].
+    res_damping: Vec<f64>,
+    res_damping_rate: Vec<f64>,
+    res_damping_coupling: Vec<f64>,
+    /// On-site damping 1/τ per point mass [1/s] (0 for the striker).
+    on_site_rate: Vec<f64>,
+    /// Constant external force per primary (gravity; a preload beside a striker) [N].
+    external_force_n: Vec<f64>,
+    gravity_m_s2: f64,
+    /// Constant force added to a force-type load (the preload) [N].
+    load_constant_n: f64,
+    /// The drive, if any.
+    drive: Option<Drive>,
+    /// Actuator tip: β and rest position (static equilibrium) [m], for a displacement drive.
+    actuator: Option<(f64, f64)>,
+    /// Static equilibrium: state and force per slot.
+    static_state: Vec<f64>,
+    static_force_n: Vec<f64>,
+}
 
 /// The compiled equations of motion of one chain under one excitation.
 #[derive(Debug, Clone)]
@@ -45,6 +117,8 @@ pub struct ChainOde {
     /// Signed overlap per slot at the last evaluation \[m\].
     overlap_m: Vec<f64>,
     striker_velocity_m_s: f64,
+    /// Damping, static load, drive (docs/physics.md §14); None = the paper's model.
+    lab: Option<Box<Lab>>,
 }
 
 impl ChainOde {
@@ -85,6 +159,7 @@ impl ChainOde {
                 (0, None, s.velocity_m_s)
             }
             Excitation::Blast(p) => (1, Some(p.clone()), 0.0),
+            Excitation::Drive(_) | Excitation::Rest => (1, None, 0.0),
         };
         let n_striker = mass_kg.len();
         let mut res_owner = Vec::new();
@@ -117,7 +192,7 @@ impl ChainOde {
             .zip(&res_owner)
             .map(|(k, &o)| k / mass_kg[o])
             .collect();
-        Ok(ChainOde {
+        let mut ode = ChainOde {
             n_primary,
             n_dof: n_primary + res_mass_kg.len(),
             shift,
@@ -134,7 +209,175 @@ impl ChainOde {
             force_n: vec![0.0; n_primary + 1],
             overlap_m: vec![0.0; n_primary + 1],
             striker_velocity_m_s,
+            lab: None,
+        };
+        let needs_lab = !chain.damping().is_lossless()
+            || !chain.preload().is_none()
+            || matches!(excitation, Excitation::Drive(_) | Excitation::Rest);
+        if needs_lab {
+            ode.lab = Some(Box::new(ode.compile_lab(chain, excitation)?));
+        }
+        Ok(ode)
+    }
+
+    /// Compiles damping, the static load and the drive, and finds the static equilibrium.
+    fn compile_lab(&self, chain: &Chain, excitation: &Excitation) -> Result<Lab> {
+        let (p, nd, shift) = (self.n_primary, self.n_dof, self.shift);
+        let damping = chain.damping();
+        let preload = chain.preload();
+        let g = preload.gravity_m_s2;
+        let drive = match excitation {
+            Excitation::Drive(d) => Some(d.clone()),
+            _ => None,
+        };
+        let actuator_beta = match drive.as_ref().map(|d| &d.quantity) {
+            Some(DriveQuantity::Displacement { tip }) => Some(
+                tip.beta_against(chain.top_surface(), &chain.elements()[0].material)?
+                    .ok_or_else(|| {
+                        Error::invalid(
+                            "excitation.tip",
+                            "free",
+                            "a displacement drive pushes through its tip: give it a cap, flat or beta",
+                        )
+                    })?,
+            ),
+            _ => None,
+        };
+        // Damping law per slot, with the reduced mass of the primaries in contact.
+        let reduced = |a: f64, b: f64| a * b / (a + b);
+        let v_in = match damping.impact_speed_m_s {
+            Some(v) => v,
+            None if shift == 0 => self.striker_velocity_m_s,
+            None => f64::NAN,
+        };
+        let hunt_crossley = [damping.contacts, damping.striker_law(), damping.wall_law()]
+            .iter()
+            .any(
+                |l| matches!(l, ContactDamping::HuntCrossley { restitution } if *restitution < 1.0),
+            );
+        if hunt_crossley && v_in.is_nan() {
+            return Err(Error::invalid(
+                "damping.impact_speed_m_s",
+                "(none)",
+                "the Hunt–Crossley law needs the impact speed v_in of its contacts: give it, or use a striker (its speed is the default)",
+            ));
+        }
+        let mut law = vec![SlotLaw::None; p + 1];
+        if let Some(b0) = actuator_beta {
+            law[0] = SlotLaw::new(damping.striker_law(), b0, self.mass_kg[0], v_in);
+        }
+        for (slot, l) in law.iter_mut().enumerate().skip(1) {
+            let kind = if slot == p {
+                damping.wall_law()
+            } else if slot == 1 && shift == 0 {
+                damping.striker_law()
+            } else {
+                damping.contacts
+            };
+            let m = if slot == p {
+                self.mass_kg[p - 1]
+            } else {
+                reduced(self.mass_kg[slot - 1], self.mass_kg[slot])
+            };
+            *l = SlotLaw::new(kind, self.beta[slot], m, v_in);
+        }
+        // Resonator damping c_j = 2 ζ √(k_j m_j), resonators numbered from 1 in each element.
+        let mut res_damping = Vec::with_capacity(self.res_owner.len());
+        let mut index_in_cell = 0;
+        for j in 0..self.res_owner.len() {
+            let owner = self.res_owner[j];
+            index_in_cell = if j > 0 && self.res_owner[j - 1] == owner {
+                index_in_cell + 1
+            } else {
+                1
+            };
+            let zeta = damping.ratio_of(owner + shift, index_in_cell);
+            res_damping.push(2.0 * zeta * (self.res_stiffness[j] * self.res_mass_kg[j]).sqrt());
+        }
+        let res_damping_rate = res_damping
+            .iter()
+            .zip(&self.res_mass_kg)
+            .map(|(c, m)| c / m)
+            .collect();
+        let res_damping_coupling = res_damping
+            .iter()
+            .zip(&self.res_owner)
+            .map(|(c, &o)| c / self.mass_kg[o])
+            .collect();
+        let rate = damping.on_site_time_s.map_or(0.0, |tau| 1.0 / tau);
+        let mut on_site_rate = vec![rate; nd];
+        if shift == 0 {
+            on_site_rate[0] = 0.0; // the striker flies freely
+        }
+        // External forces: gravity on every primary; a preload beside a striker acts on element 1.
+        let mut external_force_n: Vec<f64> = self.mass_kg.iter().map(|m| m * g).collect();
+        let force_type_load = drive
+            .as_ref()
+            .is_none_or(|d| d.quantity == DriveQuantity::Force);
+        let load_constant_n = if shift == 0 {
+            external_force_n[1] += preload.force_n;
+            0.0
+        } else if force_type_load {
+            preload.force_n
+        } else {
+            0.0
+        };
+        // Static forces per slot: the load slot carries the preload, element contacts the rest.
+        let mut static_force_n = vec![0.0; p + 1];
+        if shift == 1 {
+            static_force_n[0] = preload.force_n;
+        }
+        for (c, f) in chain.static_contact_forces_n().into_iter().enumerate() {
+            static_force_n[c + 2 - shift] = f;
+        }
+        let overlap_of = |f: f64, b: f64| {
+            if f > 0.0 {
+                (f / b).powf(2.0 / 3.0)
+            } else {
+                0.0
+            }
+        };
+        let mut state = vec![0.0; 2 * nd + 2];
+        state[p - 1] = overlap_of(static_force_n[p], self.beta[p]);
+        for slot in (1..p).rev() {
+            state[slot - 1] = state[slot] + overlap_of(static_force_n[slot], self.beta[slot]);
+        }
+        for j in 0..self.res_owner.len() {
+            state[p + j] =
+                state[self.res_owner[j]] + self.res_mass_kg[j] * g / self.res_stiffness[j];
+        }
+        if shift == 0 {
+            state[nd] = self.striker_velocity_m_s;
+        }
+        let actuator = actuator_beta.map(|b0| (b0, state[0] + overlap_of(preload.force_n, b0)));
+        Ok(Lab {
+            law,
+            allow_pull: damping.allow_pull,
+            res_damping,
+            res_damping_rate,
+            res_damping_coupling,
+            on_site_rate,
+            external_force_n,
+            gravity_m_s2: g,
+            load_constant_n,
+            drive,
+            actuator,
+            static_state: state,
+            static_force_n,
         })
+    }
+
+    /// Whether the run uses the terms of docs/physics.md §14 (its state ends in W and D).
+    pub fn has_lab_physics(&self) -> bool {
+        self.lab.is_some()
+    }
+
+    /// Static force of paper contacts 0..=N \[N\] (zeros without a static load).
+    pub fn static_contact_forces_n(&self) -> Vec<f64> {
+        match &self.lab {
+            Some(lab) => lab.static_force_n[1 - self.shift..].to_vec(),
+            None => vec![0.0; self.n_layers()],
+        }
     }
 
     /// Number of layers N + 1 (layer 0 = striker or load) = number of paper contacts.
@@ -162,8 +405,12 @@ impl ChainOde {
         self.load.is_some()
     }
 
-    /// The initial state: everything at rest and touching, the striker moving at v0.
+    /// The initial state: everything at rest and touching (or in static equilibrium under a
+    /// preload or gravity), the striker moving at v0.
     pub fn initial_state(&self) -> Vec<f64> {
+        if let Some(lab) = &self.lab {
+            return lab.static_state.clone();
+        }
         let mut y = vec![0.0; self.dimension()];
         if self.has_striker() {
             y[self.n_dof] = self.striker_velocity_m_s;
@@ -219,7 +466,7 @@ impl ChainOde {
     }
 
     /// Rates dF/dt [N/s] of paper contacts 0..=N for state `y`, which must be the state of the last
-    /// evaluation. The load's rate is NaN (its peak is not refined).
+    /// evaluation. The load's rate and a damped contact's are NaN (their peaks are not refined).
     pub fn contact_force_rates(&self, y: &[f64], out: &mut [f64]) {
         let v = &y[self.n_dof..2 * self.n_dof];
         let p = self.n_primary;
@@ -227,7 +474,11 @@ impl ChainOde {
         for (c, slot) in (first..=p).enumerate() {
             let d = self.overlap_m[slot];
             let f = self.force_n[slot];
-            out[c] = if slot == 0 {
+            let damped = self
+                .lab
+                .as_ref()
+                .is_some_and(|lab| lab.law[slot] != SlotLaw::None);
+            out[c] = if slot == 0 || damped {
                 f64::NAN
             } else if d > 0.0 {
                 let ddot = if slot == p {
@@ -269,9 +520,16 @@ impl ChainOde {
     pub fn layer_energies_j(&self, y: &[f64], out: &mut [f64]) -> f64 {
         let (p, nd) = (self.n_primary, self.n_dof);
         let (x, v) = (&y[..nd], &y[nd..2 * nd]);
+        let actuator_beta = self.lab.as_ref().and_then(|l| l.actuator).map(|a| a.0);
         let potential = |slot: usize| {
             let d = if slot == 0 {
-                return 0.0;
+                match actuator_beta {
+                    Some(b0) => {
+                        let d = self.overlap_m[0].max(0.0);
+                        return 0.4 * b0 * d * d * d.sqrt();
+                    }
+                    None => return 0.0,
+                }
             } else if slot == p {
                 x[p - 1]
             } else {
@@ -287,7 +545,13 @@ impl ChainOde {
         for i in 0..p {
             out[i + self.shift] = 0.5 * self.mass_kg[i] * v[i] * v[i];
         }
-        // Contact potentials, split half–half between the two bodies.
+        // Contact potentials, split half–half between the two bodies (an actuator's half goes to
+        // layer 0).
+        if self.shift == 1 {
+            let u = potential(0);
+            out[0] += 0.5 * u;
+            out[1] += 0.5 * u;
+        }
         for slot in 1..=p {
             let u = potential(slot);
             out[slot - 1 + self.shift] += 0.5 * u;
@@ -304,10 +568,20 @@ impl ChainOde {
         0.5 * potential(p)
     }
 
-    /// Work done by the load so far \[J\] (0 for an impact).
+    /// Work done by the external forces so far \[J\]: the load (0 for an impact without lab
+    /// physics), an actuator, a preload and gravity.
     pub fn input_work_j(&self, y: &[f64]) -> f64 {
-        if self.is_blast() {
+        if self.lab.is_some() || self.is_blast() {
             y[2 * self.n_dof]
+        } else {
+            0.0
+        }
+    }
+
+    /// Energy dissipated so far \[J\] (0 without damping).
+    pub fn dissipated_j(&self, y: &[f64]) -> f64 {
+        if self.lab.is_some() {
+            y[2 * self.n_dof + 1]
         } else {
             0.0
         }
@@ -338,7 +612,9 @@ impl ChainOde {
     pub fn tolerance_units(&self) -> Vec<f64> {
         let mut u = vec![1.0; self.n_dof];
         u.extend(std::iter::repeat_n(1e6, self.n_dof));
-        if self.is_blast() {
+        if self.lab.is_some() {
+            u.extend([100.0, 100.0]);
+        } else if self.is_blast() {
             u.push(100.0);
         }
         u
@@ -347,11 +623,19 @@ impl ChainOde {
 
 impl OdeSystem for ChainOde {
     fn dimension(&self) -> usize {
-        2 * self.n_dof + usize::from(self.is_blast())
+        if self.lab.is_some() {
+            2 * self.n_dof + 2
+        } else {
+            2 * self.n_dof + usize::from(self.is_blast())
+        }
     }
 
     #[inline(always)]
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        if self.lab.is_some() {
+            self.rhs_lab(t, y, dydt);
+            return;
+        }
         let (p, nd) = (self.n_primary, self.n_dof);
         let (x, v) = (&y[..nd], &y[nd..2 * nd]);
         let (dx, rest) = dydt.split_at_mut(nd);
@@ -395,5 +679,96 @@ impl OdeSystem for ChainOde {
         if self.load.is_some() {
             rest[nd] = force[0] * v[0];
         }
+    }
+}
+
+impl ChainOde {
+    /// The equations of motion with damping, static loads and drives (docs/physics.md §14), and
+    /// the rates of the work W and the dissipated energy D.
+    fn rhs_lab(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let lab = self.lab.as_deref().expect("lab physics compiled");
+        let (p, nd) = (self.n_primary, self.n_dof);
+        let (x, v) = (&y[..nd], &y[nd..2 * nd]);
+        let (dx, rest) = dydt.split_at_mut(nd);
+        let (dv, integrals) = rest.split_at_mut(nd);
+        dx.copy_from_slice(v);
+        let mut power_in = 0.0;
+        let mut dissipation = 0.0;
+        // One contact: elastic Hertz force plus its damping law; tension-free unless pulling is
+        // allowed; the damping force's power is dissipated.
+        let contact = |slot: usize, beta: f64, d: f64, ddot: f64, diss: &mut f64| -> f64 {
+            if d <= 0.0 {
+                return 0.0;
+            }
+            let root = d.sqrt();
+            let elastic = beta * d * root;
+            let damping = match lab.law[slot] {
+                SlotLaw::None => return elastic,
+                SlotLaw::Restitution { coef } => coef * root.sqrt() * ddot,
+                SlotLaw::HuntCrossley { lambda } => elastic * lambda * ddot,
+                SlotLaw::Viscoelastic { coef } => coef * root * ddot,
+            };
+            let mut f = elastic + damping;
+            if !lab.allow_pull && f < 0.0 {
+                f = 0.0;
+            }
+            *diss += (f - elastic) * ddot;
+            f
+        };
+        // The load slot.
+        let (f0, d0) = if self.shift == 0 {
+            (0.0, 0.0)
+        } else {
+            match (&lab.drive, lab.actuator) {
+                (Some(drive), Some((b0, rest))) => {
+                    let (s, ds) = drive.value_and_rate(t);
+                    let d = rest + s - x[0];
+                    let f = contact(0, b0, d, ds - v[0], &mut dissipation);
+                    power_in += f * ds;
+                    (f, d)
+                }
+                (drive, _) => {
+                    let signal = drive.as_ref().map_or(0.0, |d| d.value_and_rate(t).0);
+                    let blast = self.load.as_ref().map_or(0.0, |l| l.force_n(t));
+                    let f = lab.load_constant_n + signal + blast;
+                    power_in += f * v[0];
+                    (f, 0.0)
+                }
+            }
+        };
+        self.force_n[0] = f0;
+        self.overlap_m[0] = d0;
+        for slot in 1..=p {
+            let (d, ddot) = if slot == p {
+                (x[p - 1], v[p - 1])
+            } else {
+                (x[slot - 1] - x[slot], v[slot - 1] - v[slot])
+            };
+            self.overlap_m[slot] = d;
+            self.force_n[slot] = contact(slot, self.beta[slot], d, ddot, &mut dissipation);
+        }
+        let force = &self.force_n;
+        for i in 0..p {
+            let on_site = lab.on_site_rate[i];
+            dv[i] = (force[i] - force[i + 1] + lab.external_force_n[i]) * self.inv_mass[i]
+                - on_site * v[i];
+            power_in += lab.external_force_n[i] * v[i];
+            dissipation += on_site * self.mass_kg[i] * v[i] * v[i];
+        }
+        let g = lab.gravity_m_s2;
+        let (dvp, dvr) = dv.split_at_mut(p);
+        for (j, a) in dvr.iter_mut().enumerate() {
+            let o = self.res_owner[j];
+            let ext = x[p + j] - x[o];
+            let rel = v[p + j] - v[o];
+            let on_site = lab.on_site_rate[p + j];
+            *a = -self.res_omega2[j] * ext - lab.res_damping_rate[j] * rel + g - on_site * v[p + j];
+            dvp[o] += self.res_coupling[j] * ext + lab.res_damping_coupling[j] * rel;
+            let m = self.res_mass_kg[j];
+            power_in += m * g * v[p + j];
+            dissipation += lab.res_damping[j] * rel * rel + on_site * m * v[p + j] * v[p + j];
+        }
+        integrals[0] = power_in;
+        integrals[1] = dissipation;
     }
 }

@@ -30,8 +30,10 @@ pub struct Sample<'a> {
     pub layer_energies_j: &'a [f64],
     /// The wall's half of the potential of contact N \[J\].
     pub wall_energy_j: f64,
-    /// Work done by the load so far \[J\] (0 for an impact).
+    /// Work done by the external forces so far \[J\] (0 for an impact without a static load).
     pub input_work_j: f64,
+    /// Energy dissipated so far \[J\] (0 without damping).
+    pub dissipated_j: f64,
     /// Displacements u_1..u_N of the elements' primary masses \[m\].
     pub displacements_m: &'a [f64],
     /// Velocities of the elements' primary masses [m/s].
@@ -73,8 +75,10 @@ pub struct Trajectory {
     pub layer_energies_j: Vec<f64>,
     /// Wall's share of the energy \[J\].
     pub wall_energy_j: Vec<f64>,
-    /// Work done by the load \[J\].
+    /// Work done by the external forces \[J\].
     pub input_work_j: Vec<f64>,
+    /// Energy dissipated \[J\].
+    pub dissipated_j: Vec<f64>,
     /// Primary displacements, rows of N \[m\].
     pub displacements_m: Vec<f64>,
     /// Primary velocities, rows of N [m/s].
@@ -137,6 +141,7 @@ impl Recorder for Trajectory {
             layer_energies_j: Vec::with_capacity(s * c),
             wall_energy_j: Vec::with_capacity(s),
             input_work_j: Vec::with_capacity(s),
+            dissipated_j: Vec::with_capacity(s),
             displacements_m: Vec::with_capacity(s * n),
             velocities_m_s: Vec::with_capacity(s * n),
             striker_position_m: Vec::new(),
@@ -150,6 +155,7 @@ impl Recorder for Trajectory {
         self.layer_energies_j.extend_from_slice(s.layer_energies_j);
         self.wall_energy_j.push(s.wall_energy_j);
         self.input_work_j.push(s.input_work_j);
+        self.dissipated_j.push(s.dissipated_j);
         self.displacements_m.extend_from_slice(s.displacements_m);
         self.velocities_m_s.extend_from_slice(s.velocities_m_s);
         if let Some((x, v)) = s.striker {

@@ -38,11 +38,22 @@ impl RunSettings {
         }
     }
 
-    /// The defaults for an excitation.
+    /// The defaults for an excitation: an impact's 2 ms, a blast's 3 ms; a drive or a column at
+    /// rest also 3 ms, or a chirp's sweep plus 1 ms when that is longer.
     pub fn paper_for(excitation: &Excitation) -> Self {
         match excitation {
             Excitation::Impact(_) => Self::paper_impact(),
-            Excitation::Blast(_) => Self::paper_blast(),
+            Excitation::Blast(_) | Excitation::Rest => Self::paper_blast(),
+            Excitation::Drive(d) => {
+                let sweep = match d.signal {
+                    crate::excitation::Signal::Chirp { duration_s, .. } => duration_s + 1e-3,
+                    _ => 0.0,
+                };
+                RunSettings {
+                    duration_s: sweep.max(defaults::BLAST_RUN_DURATION_S),
+                    ..Self::paper_impact()
+                }
+            }
         }
     }
 
@@ -110,10 +121,14 @@ pub struct EnergyBalance {
     pub initial_j: f64,
     /// Total energy at the end \[J\].
     pub final_j: f64,
-    /// Work done by the load over the run \[J\] (0 for an impact).
+    /// Work done by the external forces over the run \[J\] (0 for an impact without a static
+    /// load): the load, an actuator, a preload, gravity.
     pub input_work_j: f64,
-    /// Largest |E(t) − E(0) − W(t)| over the samples, relative to E(0) (impact) or to the largest
-    /// |W| (blast).
+    /// Energy dissipated over the run \[J\] (0 without damping; docs/physics.md §14).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub dissipated_j: f64,
+    /// Largest |E(t) + D(t) − E(0) − W(t)| over the samples, relative to the larger of E(0) and
+    /// the largest |W| (E(0) for the paper's impact, |W| for its blast).
     pub max_relative_error: f64,
 }
 
@@ -141,8 +156,16 @@ pub struct RunSummary {
     /// Transmitted force: the peak of contact N (the wall) \[N\].
     pub transmitted_peak_force_n: f64,
     /// Transmitted / incident; `None` when it means nothing: a zero incident force, or a wave
-    /// that never reached the wall within the run (see [`RunSummary::wave_arrived`]).
+    /// that never reached the wall within the run (see [`RunSummary::wave_arrived`]). Under a
+    /// static load, of the dynamic parts (peak minus static force).
     pub transmission_ratio: Option<f64>,
+    /// Static force of every contact 0..=N \[N\] under a preload or gravity (empty without one):
+    /// a peak's dynamic part is the peak minus this.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Vec::is_empty")
+    )]
+    pub static_contact_forces_n: Vec<f64>,
     /// Whether the wave reached the wall: the transmitted peak is at least
     /// [`defaults::WAVE_ARRIVAL_FRACTION`] of the incident peak. False means the run is too short
     /// (or the chain too long) for the transmitted force to mean anything: increase the duration.
@@ -299,7 +322,7 @@ pub fn simulate(
     ode.contact_force_rates(integrator.y(), &mut peaks.rate);
     peaks.start(ode.contact_forces_n());
     let initial_energy = observe(&mut ode, 0.0, integrator.y(), true, &mut obs, recorder);
-    let reference_energy = if ode.has_striker() {
+    let reference_energy = if ode.has_striker() || ode.has_lab_physics() {
         initial_energy.total
     } else {
         0.0
@@ -363,8 +386,8 @@ pub fn simulate(
                     contact: 0,
                 });
             }
-            max_abs_error =
-                max_abs_error.max((last.total - initial_energy.total - last.work).abs());
+            max_abs_error = max_abs_error
+                .max((last.total + last.dissipated - initial_energy.total - last.work).abs());
             max_abs_work = max_abs_work.max(last.work.abs());
             next_sample += 1;
         }
@@ -379,28 +402,29 @@ pub fn simulate(
             separated: forces_end[0] == 0.0 && vs < v1,
         }
     });
-    let peak = &peaks.peak;
+    let static_forces = ode.static_contact_forces_n();
+    let preloaded = static_forces.iter().any(|&f| f != 0.0);
+    let dynamic = |c: usize| peaks.peak[c] - static_forces[c];
     let n = n_contacts - 1;
-    let incident = peak[1.min(n)];
-    let transmitted = peak[n];
+    let incident = dynamic(1.min(n));
+    let transmitted = dynamic(n);
     let wave_arrived = incident > 0.0 && transmitted >= defaults::WAVE_ARRIVAL_FRACTION * incident;
-    let scale = if ode.has_striker() {
-        reference_energy
-    } else {
-        max_abs_work
-    };
+    // E(0) for an impact, the largest |W| for a load from rest; under a static load both count.
+    let scale = reference_energy.abs().max(max_abs_work);
     Ok(RunSummary {
         contact_peak_forces_n: peaks.peak.clone(),
         contact_peak_times_s: peaks.time.clone(),
-        incident_peak_force_n: incident,
-        transmitted_peak_force_n: transmitted,
+        incident_peak_force_n: peaks.peak[1.min(n)],
+        transmitted_peak_force_n: peaks.peak[n],
         transmission_ratio: (incident > 0.0 && wave_arrived).then(|| transmitted / incident),
         wave_arrived,
+        static_contact_forces_n: if preloaded { static_forces } else { Vec::new() },
         restitution,
         energy: EnergyBalance {
             initial_j: initial_energy.total,
             final_j: last.total,
             input_work_j: last.work,
+            dissipated_j: last.dissipated,
             max_relative_error: if scale > 0.0 {
                 max_abs_error / scale
             } else {
@@ -603,6 +627,7 @@ fn layers_total(ode: &ChainOde, y: &[f64], layers: &mut [f64]) -> f64 {
 struct Energies {
     total: f64,
     work: f64,
+    dissipated: f64,
 }
 
 /// Computes the observables at (t, y) and hands them to the recorder. `cached` says the ODE's
@@ -621,12 +646,14 @@ fn observe(
     }
     let wall = ode.layer_energies_j(y, &mut obs.energies);
     let work = ode.input_work_j(y);
+    let dissipated = ode.dissipated_j(y);
     let sample = Sample {
         time_s: t,
         contact_forces_n: ode.contact_forces_n(),
         layer_energies_j: &obs.energies,
         wall_energy_j: wall,
         input_work_j: work,
+        dissipated_j: dissipated,
         displacements_m: ode.element_displacements(y),
         velocities_m_s: ode.element_velocities(y),
         striker: ode.striker_state(y),
@@ -635,6 +662,7 @@ fn observe(
     Energies {
         total: sample.total_energy_j(),
         work,
+        dissipated,
     }
 }
 

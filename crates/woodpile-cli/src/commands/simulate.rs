@@ -133,6 +133,35 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     Ok(())
 }
 
+/// One line describing a drive.
+fn drive_text(d: &woodpile::Drive) -> String {
+    let (what, unit) = match d.quantity {
+        woodpile::DriveQuantity::Force => ("force", "N"),
+        woodpile::DriveQuantity::Displacement { .. } => ("displacement", "m"),
+    };
+    let signal = match &d.signal {
+        woodpile::Signal::Harmonic {
+            amplitude,
+            frequency_hz,
+        } => format!("harmonic {amplitude:e} {unit} at {frequency_hz} Hz"),
+        woodpile::Signal::Chirp {
+            amplitude,
+            start_hz,
+            end_hz,
+            duration_s,
+            sweep,
+        } => format!(
+            "{} chirp {amplitude:e} {unit}, {start_hz} → {end_hz} Hz over {duration_s:e} s",
+            match sweep {
+                woodpile::Sweep::Linear => "linear",
+                woodpile::Sweep::Logarithmic => "logarithmic",
+            }
+        ),
+        woodpile::Signal::Table { times_s, .. } => format!("table of {} points", times_s.len()),
+    };
+    format!("drive ({what}): {signal}, ramp {:e} s", d.ramp_s)
+}
+
 /// The short human-readable report printed after a run.
 pub fn terminal_summary(r: &RunRecord<'_>, dir: &Path) -> String {
     let s = SummaryJson::new(r);
@@ -163,6 +192,14 @@ pub fn terminal_summary(r: &RunRecord<'_>, dir: &Path) -> String {
             "excitation   blast: table of {} points\n",
             times_s.len()
         )),
+        Excitation::Drive(d) => o.push_str(&format!("excitation   {}\n", drive_text(d))),
+        Excitation::Rest => o.push_str("excitation   none: the column is left at rest\n"),
+    }
+    let statics = &r.summary.static_contact_forces_n;
+    if let (Some(first), Some(last)) = (statics.get(1), statics.last()) {
+        o.push_str(&format!(
+            "static       contact 1 carries {first:.4} N, the wall {last:.4} N (peaks below are totals; dynamic = total − static)\n"
+        ));
     }
     o.push_str(&format!(
         "incident     {:.4} N   (peak of contact 1)\n",
@@ -187,8 +224,12 @@ pub fn terminal_summary(r: &RunRecord<'_>, dir: &Path) -> String {
         _ => {}
     }
     o.push_str(&format!(
-        "energy       initial {:.4e} J, final {:.4e} J, input work {:.4e} J, max relative error {:.2e}\n",
-        s.energy.initial_j, s.energy.final_j, s.energy.input_work_j, s.energy.max_relative_error
+        "energy       initial {:.4e} J, final {:.4e} J, input work {:.4e} J, dissipated {:.4e} J, max relative error {:.2e}\n",
+        s.energy.initial_j,
+        s.energy.final_j,
+        s.energy.input_work_j,
+        r.summary.energy.dissipated_j,
+        s.energy.max_relative_error
     ));
     o.push_str(&format!(
         "integrator   {}: {} steps, {} rhs evaluations, {} rejected; {} samples; {:.3} s wall time\n",

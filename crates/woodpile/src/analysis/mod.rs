@@ -11,6 +11,8 @@
 //!   linearised dispersion relation (docs/physics.md §10).
 //! - [`layer_by_layer`] — the experimental protocol of paper §2 / Fig. 7: sub-chains of the
 //!   first k elements on the sensor, k = 1..N.
+//! - [`transmission()`] — the transmission spectrum of a preloaded chain driven by a small chirp,
+//!   with the Bloch prediction for a homogeneous chain ([`TransmissionSpectrum`]).
 //!
 //! ```
 //! use woodpile::analysis::{force_map, Spectrum, SpectrumSettings};
@@ -38,6 +40,7 @@ pub mod map;
 pub mod protocol;
 pub mod pulses;
 pub mod spectrum;
+pub mod transmission;
 
 pub use bands::{
     chain_bands_hz, contact_stiffness_n_per_m, linspace, BandStructure, EffectiveMassCurve,
@@ -48,4 +51,7 @@ pub use pulses::{arrival_s, band_contrast, peak_layer_energy, separated_peaks, F
 pub use spectrum::{
     contact_spectrum_map, sample_interval_s, Padding, Spectrum, SpectrumPlan, SpectrumSettings,
     Window,
+};
+pub use transmission::{
+    homogeneous_prediction, transmission, TransmissionSettings, TransmissionSpectrum,
 };

@@ -3,6 +3,7 @@
 
 use super::cell::{CellModel, UnitCell};
 use super::contact::{hertz_beta, Surface};
+use super::lab::{Damping, Preload};
 use super::material::Material;
 use crate::error::{require_positive, Error, Result};
 
@@ -137,6 +138,25 @@ pub enum Wall {
 }
 
 impl Wall {
+    /// β of this support touching `surface` of `material` [N/m^1.5] (None for a free end).
+    pub fn beta_against(&self, surface: Surface, material: &Material) -> Result<Option<f64>> {
+        Ok(match self {
+            Wall::Free => None,
+            Wall::Beta(b) => Some(require_positive("wall.beta", *b)?),
+            Wall::Cap {
+                material: m,
+                radius_m,
+            } => {
+                require_positive("wall.cap_radius_m", *radius_m)?;
+                let cap = Surface::Sphere {
+                    radius_m: *radius_m,
+                };
+                Some(hertz_beta(surface, material, cap, m)?)
+            }
+            Wall::Flat { material: m } => Some(hertz_beta(surface, material, Surface::Flat, m)?),
+        })
+    }
+
     /// The paper's sensor: a stainless-steel spherical cap of radius 5 mm (docs/physics.md §2).
     pub fn paper_sensor() -> Self {
         Wall::Cap {
@@ -158,6 +178,8 @@ pub struct Chain {
     /// Largest physical overlap of each contact (paper contacts 1..=N) \[m\].
     overlap_limits_m: Vec<f64>,
     crossing_angle_rad: f64,
+    damping: Damping,
+    preload: Preload,
 }
 
 /// Builds a [`Chain`]: elements top to bottom, the wall, optional β overrides.
@@ -169,6 +191,8 @@ pub struct ChainBuilder {
     /// (element index from 0, angle to the element above \[rad\]).
     angle_overrides: Vec<(usize, f64)>,
     beta_overrides: Vec<(usize, f64)>,
+    damping: Damping,
+    preload: Preload,
 }
 
 impl ChainBuilder {
@@ -180,7 +204,21 @@ impl ChainBuilder {
             crossing_angle_rad: std::f64::consts::FRAC_PI_2,
             angle_overrides: Vec::new(),
             beta_overrides: Vec::new(),
+            damping: Damping::default(),
+            preload: Preload::default(),
         }
+    }
+
+    /// Dissipation (default: none, the paper's lossless model; docs/physics.md §14).
+    pub fn damping(mut self, damping: Damping) -> Self {
+        self.damping = damping;
+        self
+    }
+
+    /// Static load: a force on the top element and gravity (default: none; docs/physics.md §14).
+    pub fn preload(mut self, preload: Preload) -> Self {
+        self.preload = preload;
+        self
     }
 
     /// Table 1 rods by length \[mm\], top to bottom.
@@ -229,6 +267,23 @@ impl ChainBuilder {
         }
         for (i, e) in self.elements.iter().enumerate() {
             e.validate(i)?;
+        }
+        let resonators: Vec<usize> = self
+            .elements
+            .iter()
+            .map(|e| e.cell.resonators.len())
+            .collect();
+        self.damping.validate(&resonators)?;
+        self.preload.validate()?;
+        if !self.preload.is_none() && matches!(self.wall, Wall::Free) {
+            return Err(Error::invalid(
+                "preload",
+                format!(
+                    "force_n = {}, gravity_m_s2 = {}",
+                    self.preload.force_n, self.preload.gravity_m_s2
+                ),
+                "a column with a free end has no static equilibrium: give it a wall, or no preload",
+            ));
         }
         let angle = self.crossing_angle_rad;
         if !angle.is_finite() {
@@ -323,24 +378,12 @@ impl ChainBuilder {
         let last_material = &self.elements[n - 1].material;
         // A wall whose β is overridden needs no contact geometry (e.g. a rod on a flat sensor
         // with a measured coefficient).
-        let wall_beta = match (&self.wall, overridden(n)) {
-            (Wall::Free, _) => None,
-            (_, Some(b)) => Some(b),
-            (Wall::Beta(b), None) => Some(require_positive("wall.beta", *b)?),
-            (Wall::Cap { material, radius_m }, None) => {
-                require_positive("wall.cap_radius_m", *radius_m)?;
-                let cap = Surface::Sphere {
-                    radius_m: *radius_m,
-                };
-                Some(
-                    hertz_beta(last, last_material, cap, material)
-                        .map_err(|e| contact_context(e, n))?,
-                )
-            }
-            (Wall::Flat { material }, None) => Some(
-                hertz_beta(last, last_material, Surface::Flat, material)
-                    .map_err(|e| contact_context(e, n))?,
-            ),
+        let wall_beta = match overridden(n) {
+            Some(b) if !matches!(self.wall, Wall::Free) => Some(b),
+            _ => self
+                .wall
+                .beta_against(last, last_material)
+                .map_err(|e| contact_context(e, n))?,
         };
         let wall_radius = match &self.wall {
             Wall::Cap { radius_m, .. } => *radius_m,
@@ -354,6 +397,8 @@ impl ChainBuilder {
             wall_beta,
             overlap_limits_m,
             crossing_angle_rad: angle,
+            damping: self.damping,
+            preload: self.preload,
         })
     }
 }
@@ -417,5 +462,40 @@ impl Chain {
     /// Total mass of the chain \[kg\].
     pub fn total_mass_kg(&self) -> f64 {
         self.elements.iter().map(|e| e.cell.total_mass_kg()).sum()
+    }
+
+    /// Dissipation.
+    pub fn damping(&self) -> &Damping {
+        &self.damping
+    }
+
+    /// Static load.
+    pub fn preload(&self) -> &Preload {
+        &self.preload
+    }
+
+    /// The same chain with other dissipation (validated).
+    pub fn with_damping(mut self, damping: Damping) -> Result<Self> {
+        let resonators: Vec<usize> = self
+            .elements
+            .iter()
+            .map(|e| e.cell.resonators.len())
+            .collect();
+        damping.validate(&resonators)?;
+        self.damping = damping;
+        Ok(self)
+    }
+
+    /// Static force carried by paper contacts 1..=N \[N\]: F_i = F_p + g Σ_{k ≤ i} M_k, with M_k
+    /// the total mass of element k (all zero without a preload).
+    pub fn static_contact_forces_n(&self) -> Vec<f64> {
+        let mut carried = self.preload.force_n;
+        self.elements
+            .iter()
+            .map(|e| {
+                carried += self.preload.gravity_m_s2 * e.cell.total_mass_kg();
+                carried
+            })
+            .collect()
     }
 }

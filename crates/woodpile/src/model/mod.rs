@@ -5,6 +5,7 @@ pub mod cell;
 pub mod chain;
 pub mod contact;
 pub mod fe_beam;
+pub mod lab;
 pub mod material;
 
 pub use beam::{BeamTheory, Reduction, Rod};
@@ -13,4 +14,5 @@ pub use chain::{Body, Chain, ChainBuilder, Element, Wall, PAPER_ROD_DIAMETER_M};
 pub use contact::{
     complete_elliptic_integrals, hertz_beta, hertz_contact, EllipseSolution, HertzContact, Surface,
 };
+pub use lab::{ContactDamping, Damping, Preload, ResonatorDamping};
 pub use material::Material;

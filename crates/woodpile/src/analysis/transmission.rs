@@ -1,0 +1,278 @@
+//! Transmission spectra (docs/physics.md §15): a preloaded chain driven on its top element by a
+//! small force chirp, the wall force compared with the drive force in frequency,
+//!
+//! ```text
+//! T(f) = |F̂_wall(f)| / |F̂_drive(f)|,      T_dB = 20 log10 T,
+//! ```
+//!
+//! with F̂ the Fourier transforms of the dynamic parts (total minus static) over the whole record.
+//! For a linear(ised) chain starting from rest this is the magnitude of its frequency response
+//! from the drive to the sensor. The chirp sweeps linearly over the first half of the record and
+//! the second half lets the response ring down; its amplitude is a small fraction of the preload,
+//! so no contact opens and the linearisation about the static equilibrium holds.
+//!
+//! For a homogeneous chain (one cell, one β, no gravity) the spectrum comes with the prediction of
+//! the linearised Bloch relation 4 K_c sin²(qa/2) = ω² M_eff(ω) ([`BandStructure`]).
+
+use super::bands::BandStructure;
+use super::spectrum::{SpectrumPlan, SpectrumSettings};
+use crate::error::{require_positive, Error, Result};
+use crate::excitation::{Drive, DriveQuantity, Excitation, Signal, Sweep};
+use crate::integrate::Method;
+use crate::model::Chain;
+use crate::record::{Layout, Recorder, Sample};
+use crate::simulate::{simulate, RunSettings, RunSummary};
+
+/// What to measure.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TransmissionSettings {
+    /// Lowest frequency of the chirp and the spectrum \[Hz\].
+    pub start_hz: f64,
+    /// Highest frequency \[Hz\].
+    pub end_hz: f64,
+    /// Frequency resolution Δf \[Hz\]: the record lasts 1/Δf.
+    pub resolution_hz: f64,
+    /// Chirp amplitude as a fraction of the static force on the top element.
+    pub relative_amplitude: f64,
+    /// Integration method.
+    pub method: Method,
+    /// Sample interval of the recorded forces \[s\].
+    pub sample_interval_s: f64,
+}
+
+impl TransmissionSettings {
+    /// Defaults (docs/physics.md §15): 0.1–30 kHz at 20 Hz resolution (a 50 ms record), a chirp of
+    /// 1 % of the preload, the paper's RK4 step, samples every 5 µs (Nyquist 100 kHz).
+    pub fn standard() -> Self {
+        TransmissionSettings {
+            start_hz: 100.0,
+            end_hz: 30e3,
+            resolution_hz: 20.0,
+            relative_amplitude: 0.01,
+            method: Method::paper(),
+            sample_interval_s: 5e-6,
+        }
+    }
+
+    /// Validates the fields (named as the command line's options).
+    pub fn validate(&self) -> Result<()> {
+        require_positive("transmission.start_hz", self.start_hz)?;
+        require_positive("transmission.end_hz", self.end_hz)?;
+        require_positive("transmission.resolution_hz", self.resolution_hz)?;
+        require_positive("transmission.relative_amplitude", self.relative_amplitude)?;
+        require_positive("transmission.sample_interval_s", self.sample_interval_s)?;
+        if self.end_hz <= self.start_hz {
+            return Err(Error::invalid(
+                "transmission.end_hz",
+                self.end_hz,
+                format!("must exceed start_hz = {}", self.start_hz),
+            ));
+        }
+        let nyquist = 0.5 / self.sample_interval_s;
+        if self.end_hz > 0.5 * nyquist {
+            return Err(Error::invalid(
+                "transmission.sample_interval_s",
+                self.sample_interval_s,
+                format!(
+                    "samples too sparse for end_hz = {} (need at most {:.3e} s: four samples per period)",
+                    self.end_hz,
+                    0.25 / self.end_hz
+                ),
+            ));
+        }
+        if self.relative_amplitude > 0.5 {
+            return Err(Error::invalid(
+                "transmission.relative_amplitude",
+                self.relative_amplitude,
+                "at most 0.5: the drive must not open the preloaded contacts",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Record length 1/Δf \[s\].
+    pub fn duration_s(&self) -> f64 {
+        1.0 / self.resolution_hz
+    }
+}
+
+/// A measured transmission spectrum.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TransmissionSpectrum {
+    /// Frequencies f in [start, end] \[Hz\].
+    pub frequencies_hz: Vec<f64>,
+    /// |F̂_drive(f)| (one-sided amplitude spectrum of the drive force's dynamic part) \[N\].
+    pub drive_amplitude_n: Vec<f64>,
+    /// |F̂_wall(f)| \[N\].
+    pub wall_amplitude_n: Vec<f64>,
+    /// T(f) = |F̂_wall| / |F̂_drive|.
+    pub transmission: Vec<f64>,
+    /// 20 log10 T \[dB\].
+    pub transmission_db: Vec<f64>,
+    /// Static force on the top element F_p \[N\] and the chirp's amplitude \[N\].
+    pub preload_n: f64,
+    /// Chirp amplitude \[N\].
+    pub amplitude_n: f64,
+    /// The Bloch prediction for a homogeneous chain (None otherwise).
+    pub prediction: Option<BandStructure>,
+    /// The run's figures of merit (energy balance included).
+    pub run: RunSummary,
+}
+
+impl TransmissionSpectrum {
+    /// Stop bands measured on the spectrum: runs where T_dB is below `threshold_db`, as (lower,
+    /// upper) edges \[Hz\] linearly interpolated at the threshold. A run touching an end of the
+    /// range ends there. Two runs apart by less than 1 % of their frequency are one band: such
+    /// narrow peaks inside a gap are the record's finite length, not transmission.
+    pub fn stop_bands_hz(&self, threshold_db: f64) -> Vec<(f64, f64)> {
+        let mut merged: Vec<(f64, f64)> = Vec::new();
+        for (lo, hi) in self.raw_stop_bands_hz(threshold_db) {
+            match merged.last_mut() {
+                Some(last) if lo - last.1 < 0.01 * lo => last.1 = hi,
+                _ => merged.push((lo, hi)),
+            }
+        }
+        merged
+    }
+
+    fn raw_stop_bands_hz(&self, threshold_db: f64) -> Vec<(f64, f64)> {
+        let (f, t) = (&self.frequencies_hz, &self.transmission_db);
+        let crossing = |k: usize| {
+            // Between k and k+1, where t crosses the threshold.
+            let (t0, t1) = (t[k], t[k + 1]);
+            f[k] + (f[k + 1] - f[k]) * (threshold_db - t0) / (t1 - t0)
+        };
+        let mut bands = Vec::new();
+        let mut start: Option<f64> = (t.first().is_some_and(|&v| v < threshold_db)).then(|| f[0]);
+        for k in 0..t.len().saturating_sub(1) {
+            let (below0, below1) = (t[k] < threshold_db, t[k + 1] < threshold_db);
+            if !below0 && below1 {
+                start = Some(crossing(k));
+            } else if below0 && !below1 {
+                if let Some(s) = start.take() {
+                    bands.push((s, crossing(k)));
+                }
+            }
+        }
+        if let (Some(s), Some(&last)) = (start, f.last()) {
+            bands.push((s, last));
+        }
+        bands
+    }
+}
+
+/// Keeps the drive force (contact 0) and the wall force (contact N) of every sample.
+#[derive(Default)]
+struct EndForces {
+    drive_n: Vec<f64>,
+    wall_n: Vec<f64>,
+}
+
+impl Recorder for EndForces {
+    fn start(&mut self, layout: &Layout) {
+        self.drive_n = Vec::with_capacity(layout.n_samples);
+        self.wall_n = Vec::with_capacity(layout.n_samples);
+    }
+    fn record(&mut self, s: &Sample<'_>) {
+        let f = s.contact_forces_n;
+        self.drive_n.push(f[0]);
+        self.wall_n.push(f[f.len() - 1]);
+    }
+}
+
+/// Measures the transmission spectrum of `chain`, which must carry a static force on its top
+/// element (`Preload::force_n`) and stand on a wall.
+pub fn transmission(
+    chain: &Chain,
+    settings: &TransmissionSettings,
+) -> Result<TransmissionSpectrum> {
+    settings.validate()?;
+    let preload_n = chain.preload().force_n;
+    if preload_n <= 0.0 {
+        return Err(Error::invalid(
+            "preload.force_n",
+            preload_n,
+            "a transmission spectrum linearises about a precompressed chain: give the top element a static force (e.g. preload.force_n = 10)",
+        ));
+    }
+    let duration_s = settings.duration_s();
+    let amplitude_n = settings.relative_amplitude * preload_n;
+    let sweep_s = 0.5 * duration_s;
+    let drive = Drive {
+        quantity: DriveQuantity::Force,
+        signal: Signal::Chirp {
+            amplitude: amplitude_n,
+            start_hz: settings.start_hz,
+            end_hz: settings.end_hz,
+            duration_s: sweep_s,
+            sweep: Sweep::Linear,
+        },
+        ramp_s: 0.05 * sweep_s,
+    };
+    let run_settings = RunSettings {
+        duration_s,
+        method: settings.method,
+        sample_interval_s: settings.sample_interval_s,
+    };
+    let mut forces = EndForces::default();
+    let run = simulate(chain, &Excitation::Drive(drive), &run_settings, &mut forces)?;
+    let wall_static = chain
+        .static_contact_forces_n()
+        .last()
+        .copied()
+        .unwrap_or(0.0);
+    let drive_dynamic: Vec<f64> = forces.drive_n.iter().map(|f| f - preload_n).collect();
+    let wall_dynamic: Vec<f64> = forces.wall_n.iter().map(|f| f - wall_static).collect();
+    let mut plan = SpectrumPlan::new(
+        drive_dynamic.len(),
+        settings.sample_interval_s,
+        &SpectrumSettings::default(),
+    )?;
+    let all_f = plan.frequencies_hz();
+    let drive_all = plan.amplitudes(&drive_dynamic)?;
+    let wall_all = plan.amplitudes(&wall_dynamic)?;
+    let keep: Vec<usize> = (0..all_f.len())
+        .filter(|&k| all_f[k] >= settings.start_hz && all_f[k] <= settings.end_hz)
+        .collect();
+    let pick = |v: &[f64]| keep.iter().map(|&k| v[k]).collect::<Vec<f64>>();
+    let (frequencies_hz, drive_amplitude_n, wall_amplitude_n) =
+        (pick(&all_f), pick(&drive_all), pick(&wall_all));
+    let transmission: Vec<f64> = wall_amplitude_n
+        .iter()
+        .zip(&drive_amplitude_n)
+        .map(|(w, d)| w / d)
+        .collect();
+    let transmission_db = transmission.iter().map(|t| 20.0 * t.log10()).collect();
+    Ok(TransmissionSpectrum {
+        frequencies_hz,
+        drive_amplitude_n,
+        wall_amplitude_n,
+        transmission,
+        transmission_db,
+        preload_n,
+        amplitude_n,
+        prediction: homogeneous_prediction(chain)?,
+        run,
+    })
+}
+
+/// The Bloch prediction when the chain is homogeneous: one cell, one β between elements, no
+/// gravity (under gravity each contact carries a different load, so K_c varies along the chain).
+pub fn homogeneous_prediction(chain: &Chain) -> Result<Option<BandStructure>> {
+    let cell = &chain.elements()[0].cell;
+    let betas = chain.inner_betas();
+    let homogeneous = chain.elements().iter().all(|e| &e.cell == cell)
+        && betas
+            .windows(2)
+            .all(|w| (w[0] - w[1]).abs() <= 1e-12 * w[0])
+        && chain.preload().gravity_m_s2 == 0.0
+        && chain.preload().force_n > 0.0;
+    match (homogeneous, betas.first()) {
+        (true, Some(&beta)) => Ok(Some(BandStructure::homogeneous(
+            cell,
+            beta,
+            chain.preload().force_n,
+        )?)),
+        _ => Ok(None),
+    }
+}
