@@ -29,6 +29,9 @@ enum Command {
     Cells(commands::cells::Args),
     /// Search the element arrangement that minimises an objective (breeder GA, docs/physics.md §11).
     Optimize(woodpile_cli::optimize_cmd::Args),
+    /// Measure the transmission spectrum of a preloaded chain and compare its gaps with the
+    /// Bloch prediction (docs/physics.md §15).
+    Transmission(commands::transmission::Args),
     /// Draw the figures of a `simulate` or `optimize` output directory into DIR/plots (PNG, SVG).
     Plot(woodpile_cli::plot_cmd::Args),
     /// Run everything the paper's figures need; write the figures, report.md and report.html.
@@ -42,6 +45,7 @@ fn dispatch(command: &Command, ctx: &Context) -> Result<(), CliError> {
         Command::Scenario(args) => commands::scenarios::show(args, ctx),
         Command::Cells(args) => commands::cells::run(args, ctx),
         Command::Optimize(args) => woodpile_cli::optimize_cmd::run(args, ctx),
+        Command::Transmission(args) => commands::transmission::run(args, ctx),
         Command::Plot(args) => woodpile_cli::plot_cmd::run(args, ctx),
         Command::Report(args) => woodpile_cli::report::run(args, ctx),
     }

@@ -13,6 +13,7 @@
 //! | [`force_histories`] | force at chosen contacts vs time | Fig. 7 c |
 //! | [`spectra`] | amplitude spectra (log) with negative-mass bands shaded | Fig. 9 |
 //! | [`effective_mass`] | M_eff/M_total vs frequency with bands shaded | Fig. 3 |
+//! | [`transmission`] | transmission spectrum [dB] with the predicted gaps shaded | – |
 //! | [`convergence`] | best and mean objective per GA generation | – |
 //! | [`chain_picture`] | rods to scale, top to bottom | Fig. 5 d, e (right) |
 //!
@@ -32,8 +33,8 @@ pub use chain::chain_picture;
 pub use colormap::ColorMap;
 pub use heatmap::{energy_map, force_map, protocol_map, spectrum_map, Heatmap};
 pub use lines::{
-    convergence, effective_mass, force_histories, peaks_per_layer, spectra, ConvergencePoint,
-    Series,
+    convergence, effective_mass, force_histories, peaks_per_layer, spectra, transmission,
+    ConvergencePoint, Series,
 };
 
 use plotters::coord::Shift;

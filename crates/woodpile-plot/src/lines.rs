@@ -474,3 +474,55 @@ pub fn peaks_per_layer(
     }
     .write(stem)
 }
+
+/// A transmission spectrum T_dB against frequency in kHz, the predicted band gaps shaded grey and
+/// the measured stop bands (below `threshold_db`) marked by a dashed level (docs/physics.md §15).
+pub fn transmission(
+    spectrum: &woodpile::analysis::TransmissionSpectrum,
+    threshold_db: f64,
+    title: &str,
+    stem: &Path,
+) -> Result<Vec<PathBuf>> {
+    let points: Vec<(f64, f64)> = spectrum
+        .frequencies_hz
+        .iter()
+        .zip(&spectrum.transmission_db)
+        .filter(|(_, t)| t.is_finite())
+        .map(|(f, t)| (f * 1e-3, *t))
+        .collect();
+    let (lo, hi) = finite_range(title, points.iter().map(|p| p.1))?;
+    let x_range = match (points.first(), points.last()) {
+        (Some(a), Some(b)) if b.0 > a.0 => (a.0, b.0),
+        _ => return Err(bad(title, "fewer than two finite frequencies")),
+    };
+    let mut bands: Vec<(f64, f64, Option<usize>, Option<String>)> = spectrum
+        .prediction
+        .iter()
+        .flat_map(|p| p.gaps_hz.iter())
+        .map(|&(a, b)| (a * 1e-3, b.min(1e12) * 1e-3, None, None))
+        .collect();
+    if let Some(first) = bands.first_mut() {
+        first.3 = Some("predicted gap (Bloch)".to_string());
+    }
+    let threshold = vec![(x_range.0, threshold_db), (x_range.1, threshold_db)];
+    LinePlot {
+        title: title.to_string(),
+        x_label: "frequency [kHz]".into(),
+        y_label: "transmission |F_wall| / |F_drive| [dB]".into(),
+        series: vec![
+            ("transmission".to_string(), vec![points]),
+            (
+                format!("{threshold_db} dB (stop-band level)"),
+                vec![threshold],
+            ),
+        ],
+        bands,
+        x_range,
+        y_range: padded(lo.min(threshold_db), hi.max(threshold_db)),
+        log_y: false,
+        markers: false,
+        zero_line: true,
+        size: (1100, 600),
+    }
+    .write(stem)
+}

@@ -215,6 +215,63 @@ impl Excitation {
     }
 }
 
+/// One line saying what drives the chain, as front ends print it.
+impl std::fmt::Display for Excitation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Excitation::Impact(st) => write!(
+                f,
+                "impact: {:.1} mm {} sphere ({:.4} g) at {:.4} m/s",
+                st.diameter_m * 1e3,
+                st.material.name,
+                st.mass_kg() * 1e3,
+                st.velocity_m_s
+            ),
+            Excitation::Blast(BlastProfile::Friedlander {
+                peak_force_n,
+                duration_s,
+                decay,
+            }) => write!(
+                f,
+                "blast: Friedlander F0 = {peak_force_n} N, Td = {duration_s:e} s, b = {decay}"
+            ),
+            Excitation::Blast(BlastProfile::Table { times_s, .. }) => {
+                write!(f, "blast: table of {} points", times_s.len())
+            }
+            Excitation::Drive(d) => {
+                let (what, unit) = match d.quantity {
+                    DriveQuantity::Force => ("force", "N"),
+                    DriveQuantity::Displacement { .. } => ("displacement", "m"),
+                };
+                write!(f, "drive ({what}): ")?;
+                match &d.signal {
+                    Signal::Harmonic {
+                        amplitude,
+                        frequency_hz,
+                    } => write!(f, "harmonic {amplitude:e} {unit} at {frequency_hz} Hz")?,
+                    Signal::Chirp {
+                        amplitude,
+                        start_hz,
+                        end_hz,
+                        duration_s,
+                        sweep,
+                    } => write!(
+                        f,
+                        "{} chirp {amplitude:e} {unit}, {start_hz} → {end_hz} Hz over {duration_s:e} s",
+                        match sweep {
+                            Sweep::Linear => "linear",
+                            Sweep::Logarithmic => "logarithmic",
+                        }
+                    )?,
+                    Signal::Table { times_s, .. } => write!(f, "table of {} points", times_s.len())?,
+                }
+                write!(f, ", ramp {:e} s", d.ramp_s)
+            }
+            Excitation::Rest => write!(f, "none: the column is left at rest"),
+        }
+    }
+}
+
 /// How a drive's frequency moves through a chirp.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Sweep {

@@ -14,6 +14,9 @@ pub struct Args {
     /// Also draw the effective-mass curves (paper Fig. 3) into this directory (PNG and SVG).
     #[arg(long, value_name = "DIR")]
     pub plot: Option<std::path::PathBuf>,
+    /// With --plot: damp every resonator at this ratio ζ and draw Re M_eff (docs/physics.md §14).
+    #[arg(long, value_name = "ZETA", default_value_t = 0.0, requires = "plot")]
+    pub resonator_ratio: f64,
     /// Derive the cell of a rod of this length, in mm, from Timoshenko beam theory instead of
     /// printing the catalogue.
     #[arg(long, value_name = "LENGTH_MM", allow_negative_numbers = true)]
@@ -190,7 +193,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     }
     print!("{}", table()?);
     if let Some(dir) = &args.plot {
-        let files = woodpile_plot::dirs::cells_figures(dir)?;
+        let files = woodpile_plot::dirs::cells_figures(dir, args.resonator_ratio)?;
         if !ctx.quiet {
             println!("wrote {} files to {}", files.len(), dir.display());
         }

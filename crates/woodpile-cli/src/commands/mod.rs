@@ -7,6 +7,7 @@
 pub mod cells;
 pub mod scenarios;
 pub mod simulate;
+pub mod transmission;
 
 /// Options shared by every subcommand.
 #[derive(Debug, Clone, Copy, Default)]

@@ -3,7 +3,7 @@
 use super::Context;
 use crate::CliError;
 use std::path::{Path, PathBuf};
-use woodpile::{simulate, Excitation, Trajectory};
+use woodpile::{simulate, Trajectory};
 use woodpile_io::atomic::{Staging, RUN_MARKER};
 use woodpile_io::limits::RunSize;
 use woodpile_io::rundir::{write_run, RunRecord, SummaryJson, RUN_FILES};
@@ -54,7 +54,12 @@ pub struct Loaded {
 
 /// Loads the scenario the arguments name.
 pub fn load(args: &Args) -> Result<Loaded, CliError> {
-    if let Some(file) = &args.file {
+    load_scenario(args.file.as_ref(), args.scenario.as_deref())
+}
+
+/// Loads a scenario file, or a built-in scenario by name (default: the default job).
+pub fn load_scenario(file: Option<&PathBuf>, builtin: Option<&str>) -> Result<Loaded, CliError> {
+    if let Some(file) = file {
         let scenario = Scenario::load(file)?;
         let name = file
             .file_stem()
@@ -71,7 +76,7 @@ pub fn load(args: &Args) -> Result<Loaded, CliError> {
             base_dir,
         });
     }
-    let name = args.scenario.as_deref().unwrap_or(DEFAULT_SCENARIO);
+    let name = builtin.unwrap_or(DEFAULT_SCENARIO);
     Ok(Loaded {
         name: name.to_string(),
         file: None,
@@ -133,35 +138,6 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     Ok(())
 }
 
-/// One line describing a drive.
-fn drive_text(d: &woodpile::Drive) -> String {
-    let (what, unit) = match d.quantity {
-        woodpile::DriveQuantity::Force => ("force", "N"),
-        woodpile::DriveQuantity::Displacement { .. } => ("displacement", "m"),
-    };
-    let signal = match &d.signal {
-        woodpile::Signal::Harmonic {
-            amplitude,
-            frequency_hz,
-        } => format!("harmonic {amplitude:e} {unit} at {frequency_hz} Hz"),
-        woodpile::Signal::Chirp {
-            amplitude,
-            start_hz,
-            end_hz,
-            duration_s,
-            sweep,
-        } => format!(
-            "{} chirp {amplitude:e} {unit}, {start_hz} → {end_hz} Hz over {duration_s:e} s",
-            match sweep {
-                woodpile::Sweep::Linear => "linear",
-                woodpile::Sweep::Logarithmic => "logarithmic",
-            }
-        ),
-        woodpile::Signal::Table { times_s, .. } => format!("table of {} points", times_s.len()),
-    };
-    format!("drive ({what}): {signal}, ramp {:e} s", d.ramp_s)
-}
-
 /// The short human-readable report printed after a run.
 pub fn terminal_summary(r: &RunRecord<'_>, dir: &Path) -> String {
     let s = SummaryJson::new(r);
@@ -173,28 +149,7 @@ pub fn terminal_summary(r: &RunRecord<'_>, dir: &Path) -> String {
         "chain        {} elements: {labels}\n",
         chain.len()
     ));
-    match &r.resolved.excitation {
-        Excitation::Impact(st) => o.push_str(&format!(
-            "excitation   impact: {:.1} mm {} sphere ({:.4} g) at {:.4} m/s\n",
-            st.diameter_m * 1e3,
-            st.material.name,
-            st.mass_kg() * 1e3,
-            st.velocity_m_s
-        )),
-        Excitation::Blast(woodpile::BlastProfile::Friedlander {
-            peak_force_n,
-            duration_s,
-            decay,
-        }) => o.push_str(&format!(
-            "excitation   blast: Friedlander F0 = {peak_force_n} N, Td = {duration_s:e} s, b = {decay}\n"
-        )),
-        Excitation::Blast(woodpile::BlastProfile::Table { times_s, .. }) => o.push_str(&format!(
-            "excitation   blast: table of {} points\n",
-            times_s.len()
-        )),
-        Excitation::Drive(d) => o.push_str(&format!("excitation   {}\n", drive_text(d))),
-        Excitation::Rest => o.push_str("excitation   none: the column is left at rest\n"),
-    }
+    o.push_str(&format!("excitation   {}\n", r.resolved.excitation));
     let statics = &r.summary.static_contact_forces_n;
     if let (Some(first), Some(last)) = (statics.get(1), statics.last()) {
         o.push_str(&format!(

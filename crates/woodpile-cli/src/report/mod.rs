@@ -115,7 +115,7 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
     let blast = runs::blast(&s)?;
     let fine = runs::fine(&s)?;
     bar.set_message("effective-mass curves");
-    let cells_files = cells_figures(&s.figs)?;
+    let cells_files = cells_figures(&s.figs, 0.0)?;
     bar.inc(1);
     bar.set_message("writing the report");
     let r = Results {

@@ -36,8 +36,10 @@ pub struct EffectiveMassCurve {
     pub normalised_mass: Vec<f64>,
     /// Total mass M + Σ m_j \[kg\].
     pub total_mass_kg: f64,
-    /// Negative-effective-mass bands (f_j, F_j) \[Hz\].
+    /// Negative-effective-mass bands (f_j, F_j) \[Hz\] (of the undamped cell).
     pub negative_bands_hz: Vec<(f64, f64)>,
+    /// Im M_eff(2πf)/M_total [-]: zero without resonator damping, ≤ 0 with it.
+    pub normalised_loss: Vec<f64>,
 }
 
 impl EffectiveMassCurve {
@@ -52,7 +54,26 @@ impl EffectiveMassCurve {
                 .collect(),
             total_mass_kg: total,
             negative_bands_hz: cell.negative_mass_bands_hz(),
+            normalised_loss: vec![0.0; frequencies_hz.len()],
         }
+    }
+
+    /// The curve with every resonator damped at ratio ζ (docs/physics.md §14): `normalised_mass`
+    /// is Re M_eff/M_total and `normalised_loss` Im M_eff/M_total.
+    pub fn damped(cell: &UnitCell, frequencies_hz: &[f64], ratio: f64) -> Result<Self> {
+        crate::error::require_non_negative("resonator_ratio", ratio)?;
+        let total = cell.total_mass_kg();
+        let m: Vec<_> = frequencies_hz
+            .iter()
+            .map(|f| cell.damped_effective_mass_kg(2.0 * PI * f, ratio) / total)
+            .collect();
+        Ok(EffectiveMassCurve {
+            frequencies_hz: frequencies_hz.to_vec(),
+            normalised_mass: m.iter().map(|z| z.re).collect(),
+            total_mass_kg: total,
+            negative_bands_hz: cell.negative_mass_bands_hz(),
+            normalised_loss: m.iter().map(|z| z.im).collect(),
+        })
     }
 }
 

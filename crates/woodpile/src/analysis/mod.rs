@@ -53,5 +53,6 @@ pub use spectrum::{
     Window,
 };
 pub use transmission::{
-    homogeneous_prediction, transmission, TransmissionSettings, TransmissionSpectrum,
+    homogeneous_prediction, transmission, EdgeComparison, TransmissionSettings,
+    TransmissionSpectrum,
 };

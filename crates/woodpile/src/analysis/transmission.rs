@@ -16,6 +16,7 @@
 
 use super::bands::BandStructure;
 use super::spectrum::{SpectrumPlan, SpectrumSettings};
+use crate::defaults;
 use crate::error::{require_positive, Error, Result};
 use crate::excitation::{Drive, DriveQuantity, Excitation, Signal, Sweep};
 use crate::integrate::Method;
@@ -45,12 +46,12 @@ impl TransmissionSettings {
     /// 1 % of the preload, the paper's RK4 step, samples every 5 µs (Nyquist 100 kHz).
     pub fn standard() -> Self {
         TransmissionSettings {
-            start_hz: 100.0,
-            end_hz: 30e3,
-            resolution_hz: 20.0,
-            relative_amplitude: 0.01,
+            start_hz: defaults::TRANSMISSION_START_HZ,
+            end_hz: defaults::TRANSMISSION_END_HZ,
+            resolution_hz: defaults::TRANSMISSION_RESOLUTION_HZ,
+            relative_amplitude: defaults::TRANSMISSION_RELATIVE_AMPLITUDE,
             method: Method::paper(),
-            sample_interval_s: 5e-6,
+            sample_interval_s: defaults::TRANSMISSION_SAMPLE_INTERVAL_S,
         }
     }
 
@@ -158,6 +159,51 @@ impl TransmissionSpectrum {
             bands.push((s, last));
         }
         bands
+    }
+}
+
+/// A predicted band edge and the nearest measured one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeComparison {
+    /// Predicted edge \[Hz\].
+    pub predicted_hz: f64,
+    /// Nearest measured stop-band edge \[Hz\] (None when no stop band was measured).
+    pub measured_hz: Option<f64>,
+}
+
+impl EdgeComparison {
+    /// measured / predicted − 1.
+    pub fn relative_error(&self) -> Option<f64> {
+        self.measured_hz.map(|m| m / self.predicted_hz - 1.0)
+    }
+}
+
+impl TransmissionSpectrum {
+    /// Every finite predicted gap edge inside the measured range, with the nearest edge of the
+    /// stop bands measured at `threshold_db` (empty without a prediction).
+    pub fn compare_edges(&self, threshold_db: f64) -> Vec<EdgeComparison> {
+        let measured: Vec<f64> = self
+            .stop_bands_hz(threshold_db)
+            .iter()
+            .flat_map(|&(lo, hi)| [lo, hi])
+            .collect();
+        let (lo, hi) = match (self.frequencies_hz.first(), self.frequencies_hz.last()) {
+            (Some(&a), Some(&b)) => (a, b),
+            _ => return Vec::new(),
+        };
+        self.prediction
+            .iter()
+            .flat_map(|p| p.gaps_hz.iter().flat_map(|&(a, b)| [a, b]))
+            .filter(|e| e.is_finite() && *e > lo && *e < hi)
+            .map(|predicted_hz| EdgeComparison {
+                predicted_hz,
+                measured_hz: measured.iter().copied().min_by(|a, b| {
+                    (a - predicted_hz)
+                        .abs()
+                        .total_cmp(&(b - predicted_hz).abs())
+                }),
+            })
+            .collect()
     }
 }
 

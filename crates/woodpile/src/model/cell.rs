@@ -143,6 +143,28 @@ impl UnitCell {
         self.primary_mass_kg + self.resonators.iter().map(|r| r.mass_kg).sum::<f64>()
     }
 
+    /// Damped effective mass M_eff(ω) = M + Σ_j m_j (k_j + iωc_j)/(k_j + iωc_j − ω² m_j) \[kg\], with
+    /// c_j = 2 ζ √(k_j m_j) for every resonator (docs/physics.md §14): complex, Im ≤ 0 (the cell
+    /// absorbs power), finite at the local resonances for ζ > 0; ζ = 0 gives
+    /// [`UnitCell::effective_mass_kg`].
+    pub fn damped_effective_mass_kg(
+        &self,
+        omega: f64,
+        ratio: f64,
+    ) -> rustfft::num_complex::Complex64 {
+        use rustfft::num_complex::Complex64;
+        let w2 = omega * omega;
+        self.resonators
+            .iter()
+            .map(|r| {
+                let c = 2.0 * ratio * (r.stiffness_n_per_m * r.mass_kg).sqrt();
+                let spring = Complex64::new(r.stiffness_n_per_m, omega * c);
+                r.mass_kg * spring / (spring - w2 * r.mass_kg)
+            })
+            .sum::<Complex64>()
+            + self.primary_mass_kg
+    }
+
     /// Effective mass M_eff(ω) \[kg\] at angular frequency ω [rad/s] (infinite at a local resonance).
     pub fn effective_mass_kg(&self, omega: f64) -> f64 {
         let w2 = omega * omega;

@@ -20,6 +20,7 @@ mod cell_table1_frequencies;
 mod cell_table1_from_beam;
 mod contact_beta_reference;
 mod convergence_order;
+mod damped_effective_mass;
 mod damping_hunt_crossley;
 mod damping_restitution;
 mod damping_zero_bit_identical;

@@ -1,0 +1,163 @@
+//! The output directory of `woodpile transmission` (docs/physics.md §15): the spectrum as CSV and
+//! `.npy`, and `transmission.json` with the settings, the Bloch prediction, the measured stop
+//! bands and the edge comparison. Written into a staged directory; `transmission.json` last.
+
+use crate::atomic::io_err;
+use crate::error::Error;
+use crate::rundir::write_npy;
+use serde::{Deserialize, Serialize};
+use std::io::Write;
+use std::path::Path;
+use woodpile::analysis::{TransmissionSettings, TransmissionSpectrum};
+
+/// Files a transmission directory holds (for the staged directory's overwrite policy).
+pub const TRANSMISSION_FILES: &[&str] = &[
+    "transmission.json",
+    "transmission.csv",
+    "frequency_hz.npy",
+    "transmission.npy",
+    "transmission_db.npy",
+    "transmission.png",
+    "transmission.svg",
+];
+
+/// The file whose presence marks a complete transmission directory.
+pub const TRANSMISSION_MARKER: &str = "transmission.json";
+
+/// A frequency band; `upper_hz` is null for a gap that never closes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct BandJson {
+    /// Lower edge \[Hz\].
+    pub lower_hz: f64,
+    /// Upper edge \[Hz\] (null: unbounded).
+    pub upper_hz: Option<f64>,
+}
+
+/// A predicted edge and the nearest measured one.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct EdgeJson {
+    /// Bloch prediction \[Hz\].
+    pub predicted_hz: f64,
+    /// Nearest measured stop-band edge \[Hz\].
+    pub measured_hz: Option<f64>,
+    /// measured / predicted − 1.
+    pub relative_error: Option<f64>,
+}
+
+/// `transmission.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TransmissionJson {
+    /// `woodpile`.
+    pub tool: String,
+    /// Version of woodpile that wrote it.
+    pub version: String,
+    /// Scenario name.
+    pub scenario: String,
+    /// Static force on the top element F_p \[N\].
+    pub preload_n: f64,
+    /// Chirp amplitude \[N\].
+    pub amplitude_n: f64,
+    /// Chirp and spectrum range \[Hz\].
+    pub start_hz: f64,
+    /// Chirp and spectrum range \[Hz\].
+    pub end_hz: f64,
+    /// Frequency resolution \[Hz\].
+    pub resolution_hz: f64,
+    /// Level below which a frequency is in a measured stop band \[dB\].
+    pub stop_band_threshold_db: f64,
+    /// Measured stop bands \[Hz\].
+    pub measured_stop_bands: Vec<BandJson>,
+    /// Predicted pass bands (homogeneous chains only).
+    pub predicted_pass_bands: Option<Vec<BandJson>>,
+    /// Predicted gaps (homogeneous chains only).
+    pub predicted_gaps: Option<Vec<BandJson>>,
+    /// Predicted edges in range against the measured ones.
+    pub edges: Vec<EdgeJson>,
+    /// Energy balance of the driven run (relative).
+    pub energy_max_relative_error: f64,
+    /// Wall-clock time of the run \[s\].
+    pub wall_time_s: f64,
+}
+
+fn bands(list: &[(f64, f64)]) -> Vec<BandJson> {
+    list.iter()
+        .map(|&(lower_hz, hi)| BandJson {
+            lower_hz,
+            upper_hz: hi.is_finite().then_some(hi),
+        })
+        .collect()
+}
+
+impl TransmissionJson {
+    /// The record of a measured spectrum.
+    pub fn new(
+        scenario: &str,
+        t: &TransmissionSpectrum,
+        settings: &TransmissionSettings,
+        threshold_db: f64,
+    ) -> Self {
+        TransmissionJson {
+            tool: "woodpile".into(),
+            version: env!("CARGO_PKG_VERSION").into(),
+            scenario: scenario.into(),
+            preload_n: t.preload_n,
+            amplitude_n: t.amplitude_n,
+            start_hz: settings.start_hz,
+            end_hz: settings.end_hz,
+            resolution_hz: settings.resolution_hz,
+            stop_band_threshold_db: threshold_db,
+            measured_stop_bands: bands(&t.stop_bands_hz(threshold_db)),
+            predicted_pass_bands: t.prediction.as_ref().map(|p| bands(&p.pass_bands_hz)),
+            predicted_gaps: t.prediction.as_ref().map(|p| bands(&p.gaps_hz)),
+            edges: t
+                .compare_edges(threshold_db)
+                .iter()
+                .map(|e| EdgeJson {
+                    predicted_hz: e.predicted_hz,
+                    measured_hz: e.measured_hz,
+                    relative_error: e.relative_error(),
+                })
+                .collect(),
+            energy_max_relative_error: t.run.energy.max_relative_error,
+            wall_time_s: t.run.wall_time_s,
+        }
+    }
+}
+
+/// Writes every file of a transmission directory into `dir` (`transmission.json` last).
+pub fn write_transmission(dir: &Path, record: &TransmissionJson, t: &TransmissionSpectrum) -> Result<(), Error> {
+    let csv_path = dir.join("transmission.csv");
+    let csv_err = |e: csv::Error| io_err(&csv_path)(std::io::Error::other(e));
+    let mut w = csv::Writer::from_path(&csv_path).map_err(csv_err)?;
+    w.write_record([
+        "frequency_hz",
+        "drive_amplitude_n",
+        "wall_amplitude_n",
+        "transmission",
+        "transmission_db",
+    ])
+    .map_err(csv_err)?;
+    for k in 0..t.frequencies_hz.len() {
+        let row = [
+            t.frequencies_hz[k],
+            t.drive_amplitude_n[k],
+            t.wall_amplitude_n[k],
+            t.transmission[k],
+            t.transmission_db[k],
+        ];
+        w.write_record(row.iter().map(|v| format!("{v:e}")))
+            .map_err(csv_err)?;
+    }
+    w.flush().map_err(io_err(&csv_path))?;
+    let n = t.frequencies_hz.len() as u64;
+    write_npy(&dir.join("frequency_hz.npy"), &[n], &t.frequencies_hz)?;
+    write_npy(&dir.join("transmission.npy"), &[n], &t.transmission)?;
+    write_npy(&dir.join("transmission_db.npy"), &[n], &t.transmission_db)?;
+    let path = dir.join(TRANSMISSION_MARKER);
+    let mut file = std::io::BufWriter::new(std::fs::File::create(&path).map_err(io_err(&path))?);
+    serde_json::to_writer_pretty(&mut file, record)
+        .map_err(|e| io_err(&path)(std::io::Error::other(e)))?;
+    writeln!(file)
+        .and_then(|_| file.flush())
+        .map_err(io_err(&path))
+}
