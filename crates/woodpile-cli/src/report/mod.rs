@@ -109,7 +109,8 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
     let (impact_cases, wall_compare, waves) = runs::impact_homogeneous(&s)?;
     let (ga_res, ga_rig, optima) = runs::optima(&s)?;
     bar.set_message("layer-by-layer protocol");
-    let (protocol, protocol_map_files, protocol_peak_files) = runs::protocol(&s, &optima[0].0)?;
+    let (protocol, protocol_damped, protocol_map_files, protocol_peak_files) =
+        runs::protocol(&s, &optima[0].0)?;
     bar.inc(1);
     bar.set_message("blast cases");
     let blast = runs::blast(&s)?;
@@ -126,6 +127,7 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
         ga_rig,
         optima,
         protocol,
+        protocol_damped,
         protocol_map_files,
         protocol_peak_files,
         blast,

@@ -511,6 +511,7 @@ fn optima(doc: &mut Doc, s: &Setup, r: &Results) {
 fn protocol(doc: &mut Doc, s: &Setup, r: &Results) {
     let Results {
         protocol,
+        protocol_damped,
         protocol_map_files,
         protocol_peak_files,
         optima,
@@ -530,7 +531,26 @@ fn protocol(doc: &mut Doc, s: &Setup, r: &Results) {
         1 + protocol.peak_wall_force_n.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1)).map_or(0, |p| p.0),
     ));
     doc.figure(protocol_map_files, out, "Layer-by-layer protocol on the resonant GA optimum under the impact: wall force of the first k rods on the sensor over time (Fig. 7 a).");
-    doc.figure(protocol_peak_files, out, "Layer-by-layer protocol on the resonant GA optimum under the impact: peak force per interface, protocol against the full chain's contact peaks (Fig. 7 b).");
+    // Damped over lossless, averaged over the front and the rear half of the chain.
+    let mean_ratio = |range: std::ops::Range<usize>| {
+        let len = range.len() as f64;
+        range
+            .map(|k| protocol_damped.peak_wall_force_n[k] / protocol.peak_wall_force_n[k])
+            .sum::<f64>()
+            / len
+    };
+    doc.p(format!(
+        "With damping (docs/physics.md §14: restitution e = 0.9 at every contact, tension-free, and resonators damped at ζ = 0.01 — a stated illustration, not a measured property of fused quartz) the protocol's peaks fall to {} of the lossless ones over the front half of the chain (k = 1..{}) and to {} over the rear half. The paper explains its measured rear-chain peaks lying below its simulation by damping in the test setup (§4); {}",
+        pct(mean_ratio(0..n / 2)),
+        n / 2,
+        pct(mean_ratio(n / 2..n)),
+        if mean_ratio(n / 2..n) < mean_ratio(0..n / 2) {
+            "losses lower the peaks, and more so the further the wave has travelled: the direction of that discrepancy."
+        } else {
+            "here the losses do not lower the rear peaks more than the front ones, so damping of this size alone does not reproduce the direction of that discrepancy."
+        },
+    ));
+    doc.figure(protocol_peak_files, out, "Layer-by-layer protocol on the resonant GA optimum under the impact: peak force per interface, protocol (lossless and damped) against the full chain's contact peaks (Fig. 7 b).");
 }
 
 /// The blast cases (paper Figs. 8, 9).

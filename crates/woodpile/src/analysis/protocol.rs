@@ -64,10 +64,15 @@ pub fn sub_chain(chain: &Chain, k: usize) -> Result<Chain> {
             "the layer-by-layer protocol measures the wall force: the chain needs a wall",
         ));
     }
+    // The same dissipation and static load; resonator overrides of the elements kept.
+    let mut damping = chain.damping().clone();
+    damping.resonator_overrides.retain(|o| o.element <= k);
     let builder = |k: usize| {
         let mut b = ChainBuilder::new(chain.elements()[..k].to_vec())
             .wall(chain.wall().clone())
-            .crossing_angle_rad(chain.crossing_angle_rad());
+            .crossing_angle_rad(chain.crossing_angle_rad())
+            .damping(damping.clone())
+            .preload(*chain.preload());
         for (i, &beta) in chain.inner_betas()[..k - 1].iter().enumerate() {
             b = b.contact_beta(i + 1, beta);
         }
