@@ -105,7 +105,10 @@ impl LinePlot {
         }
         for (i, (label, segments)) in self.series.iter().enumerate() {
             let colour = series_color(i);
-            let style = colour.stroke_width(2);
+            // Dense series (spectra) 1 px wide: the miter joins of their sharp peaks would
+            // overshoot the frame by far at 2 px.
+            let points: usize = segments.iter().map(Vec::len).sum();
+            let style = colour.stroke_width(if points > 1000 { 1 } else { 2 });
             for (k, seg) in segments.iter().enumerate() {
                 let s = chart.draw_series(LineSeries::new(seg.iter().copied(), style))?;
                 if k == 0 {
@@ -491,6 +494,16 @@ pub fn transmission(
         .map(|(f, t)| (f * 1e-3, *t))
         .collect();
     let (lo, hi) = finite_range(title, points.iter().map(|p| p.1))?;
+    // Resonance peaks and the deepest notches say little: show threshold − 40 dB to +40 dB at
+    // most, points clamped to the frame (plotters does not clip lines).
+    let (lo, hi) = padded(
+        lo.max(threshold_db - 40.0).min(threshold_db - 5.0),
+        hi.min(40.0).max(5.0),
+    );
+    let points: Vec<(f64, f64)> = points
+        .into_iter()
+        .map(|(f, t)| (f, t.clamp(lo, hi)))
+        .collect();
     let x_range = match (points.first(), points.last()) {
         (Some(a), Some(b)) if b.0 > a.0 => (a.0, b.0),
         _ => return Err(bad(title, "fewer than two finite frequencies")),
@@ -518,7 +531,7 @@ pub fn transmission(
         ],
         bands,
         x_range,
-        y_range: padded(lo.min(threshold_db), hi.max(threshold_db)),
+        y_range: (lo, hi),
         log_y: false,
         markers: false,
         zero_line: true,

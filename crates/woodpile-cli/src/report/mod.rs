@@ -115,6 +115,8 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
     bar.set_message("blast cases");
     let blast = runs::blast(&s)?;
     let fine = runs::fine(&s)?;
+    bar.set_message("transmission spectrum");
+    let transmission = runs::transmission(&s)?;
     bar.set_message("effective-mass curves");
     let cells_files = cells_figures(&s.figs, 0.0)?;
     bar.inc(1);
@@ -132,6 +134,7 @@ fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), Cli
         protocol_peak_files,
         blast,
         fine,
+        transmission,
         cells_files,
         elapsed: bar.elapsed().as_secs_f64(),
     };

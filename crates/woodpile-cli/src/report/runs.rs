@@ -524,6 +524,8 @@ pub struct Results {
     pub blast: BlastRuns,
     /// The GAs over derived cells (beyond the paper).
     pub fine: FineRuns,
+    /// The transmission spectrum of the preloaded 80 mm chain and its figure.
+    pub transmission: (woodpile::analysis::TransmissionSpectrum, Vec<PathBuf>),
     /// The effective-mass figures.
     pub cells_files: Vec<PathBuf>,
     /// Wall-clock time of the runs \[s\].
@@ -579,4 +581,37 @@ pub fn fine(s: &Setup) -> Result<FineRuns, CliError> {
         summaries,
         files,
     })
+}
+
+/// The preload of the report's transmission spectrum \[N\] and its on-site damping time \[s\].
+pub const TRANSMISSION_PRELOAD: (f64, f64) = (10.0, 0.02);
+
+/// The transmission spectrum of twenty 80 mm rods on the sensor under a 10 N preload with light
+/// on-site damping (docs/physics.md §15), and its figure.
+pub fn transmission(
+    s: &Setup,
+) -> Result<(woodpile::analysis::TransmissionSpectrum, Vec<PathBuf>), CliError> {
+    let (force_n, tau) = TRANSMISSION_PRELOAD;
+    let chain = ChainBuilder::table1_rods(&[80; 20], CellModel::Resonant)?
+        .preload(woodpile::Preload {
+            force_n,
+            gravity_m_s2: 0.0,
+        })
+        .damping(woodpile::Damping {
+            on_site_time_s: Some(tau),
+            ..woodpile::Damping::default()
+        })
+        .build()?;
+    let settings = woodpile::analysis::TransmissionSettings {
+        method: woodpile::Method::Rk4 { time_step_s: 2e-7 },
+        ..woodpile::analysis::TransmissionSettings::standard()
+    };
+    let t = woodpile::analysis::transmission(&chain, &settings)?;
+    let files = woodpile_plot::transmission(
+        &t,
+        woodpile::defaults::TRANSMISSION_STOP_DB,
+        &format!("Twenty 80 mm rods on the sensor, F_p = {force_n} N, on-site τ = {tau} s"),
+        &s.figs.join("transmission_80mm"),
+    )?;
+    Ok((t, files))
 }

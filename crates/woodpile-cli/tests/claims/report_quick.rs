@@ -42,7 +42,7 @@ fn quick_report_writes_every_file_it_names() {
     let figures = figures_named(&md);
     // Impact (4 chains × 4 + 1), optima (2 × 4), protocol (2), blast (4 × 4 + 1 + the F0 × Td
     // sweep), the fine design space's optimum (1), Fig. 3 (2).
-    assert_eq!(figures.len(), 48, "figures named: {figures:?}");
+    assert_eq!(figures.len(), 49, "figures named: {figures:?}");
     for f in &figures {
         let png = out.join(f);
         assert!(png.is_file(), "{f} is named in report.md but missing");
