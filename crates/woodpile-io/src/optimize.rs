@@ -351,6 +351,7 @@ impl OptimizeConfig {
             excitation: c.excitation.clone(),
             wall: c.wall.clone(),
             run: c.run.clone(),
+            ..Scenario::default()
         }
         .complete();
         c.excitation = base.excitation;
@@ -379,6 +380,7 @@ impl OptimizeConfig {
             excitation: self.excitation.clone(),
             wall: self.wall.clone(),
             run: self.run.clone(),
+            ..Scenario::default()
         }
     }
 

@@ -7,7 +7,7 @@
 
 use crate::atomic::{io_err, RUN_MARKER};
 use crate::error::Error;
-use crate::scenario::{resolve, Resolved, Scenario};
+use crate::scenario::{resolve, ExcitationKind, Resolved, Scenario};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::fs;
@@ -29,6 +29,7 @@ pub const RUN_FILES: &[&str] = &[
     "energy_j.npy",
     "wall_energy_j.npy",
     "input_work_j.npy",
+    "dissipated_j.npy",
     "displacements_m.npy",
     "velocities_m_s.npy",
     "striker.npy",
@@ -53,7 +54,7 @@ pub struct RunRecord<'a> {
 }
 
 /// Energy bookkeeping in `summary.json`.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct EnergyJson {
     /// Total energy at t = 0 \[J\].
     pub initial_j: f64,
@@ -61,6 +62,9 @@ pub struct EnergyJson {
     pub final_j: f64,
     /// Work done by the load \[J\].
     pub input_work_j: f64,
+    /// Energy dissipated \[J\] (0 without damping, and in runs written before it existed).
+    #[serde(default)]
+    pub dissipated_j: f64,
     /// Largest relative error of the energy balance.
     pub max_relative_error: f64,
 }
@@ -83,7 +87,7 @@ pub struct IntegratorJson {
 pub struct SummaryJson {
     /// Scenario name.
     pub scenario: String,
-    /// `impact` or `blast`.
+    /// `impact`, `blast`, `drive` or `rest`.
     pub excitation: &'static str,
     /// Element labels, top to bottom.
     pub chain_labels: Vec<String>,
@@ -95,9 +99,18 @@ pub struct SummaryJson {
     pub incident_peak_force_n: f64,
     /// Peak of contact N (the wall) \[N\].
     pub transmitted_peak_force_n: f64,
-    /// Transmitted / incident; null when the incident force is zero or the wave never reached
-    /// the wall (`wave_arrived` false).
+    /// Under a static load: the incident peak minus contact 1's static force \[N\].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub incident_dynamic_peak_force_n: Option<f64>,
+    /// Under a static load: the transmitted peak minus contact N's static force \[N\].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub transmitted_dynamic_peak_force_n: Option<f64>,
+    /// Transmitted / incident (of the dynamic parts under a static load); null when the incident
+    /// force is zero or the wave never reached the wall (`wave_arrived` false).
     pub transmission_ratio: Option<f64>,
+    /// Static force of every contact 0..=N under a preload or gravity \[N\] (absent without one).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub static_contact_forces_n: Vec<f64>,
     /// Whether the transmitted peak reached the documented fraction of the incident one.
     pub wave_arrived: bool,
     /// Whether the energy balance closes to within `woodpile::defaults::ENERGY_ERROR_WARN`
@@ -140,6 +153,8 @@ impl SummaryJson {
                 *p = p.max(e);
             }
         }
+        let statics = &s.static_contact_forces_n;
+        let dynamic = |c: usize, total: f64| statics.get(c).map(|f| total - f);
         SummaryJson {
             scenario: r.name.to_string(),
             excitation: r.resolved.excitation.kind_name(),
@@ -154,7 +169,13 @@ impl SummaryJson {
             n_samples: s.n_samples,
             incident_peak_force_n: s.incident_peak_force_n,
             transmitted_peak_force_n: s.transmitted_peak_force_n,
+            incident_dynamic_peak_force_n: dynamic(1, s.incident_peak_force_n),
+            transmitted_dynamic_peak_force_n: dynamic(
+                r.resolved.chain.len(),
+                s.transmitted_peak_force_n,
+            ),
             transmission_ratio: s.transmission_ratio,
+            static_contact_forces_n: s.static_contact_forces_n.clone(),
             wave_arrived: s.wave_arrived,
             energy_balance_ok: s.energy.max_relative_error <= woodpile::defaults::ENERGY_ERROR_WARN,
             restitution_coefficient: s.restitution_coefficient(),
@@ -166,6 +187,7 @@ impl SummaryJson {
                 initial_j: s.energy.initial_j,
                 final_j: s.energy.final_j,
                 input_work_j: s.energy.input_work_j,
+                dissipated_j: s.energy.dissipated_j,
                 max_relative_error: s.energy.max_relative_error,
             },
             integrator: IntegratorJson {
@@ -275,11 +297,12 @@ pub fn write_npy(path: &Path, shape: &[u64], data: &[f64]) -> Result<(), Error> 
 
 /// Writes every output file of a run into `dir`.
 ///
-/// Files: `summary.json`, `run.json`, `forces.csv`, `energy.csv`, `displacements.csv`,
-/// `velocities.csv`, `striker.csv` (impact), and `time_s.npy`, `forces_n.npy`
-/// (samples × contacts 0..=N), `energy_j.npy` (samples × layers 0..=N), `wall_energy_j.npy`,
-/// `input_work_j.npy`, `displacements_m.npy`, `velocities_m_s.npy` (samples × N),
-/// `striker.npy` (impact: samples × \[position m, velocity m/s\]).
+/// Files: `summary.json`, `run.json`, `forces.csv`, `energy.csv` (layers, wall, total, input
+/// work, dissipated), `displacements.csv`, `velocities.csv`, `striker.csv` (impact), and
+/// `time_s.npy`, `forces_n.npy` (samples × contacts 0..=N), `energy_j.npy` (samples × layers
+/// 0..=N), `wall_energy_j.npy`, `input_work_j.npy`, `dissipated_j.npy`, `displacements_m.npy`,
+/// `velocities_m_s.npy` (samples × N), `striker.npy` (impact: samples × \[position m, velocity
+/// m/s\]).
 pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), Error> {
     let t = r.trajectory;
     let n = t.n_elements;
@@ -349,16 +372,17 @@ pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), Error> {
     )?;
     let mut header = vec!["time_s".to_string()];
     header.extend((0..nc).map(|l| format!("layer_{l}_j")));
-    header.extend(["wall_j", "total_j", "input_work_j"].map(String::from));
+    header.extend(["wall_j", "total_j", "input_work_j", "dissipated_j"].map(String::from));
     let energy_rows = t
         .layer_energies_j
         .chunks(nc)
         .zip(&t.wall_energy_j)
         .zip(&t.input_work_j)
-        .map(|((row, &w), &work)| {
+        .zip(&t.dissipated_j)
+        .map(|(((row, &w), &work), &lost)| {
             let mut v = row.to_vec();
             let total = row.iter().sum::<f64>() + w;
-            v.extend([w, total, work]);
+            v.extend([w, total, work, lost]);
             v
         });
     write_csv(&dir.join("energy.csv"), &header, &t.times_s, energy_rows)?;
@@ -409,6 +433,7 @@ pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), Error> {
     )?;
     write_npy(&dir.join("wall_energy_j.npy"), &[ns64], &t.wall_energy_j)?;
     write_npy(&dir.join("input_work_j.npy"), &[ns64], &t.input_work_j)?;
+    write_npy(&dir.join("dissipated_j.npy"), &[ns64], &t.dissipated_j)?;
     write_npy(
         &dir.join("displacements_m.npy"),
         &[ns64, n64],
@@ -450,7 +475,7 @@ pub struct RunInfo {
     pub labels: Vec<String>,
     /// Unit cells of the elements (for the negative-mass bands).
     pub cells: Vec<UnitCell>,
-    /// "impact 1.98 m/s" or "blast …".
+    /// "impact 1.98 m/s", "blast …", "drive chirp" or "rest".
     pub excitation: String,
     /// The chain, when the scenario still resolves (a blast table may have moved).
     pub chain: Option<Chain>,
@@ -518,10 +543,19 @@ pub fn read_run_info(dir: &Path) -> Result<RunInfo, Error> {
         })
         .collect::<Result<Vec<_>, _>>()?;
     let x = &run.scenario.excitation;
-    let excitation = match (run.striker_velocity_m_s, x.peak_force_n, x.duration_s) {
-        (Some(v), _, _) => format!("impact {v:.2} m/s"),
-        (None, Some(f), Some(td)) => format!("blast {f:.0} N / {:.2} ms", td * 1e3),
-        (None, _, _) => "blast (tabulated load)".to_string(),
+    let excitation = match (
+        x.kind,
+        run.striker_velocity_m_s,
+        x.peak_force_n,
+        x.duration_s,
+    ) {
+        (ExcitationKind::Drive | ExcitationKind::Rest, ..) => {
+            let signal = x.signal.map_or(String::new(), |s| format!(" {}", s.name()));
+            format!("{}{signal}", x.kind.name())
+        }
+        (_, Some(v), _, _) => format!("impact {v:.2} m/s"),
+        (_, None, Some(f), Some(td)) => format!("blast {f:.0} N / {:.2} ms", td * 1e3),
+        (_, None, _, _) => "blast (tabulated load)".to_string(),
     };
     // The chain itself (element bodies, for the picture) comes from the completed scenario,
     // when it still resolves (a blast table may have moved).
@@ -591,12 +625,16 @@ pub fn read_trajectory(dir: &Path, n_elements: usize) -> Result<Trajectory, Erro
         let forces = read_npy(&dir.join("forces_n.npy"), &[Some(ns), Some(nc)])?;
         let energies = read_npy(&dir.join("energy_j.npy"), &[Some(ns), Some(nc)])?;
         let wall = read_npy(&dir.join("wall_energy_j.npy"), &[Some(ns)])?;
-        let work = if dir.join("input_work_j.npy").is_file() {
-            read_npy(&dir.join("input_work_j.npy"), &[Some(ns)])?
-        } else {
-            vec![0.0; ns]
+        // Older runs lack these: 0.
+        let optional = |name: &str| match dir.join(name) {
+            p if p.is_file() => read_npy(&p, &[Some(ns)]),
+            _ => Ok(vec![0.0; ns]),
         };
-        return Ok(trajectory(n_elements, times, forces, energies, wall, work));
+        let work = optional("input_work_j.npy")?;
+        let lost = optional("dissipated_j.npy")?;
+        return Ok(trajectory(
+            n_elements, times, forces, energies, wall, work, lost,
+        ));
     }
     let forces_csv = dir.join("forces.csv");
     let energy_csv = dir.join("energy.csv");
@@ -616,11 +654,11 @@ pub fn read_trajectory(dir: &Path, n_elements: usize) -> Result<Trajectory, Erro
         &(0..nc)
             .map(|c| format!("contact_{c}_n"))
             .collect::<Vec<_>>(),
+        0,
     )?;
     let mut energy_cols: Vec<String> = (0..nc).map(|l| format!("layer_{l}_j")).collect();
-    energy_cols.push("wall_j".into());
-    energy_cols.push("input_work_j".into());
-    let (etimes, e) = read_csv(&energy_csv, &energy_cols)?;
+    energy_cols.extend(["wall_j", "input_work_j", "dissipated_j"].map(String::from));
+    let (etimes, e) = read_csv(&energy_csv, &energy_cols, 2)?;
     if etimes.len() != times.len() {
         return Err(read_error(
             &energy_csv,
@@ -631,11 +669,13 @@ pub fn read_trajectory(dir: &Path, n_elements: usize) -> Result<Trajectory, Erro
             ),
         ));
     }
-    let w = nc + 2;
+    let w = nc + 3;
     let energies = e.chunks(w).flat_map(|r| r[..nc].to_vec()).collect();
-    let wall = e.chunks(w).map(|r| r[nc]).collect();
-    let work = e.chunks(w).map(|r| r[nc + 1]).collect();
-    Ok(trajectory(n_elements, times, forces, energies, wall, work))
+    let column = |k: usize| e.chunks(w).map(|r| r[k]).collect();
+    let (wall, work, lost) = (column(nc), column(nc + 1), column(nc + 2));
+    Ok(trajectory(
+        n_elements, times, forces, energies, wall, work, lost,
+    ))
 }
 
 fn trajectory(
@@ -645,6 +685,7 @@ fn trajectory(
     layer_energies_j: Vec<f64>,
     wall_energy_j: Vec<f64>,
     input_work_j: Vec<f64>,
+    dissipated_j: Vec<f64>,
 ) -> Trajectory {
     Trajectory {
         n_elements,
@@ -653,6 +694,7 @@ fn trajectory(
         layer_energies_j,
         wall_energy_j,
         input_work_j,
+        dissipated_j,
         ..Trajectory::default()
     }
 }
@@ -683,8 +725,13 @@ fn read_npy(path: &Path, shape: &[Option<usize>]) -> Result<Vec<f64>, Error> {
     Ok(values)
 }
 
-/// Reads `time_s` and the named columns of a CSV file: (times, rows of the columns).
-fn read_csv(path: &Path, columns: &[String]) -> Result<(Vec<f64>, Vec<f64>), Error> {
+/// Reads `time_s` and the named columns of a CSV file: (times, rows of the columns). The last
+/// `optional` columns may be missing (older runs): they read 0.
+fn read_csv(
+    path: &Path,
+    columns: &[String],
+    optional: usize,
+) -> Result<(Vec<f64>, Vec<f64>), Error> {
     let csv_err = |e: csv::Error| read_error(path, e.to_string());
     let mut r = csv::Reader::from_path(path).map_err(csv_err)?;
     let header = r.headers().map_err(csv_err)?.clone();
@@ -695,9 +742,14 @@ fn read_csv(path: &Path, columns: &[String]) -> Result<(Vec<f64>, Vec<f64>), Err
             .ok_or_else(|| read_error(path, format!("no column `{name}`")))
     };
     let t_col = index("time_s")?;
+    let required = columns.len() - optional;
     let cols = columns
         .iter()
-        .map(|c| index(c))
+        .enumerate()
+        .map(|(k, c)| match index(c) {
+            Err(_) if k >= required => Ok(None),
+            found => found.map(Some),
+        })
         .collect::<Result<Vec<_>, _>>()?;
     let (mut times, mut data) = (Vec::new(), Vec::new());
     for (line, rec) in r.records().enumerate() {
@@ -714,7 +766,7 @@ fn read_csv(path: &Path, columns: &[String]) -> Result<(Vec<f64>, Vec<f64>), Err
         };
         times.push(num(t_col)?);
         for &c in &cols {
-            data.push(num(c)?);
+            data.push(c.map_or(Ok(0.0), num)?);
         }
     }
     Ok((times, data))

@@ -1,13 +1,20 @@
-//! Blast force tables: CSV files with a header row `time_s, force_n` and one (t, F) row per line.
+//! Load tables: CSV files with a header row `time_s, force_n` (a blast) or `time_s, value` (a
+//! drive signal) and one (t, value) row per line.
 
 use crate::error::Error;
 use std::path::Path;
 use woodpile::BlastProfile;
 
-/// Reads a blast table. Errors name the file and the line: a missing file, a header that is not
-/// `time_s, force_n`, a row that is not two finite numbers, times that do not increase strictly,
-/// fewer than two rows.
+/// Reads a blast table (header `time_s, force_n`); errors as [`load_table`].
 pub fn load_blast_table(path: &Path) -> Result<BlastProfile, Error> {
+    let (times, forces) = load_table(path, "force_n")?;
+    Ok(BlastProfile::table(times, forces)?)
+}
+
+/// Reads a table of (time_s, `column`) rows: (times, values). Errors name the file and the line:
+/// a missing file, a header that is not `time_s, COLUMN`, a row that is not two finite numbers,
+/// times that do not increase strictly, fewer than two rows.
+pub fn load_table(path: &Path, column: &str) -> Result<(Vec<f64>, Vec<f64>), Error> {
     let file = std::fs::File::open(path).map_err(|e| Error::Read {
         path: path.to_path_buf(),
         source: e,
@@ -28,14 +35,17 @@ pub fn load_blast_table(path: &Path) -> Result<BlastProfile, Error> {
         .map_err(|e| table_err(1, format!("cannot read the header row: {e}")))?
         .clone();
     let names: Vec<&str> = headers.iter().collect();
-    if names != ["time_s", "force_n"] {
+    if names != ["time_s", column] {
         return Err(table_err(
             1,
-            format!("header is `{}`; expected `time_s,force_n`", names.join(",")),
+            format!(
+                "header is `{}`; expected `time_s,{column}`",
+                names.join(",")
+            ),
         ));
     }
     let mut times = Vec::new();
-    let mut forces: Vec<f64> = Vec::new();
+    let mut values: Vec<f64> = Vec::new();
     for record in reader.records() {
         let record = record.map_err(|e| {
             let line = e.position().map_or(0, |p| p.line());
@@ -45,7 +55,7 @@ pub fn load_blast_table(path: &Path) -> Result<BlastProfile, Error> {
         if record.len() != 2 {
             return Err(table_err(
                 line,
-                format!("has {} fields; expected 2 (time_s, force_n)", record.len()),
+                format!("has {} fields; expected 2 (time_s, {column})", record.len()),
             ));
         }
         let parse = |k: usize, name: &str| -> Result<f64, Error> {
@@ -59,7 +69,7 @@ pub fn load_blast_table(path: &Path) -> Result<BlastProfile, Error> {
             }
         };
         let t = parse(0, "time_s")?;
-        let f = parse(1, "force_n")?;
+        let f = parse(1, column)?;
         if let Some(&prev) = times.last() {
             if t <= prev {
                 return Err(table_err(
@@ -69,7 +79,7 @@ pub fn load_blast_table(path: &Path) -> Result<BlastProfile, Error> {
             }
         }
         times.push(t);
-        forces.push(f);
+        values.push(f);
     }
     if times.len() < 2 {
         return Err(table_err(
@@ -77,5 +87,5 @@ pub fn load_blast_table(path: &Path) -> Result<BlastProfile, Error> {
             format!("has {} data rows; a table needs at least two", times.len()),
         ));
     }
-    Ok(BlastProfile::table(times, forces)?)
+    Ok((times, values))
 }

@@ -125,7 +125,11 @@ impl TransmissionJson {
 }
 
 /// Writes every file of a transmission directory into `dir` (`transmission.json` last).
-pub fn write_transmission(dir: &Path, record: &TransmissionJson, t: &TransmissionSpectrum) -> Result<(), Error> {
+pub fn write_transmission(
+    dir: &Path,
+    record: &TransmissionJson,
+    t: &TransmissionSpectrum,
+) -> Result<(), Error> {
     let csv_path = dir.join("transmission.csv");
     let csv_err = |e: csv::Error| io_err(&csv_path)(std::io::Error::other(e));
     let mut w = csv::Writer::from_path(&csv_path).map_err(csv_err)?;

@@ -13,7 +13,7 @@
 //! | [`force_histories`] | force at chosen contacts vs time | Fig. 7 c |
 //! | [`spectra`] | amplitude spectra (log) with negative-mass bands shaded | Fig. 9 |
 //! | [`effective_mass`] | M_eff/M_total vs frequency with bands shaded | Fig. 3 |
-//! | [`transmission`] | transmission spectrum [dB] with the predicted gaps shaded | – |
+//! | [`transmission`] | transmission spectrum (dB) with the predicted gaps shaded | – |
 //! | [`convergence`] | best and mean objective per GA generation | – |
 //! | [`chain_picture`] | rods to scale, top to bottom | Fig. 5 d, e (right) |
 //!

@@ -498,7 +498,7 @@ pub fn transmission(
     // most, points clamped to the frame (plotters does not clip lines).
     let (lo, hi) = padded(
         lo.max(threshold_db - 40.0).min(threshold_db - 5.0),
-        hi.min(40.0).max(5.0),
+        hi.clamp(5.0, 40.0),
     );
     let points: Vec<(f64, f64)> = points
         .into_iter()

@@ -150,19 +150,22 @@ pub fn terminal_summary(r: &RunRecord<'_>, dir: &Path) -> String {
         chain.len()
     ));
     o.push_str(&format!("excitation   {}\n", r.resolved.excitation));
+    // Under a static load: totals, and the dynamic parts (total − static) beside them.
     let statics = &r.summary.static_contact_forces_n;
-    if let (Some(first), Some(last)) = (statics.get(1), statics.last()) {
-        o.push_str(&format!(
-            "static       contact 1 carries {first:.4} N, the wall {last:.4} N (peaks below are totals; dynamic = total − static)\n"
-        ));
-    }
+    let dynamic = |c: usize, total: f64| match statics.get(c) {
+        Some(f) => format!(", dynamic {:.4} N (static {f:.4} N)", total - f),
+        None => String::new(),
+    };
     o.push_str(&format!(
-        "incident     {:.4} N   (peak of contact 1)\n",
-        s.incident_peak_force_n
+        "incident     {:.4} N   (peak of contact 1{})\n",
+        s.incident_peak_force_n,
+        dynamic(1, s.incident_peak_force_n)
     ));
     o.push_str(&format!(
-        "transmitted  {:.4} N   (peak of contact {}, the wall)\n",
-        s.transmitted_peak_force_n, s.n_elements
+        "transmitted  {:.4} N   (peak of contact {}, the wall{})\n",
+        s.transmitted_peak_force_n,
+        s.n_elements,
+        dynamic(s.n_elements, s.transmitted_peak_force_n)
     ));
     match s.transmission_ratio {
         Some(r) => o.push_str(&format!("ratio        {r:.4}\n")),

@@ -29,19 +29,19 @@ pub struct Args {
     /// Replace the files of an earlier transmission run in --out.
     #[arg(long)]
     pub overwrite: bool,
-    /// Lowest frequency [Hz].
+    /// Lowest frequency (Hz).
     #[arg(long, default_value_t = defaults::TRANSMISSION_START_HZ)]
     pub start_hz: f64,
-    /// Highest frequency [Hz].
+    /// Highest frequency (Hz).
     #[arg(long, default_value_t = defaults::TRANSMISSION_END_HZ)]
     pub end_hz: f64,
-    /// Frequency resolution [Hz]; the driven run lasts its inverse.
+    /// Frequency resolution (Hz); the driven run lasts its inverse.
     #[arg(long, default_value_t = defaults::TRANSMISSION_RESOLUTION_HZ)]
     pub resolution_hz: f64,
     /// Chirp amplitude as a fraction of the preload force.
     #[arg(long, default_value_t = defaults::TRANSMISSION_RELATIVE_AMPLITUDE)]
     pub relative_amplitude: f64,
-    /// Level [dB] below which a frequency counts as in a measured stop band.
+    /// Level (dB) below which a frequency counts as in a measured stop band.
     #[arg(long, default_value_t = defaults::TRANSMISSION_STOP_DB, allow_negative_numbers = true)]
     pub threshold_db: f64,
 }

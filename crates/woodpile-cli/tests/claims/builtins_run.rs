@@ -1,10 +1,12 @@
 //! Claim: the built-in scenarios are the list (the paper's homogeneous 20/40/80 mm chains
-//! and docs/physics.md §9's optimised chain, under impact and blast, each resonant and rigid), every one
-//! resolves to a 20-element chain, and a short run (0.1 ms) of each completes with finite,
-//! positive peak forces.
+//! and docs/physics.md §9's optimised chain, under impact and blast, each resonant and rigid) and
+//! the two lab-physics ones (`lab-impact-40mm`: the 40 mm impact with gravity and damping;
+//! `transmission-80mm`: the preloaded 80 mm chain under a force chirp, docs/physics.md §14-15),
+//! every one resolves to a 20-element chain with its excitation and duration, and a short run
+//! (0.1 ms) of each completes with finite, positive peak forces.
 
 use std::path::Path;
-use woodpile::{simulate, Excitation, RunSettings};
+use woodpile::{simulate, Excitation, RunSettings, Signal};
 use woodpile_io::scenario::{builtin, builtin_names, resolve, DEFAULT_SCENARIO};
 
 #[test]
@@ -18,7 +20,10 @@ fn the_list_is_complete() {
             }
         }
     }
-    assert_eq!(names.len(), 16);
+    for n in ["lab-impact-40mm", "transmission-80mm"] {
+        assert!(names.contains(&n.to_string()), "missing {n}");
+    }
+    assert_eq!(names.len(), 18);
     assert_eq!(DEFAULT_SCENARIO, "paper-impact-optimized");
 }
 
@@ -36,12 +41,19 @@ fn every_builtin_resolves_and_runs() {
             .iter()
             .any(|e| !e.cell.resonators.is_empty());
         assert_eq!(any_resonators, !rigid, "{name}: model");
-        match (&r.excitation, name.contains("impact")) {
-            (Excitation::Impact(_), true) | (Excitation::Blast(_), false) => {}
+        let expected_duration = match (&r.excitation, name.as_str()) {
+            (Excitation::Impact(_), n) if n.contains("impact") => 2e-3,
+            (Excitation::Blast(_), n) if n.contains("blast") => 3e-3,
+            (Excitation::Drive(d), "transmission-80mm") => {
+                assert!(matches!(d.signal, Signal::Chirp { .. }), "{name}");
+                0.05
+            }
             _ => panic!("{name}: wrong excitation"),
-        }
-        let expected_duration = if name.contains("impact") { 2e-3 } else { 3e-3 };
+        };
         assert_eq!(r.settings.duration_s, expected_duration, "{name}");
+        let lab = !name.starts_with("paper-");
+        assert_eq!(!r.chain.damping().is_lossless(), lab, "{name}: damping");
+        assert_eq!(!r.chain.preload().is_none(), lab, "{name}: preload");
         let short = RunSettings {
             duration_s: 1e-4,
             ..r.settings

@@ -23,4 +23,5 @@ mod plot_opt_dir;
 mod plot_run_dir;
 mod report_quick;
 mod scenario_roundtrip;
+mod transmission_command;
 mod up_front_limits;

@@ -85,7 +85,13 @@ fn impact_run_writes_every_file() {
     assert_eq!(s["contact_peak_times_s"].as_array().unwrap().len(), 6);
     assert_eq!(s["chain_labels"][0], "80mm");
     assert_eq!(s["n_samples"], samples);
-    for key in ["initial_j", "final_j", "input_work_j", "max_relative_error"] {
+    for key in [
+        "initial_j",
+        "final_j",
+        "input_work_j",
+        "dissipated_j",
+        "max_relative_error",
+    ] {
         assert!(s["energy"][key].is_number(), "energy.{key}");
     }
     for key in ["steps", "rhs_evaluations", "rejected_steps"] {
@@ -125,7 +131,7 @@ fn impact_run_writes_every_file() {
     let energy = std::fs::read_to_string(d.join("energy.csv")).unwrap();
     assert_eq!(
         energy.lines().next().unwrap(),
-        "time_s,layer_0_j,layer_1_j,layer_2_j,layer_3_j,layer_4_j,layer_5_j,wall_j,total_j,input_work_j"
+        "time_s,layer_0_j,layer_1_j,layer_2_j,layer_3_j,layer_4_j,layer_5_j,wall_j,total_j,input_work_j,dissipated_j"
     );
     for f in ["displacements.csv", "velocities.csv", "striker.csv"] {
         assert!(d.join(f).is_file(), "{f}");

@@ -1,7 +1,11 @@
 //! The built-in scenarios: the paper's homogeneous and optimised chains under impact and blast,
-//! each in resonant and rigid form.
+//! each in resonant and rigid form, and two with lab physics (docs/physics.md §14, §15).
 
-use super::{ChainSpec, ExcitationKind, ExcitationSpec, ModelSpec, Scenario};
+use super::{
+    ChainSpec, ContactLaw, DampingSpec, ExcitationKind, ExcitationSpec, ModelSpec, PreloadSpec,
+    RunSpec, Scenario, SignalKind, SweepSpec,
+};
+use woodpile::defaults;
 
 /// The scenario `woodpile simulate` runs without arguments: docs/physics.md §9's optimised chain under
 /// the paper's impact.
@@ -41,18 +45,20 @@ pub fn builtin_names() -> Vec<String> {
 /// Every built-in scenario, in listing order.
 pub fn all() -> Vec<BuiltinScenario> {
     let mut out = Vec::new();
-    for kind in [ExcitationKind::Impact, ExcitationKind::Blast] {
+    let loads = [
+        (
+            ExcitationKind::Impact,
+            "striker: 10 mm glass sphere dropped from 0.20 m, 2 ms",
+        ),
+        (
+            ExcitationKind::Blast,
+            "Friedlander blast F0 = 200 N, Td = 0.2 ms, 3 ms",
+        ),
+    ];
+    for (kind, load) in loads {
+        let kind_name = kind.name();
         for (stem, rods, what) in chains() {
             for model in [ModelSpec::Resonant, ModelSpec::Rigid] {
-                let (kind_name, load) = match kind {
-                    ExcitationKind::Impact => (
-                        "impact",
-                        "striker: 10 mm glass sphere dropped from 0.20 m, 2 ms",
-                    ),
-                    ExcitationKind::Blast => {
-                        ("blast", "Friedlander blast F0 = 200 N, Td = 0.2 ms, 3 ms")
-                    }
-                };
                 let suffix = match model {
                     ModelSpec::Resonant => "",
                     ModelSpec::Rigid => "-rigid",
@@ -83,7 +89,75 @@ pub fn all() -> Vec<BuiltinScenario> {
             }
         }
     }
+    out.extend(lab());
     out
+}
+
+/// The lab-physics built-ins: the paper's 40 mm impact with gravity and damping, and the
+/// preloaded 80 mm chain of `woodpile transmission`.
+fn lab() -> [BuiltinScenario; 2] {
+    let rods = |l: u32| ChainSpec {
+        rods_mm: Some(vec![l; 20]),
+        ..ChainSpec::default()
+    };
+    let preload_n = 10.0;
+    let impact = Scenario {
+        description: Some(format!(
+            "Resonant model, 20 identical 40 mm rods; the paper's 40 mm impact (10 mm glass sphere dropped from 0.20 m, 2 ms) with gravity ({} m/s^2) and damping (contact restitution e = 0.9, resonator damping ratio 0.01)",
+            defaults::GRAVITY_M_S2
+        )),
+        chain: rods(40),
+        damping: Some(DampingSpec {
+            contact: Some(ContactLaw::Restitution),
+            restitution: Some(0.9),
+            resonator_ratio: Some(0.01),
+            ..DampingSpec::default()
+        }),
+        preload: Some(PreloadSpec {
+            gravity_m_s2: Some(defaults::GRAVITY_M_S2),
+            ..PreloadSpec::default()
+        }),
+        ..Scenario::default()
+    };
+    let transmission = Scenario {
+        description: Some(format!(
+            "Resonant model, 20 identical 80 mm rods preloaded with {preload_n} N, on-site damping time 20 ms; a force chirp 0.1 N, 100 Hz to 30 kHz over 25 ms, 50 ms. `woodpile transmission` uses its chain (docs/physics.md §15)"
+        )),
+        chain: rods(80),
+        damping: Some(DampingSpec {
+            on_site_time_s: Some(0.02),
+            ..DampingSpec::default()
+        }),
+        preload: Some(PreloadSpec {
+            force_n: Some(preload_n),
+            ..PreloadSpec::default()
+        }),
+        excitation: ExcitationSpec {
+            kind: ExcitationKind::Drive,
+            signal: Some(SignalKind::Chirp),
+            amplitude: Some(defaults::TRANSMISSION_RELATIVE_AMPLITUDE * preload_n),
+            start_hz: Some(defaults::TRANSMISSION_START_HZ),
+            end_hz: Some(defaults::TRANSMISSION_END_HZ),
+            sweep_duration_s: Some(0.025),
+            sweep: Some(SweepSpec::Linear),
+            ..ExcitationSpec::default()
+        },
+        run: RunSpec {
+            duration_s: Some(0.05),
+            time_step_s: Some(2e-7),
+            sample_interval_s: Some(defaults::TRANSMISSION_SAMPLE_INTERVAL_S),
+            ..RunSpec::default()
+        },
+        ..Scenario::default()
+    };
+    [
+        ("lab-impact-40mm", impact),
+        ("transmission-80mm", transmission),
+    ]
+    .map(|(name, s)| BuiltinScenario {
+        name: name.to_string(),
+        scenario: s.complete(),
+    })
 }
 
 /// A built-in scenario by name, with every default written out.

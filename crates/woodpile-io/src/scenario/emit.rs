@@ -1,8 +1,8 @@
 //! Writes a completed scenario as commented TOML (every key explicit).
 
 use super::{
-    CellSpec, ElementKind, ElementSpec, ExcitationKind, MaterialSpec, ProfileKind, Scenario,
-    WallKind,
+    CellSpec, ContactSpec, DampingSpec, ElementKind, ElementSpec, ExcitationKind, ExcitationSpec,
+    MaterialSpec, ProfileKind, Scenario, SweepSpec, WallSpec,
 };
 use std::fmt::Write;
 
@@ -109,6 +109,118 @@ fn element(e: &ElementSpec) -> String {
     format!("{{ {} }}", parts.join(", "))
 }
 
+/// Writes `key = value  # comment` for each given value.
+fn keys(o: &mut String, lines: &[(&str, Option<String>, &str)]) {
+    for (key, value, comment) in lines {
+        if let Some(v) = value {
+            commented(o, format!("{key} = {v}"), comment);
+        }
+    }
+}
+
+/// `{ key = value, … }` of the given values.
+fn inline(items: &[(&str, Option<String>)]) -> String {
+    let parts: Vec<String> = items
+        .iter()
+        .filter_map(|(k, v)| v.as_ref().map(|v| format!("{k} = {v}")))
+        .collect();
+    format!("{{ {} }}", parts.join(", "))
+}
+
+/// A support's keys and comments (`[wall]`, or an actuator's tip inline).
+fn wall_keys(w: &WallSpec) -> [(&'static str, Option<String>, &'static str); 4] {
+    let m = w.material.as_ref().map(material);
+    let kinds =
+        "\"cap\" (sensor with a spherical cap), \"flat\", \"beta\" (given beta) or \"free\"";
+    [
+        ("kind", Some(string(w.effective_kind().name())), kinds),
+        ("material", m, "of the cap / flat"),
+        ("cap_radius_mm", w.cap_radius_mm.map(float), "R_c"),
+        ("beta", w.beta.map(float), "the contact's beta [N/m^1.5]"),
+    ]
+}
+
+/// The drive keys of `[excitation]`.
+fn drive(o: &mut String, x: &ExcitationSpec) {
+    let name = |n: &str| Some(string(n));
+    let f = |v: Option<f64>| v.map(float);
+    let sweep = x.sweep.map(|w| match w {
+        SweepSpec::Linear => string("linear"),
+        SweepSpec::Logarithmic => string("logarithmic"),
+    });
+    let tip = (x.tip.as_ref()).map(|t| inline(&wall_keys(t).map(|(k, v, _)| (k, v))));
+    let what = "N (force) or m (displacement)";
+    let file = x.file.as_deref().map(string);
+    let kinds = "\"force\" (N) or \"displacement\" (m, through the tip)";
+    let signals = "\"harmonic\", \"chirp\" or \"table\" (CSV time_s,value)";
+    keys(
+        o,
+        &[
+            ("kind", name("drive"), "an actuator on the top element"),
+            ("drive", x.drive.map(|d| string(d.name())), kinds),
+            ("signal", x.signal.map(|k| string(k.name())), signals),
+            ("amplitude", f(x.amplitude), what),
+            ("frequency_hz", f(x.frequency_hz), "harmonic signal"),
+            ("start_hz", f(x.start_hz), "chirp: from"),
+            ("end_hz", f(x.end_hz), "chirp: to"),
+            ("sweep_duration_s", f(x.sweep_duration_s), "chirp: over"),
+            ("sweep", sweep, "\"linear\" or \"logarithmic\""),
+            ("file", file, "CSV, relative to this file"),
+            ("ramp_s", f(x.ramp_s), "sin^2 ramp (chirp: both ends)"),
+            ("tip", tip, "the actuator's tip: keys as in [wall]"),
+        ],
+    );
+}
+
+/// The `[damping]` table.
+fn damping(o: &mut String, d: &DampingSpec) {
+    let law = |c: &Option<ContactSpec>| {
+        c.map(|c| {
+            inline(&[
+                ("contact", c.contact.map(|l| string(l.name()))),
+                ("restitution", c.restitution.map(float)),
+                ("viscous_time_s", c.viscous_time_s.map(float)),
+            ])
+        })
+    };
+    let resonators = (!d.resonators.is_empty()).then(|| {
+        let list: Vec<String> = (d.resonators.iter())
+            .map(|r| {
+                let (e, j, z) = (r.element, r.resonator, float(r.ratio));
+                format!("{{ element = {e}, resonator = {j}, ratio = {z} }}")
+            })
+            .collect();
+        format!("[{}]", list.join(", "))
+    });
+    let f = |v: Option<f64>| v.map(float);
+    let laws = "\"none\", \"restitution\", \"hunt-crossley\" or \"viscoelastic\"";
+    let pull = d.allow_pull.map(|p| p.to_string());
+    let _ = writeln!(o, "\n[damping]");
+    keys(
+        o,
+        &[
+            ("contact", d.contact.map(|l| string(l.name())), laws),
+            ("restitution", f(d.restitution), "coefficient e, 0 < e <= 1"),
+            ("viscous_time_s", f(d.viscous_time_s), "dissipative time A"),
+            ("striker", law(&d.striker), "striker's/actuator's contact"),
+            ("wall", law(&d.wall), "the wall contact's law"),
+            ("allow_pull", pull, "may a damped contact pull"),
+            (
+                "impact_speed_m_s",
+                f(d.impact_speed_m_s),
+                "Hunt-Crossley v_in",
+            ),
+            (
+                "resonator_ratio",
+                f(d.resonator_ratio),
+                "every resonator's zeta",
+            ),
+            ("resonators", resonators, "zeta of single resonators"),
+            ("on_site_time_s", f(d.on_site_time_s), "on-site time tau"),
+        ],
+    );
+}
+
 /// Pads `line` to a column and appends a comment.
 fn commented(out: &mut String, line: String, comment: &str) {
     let _ = writeln!(out, "{line:<40} # {comment}");
@@ -187,7 +299,11 @@ pub(crate) fn to_toml(s: &Scenario) -> String {
     let _ = writeln!(o, "\n[excitation]");
     match x.kind {
         ExcitationKind::Impact => {
-            commented(&mut o, "kind = \"impact\"".into(), "or \"blast\"");
+            commented(
+                &mut o,
+                "kind = \"impact\"".into(),
+                "or \"blast\", \"drive\", \"rest\"",
+            );
             if let Some(h) = x.drop_height_m {
                 commented(
                     &mut o,
@@ -230,7 +346,11 @@ pub(crate) fn to_toml(s: &Scenario) -> String {
             }
         }
         ExcitationKind::Blast => {
-            commented(&mut o, "kind = \"blast\"".into(), "or \"impact\"");
+            commented(
+                &mut o,
+                "kind = \"blast\"".into(),
+                "or \"impact\", \"drive\", \"rest\"",
+            );
             match x.profile.unwrap_or_default() {
                 ProfileKind::Friedlander => {
                     commented(
@@ -268,39 +388,45 @@ pub(crate) fn to_toml(s: &Scenario) -> String {
                 );
             }
         }
+        ExcitationKind::Drive => drive(&mut o, x),
+        ExcitationKind::Rest => commented(
+            &mut o,
+            "kind = \"rest\"".into(),
+            "nothing drives the chain (with [preload]: its static equilibrium)",
+        ),
     }
 
-    // [wall]
-    let w = &s.wall;
+    // [wall], [damping], [preload]
     let _ = writeln!(o, "\n[wall]");
-    let kind = w.effective_kind();
-    let kind_name = match kind {
-        WallKind::Cap => "cap",
-        WallKind::Flat => "flat",
-        WallKind::Beta => "beta",
-        WallKind::Free => "free",
-    };
-    commented(
-        &mut o,
-        format!("kind = {}", string(kind_name)),
-        "\"cap\" (sensor with a spherical cap), \"flat\", \"beta\" (given beta) or \"free\"",
-    );
-    if let Some(m) = &w.material {
-        commented(
-            &mut o,
-            format!("material = {}", material(m)),
-            "of the cap / flat",
-        );
+    keys(&mut o, &wall_keys(&s.wall));
+    match &s.damping {
+        Some(d) => damping(&mut o, d),
+        None => {
+            let _ = writeln!(o, "\n# [damping]: contact laws, resonator and on-site damping (docs/physics.md §14); none: lossless");
+        }
     }
-    if let Some(r) = w.cap_radius_mm {
-        commented(&mut o, format!("cap_radius_mm = {}", float(r)), "R_c");
-    }
-    if let Some(b) = w.beta {
-        commented(
-            &mut o,
-            format!("beta = {}", float(b)),
-            "wall contact [N/m^1.5]",
-        );
+    match &s.preload {
+        Some(p) => {
+            let _ = writeln!(o, "\n[preload]");
+            keys(
+                &mut o,
+                &[
+                    (
+                        "force_n",
+                        p.force_n.map(float),
+                        "static force on the top element [N]",
+                    ),
+                    (
+                        "gravity_m_s2",
+                        p.gravity_m_s2.map(float),
+                        "gravity along the column [m/s^2]",
+                    ),
+                ],
+            );
+        }
+        None => {
+            let _ = writeln!(o, "\n# [preload]: force_n on the top element, gravity_m_s2 (docs/physics.md §14); none: unloaded");
+        }
     }
 
     // [run]

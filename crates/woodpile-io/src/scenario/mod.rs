@@ -49,6 +49,12 @@ pub struct Scenario {
     /// The support under the last element (`[wall]`, default: the paper's sensor).
     #[serde(default)]
     pub wall: WallSpec,
+    /// Dissipation (`[damping]`, default: none, the paper's lossless model).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping: Option<DampingSpec>,
+    /// Static load (`[preload]`, default: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub preload: Option<PreloadSpec>,
     /// Duration, integrator and sampling (`[run]`).
     #[serde(default)]
     pub run: RunSpec,
@@ -293,7 +299,7 @@ impl<'de> Deserialize<'de> for MaterialSpec {
     }
 }
 
-/// `impact` or `blast`.
+/// `impact`, `blast`, `drive` or `rest`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ExcitationKind {
@@ -302,6 +308,10 @@ pub enum ExcitationKind {
     Impact,
     /// A prescribed force acts on the top element.
     Blast,
+    /// An actuator drives the top element with a signal.
+    Drive,
+    /// Nothing: the column is left at rest.
+    Rest,
 }
 
 impl ExcitationKind {
@@ -310,8 +320,178 @@ impl ExcitationKind {
         match self {
             ExcitationKind::Impact => "impact",
             ExcitationKind::Blast => "blast",
+            ExcitationKind::Drive => "drive",
+            ExcitationKind::Rest => "rest",
         }
     }
+}
+
+/// What a drive prescribes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DriveKind {
+    /// A force on the top element \[N\].
+    #[default]
+    Force,
+    /// An actuator's displacement \[m\], pushing through its tip.
+    Displacement,
+}
+
+/// The time history of a drive.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SignalKind {
+    /// A sin(2π f t).
+    Harmonic,
+    /// A sweep from `start_hz` to `end_hz` over `sweep_duration_s`.
+    Chirp,
+    /// A (time_s, value) table from a CSV file, linearly interpolated.
+    Table,
+}
+
+/// How a chirp sweeps ([`woodpile::Sweep`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SweepSpec {
+    /// Frequency linear in time.
+    #[default]
+    Linear,
+    /// Frequency exponential in time.
+    Logarithmic,
+}
+
+/// A contact damping law ([`woodpile::ContactDamping`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ContactLaw {
+    /// Lossless.
+    #[default]
+    None,
+    /// Coefficient of restitution `restitution`.
+    Restitution,
+    /// Hunt–Crossley aimed at `restitution`.
+    HuntCrossley,
+    /// Viscoelastic spheres with dissipative time `viscous_time_s`.
+    Viscoelastic,
+}
+
+impl DriveKind {
+    /// The name used in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            DriveKind::Force => "force",
+            DriveKind::Displacement => "displacement",
+        }
+    }
+}
+
+impl SignalKind {
+    /// The name used in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            SignalKind::Harmonic => "harmonic",
+            SignalKind::Chirp => "chirp",
+            SignalKind::Table => "table",
+        }
+    }
+}
+
+impl SweepSpec {
+    /// The library's sweep.
+    pub fn sweep(self) -> woodpile::Sweep {
+        match self {
+            SweepSpec::Linear => woodpile::Sweep::Linear,
+            SweepSpec::Logarithmic => woodpile::Sweep::Logarithmic,
+        }
+    }
+}
+
+impl ContactLaw {
+    /// The name used in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ContactLaw::None => "none",
+            ContactLaw::Restitution => "restitution",
+            ContactLaw::HuntCrossley => "hunt-crossley",
+            ContactLaw::Viscoelastic => "viscoelastic",
+        }
+    }
+}
+
+/// `[damping]`: the contact law of every contact (overridable at the striker or actuator and at
+/// the wall), resonator and on-site damping (docs/physics.md §14).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DampingSpec {
+    /// `none` (default), `restitution`, `hunt-crossley` or `viscoelastic`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact: Option<ContactLaw>,
+    /// Coefficient of restitution e (restitution, hunt-crossley).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub restitution: Option<f64>,
+    /// Dissipative time A \[s\] (viscoelastic).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub viscous_time_s: Option<f64>,
+    /// The striker's (or a displacement actuator's) contact, when it differs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub striker: Option<ContactSpec>,
+    /// The wall contact, when it differs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wall: Option<ContactSpec>,
+    /// Whether a damped contact may pull near separation (default false).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub allow_pull: Option<bool>,
+    /// The Hunt–Crossley impact speed v_in \[m/s\] (default: the striker's speed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub impact_speed_m_s: Option<f64>,
+    /// Damping ratio ζ of every resonator (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub resonator_ratio: Option<f64>,
+    /// Per-resonator ratios.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub resonators: Vec<ResonatorDampingSpec>,
+    /// On-site damping time τ \[s\] of every mass (default: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub on_site_time_s: Option<f64>,
+}
+
+/// `damping.striker` / `damping.wall`: one contact's law.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// The law (default: `damping.contact`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact: Option<ContactLaw>,
+    /// Coefficient of restitution e (restitution, hunt-crossley).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub restitution: Option<f64>,
+    /// Dissipative time A \[s\] (viscoelastic).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub viscous_time_s: Option<f64>,
+}
+
+/// `{ element = 3, resonator = 1, ratio = 0.05 }`: one resonator's damping ratio.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ResonatorDampingSpec {
+    /// Element, from 1 at the top.
+    pub element: usize,
+    /// Resonator of that element, from 1.
+    pub resonator: usize,
+    /// Damping ratio ζ.
+    pub ratio: f64,
+}
+
+/// `[preload]`: a static force on the top element and gravity along the column.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PreloadSpec {
+    /// Static force on the top element \[N\] (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub force_n: Option<f64>,
+    /// Gravity toward the wall \[m/s²\] (default 0; 9.81 for a column on a table).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gravity_m_s2: Option<f64>,
 }
 
 /// Shape of a blast force history.
@@ -327,10 +507,13 @@ pub enum ProfileKind {
 
 /// `[excitation]`. Impact keys: `drop_height_m` or `velocity_m_s`, `striker`, `beta`.
 /// Blast keys: `profile`, then `peak_force_n`, `duration_s`, `decay` (Friedlander) or `file` (table).
+/// Drive keys: `drive`, `signal`, then `amplitude` with `frequency_hz` (harmonic) or `start_hz`,
+/// `end_hz`, `sweep_duration_s`, `sweep` (chirp), or `file` (table); `ramp_s`; `tip` (displacement).
+/// Rest: no keys.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ExcitationSpec {
-    /// `impact` (default) or `blast`.
+    /// `impact` (default), `blast`, `drive` or `rest`.
     #[serde(default)]
     pub kind: ExcitationKind,
     /// Drop height h \[m\] (impact; default 0.20): v0 = sqrt(2 g h).
@@ -357,9 +540,79 @@ pub struct ExcitationSpec {
     /// Friedlander decay b (default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub decay: Option<f64>,
-    /// Table profile: CSV file with columns `time_s, force_n`, relative to the scenario file.
+    /// Table profile or signal: CSV file with columns `time_s, force_n` (blast) or
+    /// `time_s, value` (drive), relative to the scenario file.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub file: Option<String>,
+    /// `force` (default) or `displacement` (drive).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub drive: Option<DriveKind>,
+    /// `harmonic`, `chirp` or `table` (drive; required).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub signal: Option<SignalKind>,
+    /// Amplitude: N for a force, m for a displacement (harmonic, chirp).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub amplitude: Option<f64>,
+    /// Frequency \[Hz\] (harmonic).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frequency_hz: Option<f64>,
+    /// Start frequency \[Hz\] (chirp).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub start_hz: Option<f64>,
+    /// End frequency \[Hz\] (chirp).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub end_hz: Option<f64>,
+    /// Sweep duration \[s\] (chirp).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sweep_duration_s: Option<f64>,
+    /// `linear` (default) or `logarithmic` (chirp).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sweep: Option<SweepSpec>,
+    /// Smooth ramp time \[s\] (drive; default: the signal's, [`woodpile::Signal::default_ramp_s`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ramp_s: Option<f64>,
+    /// The actuator's tip, keys as in `[wall]` (displacement drive; default: the paper's sensor).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tip: Option<WallSpec>,
+}
+
+impl ExcitationSpec {
+    /// The drive signal's shape as far as its defaults need it (the ramp, the run duration):
+    /// None when that is not given. Amplitudes and unrelated frequencies are left zero.
+    pub fn signal_shape(&self) -> Option<woodpile::Signal> {
+        use woodpile::Signal;
+        Some(match self.signal? {
+            SignalKind::Harmonic => Signal::Harmonic {
+                amplitude: 0.0,
+                frequency_hz: self.frequency_hz?,
+            },
+            SignalKind::Chirp => Signal::Chirp {
+                amplitude: 0.0,
+                start_hz: 0.0,
+                end_hz: 0.0,
+                duration_s: self.sweep_duration_s?,
+                sweep: self.sweep.unwrap_or_default().sweep(),
+            },
+            SignalKind::Table => Signal::Table {
+                times_s: Vec::new(),
+                values: Vec::new(),
+            },
+        })
+    }
+
+    /// The run duration \[s\] when `run.duration_s` is not given:
+    /// [`woodpile::RunSettings::paper_for`] this excitation (None: a drive whose signal is not
+    /// given enough to tell).
+    pub fn default_duration_s(&self) -> Option<f64> {
+        use woodpile::{BlastProfile, Drive, Excitation, Striker};
+        let x = match self.kind {
+            ExcitationKind::Impact => Excitation::Impact(Striker::paper()),
+            ExcitationKind::Blast => Excitation::Blast(BlastProfile::paper()),
+            ExcitationKind::Drive => Excitation::Drive(Drive::force(self.signal_shape()?)),
+            ExcitationKind::Rest => Excitation::Rest,
+        };
+        Some(woodpile::RunSettings::paper_for(&x).duration_s)
+    }
 }
 
 /// The striker sphere.
@@ -387,6 +640,18 @@ pub enum WallKind {
     Beta,
     /// No support: the last element is free.
     Free,
+}
+
+impl WallKind {
+    /// The name used in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            WallKind::Cap => "cap",
+            WallKind::Flat => "flat",
+            WallKind::Beta => "beta",
+            WallKind::Free => "free",
+        }
+    }
 }
 
 /// `[wall]`.
@@ -432,7 +697,8 @@ impl IntegratorKind {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RunSpec {
-    /// Simulated time \[s\] (default 2e-3 for an impact, 3e-3 for a blast).
+    /// Simulated time \[s\] (default: [`ExcitationSpec::default_duration_s`]; 2e-3 for an
+    /// impact, 3e-3 for a blast).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub duration_s: Option<f64>,
     /// `rk4` (default) or `dopri5`.
@@ -541,29 +807,39 @@ impl Scenario {
                 }
                 ProfileKind::Table => {}
             },
+            ExcitationKind::Drive => {
+                if *x.drive.get_or_insert(DriveKind::Force) == DriveKind::Displacement {
+                    x.tip.get_or_insert_with(WallSpec::default).complete();
+                }
+                if x.signal == Some(SignalKind::Chirp) {
+                    x.sweep.get_or_insert(SweepSpec::Linear);
+                }
+                if x.ramp_s.is_none() {
+                    x.ramp_s = x.signal_shape().map(|s| s.default_ramp_s());
+                }
+            }
+            ExcitationKind::Rest => {}
         }
-        // wall
-        let w = &mut s.wall;
-        let kind = w.effective_kind();
-        w.kind = Some(kind);
-        match kind {
-            WallKind::Cap => {
-                w.material
-                    .get_or_insert_with(|| MaterialSpec::preset(WALL_MATERIAL));
-                w.cap_radius_mm.get_or_insert(CAP_RADIUS_MM);
+        s.wall.complete();
+        if let Some(d) = &mut s.damping {
+            let none = woodpile::Damping::default();
+            let law = *d.contact.get_or_insert(ContactLaw::None);
+            for c in [&mut d.striker, &mut d.wall].into_iter().flatten() {
+                c.contact.get_or_insert(law);
             }
-            WallKind::Flat => {
-                w.material
-                    .get_or_insert_with(|| MaterialSpec::preset(WALL_MATERIAL));
-            }
-            WallKind::Beta | WallKind::Free => {}
+            d.allow_pull.get_or_insert(none.allow_pull);
+            d.resonator_ratio.get_or_insert(none.resonator_ratio);
+        }
+        if let Some(p) = &mut s.preload {
+            let none = woodpile::Preload::default();
+            p.force_n.get_or_insert(none.force_n);
+            p.gravity_m_s2.get_or_insert(none.gravity_m_s2);
         }
         // run
         let r = &mut s.run;
-        r.duration_s.get_or_insert(match s.excitation.kind {
-            ExcitationKind::Impact => IMPACT_DURATION_S,
-            ExcitationKind::Blast => BLAST_RUN_DURATION_S,
-        });
+        if r.duration_s.is_none() {
+            r.duration_s = s.excitation.default_duration_s();
+        }
         match *r.integrator.get_or_insert(IntegratorKind::Rk4) {
             IntegratorKind::Rk4 => {
                 r.time_step_s.get_or_insert(TIME_STEP_S);
@@ -592,5 +868,18 @@ impl WallSpec {
         } else {
             WallKind::Cap
         })
+    }
+
+    /// Writes out the kind and the defaults of the keys it uses.
+    fn complete(&mut self) {
+        let kind = self.effective_kind();
+        self.kind = Some(kind);
+        if matches!(kind, WallKind::Cap | WallKind::Flat) {
+            self.material
+                .get_or_insert_with(|| MaterialSpec::preset(defaults::WALL_MATERIAL));
+        }
+        if kind == WallKind::Cap {
+            self.cap_radius_mm.get_or_insert(defaults::CAP_RADIUS_MM);
+        }
     }
 }

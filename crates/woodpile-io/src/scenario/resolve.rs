@@ -2,15 +2,17 @@
 
 use super::emit::float;
 use super::{
-    defaults, CellSpec, ElementKind, ElementSpec, ExcitationKind, IntegratorKind, MaterialSpec,
-    ProfileKind, Scenario, WallKind,
+    defaults, CellSpec, ContactLaw, DriveKind, ElementKind, ElementSpec, ExcitationKind,
+    ExcitationSpec, IntegratorKind, MaterialSpec, ProfileKind, Scenario, SignalKind, WallKind,
+    WallSpec,
 };
 use crate::error::Error;
-use crate::table::load_blast_table;
+use crate::table::load_table;
 use std::path::Path;
 use woodpile::{
-    BlastProfile, Body, Chain, ChainBuilder, Element, Excitation, Material, Method, Resonator, Rod,
-    RunSettings, Striker, UnitCell, Wall,
+    BlastProfile, Body, Chain, ChainBuilder, ContactDamping, Damping, Drive, DriveQuantity,
+    Element, Excitation, Material, Method, Preload, Resonator, ResonatorDamping, Rod, RunSettings,
+    Signal, Striker, UnitCell, Wall,
 };
 
 /// A scenario turned into what the library runs.
@@ -389,7 +391,7 @@ pub fn resolve_with_keys(
     let mut warnings = Vec::new();
     let chain = resolve_chain(scenario, keys, &mut warnings)?;
     let excitation = resolve_excitation(scenario, &chain, base_dir)?;
-    let settings = resolve_run(scenario)?;
+    let settings = resolve_run(scenario, &excitation)?;
     Ok(Resolved {
         chain,
         excitation,
@@ -475,7 +477,9 @@ fn resolve_chain(
     }
     let mut builder = ChainBuilder::new(elements)
         .crossing_angle_rad(angle.to_radians())
-        .wall(resolve_wall(s)?);
+        .wall(resolve_wall(&s.wall, "wall")?)
+        .damping(resolve_damping(s)?)
+        .preload(resolve_preload(s));
     for (i, e) in c.elements.iter().flatten().enumerate() {
         let Some(a) = e.crossing_angle_deg else {
             continue;
@@ -501,33 +505,33 @@ fn resolve_chain(
     builder.build().map_err(Error::at("chain"))
 }
 
-fn resolve_wall(s: &Scenario) -> Result<Wall, Error> {
-    let w = &s.wall;
+/// A support (`[wall]`, or a displacement actuator's tip); `key` names its table.
+fn resolve_wall(w: &WallSpec, key: &str) -> Result<Wall, Error> {
     let kind = w.effective_kind();
-    let why = match kind {
-        WallKind::Cap => "with wall.kind = \"cap\"",
-        WallKind::Flat => "with wall.kind = \"flat\"",
-        WallKind::Beta => "with wall.kind = \"beta\" (a support of given beta)",
-        WallKind::Free => "with wall.kind = \"free\"",
+    let given = if kind == WallKind::Beta {
+        " (a support of given beta)"
+    } else {
+        ""
     };
-    let material_of = |w: &super::WallSpec| match &w.material {
-        Some(m) => material("wall.material", m),
+    let why = format!("with {key}.kind = \"{}\"{given}", kind.name());
+    let material_of = |w: &WallSpec| match &w.material {
+        Some(m) => material(&format!("{key}.material"), m),
         None => Ok(Material::preset(defaults::WALL_MATERIAL)?),
     };
     if kind != WallKind::Cap {
         if let Some(r) = w.cap_radius_mm {
-            return Err(not_applicable("wall.cap_radius_mm", r, why));
+            return Err(not_applicable(&format!("{key}.cap_radius_mm"), r, &why));
         }
     }
     if matches!(kind, WallKind::Beta | WallKind::Free) && w.material.is_some() {
-        return Err(not_applicable("wall.material", "…", why));
+        return Err(not_applicable(&format!("{key}.material"), "…", &why));
     }
     if kind != WallKind::Beta {
         if let Some(b) = w.beta {
             return Err(Error::invalid(
-                "wall.beta",
+                format!("{key}.beta"),
                 b,
-                format!("not used {why}; drop wall.kind (or set it to \"beta\") to give the wall's beta directly"),
+                format!("not used {why}; drop {key}.kind (or set it to \"beta\") to give the beta directly"),
             ));
         }
     }
@@ -535,7 +539,7 @@ fn resolve_wall(s: &Scenario) -> Result<Wall, Error> {
         WallKind::Cap => Wall::Cap {
             material: material_of(w)?,
             radius_m: positive(
-                "wall.cap_radius_mm",
+                &format!("{key}.cap_radius_mm"),
                 w.cap_radius_mm.unwrap_or(defaults::CAP_RADIUS_MM),
             )? * 1e-3,
         },
@@ -543,12 +547,12 @@ fn resolve_wall(s: &Scenario) -> Result<Wall, Error> {
             material: material_of(w)?,
         },
         WallKind::Beta => match w.beta {
-            Some(b) => Wall::Beta(positive("wall.beta", b)?),
+            Some(b) => Wall::Beta(positive(&format!("{key}.beta"), b)?),
             None => {
                 return Err(Error::invalid(
-                    "wall.beta",
+                    format!("{key}.beta"),
                     "(missing)",
-                    "wall.kind = \"beta\" needs beta = … [N/m^1.5]",
+                    format!("{key}.kind = \"beta\" needs beta = … [N/m^1.5]"),
                 ))
             }
         },
@@ -556,89 +560,93 @@ fn resolve_wall(s: &Scenario) -> Result<Wall, Error> {
     })
 }
 
+/// Every key of `[excitation]` but `kind`, with its value as written (None: not given).
+fn excitation_keys(x: &ExcitationSpec) -> [(&'static str, Option<String>); 19] {
+    let f = |v: Option<f64>| v.map(|v| v.to_string());
+    let table = |set: bool| set.then(|| "{…}".to_string());
+    [
+        ("drop_height_m", f(x.drop_height_m)),
+        ("velocity_m_s", f(x.velocity_m_s)),
+        ("striker", table(x.striker.is_some())),
+        ("beta", f(x.beta)),
+        (
+            "profile",
+            x.profile.map(|p| format!("{p:?}").to_lowercase()),
+        ),
+        ("peak_force_n", f(x.peak_force_n)),
+        ("duration_s", f(x.duration_s)),
+        ("decay", f(x.decay)),
+        ("file", x.file.clone()),
+        ("drive", x.drive.map(|d| d.name().to_string())),
+        ("signal", x.signal.map(|d| d.name().to_string())),
+        ("amplitude", f(x.amplitude)),
+        ("frequency_hz", f(x.frequency_hz)),
+        ("start_hz", f(x.start_hz)),
+        ("end_hz", f(x.end_hz)),
+        ("sweep_duration_s", f(x.sweep_duration_s)),
+        ("sweep", x.sweep.map(|s| format!("{s:?}").to_lowercase())),
+        ("ramp_s", f(x.ramp_s)),
+        ("tip", table(x.tip.is_some())),
+    ]
+}
+
+/// Refuses the first key of `[excitation]` that is given and not in `used`, as not used `why`.
+fn refuse_excitation_keys(x: &ExcitationSpec, used: &[&str], why: &str) -> Result<(), Error> {
+    match excitation_keys(x)
+        .into_iter()
+        .find(|(k, v)| v.is_some() && !used.contains(k))
+    {
+        Some((k, Some(v))) => Err(not_applicable(&format!("excitation.{k}"), v, why)),
+        _ => Ok(()),
+    }
+}
+
+/// A (time_s, `column`) table named by `excitation.file`.
+fn excitation_table(
+    x: &ExcitationSpec,
+    base_dir: &Path,
+    column: &str,
+    needed_by: &str,
+) -> Result<(Vec<f64>, Vec<f64>), Error> {
+    let Some(file) = &x.file else {
+        return Err(Error::invalid(
+            "excitation.file",
+            "(missing)",
+            format!("{needed_by} needs file = \"load.csv\" (columns time_s, {column}; relative to the scenario file)"),
+        ));
+    };
+    load_table(&base_dir.join(file), column).map_err(|e| match e {
+        Error::Read { path, source } => Error::invalid(
+            "excitation.file",
+            format!("{file:?}"),
+            format!("cannot read {}: {source}", path.display()),
+        ),
+        other => other,
+    })
+}
+
 fn resolve_excitation(s: &Scenario, chain: &Chain, base_dir: &Path) -> Result<Excitation, Error> {
     let x = &s.excitation;
+    let why = format!("with excitation.kind = \"{}\"", x.kind.name());
     match x.kind {
         ExcitationKind::Impact => {
-            let why = "with excitation.kind = \"impact\"";
-            for (key, v) in [
-                ("excitation.peak_force_n", x.peak_force_n),
-                ("excitation.duration_s", x.duration_s),
-                ("excitation.decay", x.decay),
-            ] {
-                if let Some(v) = v {
-                    return Err(not_applicable(key, v, why));
-                }
-            }
-            if let Some(p) = x.profile {
-                return Err(not_applicable(
-                    "excitation.profile",
-                    format!("{p:?}").to_lowercase(),
-                    why,
-                ));
-            }
-            if let Some(f) = &x.file {
-                return Err(not_applicable("excitation.file", f, why));
-            }
-            let velocity = match (x.drop_height_m, x.velocity_m_s) {
-                (Some(h), Some(v)) => {
-                    return Err(Error::invalid(
-                        "excitation.velocity_m_s",
-                        v,
-                        format!("give either drop_height_m (here {h}) or velocity_m_s, not both"),
-                    ))
-                }
-                (_, Some(v)) => positive("excitation.velocity_m_s", v)?,
-                (h, None) => woodpile::velocity_from_drop_height(positive(
-                    "excitation.drop_height_m",
-                    h.unwrap_or(defaults::DROP_HEIGHT_M),
-                )?),
-            };
-            let st = x.striker.clone().unwrap_or_default();
-            let diameter = positive(
-                "excitation.striker.diameter_mm",
-                st.diameter_mm.unwrap_or(defaults::STRIKER_DIAMETER_MM),
+            refuse_excitation_keys(
+                x,
+                &["drop_height_m", "velocity_m_s", "striker", "beta"],
+                &why,
             )?;
-            let mat = match &st.material {
-                Some(m) => material("excitation.striker.material", m)?,
-                None => Material::preset(defaults::STRIKER_MATERIAL)?,
-            };
-            let beta = x.beta.map(|b| positive("excitation.beta", b)).transpose()?;
-            let striker = Striker {
-                diameter_m: diameter * 1e-3,
-                material: mat,
-                velocity_m_s: velocity,
-                beta_override: beta,
-            };
-            // Fails early (as a usage error) when the striker cannot touch the top element.
-            striker
-                .contact_beta(chain)
-                .map_err(Error::at("excitation.striker"))?;
-            Ok(Excitation::Impact(striker))
+            resolve_impact(x, chain)
         }
         ExcitationKind::Blast => {
-            let why = "with excitation.kind = \"blast\"";
-            for (key, v) in [
-                ("excitation.drop_height_m", x.drop_height_m),
-                ("excitation.velocity_m_s", x.velocity_m_s),
-                ("excitation.beta", x.beta),
-            ] {
-                if let Some(v) = v {
-                    return Err(not_applicable(key, v, why));
-                }
-            }
-            if x.striker.is_some() {
-                return Err(not_applicable("excitation.striker", "{…}", why));
-            }
-            let profile = match x.profile.unwrap_or_default() {
+            let keys = ["profile", "peak_force_n", "duration_s", "decay", "file"];
+            refuse_excitation_keys(x, &keys, &why)?;
+            Ok(Excitation::Blast(match x.profile.unwrap_or_default() {
                 ProfileKind::Friedlander => {
-                    if let Some(f) = &x.file {
-                        return Err(not_applicable(
-                            "excitation.file",
-                            f,
-                            "with excitation.profile = \"friedlander\" (set profile = \"table\")",
-                        ));
-                    }
+                    refuse_excitation_keys(
+                        x,
+                        &keys[..4],
+                        "with excitation.profile = \"friedlander\" (set profile = \"table\")",
+                    )?;
                     BlastProfile::Friedlander {
                         peak_force_n: positive(
                             "excitation.peak_force_n",
@@ -655,48 +663,287 @@ fn resolve_excitation(s: &Scenario, chain: &Chain, base_dir: &Path) -> Result<Ex
                     }
                 }
                 ProfileKind::Table => {
-                    let why =
-                        "with excitation.profile = \"table\" (the table file gives the force)";
-                    for (key, v) in [
-                        ("excitation.peak_force_n", x.peak_force_n),
-                        ("excitation.duration_s", x.duration_s),
-                        ("excitation.decay", x.decay),
-                    ] {
-                        if let Some(v) = v {
-                            return Err(not_applicable(key, v, why));
-                        }
-                    }
-                    let Some(file) = &x.file else {
-                        return Err(Error::invalid(
-                            "excitation.file",
-                            "(missing)",
-                            "profile = \"table\" needs file = \"load.csv\" (columns time_s, force_n; relative to the scenario file)",
-                        ));
-                    };
-                    let path = base_dir.join(file);
-                    load_blast_table(&path).map_err(|e| match e {
-                        Error::Read { path, source } => Error::invalid(
-                            "excitation.file",
-                            format!("{file:?}"),
-                            format!("cannot read {}: {source}", path.display()),
-                        ),
-                        other => other,
-                    })?
+                    refuse_excitation_keys(
+                        x,
+                        &["profile", "file"],
+                        "with excitation.profile = \"table\" (the table file gives the force)",
+                    )?;
+                    let (t, f) = excitation_table(x, base_dir, "force_n", "profile = \"table\"")?;
+                    BlastProfile::table(t, f)?
                 }
-            };
-            Ok(Excitation::Blast(profile))
+            }))
+        }
+        ExcitationKind::Drive => resolve_drive(x, chain, base_dir),
+        ExcitationKind::Rest => {
+            refuse_excitation_keys(x, &[], &format!("{why} (nothing drives the chain)"))?;
+            Ok(Excitation::Rest)
         }
     }
 }
 
-fn resolve_run(s: &Scenario) -> Result<RunSettings, Error> {
+fn resolve_impact(x: &ExcitationSpec, chain: &Chain) -> Result<Excitation, Error> {
+    let velocity = match (x.drop_height_m, x.velocity_m_s) {
+        (Some(h), Some(v)) => {
+            return Err(Error::invalid(
+                "excitation.velocity_m_s",
+                v,
+                format!("give either drop_height_m (here {h}) or velocity_m_s, not both"),
+            ))
+        }
+        (_, Some(v)) => positive("excitation.velocity_m_s", v)?,
+        (h, None) => woodpile::velocity_from_drop_height(positive(
+            "excitation.drop_height_m",
+            h.unwrap_or(defaults::DROP_HEIGHT_M),
+        )?),
+    };
+    let st = x.striker.clone().unwrap_or_default();
+    let diameter = positive(
+        "excitation.striker.diameter_mm",
+        st.diameter_mm.unwrap_or(defaults::STRIKER_DIAMETER_MM),
+    )?;
+    let mat = match &st.material {
+        Some(m) => material("excitation.striker.material", m)?,
+        None => Material::preset(defaults::STRIKER_MATERIAL)?,
+    };
+    let beta = x.beta.map(|b| positive("excitation.beta", b)).transpose()?;
+    let striker = Striker {
+        diameter_m: diameter * 1e-3,
+        material: mat,
+        velocity_m_s: velocity,
+        beta_override: beta,
+    };
+    // Fails early (as a usage error) when the striker cannot touch the top element.
+    striker
+        .contact_beta(chain)
+        .map_err(Error::at("excitation.striker"))?;
+    Ok(Excitation::Impact(striker))
+}
+
+fn resolve_drive(x: &ExcitationSpec, chain: &Chain, base_dir: &Path) -> Result<Excitation, Error> {
+    const COMMON: [&str; 4] = ["drive", "signal", "ramp_s", "tip"];
+    const CHIRP: [&str; 5] = [
+        "amplitude",
+        "start_hz",
+        "end_hz",
+        "sweep_duration_s",
+        "sweep",
+    ];
+    let keys = [&COMMON[..], &CHIRP, &["frequency_hz", "file"]].concat();
+    refuse_excitation_keys(x, &keys, "with excitation.kind = \"drive\"")?;
+    let Some(kind) = x.signal else {
+        return Err(Error::invalid(
+            "excitation.signal",
+            "(missing)",
+            "a drive needs signal = \"harmonic\", \"chirp\" or \"table\"",
+        ));
+    };
+    let why = format!("with excitation.signal = \"{}\"", kind.name());
+    let need = |key: &str, v: Option<f64>| {
+        v.ok_or_else(|| {
+            Error::invalid(
+                format!("excitation.{key}"),
+                "(missing)",
+                format!("signal = \"{}\" needs {key} = …", kind.name()),
+            )
+        })
+    };
+    let signal = match kind {
+        SignalKind::Harmonic => {
+            refuse_excitation_keys(
+                x,
+                &[&COMMON[..], &["amplitude", "frequency_hz"]].concat(),
+                &why,
+            )?;
+            Signal::Harmonic {
+                amplitude: need("amplitude", x.amplitude)?,
+                frequency_hz: need("frequency_hz", x.frequency_hz)?,
+            }
+        }
+        SignalKind::Chirp => {
+            refuse_excitation_keys(x, &[&COMMON[..], &CHIRP].concat(), &why)?;
+            Signal::Chirp {
+                amplitude: need("amplitude", x.amplitude)?,
+                start_hz: need("start_hz", x.start_hz)?,
+                end_hz: need("end_hz", x.end_hz)?,
+                duration_s: need("sweep_duration_s", x.sweep_duration_s)?,
+                sweep: x.sweep.unwrap_or_default().sweep(),
+            }
+        }
+        SignalKind::Table => {
+            refuse_excitation_keys(x, &[&COMMON[..], &["file"]].concat(), &why)?;
+            let (times_s, values) = excitation_table(x, base_dir, "value", "signal = \"table\"")?;
+            Signal::Table { times_s, values }
+        }
+    };
+    let quantity = match (x.drive.unwrap_or_default(), &x.tip) {
+        (DriveKind::Force, Some(_)) => {
+            return Err(not_applicable(
+                "excitation.tip",
+                "{…}",
+                "with excitation.drive = \"force\" (the tip is a displacement actuator's)",
+            ))
+        }
+        (DriveKind::Force, None) => DriveQuantity::Force,
+        (DriveKind::Displacement, tip) => {
+            let tip = resolve_wall(
+                tip.as_ref().unwrap_or(&WallSpec::default()),
+                "excitation.tip",
+            )?;
+            if tip == Wall::Free {
+                return Err(Error::invalid(
+                    "excitation.tip.kind",
+                    "\"free\"",
+                    "a displacement actuator pushes through its tip: give kind = \"cap\", \"flat\" or \"beta\"",
+                ));
+            }
+            // Fails early (as a usage error) when the tip cannot touch the top element.
+            tip.beta_against(chain.top_surface(), &chain.elements()[0].material)
+                .map_err(Error::at("excitation.tip"))?;
+            DriveQuantity::Displacement { tip }
+        }
+    };
+    let drive = Drive {
+        quantity,
+        ramp_s: x.ramp_s.unwrap_or_else(|| signal.default_ramp_s()),
+        signal,
+    };
+    drive.validate()?;
+    Ok(Excitation::Drive(drive))
+}
+
+/// One contact's law; `key` names its table (`damping`, `damping.striker`, `damping.wall`).
+fn contact_law(
+    key: &str,
+    law: ContactLaw,
+    restitution: Option<f64>,
+    viscous_time_s: Option<f64>,
+) -> Result<ContactDamping, Error> {
+    let why = format!("with {key}.contact = \"{}\"", law.name());
+    let need = |k: &str, v: Option<f64>| {
+        v.ok_or_else(|| {
+            Error::invalid(
+                format!("{key}.{k}"),
+                "(missing)",
+                format!("{key}.contact = \"{}\" needs {k} = …", law.name()),
+            )
+        })
+    };
+    let refuse = |k: &str, v: Option<f64>| match v {
+        Some(v) => Err(not_applicable(&format!("{key}.{k}"), float(v), &why)),
+        None => Ok(()),
+    };
+    if matches!(law, ContactLaw::None | ContactLaw::Viscoelastic) {
+        refuse("restitution", restitution)?;
+    }
+    if law != ContactLaw::Viscoelastic {
+        refuse("viscous_time_s", viscous_time_s)?;
+    }
+    Ok(match law {
+        ContactLaw::None => ContactDamping::None,
+        ContactLaw::Restitution => ContactDamping::Restitution {
+            coefficient: need("restitution", restitution)?,
+        },
+        ContactLaw::HuntCrossley => ContactDamping::HuntCrossley {
+            restitution: need("restitution", restitution)?,
+        },
+        ContactLaw::Viscoelastic => ContactDamping::Viscoelastic {
+            time_s: need("viscous_time_s", viscous_time_s)?,
+        },
+    })
+}
+
+/// `[damping]` (values are checked against the chain by the chain builder, under these keys).
+fn resolve_damping(s: &Scenario) -> Result<Damping, Error> {
+    let Some(d) = &s.damping else {
+        return Ok(Damping::default());
+    };
+    let law = d.contact.unwrap_or_default();
+    let contacts = contact_law("damping", law, d.restitution, d.viscous_time_s)?;
+    let x = &s.excitation;
+    let has_striker = x.kind == ExcitationKind::Impact
+        || (x.kind == ExcitationKind::Drive && x.drive == Some(DriveKind::Displacement));
+    let has_wall = s.wall.effective_kind() != WallKind::Free;
+    let mut overrides = [None, None];
+    for (slot, (name, spec, applies, why)) in [
+        (
+            "striker",
+            &d.striker,
+            has_striker,
+            "without a striker or a displacement actuator",
+        ),
+        ("wall", &d.wall, has_wall, "with wall.kind = \"free\""),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let Some(c) = spec else { continue };
+        let key = format!("damping.{name}");
+        if !applies {
+            return Err(not_applicable(&key, "{…}", why));
+        }
+        let law = c.contact.unwrap_or(law);
+        overrides[slot] = Some(contact_law(&key, law, c.restitution, c.viscous_time_s)?);
+    }
+    // Whether a contact is Hunt–Crossley (lossy: with e < 1, which needs v_in).
+    let hunt = |lossy: bool| {
+        let is = |l: &ContactDamping| match l {
+            ContactDamping::HuntCrossley { restitution } => !lossy || *restitution < 1.0,
+            _ => false,
+        };
+        is(&contacts) || overrides.iter().flatten().any(is)
+    };
+    match d.impact_speed_m_s {
+        Some(v) if !hunt(false) => {
+            let why = "without a hunt-crossley contact (it is that law's v_in)";
+            return Err(not_applicable("damping.impact_speed_m_s", float(v), why));
+        }
+        // The core's rule (docs/physics.md §14), checked here to fail before the run.
+        None if hunt(true) && x.kind != ExcitationKind::Impact => {
+            return Err(Error::invalid(
+                "damping.impact_speed_m_s",
+                "(missing)",
+                "a hunt-crossley contact needs the impact speed v_in when there is no striker (whose speed is the default)",
+            ));
+        }
+        _ => {}
+    }
+    let none = Damping::default();
+    Ok(Damping {
+        contacts,
+        striker: overrides[0],
+        wall: overrides[1],
+        allow_pull: d.allow_pull.unwrap_or(none.allow_pull),
+        resonator_ratio: d.resonator_ratio.unwrap_or(none.resonator_ratio),
+        resonator_overrides: d
+            .resonators
+            .iter()
+            .map(|r| ResonatorDamping {
+                element: r.element,
+                resonator: r.resonator,
+                ratio: r.ratio,
+            })
+            .collect(),
+        on_site_time_s: d.on_site_time_s,
+        impact_speed_m_s: d.impact_speed_m_s,
+    })
+}
+
+/// `[preload]` (values are checked by the chain builder, under these keys).
+fn resolve_preload(s: &Scenario) -> Preload {
+    let p = s.preload.unwrap_or_default();
+    let none = Preload::default();
+    Preload {
+        force_n: p.force_n.unwrap_or(none.force_n),
+        gravity_m_s2: p.gravity_m_s2.unwrap_or(none.gravity_m_s2),
+    }
+}
+
+fn resolve_run(s: &Scenario, excitation: &Excitation) -> Result<RunSettings, Error> {
     let r = &s.run;
     let duration = positive(
         "run.duration_s",
-        r.duration_s.unwrap_or(match s.excitation.kind {
-            ExcitationKind::Impact => defaults::IMPACT_DURATION_S,
-            ExcitationKind::Blast => defaults::BLAST_RUN_DURATION_S,
-        }),
+        r.duration_s
+            .unwrap_or_else(|| RunSettings::paper_for(excitation).duration_s),
     )?;
     let sample = positive(
         "run.sample_interval_s",

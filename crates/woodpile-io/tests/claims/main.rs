@@ -4,6 +4,7 @@
 //! and opens with the claim it checks and the reason for its tolerance.
 
 mod element_angles_and_mass_in_mass;
+mod lab_scenario_keys;
 mod paper_values_stated_once;
 mod rod_range_catalogue;
 mod run_directory_roundtrip;
