@@ -1,0 +1,467 @@
+//! Python bindings of woodpile: the extension module `woodpile._core`, a thin layer over the
+//! scenario format and run directories of `woodpile-io` and the physics core. The Python package
+//! (`python/woodpile`) builds its API on these functions; every scenario crosses the boundary as
+//! TOML text, so Python and the command line read the same files with the same checks.
+//!
+//! The GIL is released while Rust simulates; [`evaluate`] runs many scenarios on rayon's pool.
+
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use rayon::prelude::*;
+use std::path::{Path, PathBuf};
+use woodpile::analysis::{BandStructure, EffectiveMassCurve};
+use woodpile::{simulate as run_simulation, RunSummary, Trajectory};
+use woodpile_io::rundir::{read_run_info, read_trajectory, write_run, RunRecord, SummaryJson};
+use woodpile_io::scenario::{builtin, builtin_names, resolve, Resolved, Scenario};
+
+pyo3::create_exception!(
+    _core,
+    WoodpileError,
+    PyValueError,
+    "A bad input: `args` = (message, field, value, reason); field, value and reason are None when the error is not about one key."
+);
+
+/// A `woodpile-io` error as a Python exception: bad input → `WoodpileError` (with the key, the
+/// value and what would be valid), files → `OSError`, a failed run → `RuntimeError`.
+fn py_err(e: woodpile_io::Error) -> PyErr {
+    use woodpile_io::Error as E;
+    let message = e.to_string();
+    let (field, value, reason) = match &e {
+        E::Invalid {
+            field,
+            value,
+            reason,
+        } => (
+            Some(field.clone()),
+            Some(value.clone()),
+            Some(reason.clone()),
+        ),
+        E::Field {
+            field,
+            source:
+                woodpile::Error::InvalidParameter {
+                    field: inner,
+                    value,
+                    reason,
+                },
+        } => (
+            Some(format!("{field}.{inner}")),
+            Some(value.clone()),
+            Some(reason.clone()),
+        ),
+        E::Read { .. } | E::Output { .. } | E::OutputNotEmpty { .. } => {
+            return PyOSError::new_err(message)
+        }
+        _ if e.exit_code() == 1 => return PyRuntimeError::new_err(message),
+        _ => (None, None, None),
+    };
+    WoodpileError::new_err((message, field, value, reason))
+}
+
+/// Two NumPy vectors of the same length.
+type ArrayPair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
+fn core_err(e: woodpile::Error) -> PyErr {
+    py_err(woodpile_io::Error::from(e))
+}
+
+/// Names of the built-in scenarios.
+#[pyfunction]
+fn builtin_scenarios() -> Vec<String> {
+    builtin_names()
+}
+
+/// A built-in scenario as complete TOML (every default written out).
+#[pyfunction]
+fn builtin_toml(name: &str) -> PyResult<String> {
+    let scenario = builtin(name).ok_or_else(|| {
+        py_err(woodpile_io::Error::UnknownScenario {
+            name: name.to_string(),
+            valid: builtin_names().join(", "),
+        })
+    })?;
+    Ok(scenario.to_toml())
+}
+
+/// Parses a scenario, checks that it resolves (relative files against `base_dir`) and returns
+/// it as complete TOML.
+#[pyfunction]
+fn complete_toml(text: &str, base_dir: PathBuf) -> PyResult<String> {
+    let scenario = Scenario::parse(text).map_err(py_err)?;
+    resolve(&scenario, &base_dir).map_err(py_err)?;
+    Ok(scenario.to_toml())
+}
+
+/// The scenario as JSON text (the TOML file's structure), for Python dictionaries.
+#[pyfunction]
+fn toml_to_json(text: &str) -> PyResult<String> {
+    let scenario = Scenario::parse(text).map_err(py_err)?;
+    serde_json::to_string(&scenario).map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
+/// A scenario from JSON text (as [`toml_to_json`] writes it) as complete TOML.
+#[pyfunction]
+fn json_to_toml(json: &str) -> PyResult<String> {
+    let scenario: Scenario = serde_json::from_str(json).map_err(|e| {
+        WoodpileError::new_err((
+            format!("scenario: {e}"),
+            None::<String>,
+            None::<String>,
+            None::<String>,
+        ))
+    })?;
+    Ok(scenario.to_toml())
+}
+
+/// One run: what was run, its figures of merit and its samples.
+#[pyclass(module = "woodpile._core", frozen)]
+struct Run {
+    name: String,
+    scenario: Scenario,
+    resolved: Resolved,
+    summary: RunSummary,
+    trajectory: Trajectory,
+}
+
+impl Run {
+    fn record(&self) -> RunRecord<'_> {
+        RunRecord {
+            name: &self.name,
+            file: None,
+            scenario: &self.scenario,
+            resolved: &self.resolved,
+            summary: &self.summary,
+            trajectory: &self.trajectory,
+        }
+    }
+
+    fn matrix<'py>(
+        &self,
+        py: Python<'py>,
+        data: &[f64],
+        columns: usize,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let rows = data.len().checked_div(columns).unwrap_or(0);
+        PyArray1::from_slice(py, data).reshape([rows, columns])
+    }
+}
+
+#[pymethods]
+impl Run {
+    /// `summary.json` of this run, as JSON text.
+    fn summary_json(&self) -> PyResult<String> {
+        serde_json::to_string(&SummaryJson::new(&self.record()))
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    }
+
+    /// The scenario as complete TOML.
+    fn scenario_toml(&self) -> String {
+        self.scenario.to_toml()
+    }
+
+    /// Scenario name.
+    #[getter]
+    fn name(&self) -> String {
+        self.name.clone()
+    }
+
+    /// Sample times [s], shape (S,).
+    #[getter]
+    fn time_s<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.trajectory.times_s)
+    }
+
+    /// Contact forces [N], shape (S, N + 1).
+    #[getter]
+    fn forces_n<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let t = &self.trajectory;
+        self.matrix(py, &t.contact_forces_n, t.n_contacts())
+    }
+
+    /// Layer energies [J], shape (S, N + 1).
+    #[getter]
+    fn energy_j<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let t = &self.trajectory;
+        self.matrix(py, &t.layer_energies_j, t.n_contacts())
+    }
+
+    /// Primary-mass displacements [m], shape (S, N).
+    #[getter]
+    fn displacements_m<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let t = &self.trajectory;
+        self.matrix(py, &t.displacements_m, t.n_elements)
+    }
+
+    /// Primary-mass velocities [m/s], shape (S, N).
+    #[getter]
+    fn velocities_m_s<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let t = &self.trajectory;
+        self.matrix(py, &t.velocities_m_s, t.n_elements)
+    }
+
+    /// The wall's share of the last contact's energy [J], shape (S,).
+    #[getter]
+    fn wall_energy_j<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.trajectory.wall_energy_j)
+    }
+
+    /// Work of the external forces [J], shape (S,).
+    #[getter]
+    fn input_work_j<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.trajectory.input_work_j)
+    }
+
+    /// Energy dissipated [J], shape (S,).
+    #[getter]
+    fn dissipated_j<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.trajectory.dissipated_j)
+    }
+
+    /// Writes the run directory `dir` exactly as `woodpile simulate --out dir` does (staged, then
+    /// moved into place; an earlier run there is replaced only with `overwrite`).
+    fn save(&self, py: Python<'_>, dir: PathBuf, overwrite: bool) -> PyResult<String> {
+        py.detach(|| {
+            let staging = woodpile_io::atomic::Staging::prepare(&dir, overwrite).map_err(|e| {
+                match e {
+                    // The command line's flags by their Python names.
+                    woodpile_io::Error::Invalid { value, reason, .. } => {
+                        py_err(woodpile_io::Error::Invalid {
+                            field: "directory".into(),
+                            value,
+                            reason: reason
+                                .replace("--overwrite", "overwrite=True")
+                                .replace("--out", "directory"),
+                        })
+                    }
+                    other => py_err(other),
+                }
+            })?;
+            write_run(staging.path(), &self.record()).map_err(py_err)?;
+            let done = staging
+                .commit(
+                    woodpile_io::rundir::RUN_FILES,
+                    woodpile_io::atomic::RUN_MARKER,
+                )
+                .map_err(py_err)?;
+            Ok(done.display().to_string())
+        })
+    }
+}
+
+/// Resolves and runs a scenario (TOML text; relative files against `base_dir`), GIL released.
+#[pyfunction]
+fn simulate(py: Python<'_>, text: &str, base_dir: PathBuf, name: String) -> PyResult<Run> {
+    let scenario = Scenario::parse(text).map_err(py_err)?;
+    let resolved = resolve(&scenario, &base_dir).map_err(py_err)?;
+    py.detach(|| {
+        let mut trajectory = Trajectory::default();
+        let summary = run_simulation(
+            &resolved.chain,
+            &resolved.excitation,
+            &resolved.settings,
+            &mut trajectory,
+        )
+        .map_err(core_err)?;
+        Ok(Run {
+            name,
+            scenario,
+            resolved,
+            summary,
+            trajectory,
+        })
+    })
+}
+
+/// Figures of merit of one scenario without recording samples: JSON text of the library's
+/// `RunSummary`, or the error's message prefixed by "error: ".
+fn evaluate_one(text: &str, base_dir: &Path) -> String {
+    let result = Scenario::parse(text)
+        .and_then(|s| resolve(&s, base_dir))
+        .and_then(|r| {
+            run_simulation(&r.chain, &r.excitation, &r.settings, &mut ())
+                .map_err(woodpile_io::Error::from)
+        });
+    match result {
+        Ok(summary) => serde_json::to_string(&summary)
+            .unwrap_or_else(|e| format!("error: cannot serialise the summary: {e}")),
+        Err(e) => format!("error: {e}"),
+    }
+}
+
+/// Runs many scenarios in parallel on `threads` threads (default: one per core), GIL released;
+/// one JSON `RunSummary` (or "error: …") per scenario, in order.
+#[pyfunction]
+#[pyo3(signature = (texts, base_dir, threads=None))]
+fn evaluate(
+    py: Python<'_>,
+    texts: Vec<String>,
+    base_dir: PathBuf,
+    threads: Option<usize>,
+) -> PyResult<Vec<String>> {
+    py.detach(|| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads.unwrap_or(0))
+            .build()
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        Ok(pool.install(|| {
+            texts
+                .par_iter()
+                .map(|t| evaluate_one(t, &base_dir))
+                .collect()
+        }))
+    })
+}
+
+/// Reads a run directory written by `woodpile simulate` (or `Run.save`).
+#[pyfunction]
+fn load_run(py: Python<'_>, dir: PathBuf) -> PyResult<(String, String, String)> {
+    py.detach(|| {
+        let info = read_run_info(&dir).map_err(py_err)?;
+        // Checks the arrays as well (shapes, finite values).
+        read_trajectory(&dir, info.labels.len()).map_err(py_err)?;
+        let summary = std::fs::read_to_string(dir.join("summary.json"))
+            .map_err(|e| PyOSError::new_err(format!("{}: {e}", dir.display())))?;
+        let run_json = std::fs::read_to_string(dir.join("run.json"))
+            .map_err(|e| PyOSError::new_err(format!("{}: {e}", dir.display())))?;
+        Ok((info.name, summary, run_json))
+    })
+}
+
+/// The paper's Table 1 cell of a rod length, or a rod's cell from beam theory: (primary mass
+/// [kg], resonator masses [kg], resonator stiffnesses [N/m]).
+#[pyfunction]
+#[pyo3(signature = (length_mm, diameter_mm=None, material=None, modes=None))]
+fn cell(
+    length_mm: f64,
+    diameter_mm: Option<f64>,
+    material: Option<String>,
+    modes: Option<usize>,
+) -> PyResult<(f64, Vec<f64>, Vec<f64>)> {
+    let table1 = length_mm.fract() == 0.0
+        && diameter_mm.is_none()
+        && material.is_none()
+        && modes.is_none()
+        && woodpile::TABLE1_LENGTHS_MM.contains(&(length_mm as u32));
+    let cell = if table1 {
+        woodpile::UnitCell::table1(length_mm as u32).map_err(core_err)?
+    } else {
+        let request = woodpile_io::cells::RodRequest {
+            length_mm,
+            diameter_mm: diameter_mm.unwrap_or(woodpile::defaults::ROD_DIAMETER_MM),
+            inner_diameter_mm: None,
+            material: material.unwrap_or_else(|| woodpile::defaults::ELEMENT_MATERIAL.into()),
+            modes,
+            reduction: woodpile_io::scenario::ReductionSpec::PoleZero,
+        };
+        let d = woodpile_io::cells::derive(&request, &|k: &str| k.to_string()).map_err(py_err)?;
+        return Ok((
+            d.primary_mass_g * 1e-3,
+            d.resonators.iter().map(|r| r.mass_g * 1e-3).collect(),
+            d.resonators
+                .iter()
+                .map(|r| r.stiffness_kn_per_mm * 1e6)
+                .collect(),
+        ));
+    };
+    Ok((
+        cell.primary_mass_kg,
+        cell.resonators.iter().map(|r| r.mass_kg).collect(),
+        cell.resonators
+            .iter()
+            .map(|r| r.stiffness_n_per_m)
+            .collect(),
+    ))
+}
+
+fn unit_cell(
+    primary_kg: f64,
+    masses_kg: &[f64],
+    stiffnesses: &[f64],
+) -> PyResult<woodpile::UnitCell> {
+    let resonators = masses_kg
+        .iter()
+        .zip(stiffnesses)
+        .map(|(&mass_kg, &stiffness_n_per_m)| woodpile::Resonator {
+            mass_kg,
+            stiffness_n_per_m,
+        })
+        .collect();
+    woodpile::UnitCell::new(primary_kg, resonators).map_err(core_err)
+}
+
+/// M_eff(2πf)/M_total of a cell at `frequencies_hz` (real and imaginary parts; the resonators
+/// damped at `ratio`).
+#[pyfunction]
+fn effective_mass<'py>(
+    py: Python<'py>,
+    primary_kg: f64,
+    masses_kg: Vec<f64>,
+    stiffnesses: Vec<f64>,
+    frequencies_hz: Vec<f64>,
+    ratio: f64,
+) -> PyResult<ArrayPair<'py>> {
+    let cell = unit_cell(primary_kg, &masses_kg, &stiffnesses)?;
+    let c = EffectiveMassCurve::damped(&cell, &frequencies_hz, ratio).map_err(core_err)?;
+    Ok((
+        PyArray1::from_vec(py, c.normalised_mass),
+        PyArray1::from_vec(py, c.normalised_loss),
+    ))
+}
+
+/// Pass bands and gaps [Hz] of a homogeneous chain of a cell with contact coefficient β under a
+/// static force F_p: (pass bands, gaps), each a list of (lower, upper); an open gap's upper edge
+/// is infinite.
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+fn band_gaps(
+    primary_kg: f64,
+    masses_kg: Vec<f64>,
+    stiffnesses: Vec<f64>,
+    beta: f64,
+    precompression_n: f64,
+) -> PyResult<(Vec<(f64, f64)>, Vec<(f64, f64)>)> {
+    let cell = unit_cell(primary_kg, &masses_kg, &stiffnesses)?;
+    let b = BandStructure::homogeneous(&cell, beta, precompression_n).map_err(core_err)?;
+    Ok((b.pass_bands_hz, b.gaps_hz))
+}
+
+/// One-sided amplitude spectrum of a uniformly sampled signal: (frequencies [Hz], amplitudes).
+#[pyfunction]
+fn spectrum<'py>(
+    py: Python<'py>,
+    signal: Vec<f64>,
+    sample_interval_s: f64,
+) -> PyResult<ArrayPair<'py>> {
+    let s = woodpile::Spectrum::of(
+        &signal,
+        sample_interval_s,
+        &woodpile::analysis::SpectrumSettings::default(),
+    )
+    .map_err(core_err)?;
+    Ok((
+        PyArray1::from_vec(py, s.frequencies_hz),
+        PyArray1::from_vec(py, s.amplitudes),
+    ))
+}
+
+/// The extension module.
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("WoodpileError", m.py().get_type::<WoodpileError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_class::<Run>()?;
+    m.add_function(wrap_pyfunction!(builtin_scenarios, m)?)?;
+    m.add_function(wrap_pyfunction!(builtin_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(complete_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(toml_to_json, m)?)?;
+    m.add_function(wrap_pyfunction!(json_to_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(evaluate, m)?)?;
+    m.add_function(wrap_pyfunction!(load_run, m)?)?;
+    m.add_function(wrap_pyfunction!(cell, m)?)?;
+    m.add_function(wrap_pyfunction!(effective_mass, m)?)?;
+    m.add_function(wrap_pyfunction!(band_gaps, m)?)?;
+    m.add_function(wrap_pyfunction!(spectrum, m)?)?;
+    Ok(())
+}

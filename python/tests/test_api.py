@@ -1,0 +1,148 @@
+"""Claims of the Python package, each against the Rust library or the command line's own files.
+
+Runs are kept short (0.2 ms of the paper's impact) so the suite takes seconds; a tolerance is
+stated where one is used, and results that must be identical are compared exactly.
+"""
+
+import concurrent.futures
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import woodpile
+from woodpile import Scenario, WoodpileError
+
+SHORT = {"run.duration_s": 2e-4}
+
+
+def short(name="paper-impact-80mm"):
+    return Scenario.builtin(name).replace(**SHORT)
+
+
+def test_scenario_dict_and_toml_round_trip():
+    """to_dict → from_dict and to_toml → from_toml give the same complete scenario."""
+    s = Scenario.builtin("paper-blast-optimized")
+    assert Scenario.from_dict(s.to_dict()) == s
+    assert Scenario.from_toml(s.to_toml()) == s
+    assert s.to_dict()["excitation"]["kind"] == "blast"
+
+
+def test_replace_sets_dotted_keys_and_drops_their_alternative():
+    s = Scenario.builtin("paper-impact-80mm").replace(
+        **{"chain.rods_mm": [80, 40, 20], "excitation.velocity_m_s": 2.0}
+    )
+    d = s.to_dict()
+    assert d["chain"]["rods_mm"] == [80, 40, 20]
+    assert d["excitation"]["velocity_m_s"] == 2.0
+    assert "drop_height_m" not in d["excitation"]
+
+
+def test_errors_name_the_key_the_value_and_what_is_valid():
+    with pytest.raises(WoodpileError) as info:
+        Scenario.builtin("paper-impact-80mm").replace(**{"excitation.velocity_m_s": -1.0})
+    message, field, value, reason = info.value.args
+    assert field == "excitation.velocity_m_s"
+    assert value.startswith("-1")
+    assert "> 0" in reason and field in message
+    with pytest.raises(WoodpileError):
+        Scenario.from_toml("[chain]\nrods_mm = [25]\n")  # not a Table 1 length
+    with pytest.raises(WoodpileError):
+        Scenario.builtin("no-such-scenario")
+
+
+def test_simulate_gives_arrays_of_the_documented_shapes():
+    run = woodpile.simulate(short())
+    n = 20
+    s = len(run.time_s)
+    assert s == 201  # 0.2 ms at 1 µs
+    assert run.forces_n.shape == (s, n + 1)
+    assert run.energy_j.shape == (s, n + 1)
+    assert run.displacements_m.shape == (s, n)
+    assert run.velocities_m_s.shape == (s, n)
+    # Energy is conserved to the integrator's accuracy (docs/physics.md §7: ~5e-8).
+    total = run.energy_j.sum(axis=1) + run.wall_energy_j
+    assert np.max(np.abs(total / total[0] - 1)) < 1e-6
+    df = run.to_pandas()
+    assert df.index.name == "time_s" and "contact_20_n" in df and "element_20_m_s" in df
+
+
+def test_summary_and_saved_directory_are_the_command_lines(tmp_path):
+    """run.summary has exactly summary.json's keys and values; load_run reads the files back."""
+    run = woodpile.simulate(short())
+    out = run.save(tmp_path / "run")
+    on_disk = json.loads((out / "summary.json").read_text())
+    assert set(run.summary) == set(on_disk)
+    assert run.summary["transmitted_peak_force_n"] == on_disk["transmitted_peak_force_n"]
+    back = woodpile.load_run(out)
+    assert np.array_equal(back.forces_n, run.forces_n)
+    assert np.array_equal(back.time_s, run.time_s)
+    assert back.scenario == run.scenario
+    with pytest.raises(WoodpileError, match="overwrite=True"):
+        run.save(tmp_path / "run")  # an earlier run is replaced only with overwrite=True
+    run.save(tmp_path / "run", overwrite=True)
+
+
+def test_evaluate_equals_single_runs_exactly():
+    scenarios = [short(), short("paper-impact-20mm")]
+    table = woodpile.evaluate(scenarios)
+    for s, (_, row) in zip(scenarios, table.iterrows()):
+        single = woodpile.simulate(s).summary
+        assert row["transmitted_peak_force_n"] == single["transmitted_peak_force_n"]
+        assert row["incident_peak_force_n"] == single["incident_peak_force_n"]
+        assert pd.isna(row["error"])
+
+
+def test_a_failing_scenario_gives_an_error_row_not_an_exception():
+    bad = short().replace(**{"run.time_step_s": 1e-4, "run.sample_interval_s": 1e-4})
+    table = woodpile.evaluate([short(), bad])
+    assert pd.isna(table["error"][0])
+    assert isinstance(table["error"][1], str) and "time_step" in table["error"][1]
+
+
+def _comparable(df):
+    return df.drop(columns=["wall_time_s"])
+
+
+def test_sweep_is_the_cartesian_product_and_executors_agree():
+    grid = {"excitation.velocity_m_s": [1.0, 2.0, 3.0], "chain.rods_mm": [[80] * 4, [20] * 4]}
+    local = woodpile.sweep(short(), grid)
+    assert len(local) == 6
+    assert list(local.columns[:2]) == list(grid)
+    assert local["excitation.velocity_m_s"].tolist() == [1.0, 1.0, 2.0, 2.0, 3.0, 3.0]
+    # The incident peak grows with the impact speed (Hertz: F ∝ v^{6/5}).
+    four_80 = local[local["chain.rods_mm"].apply(lambda r: r[0] == 80)]
+    assert four_80["incident_peak_force_n"].is_monotonic_increasing
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        threaded = woodpile.sweep(short(), grid, executor=pool)
+    with concurrent.futures.ProcessPoolExecutor(2) as pool:
+        processes = woodpile.sweep(short(), grid, executor=pool)
+    assert _comparable(threaded).equals(_comparable(local))
+    assert _comparable(processes).equals(_comparable(local))
+
+
+def test_dask_local_cluster_gives_the_local_results():
+    distributed = pytest.importorskip("dask.distributed")
+    grid = {"excitation.velocity_m_s": [0.5, 1.0, 1.5, 2.0]}
+    local = woodpile.sweep(short(), grid)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as client:
+            remote = woodpile.sweep(short(), grid, executor=client)
+    assert _comparable(remote).equals(_comparable(local))
+
+
+def test_cells_and_band_gaps():
+    """Table 1's 80 mm cell (f1 = 2.74 kHz, docs/physics.md §3) and its band structure: the
+    effective mass is the total mass at 0 Hz, and the first gap opens below the first resonance."""
+    c = woodpile.cells(80)
+    assert abs(c["local_resonances_hz"][0] - 2740) < 10
+    re, im = woodpile.effective_mass(c, [0.0, 1000.0])
+    assert abs(re[0] - 1.0) < 1e-12 and im[0] == 0.0
+    bands = woodpile.band_gaps(c, beta=1.7e9, precompression_n=10.0)
+    first_gap = bands["gaps_hz"][0]
+    assert first_gap[0] < c["local_resonances_hz"][0] < first_gap[1]
+    derived = woodpile.cells(45, diameter_mm=6.0, material="steel")
+    assert derived["primary_mass_kg"] > 0 and len(derived["resonator_masses_kg"]) >= 1
+    f, a = woodpile.spectrum(np.sin(2 * np.pi * 1000 * np.arange(1000) * 1e-5), 1e-5)
+    assert abs(f[np.argmax(a)] - 1000) < 1e-9 and abs(a.max() - 1) < 1e-9
