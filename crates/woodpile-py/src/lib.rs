@@ -445,12 +445,336 @@ fn spectrum<'py>(
     ))
 }
 
+// ---------------------------------------------------------------------------------------------
+// The breeder GA as ask/tell, so that Python can evaluate designs anywhere (an executor, Dask).
+
+use std::collections::HashMap;
+use woodpile::optimize::{BreederGa, GaState};
+use woodpile_io::optimize::{optimize_error, Checkpoint, OptimizeConfig, Problem};
+
+fn ga_err(e: woodpile::optimize::OptimizeError) -> PyErr {
+    py_err(optimize_error(e))
+}
+
+/// One optimisation: the problem of a config and the GA's state between generations.
+#[pyclass(module = "woodpile._core")]
+struct GaSession {
+    config: OptimizeConfig,
+    problem: Problem,
+    ga: BreederGa,
+    state: Option<GaState>,
+    /// The designs of the last `ask` (all children, duplicates and cached ones included).
+    pending: Option<Vec<Vec<u8>>>,
+    /// Threads of local evaluation.
+    pool: rayon::ThreadPool,
+}
+
+impl GaSession {
+    fn build(config: OptimizeConfig, base_dir: &Path, threads: usize) -> PyResult<Self> {
+        let problem = Problem::new(&config, base_dir, threads).map_err(py_err)?;
+        let ga = BreederGa::new(
+            problem.space.clone(),
+            Box::new(problem.objective),
+            problem.settings,
+        )
+        .map_err(ga_err)?;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        Ok(GaSession {
+            config: problem.config.clone(),
+            problem,
+            ga,
+            state: None,
+            pending: None,
+            pool,
+        })
+    }
+
+    fn state(&self) -> PyResult<&GaState> {
+        self.state
+            .as_ref()
+            .ok_or_else(|| PyRuntimeError::new_err("no generation yet: ask() and tell() first"))
+    }
+}
+
+#[pymethods]
+impl GaSession {
+    /// A session for a config given as `kind` = "builtin" (a problem name), "toml" or "json"
+    /// text; `seed` overrides `ga.seed`; `threads` for local evaluation (0 = one per core).
+    #[new]
+    #[pyo3(signature = (kind, text, base_dir, seed=None, threads=0))]
+    fn new(
+        kind: &str,
+        text: &str,
+        base_dir: PathBuf,
+        seed: Option<u64>,
+        threads: usize,
+    ) -> PyResult<Self> {
+        let mut config = match kind {
+            "builtin" => OptimizeConfig::builtin(text).map_err(py_err)?,
+            "toml" => OptimizeConfig::parse(text, "problem").map_err(py_err)?,
+            "json" => serde_json::from_str(text).map_err(|e| {
+                WoodpileError::new_err((
+                    format!("problem: {e}"),
+                    None::<String>,
+                    None::<String>,
+                    None::<String>,
+                ))
+            })?,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "unknown config kind {other}"
+                )))
+            }
+        };
+        if seed.is_some() {
+            config.ga.seed = seed;
+        }
+        Self::build(config, &base_dir, threads)
+    }
+
+    /// The completed config as JSON (what a worker needs to evaluate designs).
+    fn config_json(&self) -> PyResult<String> {
+        serde_json::to_string(&self.config).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    }
+
+    /// Ask: the distinct designs of the next generation that are not in the fitness cache, in
+    /// order of first appearance (catalogue indices, top to bottom).
+    fn ask(&mut self) -> Vec<Vec<u8>> {
+        let designs = match &self.state {
+            None => self.ga.initial_designs(),
+            Some(s) => self.ga.offspring(s),
+        };
+        let cached = |g: &Vec<u8>| self.state.as_ref().is_some_and(|s| s.cache.contains_key(g));
+        let mut seen = std::collections::HashSet::new();
+        let new: Vec<Vec<u8>> = designs
+            .iter()
+            .filter(|g| !cached(g) && seen.insert((*g).clone()))
+            .cloned()
+            .collect();
+        self.pending = Some(designs);
+        new
+    }
+
+    /// Tell: the objective values of the designs `ask` returned; completes the generation.
+    fn tell(
+        &mut self,
+        designs: Vec<Vec<u8>>,
+        objectives: Vec<f64>,
+        elapsed_s: f64,
+    ) -> PyResult<()> {
+        let pending = self
+            .pending
+            .take()
+            .ok_or_else(|| PyRuntimeError::new_err("tell() without a pending ask()"))?;
+        if designs.len() != objectives.len() {
+            self.pending = Some(pending);
+            return Err(PyValueError::new_err(format!(
+                "{} designs but {} objectives",
+                designs.len(),
+                objectives.len()
+            )));
+        }
+        let mut cache = self
+            .state
+            .as_ref()
+            .map(|s| s.cache.clone())
+            .unwrap_or_default();
+        for (g, &v) in designs.iter().zip(&objectives) {
+            if v.is_nan() {
+                self.pending = Some(pending);
+                return Err(PyValueError::new_err(format!(
+                    "objective of design {g:?} is NaN"
+                )));
+            }
+            cache.insert(g.clone(), v);
+        }
+        let values = pending
+            .iter()
+            .map(|g| cache.get(g).copied())
+            .collect::<Option<Vec<f64>>>();
+        let Some(values) = values else {
+            let missing = pending.iter().find(|g| !cache.contains_key(*g));
+            let message = format!("design {missing:?} of the last ask() was not told");
+            self.pending = Some(pending);
+            return Err(PyValueError::new_err(message));
+        };
+        let evaluated = designs.len() as u64;
+        let hits = pending.len() as u64 - evaluated.min(pending.len() as u64);
+        match self.state.as_mut() {
+            None => {
+                self.state = Some(
+                    self.ga
+                        .start(pending, values, cache, evaluated, hits, elapsed_s),
+                );
+            }
+            Some(state) => {
+                state.cache = cache;
+                state.evaluations += evaluated;
+                state.cache_hits += hits;
+                self.ga.advance(state, pending, values, elapsed_s);
+            }
+        }
+        Ok(())
+    }
+
+    /// Objective values of designs, simulated here in parallel (GIL released).
+    fn evaluate(&self, py: Python<'_>, designs: Vec<Vec<u8>>) -> PyResult<Vec<f64>> {
+        py.detach(|| {
+            self.pool.install(|| {
+                designs
+                    .par_iter()
+                    .map(|g| self.ga.evaluate(g))
+                    .collect::<Result<Vec<f64>, _>>()
+                    .map_err(ga_err)
+            })
+        })
+    }
+
+    /// Why the GA stops now ("generation-limit" or "stalled"), or None to go on.
+    fn stop_reason(&self) -> Option<&'static str> {
+        let state = self.state.as_ref()?;
+        self.ga.stop_reason(state).map(|r| match r {
+            woodpile::optimize::StopReason::GenerationLimit => "generation-limit",
+            woodpile::optimize::StopReason::Stalled => "stalled",
+            _ => "stopped",
+        })
+    }
+
+    /// Generations completed (None before the first tell).
+    fn generation(&self) -> Option<usize> {
+        self.state.as_ref().map(|s| s.generation)
+    }
+
+    /// (best design, its objective, its element labels).
+    fn best(&self) -> PyResult<(Vec<u8>, f64, Vec<String>)> {
+        let b = self.state()?.best();
+        Ok((
+            b.genome.clone(),
+            b.objective,
+            self.problem.space.labels(&b.genome),
+        ))
+    }
+
+    /// The history: (generation, best, mean, worst, evaluations, cache_hits, elapsed_s) rows.
+    #[allow(clippy::type_complexity)]
+    fn history(&self) -> PyResult<Vec<(usize, f64, f64, f64, u64, u64, f64)>> {
+        Ok(self
+            .state()?
+            .history
+            .iter()
+            .map(|h| {
+                (
+                    h.generation,
+                    h.best,
+                    h.mean,
+                    h.worst,
+                    h.evaluations,
+                    h.cache_hits,
+                    h.elapsed_s,
+                )
+            })
+            .collect())
+    }
+
+    /// The scenario of a design, as complete TOML.
+    fn scenario_toml(&self, design: Vec<u8>) -> String {
+        self.problem.scenario(&design, None).to_toml()
+    }
+
+    /// The state as the command line's checkpoint JSON (None before the first tell).
+    fn state_json(&self) -> PyResult<Option<String>> {
+        self.state
+            .as_ref()
+            .map(|s| serde_json::to_string(&Checkpoint::new(&self.config, s)))
+            .transpose()
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    }
+
+    /// Continues from a checkpoint JSON (as `state_json` or `woodpile optimize` wrote it) of
+    /// the same problem; its checksum and problem are checked.
+    fn restore(&mut self, json: &str) -> PyResult<()> {
+        let cp: Checkpoint = serde_json::from_str(json)
+            .map_err(|e| PyValueError::new_err(format!("checkpoint: {e}")))?;
+        if cp.checksum != cp.content_checksum() {
+            return Err(PyValueError::new_err(
+                "checkpoint: checksum mismatch (edited or damaged)",
+            ));
+        }
+        if !cp.config.same_problem(&self.config) {
+            return Err(PyValueError::new_err(
+                "checkpoint: saved for a different problem",
+            ));
+        }
+        let state = cp.into_state();
+        self.ga.check_state(&state).map_err(ga_err)?;
+        self.state = Some(state);
+        self.pending = None;
+        Ok(())
+    }
+
+    /// Runs the whole GA here, exactly as `woodpile optimize` does (BreederGa::run), GIL
+    /// released: the reference the ask/tell loop must reproduce.
+    fn run_to_end(&mut self, py: Python<'_>) -> PyResult<()> {
+        let stop = std::sync::atomic::AtomicBool::new(false);
+        let outcome = py
+            .detach(|| {
+                self.ga.run(self.state.take(), &stop, &mut |_| {
+                    std::ops::ControlFlow::Continue(())
+                })
+            })
+            .map_err(ga_err)?;
+        self.state = Some(outcome.state);
+        Ok(())
+    }
+}
+
+/// Objective values of designs of a problem (config JSON), for a worker process; sessions are
+/// kept per config so a worker builds each problem once.
+#[pyfunction]
+fn evaluate_designs(
+    py: Python<'_>,
+    config_json: &str,
+    base_dir: PathBuf,
+    designs: Vec<Vec<u8>>,
+    threads: usize,
+) -> PyResult<Vec<f64>> {
+    use std::sync::{Mutex, OnceLock};
+    static SESSIONS: OnceLock<Mutex<HashMap<String, std::sync::Arc<GaSession>>>> = OnceLock::new();
+    let sessions = SESSIONS.get_or_init(|| Mutex::new(HashMap::new()));
+    let key = format!("{}\u{0}{}\u{0}{threads}", base_dir.display(), config_json);
+    let session = {
+        let mut map = sessions
+            .lock()
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        match map.get(&key) {
+            Some(s) => s.clone(),
+            None => {
+                let s = std::sync::Arc::new(GaSession::new(
+                    "json",
+                    config_json,
+                    base_dir.clone(),
+                    None,
+                    threads,
+                )?);
+                map.insert(key, s.clone());
+                s
+            }
+        }
+    };
+    session.evaluate(py, designs)
+}
+
 /// The extension module.
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("WoodpileError", m.py().get_type::<WoodpileError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<Run>()?;
+    m.add_class::<GaSession>()?;
+    m.add_function(wrap_pyfunction!(evaluate_designs, m)?)?;
     m.add_function(wrap_pyfunction!(builtin_scenarios, m)?)?;
     m.add_function(wrap_pyfunction!(builtin_toml, m)?)?;
     m.add_function(wrap_pyfunction!(complete_toml, m)?)?;

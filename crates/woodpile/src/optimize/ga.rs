@@ -365,52 +365,62 @@ impl BreederGa {
         }
     }
 
-    /// Generation 0: a random feasible population, evaluated and sorted.
-    pub fn initialize(&self) -> Result<GaState, OptimizeError> {
-        let started = Instant::now();
+    /// Ask, generation 0: a random feasible population drawn from the seed (stream 0).
+    pub fn initial_designs(&self) -> Vec<Genome> {
         let mut rng = self.rng(0);
-        let genomes: Vec<Genome> = (0..self.settings.population)
+        (0..self.settings.population)
             .map(|_| self.set.random(&mut rng))
-            .collect();
-        let mut state = GaState {
-            generation: 0,
-            population: Vec::new(),
-            history: Vec::new(),
-            cache: HashMap::new(),
-            evaluations: 0,
-            cache_hits: 0,
-            stalled: 0,
-            elapsed_s: 0.0,
-        };
-        let values = self.evaluate_all(
-            &genomes,
-            &mut state.cache,
-            &mut state.evaluations,
-            &mut state.cache_hits,
-        )?;
-        state.population = sorted(genomes, values);
-        state.elapsed_s = started.elapsed().as_secs_f64();
-        state.history.push(self.stats(&state));
-        Ok(state)
+            .collect()
     }
 
-    /// Breeds, evaluates and sorts the next generation. On error `state` is unchanged.
-    pub fn next_generation(&self, state: &mut GaState) -> Result<(), OptimizeError> {
-        let started = Instant::now();
-        let generation = state.generation + 1;
-        let mut rng = self.rng(generation);
+    /// Ask, generation g + 1 of a state at generation g: the children to evaluate (the elites
+    /// are kept unevaluated), drawn from the seed on stream g + 1.
+    pub fn offspring(&self, state: &GaState) -> Vec<Genome> {
+        let mut rng = self.rng(state.generation + 1);
         let mu = self.settings.population;
         let parents: Vec<&[u8]> = state.population.iter().map(|i| &i.genome[..]).collect();
         let pool = truncation_pool(mu, self.settings.truncation);
         let range = self.mutation_range();
-        let children: Vec<Genome> = (self.settings.elites..mu)
+        (self.settings.elites..mu)
             .map(|_| breed(&parents, pool, &self.set, range, &mut rng))
-            .collect();
-        let mut cache = std::mem::take(&mut state.cache);
-        let (mut evaluations, mut cache_hits) = (state.evaluations, state.cache_hits);
-        let values = self.evaluate_all(&children, &mut cache, &mut evaluations, &mut cache_hits);
-        state.cache = cache;
-        let values = values?;
+            .collect()
+    }
+
+    /// Tell, generation 0: the state from the initial designs and their objective values (the
+    /// caller's `cache`, evaluation count and cache hits are kept in it).
+    pub fn start(
+        &self,
+        genomes: Vec<Genome>,
+        values: Vec<f64>,
+        cache: HashMap<Genome, f64>,
+        evaluations: u64,
+        cache_hits: u64,
+        elapsed_s: f64,
+    ) -> GaState {
+        let mut state = GaState {
+            generation: 0,
+            population: sorted(genomes, values),
+            history: Vec::new(),
+            cache,
+            evaluations,
+            cache_hits,
+            stalled: 0,
+            elapsed_s,
+        };
+        state.history.push(self.stats(&state));
+        state
+    }
+
+    /// Tell, generation g + 1: the elites and the evaluated `children` (from
+    /// [`BreederGa::offspring`]) become the sorted population; the caller has already updated
+    /// the state's cache and counters.
+    pub fn advance(
+        &self,
+        state: &mut GaState,
+        children: Vec<Genome>,
+        values: Vec<f64>,
+        elapsed_s: f64,
+    ) {
         let previous_best = state.population[0].objective;
         let mut population: Vec<Individual> = state.population[..self.settings.elites].to_vec();
         population.extend(
@@ -420,17 +430,54 @@ impl BreederGa {
                 .map(|(genome, objective)| Individual { genome, objective }),
         );
         sort(&mut population);
-        state.generation = generation;
+        state.generation += 1;
         state.population = population;
-        state.evaluations = evaluations;
-        state.cache_hits = cache_hits;
         state.stalled = if state.population[0].objective < previous_best {
             0
         } else {
             state.stalled + 1
         };
-        state.elapsed_s += started.elapsed().as_secs_f64();
+        state.elapsed_s += elapsed_s;
         state.history.push(self.stats(state));
+    }
+
+    /// Why a run stops at `state` (the generation or the stall limit), or None to go on.
+    pub fn stop_reason(&self, state: &GaState) -> Option<StopReason> {
+        if state.generation >= self.settings.generations {
+            Some(StopReason::GenerationLimit)
+        } else if self
+            .settings
+            .stall_generations
+            .is_some_and(|g| state.stalled >= g)
+        {
+            Some(StopReason::Stalled)
+        } else {
+            None
+        }
+    }
+
+    /// Generation 0: a random feasible population, evaluated and sorted.
+    pub fn initialize(&self) -> Result<GaState, OptimizeError> {
+        let started = Instant::now();
+        let genomes = self.initial_designs();
+        let (mut cache, mut evaluations, mut cache_hits) = (HashMap::new(), 0, 0);
+        let values = self.evaluate_all(&genomes, &mut cache, &mut evaluations, &mut cache_hits)?;
+        let elapsed = started.elapsed().as_secs_f64();
+        Ok(self.start(genomes, values, cache, evaluations, cache_hits, elapsed))
+    }
+
+    /// Breeds, evaluates and sorts the next generation. On error `state` is unchanged.
+    pub fn next_generation(&self, state: &mut GaState) -> Result<(), OptimizeError> {
+        let started = Instant::now();
+        let children = self.offspring(state);
+        let mut cache = std::mem::take(&mut state.cache);
+        let (mut evaluations, mut cache_hits) = (state.evaluations, state.cache_hits);
+        let values = self.evaluate_all(&children, &mut cache, &mut evaluations, &mut cache_hits);
+        state.cache = cache;
+        let values = values?;
+        state.evaluations = evaluations;
+        state.cache_hits = cache_hits;
+        self.advance(state, children, values, started.elapsed().as_secs_f64());
         Ok(())
     }
 
@@ -502,19 +549,10 @@ impl BreederGa {
             }
         };
         loop {
-            let reason = if state.generation >= self.settings.generations {
-                Some(StopReason::GenerationLimit)
-            } else if self
-                .settings
-                .stall_generations
-                .is_some_and(|g| state.stalled >= g)
-            {
-                Some(StopReason::Stalled)
-            } else if stop.load(Ordering::SeqCst) {
-                Some(StopReason::Interrupted)
-            } else {
-                None
-            };
+            let reason = self.stop_reason(&state).or_else(|| {
+                stop.load(Ordering::SeqCst)
+                    .then_some(StopReason::Interrupted)
+            });
             if let Some(reason) = reason {
                 return Ok(Outcome { state, reason });
             }
