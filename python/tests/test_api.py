@@ -194,3 +194,21 @@ def test_checkpoint_resume_and_pickle_are_exact(tmp_path):
     assert resumed.best == full.best
     with pytest.raises(RuntimeError, match="without a pending ask"):
         ga.tell([[0, 0, 0, 0, 0]], [1.0])
+
+
+def test_figures_draw_from_a_run_and_a_result(tmp_path):
+    """Force map, energy map, spectra and convergence draw and save (Agg backend)."""
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    from woodpile import plot
+
+    run = woodpile.simulate(short().replace(**{"run.duration_s": 5e-4}))
+    ax = plot.force_map(run)
+    assert ax.collections and ax.get_xlabel() == "time [ms]"
+    # The energy map is normalised by the impact's energy: its first column sums to ~100 %.
+    ax = plot.energy_map(run)
+    first_column = ax.collections[0].get_array().reshape(21, -1)[:, 0]
+    assert abs(first_column.sum() - 100) < 1e-6
+    plot.spectra(run)
+    plot.convergence(woodpile.optimize(SMALL_GA)).figure.savefig(tmp_path / "c.png")
+    assert (tmp_path / "c.png").stat().st_size > 1000

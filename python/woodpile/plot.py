@@ -1,0 +1,86 @@
+"""Matplotlib figures of runs and optimisations (``pip install "woodpile[plot]"``).
+
+Each function draws on ``ax`` (a new figure when None) and returns the Axes; units are in the
+labels. They take a :class:`woodpile.Run` (or a run directory read by :func:`woodpile.load_run`)
+or an :class:`woodpile.OptimizeResult`.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Sequence
+
+import numpy as np
+
+
+def _integer_rows(ax: Any) -> None:
+    from matplotlib.ticker import MaxNLocator
+
+    ax.yaxis.set_major_locator(MaxNLocator(integer=True))
+
+
+def _axes(ax: Any):
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        _, ax = plt.subplots(figsize=(7, 3.5), constrained_layout=True)
+    return ax
+
+
+def force_map(run: Any, ax: Any = None, *, cmap: str = "viridis"):
+    """Contact force [N], contact × time [ms] (the paper's Figs. 5 and 9 a, c, e, g)."""
+    ax = _axes(ax)
+    t_ms = run.time_s * 1e3
+    f = run.forces_n
+    image = ax.pcolormesh(t_ms, np.arange(f.shape[1]), f.T, shading="nearest", cmap=cmap)
+    ax.figure.colorbar(image, ax=ax, label="contact force [N]")
+    ax.set_xlabel("time [ms]")
+    ax.set_ylabel("contact (0 = striker or load, N = wall)")
+    _integer_rows(ax)
+    return ax
+
+
+def energy_map(run: Any, ax: Any = None, *, cmap: str = "magma"):
+    """Layer energy over the injected energy [%], layer × time [ms] (the paper's Fig. 6). The
+    injected energy is the initial energy for an impact, the largest input work otherwise."""
+    ax = _axes(ax)
+    e = run.energy_j
+    injected = max(float(e[0].sum() + run.wall_energy_j[0]), float(np.max(np.abs(run.input_work_j))))
+    image = ax.pcolormesh(run.time_s * 1e3, np.arange(e.shape[1]), 100 * e.T / injected, shading="nearest", cmap=cmap)
+    ax.figure.colorbar(image, ax=ax, label="layer energy / injected [%]")
+    ax.set_xlabel("time [ms]")
+    ax.set_ylabel("layer (0 = striker or load)")
+    _integer_rows(ax)
+    return ax
+
+
+def spectra(run: Any, contacts: Sequence[int] | None = None, ax: Any = None, *, max_frequency_hz: float = 60e3):
+    """Amplitude spectra [N] of contact forces against frequency [kHz] (the paper's Fig. 9 b, d,
+    f, h); by default the first element contact and the wall."""
+    from . import spectrum
+
+    ax = _axes(ax)
+    n = run.forces_n.shape[1] - 1
+    dt = float(run.time_s[1] - run.time_s[0])
+    for c in contacts if contacts is not None else [1, n]:
+        f, a = spectrum(run.forces_n[:, c], dt)
+        keep = (f > 0) & (f <= max_frequency_hz)
+        ax.semilogy(f[keep] * 1e-3, a[keep], label=f"contact {c}")
+    ax.set_xlabel("frequency [kHz]")
+    ax.set_ylabel("amplitude [N]")
+    ax.legend()
+    return ax
+
+
+def convergence(result: Any, ax: Any = None):
+    """Best and mean objective per generation of an optimisation (an ``OptimizeResult``, a
+    ``BreederGA`` or its history DataFrame)."""
+    ax = _axes(ax)
+    history = getattr(result, "history", result)
+    if callable(history):
+        history = history()
+    ax.plot(history.index, history["best"], marker="o", label="best")
+    ax.plot(history.index, history["mean"], label="mean")
+    ax.set_xlabel("generation")
+    ax.set_ylabel("objective")
+    ax.legend()
+    return ax
