@@ -674,3 +674,41 @@ pub fn simulate_case(
         bands,
     })
 }
+
+/// The damping the report states for the layer-by-layer protocol (docs/physics.md §14):
+/// restitution e = 0.9 at every contact (tension-free) and resonators damped at ζ = 0.01 — an
+/// illustration of a lossy laboratory column, not a measured property of fused quartz.
+pub fn stated_damping() -> woodpile::Damping {
+    woodpile::Damping {
+        contacts: woodpile::ContactDamping::Restitution { coefficient: 0.9 },
+        resonator_ratio: 0.01,
+        ..woodpile::Damping::default()
+    }
+}
+
+/// The report's transmission case (docs/physics.md §15): twenty 80 mm rods on the sensor under a
+/// static force of [`TRANSMISSION_PRELOAD_N`] on the top rod, on-site damping
+/// [`TRANSMISSION_ON_SITE_S`], and the spectrum's settings (the defaults, RK4 at 0.2 µs).
+pub fn transmission_case(
+) -> Result<(woodpile::Chain, woodpile::analysis::TransmissionSettings), crate::Error> {
+    let chain = woodpile::ChainBuilder::table1_rods(&[80; 20], woodpile::CellModel::Resonant)?
+        .preload(woodpile::Preload {
+            force_n: TRANSMISSION_PRELOAD_N,
+            gravity_m_s2: 0.0,
+        })
+        .damping(woodpile::Damping {
+            on_site_time_s: Some(TRANSMISSION_ON_SITE_S),
+            ..woodpile::Damping::default()
+        })
+        .build()?;
+    let settings = woodpile::analysis::TransmissionSettings {
+        method: woodpile::Method::Rk4 { time_step_s: 2e-7 },
+        ..woodpile::analysis::TransmissionSettings::standard()
+    };
+    Ok((chain, settings))
+}
+
+/// Static force on the top rod of the report's transmission case \[N\].
+pub const TRANSMISSION_PRELOAD_N: f64 = 10.0;
+/// On-site damping time of the report's transmission case \[s\].
+pub const TRANSMISSION_ON_SITE_S: f64 = 0.02;

@@ -124,6 +124,67 @@ impl TransmissionJson {
     }
 }
 
+fn hz_band(lo: f64, hi: Option<f64>) -> String {
+    match hi {
+        Some(hi) => format!("{:.3}–{:.3} kHz", lo * 1e-3, hi * 1e-3),
+        None => format!("above {:.3} kHz", lo * 1e-3),
+    }
+}
+
+impl TransmissionJson {
+    /// What a terminal shows: settings, measured stop bands, predicted gaps, each edge
+    /// compared, the energy balance and the output directory `dir`.
+    pub fn summary_text(&self, dir: &Path) -> String {
+        let mut o = format!(
+            "transmission {}: F_p = {} N, chirp {:.3e} N, {}–{} Hz at {} Hz resolution\n",
+            self.scenario,
+            self.preload_n,
+            self.amplitude_n,
+            self.start_hz,
+            self.end_hz,
+            self.resolution_hz
+        );
+        let measured: Vec<String> = self
+            .measured_stop_bands
+            .iter()
+            .map(|b| hz_band(b.lower_hz, b.upper_hz))
+            .collect();
+        o.push_str(&format!(
+            "measured     stop bands (T < {} dB): {}\n",
+            self.stop_band_threshold_db,
+            if measured.is_empty() {
+                "none".into()
+            } else {
+                measured.join(", ")
+            }
+        ));
+        match &self.predicted_gaps {
+            Some(gaps) => {
+                let g: Vec<String> = gaps.iter().map(|b| hz_band(b.lower_hz, b.upper_hz)).collect();
+                o.push_str(&format!("predicted    gaps (Bloch): {}\n", g.join(", ")));
+                for e in &self.edges {
+                    o.push_str(&match (e.measured_hz, e.relative_error) {
+                        (Some(m), Some(err)) => format!(
+                            "edge         predicted {:.1} Hz, measured {m:.1} Hz ({:+.2} %)\n",
+                            e.predicted_hz,
+                            100.0 * err
+                        ),
+                        _ => format!("edge         predicted {:.1} Hz, no measured stop band\n", e.predicted_hz),
+                    });
+                }
+            }
+            None => o.push_str("predicted    none: the chain is not homogeneous (one cell, one beta, no gravity)\n"),
+        }
+        o.push_str(&format!(
+            "energy       max relative error {:.2e}; {:.2} s wall time\noutput       {}\n",
+            self.energy_max_relative_error,
+            self.wall_time_s,
+            dir.display()
+        ));
+        o
+    }
+}
+
 /// Writes every file of a transmission directory into `dir` (`transmission.json` last).
 pub fn write_transmission(
     dir: &Path,

@@ -9,9 +9,10 @@ use woodpile_io::limits::RunSize;
 use woodpile_io::rundir::{write_run, RunRecord, SummaryJson, RUN_FILES};
 use woodpile_io::scenario::{resolve, Scenario, DEFAULT_SCENARIO};
 
-/// Arguments of `woodpile simulate`.
+/// Which scenario a command runs: a file or a built-in (shared by `simulate` and
+/// `transmission`).
 #[derive(Debug, Clone, clap::Args)]
-pub struct Args {
+pub struct Source {
     /// Scenario file (TOML). Without it and without --scenario: the default job,
     /// `paper-impact-optimized`.
     #[arg(value_name = "SCENARIO.toml", conflicts_with = "scenario")]
@@ -19,6 +20,14 @@ pub struct Args {
     /// A built-in scenario (see `woodpile scenarios`).
     #[arg(long, value_name = "NAME")]
     pub scenario: Option<String>,
+}
+
+/// Arguments of `woodpile simulate`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct Args {
+    /// The scenario.
+    #[command(flatten)]
+    pub source: Source,
     /// Output directory (default: ./runs/NAME, NAME = scenario name or file stem). An existing
     /// run directory is written only with --overwrite.
     #[arg(long, value_name = "DIR")]
@@ -52,14 +61,9 @@ pub struct Loaded {
     pub base_dir: PathBuf,
 }
 
-/// Loads the scenario the arguments name.
-pub fn load(args: &Args) -> Result<Loaded, CliError> {
-    load_scenario(args.file.as_ref(), args.scenario.as_deref())
-}
-
 /// Loads a scenario file, or a built-in scenario by name (default: the default job).
-pub fn load_scenario(file: Option<&PathBuf>, builtin: Option<&str>) -> Result<Loaded, CliError> {
-    if let Some(file) = file {
+pub fn load(source: &Source) -> Result<Loaded, CliError> {
+    if let Some(file) = &source.file {
         let scenario = Scenario::load(file)?;
         let name = file
             .file_stem()
@@ -76,7 +80,7 @@ pub fn load_scenario(file: Option<&PathBuf>, builtin: Option<&str>) -> Result<Lo
             base_dir,
         });
     }
-    let name = builtin.unwrap_or(DEFAULT_SCENARIO);
+    let name = source.scenario.as_deref().unwrap_or(DEFAULT_SCENARIO);
     Ok(Loaded {
         name: name.to_string(),
         file: None,
@@ -87,7 +91,7 @@ pub fn load_scenario(file: Option<&PathBuf>, builtin: Option<&str>) -> Result<Lo
 
 /// Runs `woodpile simulate`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
-    let loaded = load(args)?;
+    let loaded = load(&args.source)?;
     let resolved = resolve(&loaded.scenario, &loaded.base_dir)?;
     for warning in &resolved.warnings {
         eprintln!("warning: {warning}");

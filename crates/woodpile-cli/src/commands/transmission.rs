@@ -1,7 +1,7 @@
 //! `woodpile transmission`: the transmission spectrum of a scenario's chain under its preload,
 //! with the Bloch prediction for a homogeneous chain (docs/physics.md §15).
 
-use super::simulate::load_scenario;
+use super::simulate::load;
 use super::Context;
 use crate::CliError;
 use std::path::{Path, PathBuf};
@@ -16,13 +16,10 @@ use woodpile_io::transmission::{
 /// Arguments of `woodpile transmission`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct Args {
-    /// Scenario file (TOML): its chain, wall, damping, preload and [run] integrator are used;
-    /// its excitation is replaced by the chirp.
-    #[arg(value_name = "SCENARIO.toml", conflicts_with = "scenario")]
-    pub file: Option<PathBuf>,
-    /// A built-in scenario instead (e.g. `transmission-80mm`).
-    #[arg(long, value_name = "NAME")]
-    pub scenario: Option<String>,
+    /// The scenario (e.g. --scenario transmission-80mm): its chain, wall, damping, preload and
+    /// `[run]` integrator are used; its excitation is replaced by the chirp.
+    #[command(flatten)]
+    pub source: super::simulate::Source,
     /// Output directory (default: ./runs/NAME-transmission).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
@@ -48,7 +45,7 @@ pub struct Args {
 
 /// Runs `woodpile transmission`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
-    let loaded = load_scenario(args.file.as_ref(), args.scenario.as_deref())?;
+    let loaded = load(&args.source)?;
     let resolved = resolve(&loaded.scenario, &loaded.base_dir)?;
     for warning in &resolved.warnings {
         eprintln!("warning: {warning}");
@@ -86,68 +83,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     .map_err(woodpile_io::Error::from)?;
     let dir = staging.commit(TRANSMISSION_FILES, TRANSMISSION_MARKER)?;
     if !ctx.quiet {
-        print!("{}", summary_text(&record, &dir));
+        print!("{}", record.summary_text(&dir));
     }
     Ok(())
-}
-
-fn hz_band(lo: f64, hi: Option<f64>) -> String {
-    match hi {
-        Some(hi) => format!("{:.3}–{:.3} kHz", lo * 1e-3, hi * 1e-3),
-        None => format!("above {:.3} kHz", lo * 1e-3),
-    }
-}
-
-/// What the terminal shows.
-fn summary_text(r: &TransmissionJson, dir: &Path) -> String {
-    let mut o = format!(
-        "transmission {}: F_p = {} N, chirp {:.3e} N, {}–{} Hz at {} Hz resolution\n",
-        r.scenario, r.preload_n, r.amplitude_n, r.start_hz, r.end_hz, r.resolution_hz
-    );
-    let measured: Vec<String> = r
-        .measured_stop_bands
-        .iter()
-        .map(|b| hz_band(b.lower_hz, b.upper_hz))
-        .collect();
-    o.push_str(&format!(
-        "measured     stop bands (T < {} dB): {}\n",
-        r.stop_band_threshold_db,
-        if measured.is_empty() {
-            "none".into()
-        } else {
-            measured.join(", ")
-        }
-    ));
-    match &r.predicted_gaps {
-        Some(gaps) => {
-            let g: Vec<String> = gaps
-                .iter()
-                .map(|b| hz_band(b.lower_hz, b.upper_hz))
-                .collect();
-            o.push_str(&format!("predicted    gaps (Bloch): {}\n", g.join(", ")));
-            for e in &r.edges {
-                match (e.measured_hz, e.relative_error) {
-                    (Some(m), Some(err)) => o.push_str(&format!(
-                        "edge         predicted {:.1} Hz, measured {m:.1} Hz ({:+.2} %)\n",
-                        e.predicted_hz,
-                        100.0 * err
-                    )),
-                    _ => o.push_str(&format!(
-                        "edge         predicted {:.1} Hz, no measured stop band\n",
-                        e.predicted_hz
-                    )),
-                }
-            }
-        }
-        None => o.push_str(
-            "predicted    none: the chain is not homogeneous (one cell, one beta, no gravity)\n",
-        ),
-    }
-    o.push_str(&format!(
-        "energy       max relative error {:.2e}; {:.2} s wall time\noutput       {}\n",
-        r.energy_max_relative_error,
-        r.wall_time_s,
-        dir.display()
-    ));
-    o
 }

@@ -335,17 +335,6 @@ pub fn optima(s: &Setup) -> Result<(GaRun, GaRun, Vec<(Case, Vec<Vec<PathBuf>>)>
     Ok((ga_res, ga_rig, optima))
 }
 
-/// The damping the report states for the protocol (docs/physics.md §14): restitution e = 0.9 at
-/// every contact (tension-free) and resonators damped at ζ = 0.01 — an illustration of a lossy
-/// laboratory column, not a measured property of fused quartz.
-pub fn stated_damping() -> woodpile::Damping {
-    woodpile::Damping {
-        contacts: woodpile::ContactDamping::Restitution { coefficient: 0.9 },
-        resonator_ratio: 0.01,
-        ..woodpile::Damping::default()
-    }
-}
-
 /// The layer-by-layer protocol on the resonant optimum, lossless and with [`stated_damping`],
 /// and its two figures.
 pub fn protocol(
@@ -355,7 +344,10 @@ pub fn protocol(
     let fig = |name: &str| s.figs.join(name);
     let (impact, impact_settings, impact_text) = (&s.impact, &s.impact_settings, &s.impact_text);
     let protocol = layer_by_layer(&res_case.chain, impact, impact_settings)?;
-    let damped_chain = res_case.chain.clone().with_damping(stated_damping())?;
+    let damped_chain = res_case
+        .chain
+        .clone()
+        .with_damping(study::stated_damping())?;
     let damped = layer_by_layer(&damped_chain, impact, impact_settings)?;
     let ptitle = format!("Layer-by-layer protocol, resonant GA optimum, {impact_text}");
     let protocol_map_files =
@@ -583,34 +575,21 @@ pub fn fine(s: &Setup) -> Result<FineRuns, CliError> {
     })
 }
 
-/// The preload of the report's transmission spectrum \[N\] and its on-site damping time \[s\].
-pub const TRANSMISSION_PRELOAD: (f64, f64) = (10.0, 0.02);
-
-/// The transmission spectrum of twenty 80 mm rods on the sensor under a 10 N preload with light
-/// on-site damping (docs/physics.md §15), and its figure.
+/// The transmission spectrum of twenty preloaded 80 mm rods ([`study::transmission_case`]) and
+/// its figure.
 pub fn transmission(
     s: &Setup,
 ) -> Result<(woodpile::analysis::TransmissionSpectrum, Vec<PathBuf>), CliError> {
-    let (force_n, tau) = TRANSMISSION_PRELOAD;
-    let chain = ChainBuilder::table1_rods(&[80; 20], CellModel::Resonant)?
-        .preload(woodpile::Preload {
-            force_n,
-            gravity_m_s2: 0.0,
-        })
-        .damping(woodpile::Damping {
-            on_site_time_s: Some(tau),
-            ..woodpile::Damping::default()
-        })
-        .build()?;
-    let settings = woodpile::analysis::TransmissionSettings {
-        method: woodpile::Method::Rk4 { time_step_s: 2e-7 },
-        ..woodpile::analysis::TransmissionSettings::standard()
-    };
+    let (chain, settings) = study::transmission_case()?;
     let t = woodpile::analysis::transmission(&chain, &settings)?;
     let files = woodpile_plot::transmission(
         &t,
         woodpile::defaults::TRANSMISSION_STOP_DB,
-        &format!("Twenty 80 mm rods on the sensor, F_p = {force_n} N, on-site τ = {tau} s"),
+        &format!(
+            "Twenty 80 mm rods on the sensor, F_p = {} N, on-site τ = {} s",
+            study::TRANSMISSION_PRELOAD_N,
+            study::TRANSMISSION_ON_SITE_S
+        ),
         &s.figs.join("transmission_80mm"),
     )?;
     Ok((t, files))

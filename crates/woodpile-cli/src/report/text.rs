@@ -33,7 +33,7 @@ fn transmission(doc: &mut Doc, s: &Setup, r: &Results) {
     doc.p(format!(
         "Beyond the paper: twenty 80 mm rods on the sensor under a static force of {} N on the top rod, with light on-site damping (τ = {} s), driven by a force chirp of {:.2} N sweeping {:.1}–{:.0} kHz; T = |F̂_wall|/|F̂_drive| (docs/physics.md §15, `woodpile transmission`). Shaded: the gaps the linearised Bloch relation predicts for an infinite chain of this cell; a measured stop band is where T < {threshold} dB. Energy balance of the driven run: {:.1e}.",
         t.preload_n,
-        super::runs::TRANSMISSION_PRELOAD.1,
+        study::TRANSMISSION_ON_SITE_S,
         t.amplitude_n,
         t.frequencies_hz.first().copied().unwrap_or(0.0) * 1e-3,
         t.frequencies_hz.last().copied().unwrap_or(0.0) * 1e-3,

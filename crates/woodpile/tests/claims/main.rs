@@ -18,6 +18,7 @@ mod cell_from_rod;
 mod cell_reduction_in_time;
 mod cell_table1_frequencies;
 mod cell_table1_from_beam;
+mod collision;
 mod contact_beta_reference;
 mod convergence_order;
 mod damped_effective_mass;
