@@ -37,6 +37,7 @@ __all__ = [
     "effective_mass",
     "band_gaps",
     "spectrum",
+    "transmission",
     "BreederGA",
     "optimize",
     "OptimizeResult",
@@ -395,6 +396,30 @@ def band_gaps(cell: Mapping[str, Any], beta: float, precompression_n: float) -> 
 def spectrum(signal: Sequence[float], sample_interval_s: float):
     """One-sided amplitude spectrum of a uniformly sampled signal: (frequencies [Hz], amplitudes)."""
     return _core.spectrum(list(map(float, signal)), float(sample_interval_s))
+
+
+def transmission(
+    scenario: Scenario | str,
+    *,
+    start_hz: float = 100.0,
+    end_hz: float = 30e3,
+    resolution_hz: float = 20.0,
+    relative_amplitude: float = 0.01,
+    threshold_db: float = -20.0,
+):
+    """The transmission spectrum of a scenario's preloaded chain (as ``woodpile transmission``):
+    a DataFrame indexed by ``frequency_hz`` with ``transmission`` and ``transmission_db``, and
+    the record of ``transmission.json`` (measured stop bands, predicted gaps, edges compared)."""
+    import pandas as pd
+
+    if isinstance(scenario, str):
+        scenario = Scenario.builtin(scenario)
+    (f, t), db, record = _core.transmission(
+        scenario.to_toml(), str(scenario.base_dir), scenario.name,
+        float(start_hz), float(end_hz), float(resolution_hz), float(relative_amplitude), float(threshold_db),
+    )
+    table = pd.DataFrame({"transmission": t, "transmission_db": db}, index=pd.Index(f, name="frequency_hz"))
+    return table, json.loads(record)
 
 
 # ---------------------------------------------------------------------------------------------

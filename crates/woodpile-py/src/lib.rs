@@ -50,6 +50,15 @@ fn py_err(e: woodpile_io::Error) -> PyErr {
             Some(value.clone()),
             Some(reason.clone()),
         ),
+        E::Model(woodpile::Error::InvalidParameter {
+            field,
+            value,
+            reason,
+        }) => (
+            Some(field.clone()),
+            Some(value.clone()),
+            Some(reason.clone()),
+        ),
         E::Read { .. } | E::Output { .. } | E::OutputNotEmpty { .. } => {
             return PyOSError::new_err(message)
         }
@@ -767,6 +776,49 @@ fn evaluate_designs(
     session.evaluate(py, designs)
 }
 
+/// The transmission spectrum of a scenario's preloaded chain (docs/physics.md §15), GIL
+/// released: ((frequencies [Hz], T), T [dB], `transmission.json` as JSON text).
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+fn transmission<'py>(
+    py: Python<'py>,
+    text: &str,
+    base_dir: PathBuf,
+    name: &str,
+    start_hz: f64,
+    end_hz: f64,
+    resolution_hz: f64,
+    relative_amplitude: f64,
+    threshold_db: f64,
+) -> PyResult<(ArrayPair<'py>, Bound<'py, PyArray1<f64>>, String)> {
+    let scenario = Scenario::parse(text).map_err(py_err)?;
+    let resolved = resolve(&scenario, &base_dir).map_err(py_err)?;
+    let settings = woodpile::analysis::TransmissionSettings {
+        start_hz,
+        end_hz,
+        resolution_hz,
+        relative_amplitude,
+        method: resolved.settings.method,
+        ..woodpile::analysis::TransmissionSettings::standard()
+    };
+    let (t, record) = py.detach(|| {
+        let t = woodpile::analysis::transmission(&resolved.chain, &settings).map_err(core_err)?;
+        let record =
+            woodpile_io::transmission::TransmissionJson::new(name, &t, &settings, threshold_db);
+        Ok::<_, PyErr>((t, record))
+    })?;
+    let json =
+        serde_json::to_string(&record).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    Ok((
+        (
+            PyArray1::from_vec(py, t.frequencies_hz),
+            PyArray1::from_vec(py, t.transmission),
+        ),
+        PyArray1::from_vec(py, t.transmission_db),
+        json,
+    ))
+}
+
 /// The extension module.
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -787,5 +839,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(effective_mass, m)?)?;
     m.add_function(wrap_pyfunction!(band_gaps, m)?)?;
     m.add_function(wrap_pyfunction!(spectrum, m)?)?;
+    m.add_function(wrap_pyfunction!(transmission, m)?)?;
     Ok(())
 }
