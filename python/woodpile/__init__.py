@@ -324,7 +324,8 @@ def evaluate(scenarios: Iterable[Scenario], executor: Any = None, *, chunks_per_
         raise WoodpileError(
             "scenarios with different base directories cannot be evaluated together", "base_dir", repr(sorted(base_dirs)), "give every scenario the same base_dir"
         )
-    base_dir = base_dirs.pop()
+    # Absolute, so that workers started elsewhere find the scenario's files.
+    base_dir = str(Path(base_dirs.pop()).resolve())
     texts = [s.to_toml() for s in scenarios]
     if executor is None:
         rows = _evaluate_chunk(texts, base_dir)
@@ -596,7 +597,7 @@ def optimize(
     if checkpoint is not None and Path(checkpoint).exists():
         ga.restore(checkpoint)
     config_json = ga.config_json
-    base_dir = str(ga._source[2])
+    base_dir = str(Path(ga._source[2]).resolve())
     while not ga.done:
         designs = ga.ask()
         if executor is None or not designs:

@@ -62,6 +62,19 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         ..TransmissionSettings::standard()
     };
     settings.validate()?;
+    // The driven run lasts 1/Δf: refused up front when it would exceed the step limit.
+    let run = woodpile::RunSettings {
+        duration_s: settings.duration_s(),
+        method: settings.method,
+        sample_interval_s: settings.sample_interval_s,
+    };
+    if let Some(steps) = run.estimated_steps().filter(|&n| n > defaults::MAX_STEPS) {
+        return Err(CliError::invalid(
+            "--resolution-hz",
+            args.resolution_hz,
+            format!("the record of 1/Δf = {:.3e} s would take {steps:.3e} steps (at most {:.0e}): choose a coarser resolution or a larger run.time_step_s", run.duration_s, defaults::MAX_STEPS as f64),
+        ));
+    }
     let out = args
         .out
         .clone()
