@@ -14,7 +14,8 @@ use crate::{ConvergencePoint, PlotError, Series};
 use std::fs;
 use std::path::{Path, PathBuf};
 use woodpile::analysis::{
-    contact_spectrum_map, energy_map, force_map, linspace, Spectrum, SpectrumSettings, Window,
+    contact_spectrum_map, energy_map, force_map, linspace, Scaling, Spectrum, SpectrumSettings,
+    Window,
 };
 use woodpile::model::TABLE1_LENGTHS_MM;
 use woodpile::{EffectiveMassCurve, UnitCell};
@@ -104,6 +105,7 @@ pub fn plot_run(
     )?);
     let settings = SpectrumSettings {
         window,
+        scaling: Scaling::FourierMagnitude,
         ..SpectrumSettings::default()
     };
     files.extend(crate::spectrum_map(

@@ -279,7 +279,7 @@ pub fn spectrum_map(
         x_label: "frequency [kHz]".into(),
         x_max: Some(max_frequency_hz * 1e-3),
         y_label: "contact (0 = striker/load, N = wall)".into(),
-        value_label: "force amplitude [N] (log)".into(),
+        value_label: format!("{} [{}] (log)", map.value_name, map.value_unit),
         log_decades: Some(4.0),
         ..Heatmap::new(map, title)
     }

@@ -8,7 +8,7 @@
 //! | --- | --- | --- |
 //! | [`force_map`] | contact force, contact × time | Figs. 5, 9 a, c, e, g |
 //! | [`energy_map`] | layer energy / injected energy [%], layer × time | Fig. 6 |
-//! | [`spectrum_map`] | force amplitude (log), contact × frequency | Fig. 9 b, d, f, h |
+//! | [`spectrum_map`] | force spectrum (log), contact × frequency | Fig. 9 b, d, f, h |
 //! | [`protocol_map`], [`peaks_per_layer`] | layer-by-layer protocol | Fig. 7 a, b |
 //! | [`force_histories`] | force at chosen contacts vs time | Fig. 7 c |
 //! | [`spectra`] | amplitude spectra (log) with negative-mass bands shaded | Fig. 9 |

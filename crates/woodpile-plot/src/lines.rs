@@ -243,8 +243,9 @@ pub fn force_histories(
     .write(stem)
 }
 
-/// Amplitude spectra (log amplitude \[N\], frequency in kHz up to `max_frequency_hz`) with the
-/// negative-effective-mass bands `bands_hz` shaded (paper Fig. 9).
+/// Spectra (log scale, labelled by their [`woodpile::analysis::Scaling`]: amplitude \[N\] or
+/// |F̂(f)| \[N/Hz\]; frequency in kHz up to `max_frequency_hz`) with the negative-effective-mass
+/// bands `bands_hz` shaded (paper Fig. 9).
 pub fn spectra(
     spectra: &[(String, &Spectrum)],
     bands_hz: &[(f64, f64)],
@@ -296,7 +297,10 @@ pub fn spectra(
     LinePlot {
         title: title.to_string(),
         x_label: "frequency [kHz]".into(),
-        y_label: "force amplitude [N]".into(),
+        y_label: {
+            let (what, unit) = spectra[0].1.scaling.label("N");
+            format!("force {what} [{unit}]")
+        },
         series: spectra
             .iter()
             .map(|(label, s)| {

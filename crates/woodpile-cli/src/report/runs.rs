@@ -122,6 +122,14 @@ fn draw_maps(t: &Trajectory, title: &str, stem: &Path) -> Result<Vec<Vec<PathBuf
 }
 
 /// Spectra of contact 1, the middle contact and the wall, with the chain's bands shaded.
+/// The report's spectra: Fourier-transform magnitudes \[N/Hz\], comparable across record lengths.
+const FOURIER: SpectrumSettings = SpectrumSettings {
+    scaling: woodpile::analysis::Scaling::FourierMagnitude,
+    window: woodpile::analysis::Window::Rectangular,
+    padding: woodpile::analysis::Padding::None,
+    remove_mean: false,
+};
+
 fn draw_spectra(
     case: &Case,
     title: &str,
@@ -131,7 +139,7 @@ fn draw_spectra(
     let t = &case.trajectory;
     let n = t.n_elements;
     let dt = woodpile::analysis::sample_interval_s(t)?;
-    let settings = SpectrumSettings::default();
+    let settings = FOURIER;
     let spectra = [
         (1, "contact 1 (incident)".to_string()),
         (n / 2, format!("contact {} (middle)", n / 2)),
@@ -413,7 +421,7 @@ pub fn blast(s: &Setup) -> Result<BlastRuns, CliError> {
             let t = &case.trajectory;
             let mut files = draw_maps(t, &title, &fig(&format!("blast_{slug}")))?;
             files.push(plot::spectrum_map(
-                &contact_spectrum_map(t, &SpectrumSettings::default())?,
+                &contact_spectrum_map(t, &FOURIER)?,
                 &title,
                 max_hz,
                 &fig(&format!("blast_{slug}_spectrum_map")),

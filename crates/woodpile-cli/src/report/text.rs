@@ -657,7 +657,7 @@ fn blast(doc: &mut Doc, s: &Setup, r: &Results) {
         let captions = [
             "contact force map (Fig. 9 a, c, e, g).",
             "energy of each layer over the injected energy.",
-            "spectrum map: force amplitude per contact and frequency (Fig. 9 b, d, f, h).",
+            "spectrum map: magnitude of the Fourier transform of each contact force |F̂(f)| [N/Hz] per contact and frequency (Fig. 9 b, d, f, h).",
             "amplitude spectra of contact 1, the middle contact and the wall, negative-mass bands shaded.",
         ];
         for (f, cap) in files.iter().zip(captions) {

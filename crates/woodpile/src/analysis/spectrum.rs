@@ -124,9 +124,36 @@ pub enum Padding {
     Length(usize),
 }
 
+/// What a spectrum's values are.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Scaling {
+    /// One-sided sine amplitude, A_k = c_k |X_k| / Σ w_n [unit of the signal]: a steady sine of
+    /// amplitude A at a bin reads A. For a transient it falls as the record grows (the same pulse
+    /// in a record twice as long reads half): use it for steady signals.
+    #[default]
+    Amplitude,
+    /// Magnitude of the Fourier transform, |F̂(f_k)| = Δt |X_k| / (Σ w_n / N) [unit · s, e.g.
+    /// N/Hz]: the Riemann sum of ∫ w x(t) e^{−2πift} dt. For a transient that fits the record it
+    /// is independent of the record length and (to O(Δt²)) of the sample interval: spectra of
+    /// two runs compare directly.
+    FourierMagnitude,
+}
+
+impl Scaling {
+    /// (quantity, unit) for a signal in `unit`: ("amplitude", "N") or ("|F̂(f)|", "N/Hz").
+    pub fn label(self, unit: &str) -> (&'static str, String) {
+        match self {
+            Scaling::Amplitude => ("amplitude", unit.to_string()),
+            Scaling::FourierMagnitude => ("|F̂(f)|", format!("{unit}/Hz")),
+        }
+    }
+}
+
 /// Options of a spectrum.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SpectrumSettings {
+    /// What the values are (default: the sine amplitude).
+    pub scaling: Scaling,
     /// Window applied before the transform.
     pub window: Window,
     /// Zero padding (finer frequency grid; no new resolution).
@@ -152,6 +179,8 @@ pub struct Spectrum {
     pub sample_interval_s: f64,
     /// Window used.
     pub window: Window,
+    /// What the values are.
+    pub scaling: Scaling,
 }
 
 impl Spectrum {
@@ -284,6 +313,7 @@ impl SpectrumPlan {
             n_fft: self.n_fft,
             sample_interval_s: self.sample_interval_s,
             window: self.settings.window,
+            scaling: self.settings.scaling,
         })
     }
 
@@ -322,21 +352,29 @@ impl SpectrumPlan {
             .process_with_scratch(&mut self.buffer, &mut self.scratch);
         let l = self.n_fft;
         let bins: Vec<Complex64> = self.buffer[..=l / 2].to_vec();
-        let amplitudes = bins
-            .iter()
-            .enumerate()
-            .map(|(k, x)| {
-                let single = k == 0 || (l.is_multiple_of(2) && k == l / 2);
-                let c = if single { 1.0 } else { 2.0 };
-                c * x.norm() / self.window_sum
-            })
-            .collect();
+        let amplitudes = match self.settings.scaling {
+            Scaling::Amplitude => bins
+                .iter()
+                .enumerate()
+                .map(|(k, x)| {
+                    let single = k == 0 || (l.is_multiple_of(2) && k == l / 2);
+                    let c = if single { 1.0 } else { 2.0 };
+                    c * x.norm() / self.window_sum
+                })
+                .collect(),
+            Scaling::FourierMagnitude => {
+                let gain = self.window_sum / self.n_samples as f64;
+                bins.iter()
+                    .map(|x| self.sample_interval_s * x.norm() / gain)
+                    .collect()
+            }
+        };
         Ok((bins, amplitudes))
     }
 }
 
-/// Amplitude spectra of every contact force of a trajectory: rows = contacts 0..=N, columns =
-/// frequencies \[Hz\], values = one-sided amplitude \[N\].
+/// Spectra of every contact force of a trajectory: rows = contacts 0..=N, columns = frequencies
+/// \[Hz\], values as `settings.scaling` says (amplitude \[N\] or |F̂(f)| \[N/Hz\]).
 pub fn contact_spectrum_map(trajectory: &Trajectory, settings: &SpectrumSettings) -> Result<Map2> {
     let dt = sample_interval_s(trajectory)?;
     let mut plan = SpectrumPlan::new(trajectory.len(), dt, settings)?;
@@ -349,8 +387,8 @@ pub fn contact_spectrum_map(trajectory: &Trajectory, settings: &SpectrumSettings
     Map2::new(
         Axis::index("contact", n_contacts),
         Axis::new("frequency", "Hz", frequencies),
-        "force amplitude",
-        "N",
+        format!("force {}", settings.scaling.label("N").0),
+        settings.scaling.label("N").1,
         data,
     )
 }

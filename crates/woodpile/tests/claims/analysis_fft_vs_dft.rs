@@ -38,6 +38,7 @@ fn fft_bins_match_a_naive_dft() {
                 window,
                 padding,
                 remove_mean: false,
+                scaling: Default::default(),
             };
             let s = Spectrum::of(&x, 2e-6, &settings).unwrap();
             let w = window.coefficients(n);

@@ -24,6 +24,7 @@ fn parseval_holds_for_even_odd_and_padded_lengths() {
                 window,
                 padding,
                 remove_mean: false,
+                scaling: Default::default(),
             };
             let s = Spectrum::of(&x, 1e-6, &settings).unwrap();
             let w = window.coefficients(n);

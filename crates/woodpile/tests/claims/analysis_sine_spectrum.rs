@@ -63,6 +63,7 @@ fn zero_padding_refines_the_peak_of_an_off_bin_sine() {
         window: Window::Hann,
         padding: Padding::Length(8 * N),
         remove_mean: false,
+        scaling: Default::default(),
     };
     let s = Spectrum::of(&sine(f0, 0.0), DT, &settings).unwrap();
     assert!((s.resolution_hz() - df / 8.0).abs() < 1e-9);

@@ -10,6 +10,7 @@ mod analysis_layer_protocol;
 mod analysis_parseval;
 mod analysis_pulses;
 mod analysis_sine_spectrum;
+mod analysis_spectrum_record_length;
 mod beam_euler_bernoulli_limit;
 mod beam_timoshenko_frequencies;
 mod blast_energy_balance;
