@@ -243,7 +243,7 @@ pub fn force_map(map: &Map2, title: &str, stem: &Path) -> Result<Vec<PathBuf>> {
     Heatmap {
         x_scale: 1e3,
         x_label: "time [ms]".into(),
-        y_label: "contact (0 = striker/load, N = wall)".into(),
+        y_label: "contact (0 = striker, load or actuator; N = wall)".into(),
         value_label: "contact force [N]".into(),
         ..Heatmap::new(map, title)
     }
@@ -257,7 +257,7 @@ pub fn energy_map(map: &Map2, title: &str, stem: &Path) -> Result<Vec<PathBuf>> 
         color_map: ColorMap::Inferno,
         x_scale: 1e3,
         x_label: "time [ms]".into(),
-        y_label: "layer (0 = striker)".into(),
+        y_label: "layer (0 = striker, load or actuator)".into(),
         value_scale: 100.0,
         value_label: "energy / injected energy [%] (colours saturate at the top)".into(),
         saturate_quantile: Some(0.995),
@@ -278,7 +278,7 @@ pub fn spectrum_map(
         x_scale: 1e-3,
         x_label: "frequency [kHz]".into(),
         x_max: Some(max_frequency_hz * 1e-3),
-        y_label: "contact (0 = striker/load, N = wall)".into(),
+        y_label: "contact (0 = striker, load or actuator; N = wall)".into(),
         value_label: format!("{} [{}] (log)", map.value_name, map.value_unit),
         log_decades: Some(4.0),
         ..Heatmap::new(map, title)
