@@ -69,5 +69,5 @@ pub use model::{
     PAPER_OPTIMIZED_CHAIN_MM, TABLE1_LENGTHS_MM,
 };
 pub use optimize::{BreederGa, DesignSpace, GaSettings, Objective, StandardObjective};
-pub use record::{Layout, Recorder, Sample, Trajectory};
+pub use record::{EndForces, Layout, Recorder, Sample, Trajectory};
 pub use simulate::{simulate, EnergyBalance, Restitution, RunSettings, RunSummary};

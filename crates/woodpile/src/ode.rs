@@ -127,20 +127,29 @@ impl ChainOde {
     /// \[rad/s\]). None without resonators.
     pub fn stiffest_resonator(&self) -> Option<(usize, usize, f64)> {
         let mut best: Option<(usize, usize, f64)> = None;
-        let mut index_in_cell = 0;
-        for j in 0..self.res_owner.len() {
-            let owner = self.res_owner[j];
-            if j > 0 && self.res_owner[j - 1] == owner {
-                index_in_cell += 1;
-            } else {
-                index_in_cell = 0;
-            }
+        for (j, (element, index)) in self.resonator_numbers().enumerate() {
             let omega = (self.res_omega2[j] + self.res_coupling[j]).sqrt();
             if best.is_none_or(|b| omega > b.2) {
-                best = Some((owner + self.shift, index_in_cell, omega));
+                best = Some((element, index - 1, omega));
             }
         }
         best
+    }
+
+    /// (element number from 1, resonator number from 1 in its cell) of every resonator, in
+    /// state order.
+    fn resonator_numbers(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.res_owner
+            .iter()
+            .enumerate()
+            .scan(0, |index, (j, &owner)| {
+                *index = if j > 0 && self.res_owner[j - 1] == owner {
+                    *index + 1
+                } else {
+                    1
+                };
+                Some((owner + self.shift, *index))
+            })
     }
 
     /// Compiles a chain and its excitation. Validates the excitation.
@@ -282,18 +291,14 @@ impl ChainOde {
             *l = SlotLaw::new(kind, self.beta[slot], m, v_in);
         }
         // Resonator damping c_j = 2 ζ √(k_j m_j), resonators numbered from 1 in each element.
-        let mut res_damping = Vec::with_capacity(self.res_owner.len());
-        let mut index_in_cell = 0;
-        for j in 0..self.res_owner.len() {
-            let owner = self.res_owner[j];
-            index_in_cell = if j > 0 && self.res_owner[j - 1] == owner {
-                index_in_cell + 1
-            } else {
-                1
-            };
-            let zeta = damping.ratio_of(owner + shift, index_in_cell);
-            res_damping.push(2.0 * zeta * (self.res_stiffness[j] * self.res_mass_kg[j]).sqrt());
-        }
+        let res_damping: Vec<f64> = self
+            .resonator_numbers()
+            .enumerate()
+            .map(|(j, (element, index))| {
+                let zeta = damping.ratio_of(element, index);
+                2.0 * zeta * (self.res_stiffness[j] * self.res_mass_kg[j]).sqrt()
+            })
+            .collect();
         let res_damping_rate = res_damping
             .iter()
             .zip(&self.res_mass_kg)

@@ -62,6 +62,37 @@ impl Recorder for () {
     fn record(&mut self, _sample: &Sample<'_>) {}
 }
 
+/// Records only the two ends of the chain: the force of contact 0 (the striker's, the load or an
+/// actuator) and of contact N (the wall) at every sample, for analyses that need no more (the
+/// layer-by-layer protocol, transmission spectra).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct EndForces {
+    /// Sample times \[s\].
+    pub times_s: Vec<f64>,
+    /// Force of contact 0 \[N\].
+    pub load_n: Vec<f64>,
+    /// Force of contact N \[N\].
+    pub wall_n: Vec<f64>,
+}
+
+impl Recorder for EndForces {
+    fn start(&mut self, layout: &Layout) {
+        let n = layout.n_samples;
+        *self = EndForces {
+            times_s: Vec::with_capacity(n),
+            load_n: Vec::with_capacity(n),
+            wall_n: Vec::with_capacity(n),
+        };
+    }
+
+    fn record(&mut self, s: &Sample<'_>) {
+        let f = s.contact_forces_n;
+        self.times_s.push(s.time_s);
+        self.load_n.push(f[0]);
+        self.wall_n.push(f[f.len() - 1]);
+    }
+}
+
 /// Records everything on the sample grid, row-major (one row per sample).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Trajectory {

@@ -7,7 +7,7 @@ use super::map::{Axis, Map2};
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::model::{Chain, ChainBuilder, Wall};
-use crate::record::{Layout, Recorder, Sample};
+use crate::record::EndForces;
 use crate::simulate::{simulate, RunSettings, RunSummary};
 use rayon::prelude::*;
 
@@ -22,26 +22,6 @@ pub struct LayerByLayer {
     pub peak_time_s: Vec<f64>,
     /// The figures of merit of each sub-chain's run.
     pub summaries: Vec<RunSummary>,
-}
-
-/// Records only the wall force (contact N).
-#[derive(Debug, Default)]
-struct WallForce {
-    times_s: Vec<f64>,
-    forces_n: Vec<f64>,
-}
-
-impl Recorder for WallForce {
-    fn start(&mut self, layout: &Layout) {
-        self.times_s = Vec::with_capacity(layout.n_samples);
-        self.forces_n = Vec::with_capacity(layout.n_samples);
-    }
-
-    fn record(&mut self, sample: &Sample<'_>) {
-        self.times_s.push(sample.time_s);
-        self.forces_n
-            .push(*sample.contact_forces_n.last().expect("N + 1 contacts"));
-    }
 }
 
 /// The sub-chain of the first `k` elements of `chain` (1 ≤ k ≤ N) on the same wall: every contact
@@ -97,11 +77,11 @@ pub fn layer_by_layer(
     settings: &RunSettings,
 ) -> Result<LayerByLayer> {
     let n = chain.len();
-    let runs: Vec<(WallForce, RunSummary)> = (1..=n)
+    let runs: Vec<(EndForces, RunSummary)> = (1..=n)
         .into_par_iter()
         .map(|k| {
             let sub = sub_chain(chain, k)?;
-            let mut rec = WallForce::default();
+            let mut rec = EndForces::default();
             let summary = simulate(&sub, excitation, settings, &mut rec)?;
             Ok((rec, summary))
         })
@@ -109,7 +89,7 @@ pub fn layer_by_layer(
     let times = runs[0].0.times_s.clone();
     let mut data = Vec::with_capacity(n * times.len());
     for (rec, _) in &runs {
-        data.extend_from_slice(&rec.forces_n);
+        data.extend_from_slice(&rec.wall_n);
     }
     let wall_force_map = Map2::new(
         Axis::new(

@@ -21,7 +21,7 @@ use crate::error::{require_positive, Error, Result};
 use crate::excitation::{Drive, DriveQuantity, Excitation, Signal, Sweep};
 use crate::integrate::Method;
 use crate::model::Chain;
-use crate::record::{Layout, Recorder, Sample};
+use crate::record::EndForces;
 use crate::simulate::{simulate, RunSettings, RunSummary};
 
 /// What to measure.
@@ -207,25 +207,6 @@ impl TransmissionSpectrum {
     }
 }
 
-/// Keeps the drive force (contact 0) and the wall force (contact N) of every sample.
-#[derive(Default)]
-struct EndForces {
-    drive_n: Vec<f64>,
-    wall_n: Vec<f64>,
-}
-
-impl Recorder for EndForces {
-    fn start(&mut self, layout: &Layout) {
-        self.drive_n = Vec::with_capacity(layout.n_samples);
-        self.wall_n = Vec::with_capacity(layout.n_samples);
-    }
-    fn record(&mut self, s: &Sample<'_>) {
-        let f = s.contact_forces_n;
-        self.drive_n.push(f[0]);
-        self.wall_n.push(f[f.len() - 1]);
-    }
-}
-
 /// Measures the transmission spectrum of `chain`, which must carry a static force on its top
 /// element (`Preload::force_n`) and stand on a wall.
 pub fn transmission(
@@ -267,7 +248,7 @@ pub fn transmission(
         .last()
         .copied()
         .unwrap_or(0.0);
-    let drive_dynamic: Vec<f64> = forces.drive_n.iter().map(|f| f - preload_n).collect();
+    let drive_dynamic: Vec<f64> = forces.load_n.iter().map(|f| f - preload_n).collect();
     let wall_dynamic: Vec<f64> = forces.wall_n.iter().map(|f| f - wall_static).collect();
     let mut plan = SpectrumPlan::new(
         drive_dynamic.len(),

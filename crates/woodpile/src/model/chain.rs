@@ -268,12 +268,7 @@ impl ChainBuilder {
         for (i, e) in self.elements.iter().enumerate() {
             e.validate(i)?;
         }
-        let resonators: Vec<usize> = self
-            .elements
-            .iter()
-            .map(|e| e.cell.resonators.len())
-            .collect();
-        self.damping.validate(&resonators)?;
+        self.damping.validate(&resonator_counts(&self.elements))?;
         self.preload.validate()?;
         if !self.preload.is_none() && matches!(self.wall, Wall::Free) {
             return Err(Error::invalid(
@@ -403,6 +398,11 @@ impl ChainBuilder {
     }
 }
 
+/// Resonators per element, top to bottom (what a [`Damping`] is checked against).
+fn resonator_counts(elements: &[Element]) -> Vec<usize> {
+    elements.iter().map(|e| e.cell.resonators.len()).collect()
+}
+
 fn contact_context(e: Error, contact: usize) -> Error {
     match e {
         Error::NotPointContact { what, reason } => Error::NotPointContact {
@@ -476,12 +476,7 @@ impl Chain {
 
     /// The same chain with other dissipation (validated).
     pub fn with_damping(mut self, damping: Damping) -> Result<Self> {
-        let resonators: Vec<usize> = self
-            .elements
-            .iter()
-            .map(|e| e.cell.resonators.len())
-            .collect();
-        damping.validate(&resonators)?;
+        damping.validate(&resonator_counts(&self.elements))?;
         self.damping = damping;
         Ok(self)
     }
