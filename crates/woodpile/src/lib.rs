@@ -49,6 +49,7 @@ pub mod defaults;
 pub mod error;
 pub mod excitation;
 pub mod integrate;
+pub mod lanes;
 pub mod model;
 pub mod ode;
 pub mod optimize;
@@ -63,6 +64,7 @@ pub use excitation::{
     Sweep,
 };
 pub use integrate::{Integrator, IntegratorStats, Method, OdeSystem, Tableau};
+pub use lanes::{simulate_many, Job, LaneWidth};
 pub use model::{
     BeamTheory, Body, CellModel, Chain, ChainBuilder, ContactDamping, Damping, Element, Material,
     Preload, Reduction, Resonator, ResonatorDamping, Rod, Surface, UnitCell, Wall,

@@ -95,27 +95,27 @@ struct Lab {
 /// The compiled equations of motion of one chain under one excitation.
 #[derive(Debug, Clone)]
 pub struct ChainOde {
-    n_primary: usize,
-    n_dof: usize,
+    pub(crate) n_primary: usize,
+    pub(crate) n_dof: usize,
     /// 0 for impact (primary 0 is the striker), 1 for blast.
-    shift: usize,
+    pub(crate) shift: usize,
     mass_kg: Vec<f64>,
-    inv_mass: Vec<f64>,
-    res_owner: Vec<usize>,
+    pub(crate) inv_mass: Vec<f64>,
+    pub(crate) res_owner: Vec<usize>,
     res_mass_kg: Vec<f64>,
     res_stiffness: Vec<f64>,
     /// k_j / m_j [1/s²].
-    res_omega2: Vec<f64>,
+    pub(crate) res_omega2: Vec<f64>,
     /// k_j / M_owner [1/s²].
-    res_coupling: Vec<f64>,
+    pub(crate) res_coupling: Vec<f64>,
     /// β per slot (slot 0 unused); 0 for a free end.
-    beta: Vec<f64>,
+    pub(crate) beta: Vec<f64>,
     overlap_limit_m: Vec<f64>,
-    load: Option<BlastProfile>,
+    pub(crate) load: Option<BlastProfile>,
     /// Contact force per slot at the last evaluation \[N\].
-    force_n: Vec<f64>,
+    pub(crate) force_n: Vec<f64>,
     /// Signed overlap per slot at the last evaluation \[m\].
-    overlap_m: Vec<f64>,
+    pub(crate) overlap_m: Vec<f64>,
     striker_velocity_m_s: f64,
     /// Damping, static load, drive (docs/physics.md §14); None = the paper's model.
     lab: Option<Box<Lab>>,

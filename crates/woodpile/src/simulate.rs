@@ -185,16 +185,17 @@ pub struct RunSummary {
 /// Tracks the peak of each contact force over every step, refining a maximum that falls between
 /// two steps with the cubic Hermite interpolant of F and dF/dt at the step ends (error O(h⁴)).
 #[derive(Debug, Clone)]
-struct PeakTracker {
-    peak: Vec<f64>,
-    time: Vec<f64>,
+pub(crate) struct PeakTracker {
+    pub(crate) peak: Vec<f64>,
+    pub(crate) time: Vec<f64>,
     prev_force: Vec<f64>,
     prev_rate: Vec<f64>,
-    rate: Vec<f64>,
+    /// dF/dt at the end of the current step, filled by the caller before `update`.
+    pub(crate) rate: Vec<f64>,
 }
 
 impl PeakTracker {
-    fn new(n: usize) -> Self {
+    pub(crate) fn new(n: usize) -> Self {
         PeakTracker {
             peak: vec![0.0; n],
             time: vec![0.0; n],
@@ -205,14 +206,14 @@ impl PeakTracker {
     }
 
     /// Starts from the forces (and `self.rate`) at t = 0.
-    fn start(&mut self, force: &[f64]) {
+    pub(crate) fn start(&mut self, force: &[f64]) {
         self.peak.copy_from_slice(force);
         self.prev_force.copy_from_slice(force);
         self.prev_rate.copy_from_slice(&self.rate);
     }
 
     /// Updates with the forces and rates at the end of a step [t0, t1].
-    fn update(&mut self, t0: f64, t1: f64, force: &[f64]) {
+    pub(crate) fn update(&mut self, t0: f64, t1: f64, force: &[f64]) {
         let h = t1 - t0;
         for (c, &f1) in force.iter().enumerate() {
             let d1 = self.rate[c];
@@ -274,9 +275,185 @@ fn hermite_max(f0: f64, s0: f64, f1: f64, s1: f64) -> Option<(f64, f64)> {
 }
 
 /// Buffers for observing a state at a sample time.
-struct Observer {
+pub(crate) struct Observer {
     energies: Vec<f64>,
     scratch: Vec<f64>,
+}
+
+/// Everything a run watches besides the state: peaks over every step, the samples handed to the
+/// recorder, the energy balance. Shared by [`simulate`] and the lanes of [`crate::lanes`], so
+/// that both report the same numbers from the same states.
+pub(crate) struct Watch<'a> {
+    peaks: PeakTracker,
+    obs: Observer,
+    initial_energy: Energies,
+    reference_energy: f64,
+    last: Energies,
+    max_abs_error: f64,
+    max_abs_work: f64,
+    next_sample: usize,
+    n_samples: usize,
+    sample_interval_s: f64,
+    duration_s: f64,
+    /// A tabulated load is piecewise linear: its peak over a step lies at an end of the step or
+    /// at a breakpoint inside it, which the step grid may miss.
+    load_table: Option<(&'a [f64], &'a [f64])>,
+    next_breakpoint: usize,
+    started: std::time::Instant,
+}
+
+impl<'a> Watch<'a> {
+    /// Starts watching at t = 0; the force cache of `ode` must be at `y0` (the integrator's
+    /// last evaluation). Hands the first sample to `recorder`.
+    pub(crate) fn start(
+        ode: &mut ChainOde,
+        excitation: &'a Excitation,
+        settings: &RunSettings,
+        y0: &[f64],
+        recorder: &mut dyn Recorder,
+        started: std::time::Instant,
+    ) -> Self {
+        let n_contacts = ode.n_layers();
+        let mut peaks = PeakTracker::new(n_contacts);
+        let mut obs = Observer {
+            energies: vec![0.0; n_contacts],
+            scratch: vec![0.0; ode.dimension()],
+        };
+        ode.contact_force_rates(y0, &mut peaks.rate);
+        peaks.start(ode.contact_forces_n());
+        let initial_energy = observe(ode, 0.0, y0, true, &mut obs, recorder);
+        let reference_energy = if ode.has_striker() || ode.has_lab_physics() {
+            initial_energy.total
+        } else {
+            0.0
+        };
+        let load_table = match excitation {
+            Excitation::Blast(BlastProfile::Table { times_s, forces_n }) => {
+                Some((times_s.as_slice(), forces_n.as_slice()))
+            }
+            _ => None,
+        };
+        Watch {
+            peaks,
+            obs,
+            initial_energy,
+            reference_energy,
+            last: initial_energy,
+            max_abs_error: 0.0,
+            max_abs_work: 0.0,
+            next_sample: 1,
+            n_samples: settings.n_samples(),
+            sample_interval_s: settings.sample_interval_s,
+            duration_s: settings.duration_s,
+            load_table,
+            next_breakpoint: 0,
+            started,
+        }
+    }
+
+    /// Peaks over the step [t0, t1] that ended at `y1`; the force cache of `ode` must be at `y1`.
+    pub(crate) fn after_step(&mut self, ode: &ChainOde, t0: f64, t1: f64, y1: &[f64]) {
+        let peaks = &mut self.peaks;
+        ode.contact_force_rates(y1, &mut peaks.rate);
+        peaks.update(t0, t1, ode.contact_forces_n());
+        if let Some((times, forces)) = self.load_table {
+            while self.next_breakpoint < times.len() && times[self.next_breakpoint] <= t1 {
+                let (tb, fb) = (times[self.next_breakpoint], forces[self.next_breakpoint]);
+                if tb > t0 && fb > peaks.peak[0] {
+                    peaks.peak[0] = fb;
+                    peaks.time[0] = tb;
+                }
+                self.next_breakpoint += 1;
+            }
+        }
+    }
+
+    /// The next sample time if it is due by the end of a step at t1: (t_k, whether it is t1
+    /// itself, so that the state of the step is the sample).
+    pub(crate) fn sample_due(&self, t1: f64) -> Option<(f64, bool)> {
+        let ts = (self.next_sample as f64 * self.sample_interval_s).min(self.duration_s);
+        (self.next_sample < self.n_samples && ts <= t1 * (1.0 + 1e-12))
+            .then(|| (ts, (ts - t1).abs() <= 1e-9 * self.sample_interval_s))
+    }
+
+    /// Hands the sample (ts, y) to `recorder` and updates the energy balance; `cached` as for
+    /// [`observe`].
+    pub(crate) fn record(
+        &mut self,
+        ode: &mut ChainOde,
+        ts: f64,
+        y: &[f64],
+        cached: bool,
+        recorder: &mut dyn Recorder,
+    ) -> Result<()> {
+        let last = observe(ode, ts, y, cached, &mut self.obs, recorder);
+        if !last.total.is_finite() {
+            return Err(Error::NonFiniteState {
+                time_s: ts,
+                contact: 0,
+            });
+        }
+        self.max_abs_error = self
+            .max_abs_error
+            .max((last.total + last.dissipated - self.initial_energy.total - last.work).abs());
+        self.max_abs_work = self.max_abs_work.max(last.work.abs());
+        self.last = last;
+        self.next_sample += 1;
+        Ok(())
+    }
+
+    /// The figures of merit at the end of the run; the force cache of `ode` must be at `y_end`.
+    pub(crate) fn finish(
+        self,
+        ode: &ChainOde,
+        y_end: &[f64],
+        stats: IntegratorStats,
+    ) -> RunSummary {
+        let peaks = self.peaks;
+        let forces_end = ode.contact_forces_n();
+        let restitution = ode.striker_state(y_end).map(|(_, vs)| {
+            let v0 = ode.striker_velocity_m_s();
+            let v1 = ode.top_element_velocity(y_end);
+            Restitution {
+                coefficient: -vs / v0,
+                separated: forces_end[0] == 0.0 && vs < v1,
+            }
+        });
+        let static_forces = ode.static_contact_forces_n();
+        let preloaded = static_forces.iter().any(|&f| f != 0.0);
+        let dynamic = |c: usize| peaks.peak[c] - static_forces[c];
+        let n = ode.n_layers() - 1;
+        let incident = dynamic(1.min(n));
+        let transmitted = dynamic(n);
+        let wave_arrived =
+            incident > 0.0 && transmitted >= defaults::WAVE_ARRIVAL_FRACTION * incident;
+        // E(0) for an impact, the largest |W| for a load from rest; under a static load both count.
+        let scale = self.reference_energy.abs().max(self.max_abs_work);
+        RunSummary {
+            incident_peak_force_n: peaks.peak[1.min(n)],
+            transmitted_peak_force_n: peaks.peak[n],
+            contact_peak_forces_n: peaks.peak,
+            contact_peak_times_s: peaks.time,
+            transmission_ratio: (incident > 0.0 && wave_arrived).then(|| transmitted / incident),
+            wave_arrived,
+            static_contact_forces_n: if preloaded { static_forces } else { Vec::new() },
+            restitution,
+            energy: EnergyBalance {
+                initial_j: self.initial_energy.total,
+                final_j: self.last.total,
+                input_work_j: self.last.work,
+                dissipated_j: self.last.dissipated,
+                max_relative_error: if scale > 0.0 {
+                    self.max_abs_error / scale
+                } else {
+                    0.0
+                },
+            },
+            stats,
+            n_samples: self.next_sample,
+            wall_time_s: self.started.elapsed().as_secs_f64(),
+        }
+    }
 }
 
 /// Runs `chain` under `excitation` and hands every sample to `recorder`.
@@ -294,8 +471,6 @@ pub fn simulate(
     let started = std::time::Instant::now();
     let mut ode = ChainOde::new(chain, excitation)?;
     check_resonator_stability(&ode, settings.method)?;
-    let n_contacts = ode.n_layers();
-    let n_samples = settings.n_samples();
     let y0 = ode.initial_state();
     let dim = ode.dimension();
     let units = ode.tolerance_units();
@@ -310,36 +485,19 @@ pub fn simulate(
     recorder.start(&Layout {
         n_elements: ode.n_elements(),
         has_striker: ode.has_striker(),
-        n_samples,
+        n_samples: settings.n_samples(),
     });
-    let mut peaks = PeakTracker::new(n_contacts);
-    let mut obs = Observer {
-        energies: vec![0.0; n_contacts],
-        scratch: vec![0.0; dim],
-    };
-    let mut y_sample = vec![0.0; dim];
     // The integrator's last evaluation was at t = 0: the force cache holds the initial forces.
-    ode.contact_force_rates(integrator.y(), &mut peaks.rate);
-    peaks.start(ode.contact_forces_n());
-    let initial_energy = observe(&mut ode, 0.0, integrator.y(), true, &mut obs, recorder);
-    let reference_energy = if ode.has_striker() || ode.has_lab_physics() {
-        initial_energy.total
-    } else {
-        0.0
-    };
-    let mut max_abs_error = 0.0_f64;
-    let mut max_abs_work = 0.0_f64;
-    let mut next_sample = 1usize;
-    let sample_time = |k: usize| (k as f64 * settings.sample_interval_s).min(settings.duration_s);
+    let mut watch = Watch::start(
+        &mut ode,
+        excitation,
+        settings,
+        integrator.y(),
+        recorder,
+        started,
+    );
+    let mut y_sample = vec![0.0; dim];
     let t_end = settings.duration_s;
-    let mut last = initial_energy;
-    // A tabulated load is piecewise linear: its peak over a step lies at an end of the step or at
-    // a breakpoint inside it, which the step grid may miss.
-    let load_table = match excitation {
-        Excitation::Blast(BlastProfile::Table { times_s, forces_n }) => Some((times_s, forces_n)),
-        _ => None,
-    };
-    let mut next_breakpoint = 0usize;
     let mut recent = RecentStates::new(dim);
     while integrator.t() < t_end * (1.0 - 1e-14) {
         integrator.step(&mut ode, t_end)?;
@@ -352,89 +510,29 @@ pub fn simulate(
             ));
         }
         if integrator.stats().steps > defaults::MAX_STEPS {
-            return Err(Error::TooManySteps {
-                steps: defaults::MAX_STEPS,
-                time_s: t1,
-                duration_s: settings.duration_s,
-            });
+            return Err(too_many_steps(t1, settings));
         }
-        ode.contact_force_rates(integrator.y(), &mut peaks.rate);
-        peaks.update(t0, t1, ode.contact_forces_n());
-        if let Some((times, forces)) = load_table {
-            while next_breakpoint < times.len() && times[next_breakpoint] <= t1 {
-                let (tb, fb) = (times[next_breakpoint], forces[next_breakpoint]);
-                if tb > t0 && fb > peaks.peak[0] {
-                    peaks.peak[0] = fb;
-                    peaks.time[0] = tb;
-                }
-                next_breakpoint += 1;
-            }
-        }
-        while next_sample < n_samples && sample_time(next_sample) <= t1 * (1.0 + 1e-12) {
-            let ts = sample_time(next_sample);
-            let at_step = (ts - t1).abs() <= 1e-9 * settings.sample_interval_s;
+        watch.after_step(&ode, t0, t1, integrator.y());
+        while let Some((ts, at_step)) = watch.sample_due(t1) {
             let y = if at_step {
                 integrator.y()
             } else {
                 integrator.interpolate(ts, &mut y_sample);
                 &y_sample
             };
-            last = observe(&mut ode, ts, y, at_step, &mut obs, recorder);
-            if !last.total.is_finite() {
-                return Err(Error::NonFiniteState {
-                    time_s: ts,
-                    contact: 0,
-                });
-            }
-            max_abs_error = max_abs_error
-                .max((last.total + last.dissipated - initial_energy.total - last.work).abs());
-            max_abs_work = max_abs_work.max(last.work.abs());
-            next_sample += 1;
+            watch.record(&mut ode, ts, y, at_step, recorder)?;
         }
     }
-    let y_end = integrator.y();
-    let forces_end = ode.contact_forces_n();
-    let restitution = ode.striker_state(y_end).map(|(_, vs)| {
-        let v0 = ode.striker_velocity_m_s();
-        let v1 = ode.top_element_velocity(y_end);
-        Restitution {
-            coefficient: -vs / v0,
-            separated: forces_end[0] == 0.0 && vs < v1,
-        }
-    });
-    let static_forces = ode.static_contact_forces_n();
-    let preloaded = static_forces.iter().any(|&f| f != 0.0);
-    let dynamic = |c: usize| peaks.peak[c] - static_forces[c];
-    let n = n_contacts - 1;
-    let incident = dynamic(1.min(n));
-    let transmitted = dynamic(n);
-    let wave_arrived = incident > 0.0 && transmitted >= defaults::WAVE_ARRIVAL_FRACTION * incident;
-    // E(0) for an impact, the largest |W| for a load from rest; under a static load both count.
-    let scale = reference_energy.abs().max(max_abs_work);
-    Ok(RunSummary {
-        contact_peak_forces_n: peaks.peak.clone(),
-        contact_peak_times_s: peaks.time.clone(),
-        incident_peak_force_n: peaks.peak[1.min(n)],
-        transmitted_peak_force_n: peaks.peak[n],
-        transmission_ratio: (incident > 0.0 && wave_arrived).then(|| transmitted / incident),
-        wave_arrived,
-        static_contact_forces_n: if preloaded { static_forces } else { Vec::new() },
-        restitution,
-        energy: EnergyBalance {
-            initial_j: initial_energy.total,
-            final_j: last.total,
-            input_work_j: last.work,
-            dissipated_j: last.dissipated,
-            max_relative_error: if scale > 0.0 {
-                max_abs_error / scale
-            } else {
-                0.0
-            },
-        },
-        stats: integrator.stats(),
-        n_samples: next_sample,
-        wall_time_s: started.elapsed().as_secs_f64(),
-    })
+    Ok(watch.finish(&ode, integrator.y(), integrator.stats()))
+}
+
+/// The error of a run that took more than [`defaults::MAX_STEPS`] steps, ending at t1.
+pub(crate) fn too_many_steps(t1: f64, settings: &RunSettings) -> Error {
+    Error::TooManySteps {
+        steps: defaults::MAX_STEPS,
+        time_s: t1,
+        duration_s: settings.duration_s,
+    }
 }
 
 /// Finds the contact that blew up and why, from the start states of the last few steps
@@ -624,7 +722,7 @@ fn layers_total(ode: &ChainOde, y: &[f64], layers: &mut [f64]) -> f64 {
 }
 
 #[derive(Debug, Clone, Copy)]
-struct Energies {
+pub(crate) struct Energies {
     total: f64,
     work: f64,
     dissipated: f64,
@@ -669,7 +767,7 @@ fn observe(
 /// Refuses a fixed step beyond RK4's stability limit on the stiffest resonator: resonators are
 /// linear, so such a run would blow up for certain (docs/physics.md §12). Cells with many stiff
 /// modes (the finite-element rod of §13) need a smaller step than the paper's.
-fn check_resonator_stability(ode: &ChainOde, method: Method) -> Result<()> {
+pub(crate) fn check_resonator_stability(ode: &ChainOde, method: Method) -> Result<()> {
     let Method::Rk4 { time_step_s } = method else {
         return Ok(());
     };

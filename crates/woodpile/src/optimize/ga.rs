@@ -6,6 +6,8 @@ use super::operators::{breed, truncation_pool};
 use super::space::{DesignSpace, FeasibleSet, Genome};
 use super::OptimizeError;
 use crate::error::Error;
+use crate::lanes::LaneWidth;
+use crate::model::Chain;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -209,6 +211,7 @@ pub struct BreederGa {
     objective: Box<dyn Objective>,
     settings: GaSettings,
     pool: rayon::ThreadPool,
+    lanes: LaneWidth,
 }
 
 impl std::fmt::Debug for BreederGa {
@@ -243,7 +246,15 @@ impl BreederGa {
             objective,
             settings,
             pool,
+            lanes: LaneWidth::detect(),
         })
+    }
+
+    /// Advances designs `lanes` at a time ([`crate::lanes`]; default [`LaneWidth::detect`]).
+    /// Results are the same, bit for bit, at every width.
+    pub fn with_lanes(mut self, lanes: LaneWidth) -> Self {
+        self.lanes = lanes;
+        self
     }
 
     /// The design space.
@@ -281,28 +292,60 @@ impl BreederGa {
 
     /// Simulates one design (no cache).
     pub fn evaluate(&self, genome: &[u8]) -> Result<f64, OptimizeError> {
-        let design = || self.space.labels(genome).join(" ");
-        let chain = self
-            .space
-            .chain(genome)
-            .map_err(|source| OptimizeError::Simulation {
-                design: design(),
-                source,
-            })?;
-        let value = self
+        self.evaluate_batch(&[genome])
+            .pop()
+            .expect("one value per design")
+    }
+
+    /// Simulates designs together ([`Objective::evaluate_many`]: in SIMD lanes for the force
+    /// objectives); one value per design, in order.
+    fn evaluate_batch(&self, genomes: &[&[u8]]) -> Vec<Result<f64, OptimizeError>> {
+        let design = |genome: &[u8]| self.space.labels(genome).join(" ");
+        let chains: Vec<Result<Chain, OptimizeError>> = genomes
+            .iter()
+            .map(|g| {
+                self.space
+                    .chain(g)
+                    .map_err(|source| OptimizeError::Simulation {
+                        design: design(g),
+                        source,
+                    })
+            })
+            .collect();
+        let built: Vec<Chain> = chains
+            .iter()
+            .filter_map(|c| c.as_ref().ok().cloned())
+            .collect();
+        let mut values = self
             .objective
-            .evaluate(&chain, &self.space.excitation, &self.space.settings)
-            .map_err(|source| OptimizeError::Simulation {
-                design: design(),
-                source,
-            })?;
-        if value.is_nan() {
-            return Err(OptimizeError::NotANumber {
-                objective: self.objective.name().to_string(),
-                design: design(),
-            });
-        }
-        Ok(value)
+            .evaluate_many(
+                &built,
+                &self.space.excitation,
+                &self.space.settings,
+                self.lanes,
+            )
+            .into_iter();
+        chains
+            .into_iter()
+            .zip(genomes)
+            .map(|(chain, g)| {
+                chain?;
+                let value = values
+                    .next()
+                    .expect("one value per chain")
+                    .map_err(|source| OptimizeError::Simulation {
+                        design: design(g),
+                        source,
+                    })?;
+                if value.is_nan() {
+                    return Err(OptimizeError::NotANumber {
+                        objective: self.objective.name().to_string(),
+                        design: design(g),
+                    });
+                }
+                Ok(value)
+            })
+            .collect()
     }
 
     /// Objective values of `genomes` in order: cached ones looked up, the others simulated in
@@ -335,9 +378,18 @@ impl BreederGa {
             slot.push(todo.len());
             todo.push(g);
         }
-        let values: Vec<Result<f64, OptimizeError>> = self
-            .pool
-            .install(|| todo.par_iter().map(|g| self.evaluate(g)).collect());
+        // Batches of a few lane widths each, several per thread so that threads stay busy:
+        // the values do not depend on the batching (bit-identical lanes).
+        let threads = self.pool.current_num_threads().max(1);
+        let batch = todo.len().div_ceil(4 * threads).max(self.lanes.lanes());
+        let values: Vec<Result<f64, OptimizeError>> = self.pool.install(|| {
+            todo.par_chunks(batch)
+                .flat_map_iter(|chunk| {
+                    let genomes: Vec<&[u8]> = chunk.iter().map(|g| g.as_slice()).collect();
+                    self.evaluate_batch(&genomes)
+                })
+                .collect()
+        });
         let values = values.into_iter().collect::<Result<Vec<f64>, _>>()?;
         *evaluations += values.len() as u64;
         if use_cache {

@@ -29,6 +29,7 @@ mod damping_zero_bit_identical;
 mod energy_conservation_impact;
 mod fe_rod_frequencies;
 mod lab_energy_balance;
+mod lanes_bit_identical;
 mod nesterenko_solitary_wave;
 mod no_tension;
 mod optimize_cache_transparent;

@@ -1,15 +1,17 @@
-//! Claim: a GA run is a function of its seed alone: with 1 and with 2 worker threads the whole
-//! history, the final population and the cache are identical.
+//! Claim: a GA run is a function of its seed alone: with 1 and with 2 worker threads, designs
+//! evaluated one by one or 2, 4 and 8 at a time in SIMD lanes, the whole history, the final
+//! population and the cache are identical.
 //!
-//! Tolerance: none (bit-identical). Random draws happen on the calling thread and fitness values
-//! are written back by index; only the wall-clock column may differ.
+//! Tolerance: none (bit-identical). Random draws happen on the calling thread, fitness values
+//! are written back by index, and lanes compute what single runs compute (claim
+//! `lanes_bit_identical`); only the wall-clock column may differ.
 
 use std::ops::ControlFlow;
 use std::sync::atomic::AtomicBool;
 use woodpile::optimize::{BreederGa, DesignSpace, GaSettings, GaState, StandardObjective};
-use woodpile::{CellModel, Method, RunSettings};
+use woodpile::{CellModel, LaneWidth, Method, RunSettings};
 
-fn run(threads: usize) -> GaState {
+fn run(threads: usize, lanes: LaneWidth) -> GaState {
     let mut space = DesignSpace::paper_impact(CellModel::Resonant);
     space.positions = 6;
     space.settings = RunSettings {
@@ -29,7 +31,8 @@ fn run(threads: usize) -> GaState {
         Box::new(StandardObjective::TransmittedForce),
         settings,
     )
-    .unwrap();
+    .unwrap()
+    .with_lanes(lanes);
     ga.run(None, &AtomicBool::new(false), &mut |_| {
         ControlFlow::Continue(())
     })
@@ -38,13 +41,23 @@ fn run(threads: usize) -> GaState {
 }
 
 #[test]
-fn one_and_two_threads_give_the_same_run() {
-    let (a, b) = (run(1), run(2));
+fn thread_counts_and_lane_widths_give_the_same_run() {
+    let a = run(1, LaneWidth::One);
     assert_eq!(a.history.len(), 7);
-    for (x, y) in a.history.iter().zip(&b.history) {
-        assert!(x.same_result(y), "{x:?} != {y:?}");
+    for (threads, lanes) in [
+        (2, LaneWidth::One),
+        (1, LaneWidth::Four),
+        (2, LaneWidth::Eight),
+    ] {
+        let b = run(threads, lanes);
+        for (x, y) in a.history.iter().zip(&b.history) {
+            assert!(
+                x.same_result(y),
+                "{threads} threads, {lanes:?}: {x:?} != {y:?}"
+            );
+        }
+        assert_eq!(a.population, b.population);
+        assert_eq!(a.cache, b.cache);
+        assert_eq!((a.evaluations, a.cache_hits), (b.evaluations, b.cache_hits));
     }
-    assert_eq!(a.population, b.population);
-    assert_eq!(a.cache, b.cache);
-    assert_eq!((a.evaluations, a.cache_hits), (b.evaluations, b.cache_hits));
 }

@@ -1,0 +1,894 @@
+//! Many runs advanced together in SIMD lanes: the design studies' engine.
+//!
+//! A design study simulates thousands of chains of one problem. [`simulate_many`] advances `L`
+//! of them at once, in structure-of-arrays form: every state component is an `[f64; L]`, one
+//! value per run, so each arithmetic operation of the equations of motion and of the Runge–Kutta
+//! stages is one vector instruction over L runs (AVX-512: 8 doubles, AVX2: 4, SSE2: 2; the
+//! instruction set is chosen at run time, the width by [`LaneWidth`]).
+//!
+//! Each lane keeps its own time, step size and step-size controller, so lanes never wait for
+//! each other: a lane whose run has ended takes the next run of the queue. Runs of one lane group
+//! share the number of bodies and the kind of load; chains whose cells carry different numbers
+//! of resonators are padded with massless-in-effect resonators (k = 0: they exert exactly zero
+//! force) and the error norm skips the padding.
+//!
+//! **The lanes compute bit for bit what [`simulate`] computes** for the same run: every lane
+//! performs the scalar path's operations in the same order (IEEE arithmetic, no fused
+//! multiply–add, square roots correctly rounded in both), the error norm sums in the scalar
+//! order, and the per-step work (peaks, checks, the final summary) is the scalar code itself.
+//! Results therefore do not depend on the lane width, the grouping or the thread count (claim
+//! `lanes_bit_identical`). A run that fails (blow-up, step too small) is re-run on the scalar
+//! path, which reproduces the failure and diagnoses it.
+//!
+//! Lanes take the runs whose figures of merit need no samples (`sample_interval_s` equal to
+//! `duration_s`, as the GA's force objectives run) and the paper's physics; runs with the lab
+//! physics of docs/physics.md §14, or that record samples, go to [`simulate`].
+
+// Lane loops index several arrays by the lane number l: the plain form that LLVM vectorizes.
+#![allow(clippy::needless_range_loop)]
+
+use std::collections::BTreeMap;
+
+use crate::error::{Error, Result};
+use crate::excitation::Excitation;
+use crate::integrate::{
+    min_step_s, next_step_after_accept, next_step_after_reject, Integrator, IntegratorStats,
+    Method, OdeSystem, Tableau,
+};
+use crate::model::Chain;
+use crate::ode::ChainOde;
+use crate::simulate::{
+    check_resonator_stability, simulate, too_many_steps, RunSettings, RunSummary, Watch,
+};
+
+/// How many runs advance together.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum LaneWidth {
+    /// One run at a time (the lane engine without vectors; for tests and comparisons).
+    One,
+    /// Two runs (one SSE2 register).
+    Two,
+    /// Four runs (one AVX2 register).
+    Four,
+    /// Eight runs (one AVX-512 register, or two AVX2 registers).
+    Eight,
+}
+
+impl LaneWidth {
+    /// Every width.
+    pub const ALL: [LaneWidth; 4] = [
+        LaneWidth::One,
+        LaneWidth::Two,
+        LaneWidth::Four,
+        LaneWidth::Eight,
+    ];
+
+    /// The width for this CPU: eight with AVX-512 or AVX2 (bench/README.md: two AVX2 registers
+    /// per operation beat one on the 2-core development machine), two otherwise.
+    pub fn detect() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            return LaneWidth::Eight;
+        }
+        LaneWidth::Two
+    }
+
+    /// The number of lanes.
+    pub fn lanes(self) -> usize {
+        match self {
+            LaneWidth::One => 1,
+            LaneWidth::Two => 2,
+            LaneWidth::Four => 4,
+            LaneWidth::Eight => 8,
+        }
+    }
+
+    /// The width with this many lanes (1, 2, 4 or 8).
+    pub fn from_lanes(lanes: usize) -> Result<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|w| w.lanes() == lanes)
+            .ok_or_else(|| Error::invalid("lanes", lanes, "must be 1, 2, 4 or 8"))
+    }
+}
+
+/// One run for [`simulate_many`].
+#[derive(Debug, Clone, Copy)]
+pub struct Job<'a> {
+    /// The chain.
+    pub chain: &'a Chain,
+    /// Its excitation.
+    pub excitation: &'a Excitation,
+    /// How long and how.
+    pub settings: &'a RunSettings,
+}
+
+/// Runs every job, in lanes where it can (see the module documentation) and on [`simulate`]
+/// otherwise, with no recorder. The results are in the order of `jobs` and equal, bit for bit
+/// except `wall_time_s`, to `simulate(chain, excitation, settings, &mut ())` of each job.
+pub fn simulate_many(jobs: &[Job<'_>], width: LaneWidth) -> Vec<Result<RunSummary>> {
+    let mut results: Vec<Option<Result<RunSummary>>> = (0..jobs.len()).map(|_| None).collect();
+    let mut groups: BTreeMap<GroupKey, Vec<(usize, ChainOde)>> = BTreeMap::new();
+    for (index, job) in jobs.iter().enumerate() {
+        match lane_ready(job) {
+            Ok(Some((key, ode))) => groups.entry(key).or_default().push((index, ode)),
+            Ok(None) => {
+                results[index] = Some(simulate(job.chain, job.excitation, job.settings, &mut ()))
+            }
+            Err(e) => results[index] = Some(Err(e)),
+        }
+    }
+    for (key, members) in groups {
+        let done = match width {
+            LaneWidth::One => run_group::<1>(jobs, &key, members),
+            LaneWidth::Two => run_group::<2>(jobs, &key, members),
+            LaneWidth::Four => run_group::<4>(jobs, &key, members),
+            LaneWidth::Eight => run_group::<8>(jobs, &key, members),
+        };
+        for (index, result) in done {
+            results[index] = Some(result);
+        }
+    }
+    results
+        .into_iter()
+        .map(|r| r.expect("every job has a result"))
+        .collect()
+}
+
+/// What the runs of one lane group share.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct GroupKey {
+    n_primary: usize,
+    shift: usize,
+    blast: bool,
+    adaptive: bool,
+}
+
+/// Checks a job as [`simulate`] does (same errors, same order) and compiles it; `None` when it
+/// is not for the lanes.
+fn lane_ready(job: &Job<'_>) -> Result<Option<(GroupKey, ChainOde)>> {
+    job.settings.validate()?;
+    let ode = ChainOde::new(job.chain, job.excitation)?;
+    check_resonator_stability(&ode, job.settings.method)?;
+    if ode.has_lab_physics() || job.settings.sample_interval_s != job.settings.duration_s {
+        return Ok(None);
+    }
+    let key = GroupKey {
+        n_primary: ode.n_primary,
+        shift: ode.shift,
+        blast: ode.is_blast(),
+        adaptive: matches!(job.settings.method, Method::Dopri5 { .. }),
+    };
+    Ok(Some((key, ode)))
+}
+
+/// Runs one group, choosing the instruction set at run time.
+#[allow(unsafe_code)]
+fn run_group<const L: usize>(
+    jobs: &[Job<'_>],
+    key: &GroupKey,
+    members: Vec<(usize, ChainOde)>,
+) -> Vec<(usize, Result<RunSummary>)> {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU supports AVX-512F (checked on the line above).
+            return unsafe { run_group_avx512::<L>(jobs, key, members) };
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2 (checked on the line above).
+            return unsafe { run_group_avx2::<L>(jobs, key, members) };
+        }
+    }
+    Lanes::<L>::new(jobs, key, members).run()
+}
+
+/// [`run_group`] compiled for AVX2 (no FMA: the results stay those of the portable build).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[allow(unsafe_code)]
+unsafe fn run_group_avx2<const L: usize>(
+    jobs: &[Job<'_>],
+    key: &GroupKey,
+    members: Vec<(usize, ChainOde)>,
+) -> Vec<(usize, Result<RunSummary>)> {
+    Lanes::<L>::new(jobs, key, members).run()
+}
+
+/// [`run_group`] compiled for AVX-512F (no FMA).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+#[allow(unsafe_code)]
+unsafe fn run_group_avx512<const L: usize>(
+    jobs: &[Job<'_>],
+    key: &GroupKey,
+    members: Vec<(usize, ChainOde)>,
+) -> Vec<(usize, Result<RunSummary>)> {
+    Lanes::<L>::new(jobs, key, members).run()
+}
+
+/// One value per lane, with IEEE arithmetic lane by lane. Operations take and return values, so
+/// that each reads its operands whole before it writes: the form LLVM turns into one vector
+/// instruction per operation (indexing arrays in place left it scalar: stores may alias loads).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(transparent)]
+struct Lane<const L: usize>([f64; L]);
+
+impl<const L: usize> Lane<L> {
+    const ZERO: Self = Lane([0.0; L]);
+
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        Lane([x; L])
+    }
+
+    #[inline(always)]
+    fn map(self, f: impl Fn(f64) -> f64) -> Self {
+        let mut r = [0.0; L];
+        for l in 0..L {
+            r[l] = f(self.0[l]);
+        }
+        Lane(r)
+    }
+
+    #[inline(always)]
+    fn zip(self, o: Self, f: impl Fn(f64, f64) -> f64) -> Self {
+        let mut r = [0.0; L];
+        for l in 0..L {
+            r[l] = f(self.0[l], o.0[l]);
+        }
+        Lane(r)
+    }
+
+    /// `f64::max` lane by lane (the scalar path's `d.max(0.0)`).
+    #[inline(always)]
+    fn max(self, o: Self) -> Self {
+        self.zip(o, f64::max)
+    }
+
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        self.map(f64::sqrt)
+    }
+
+    #[inline(always)]
+    fn abs(self) -> Self {
+        self.map(f64::abs)
+    }
+
+    /// Lane by lane: `yes` where `mask` is set, `no` elsewhere.
+    #[inline(always)]
+    fn select(mask: [bool; L], yes: Self, no: Self) -> Self {
+        let mut r = [0.0; L];
+        for l in 0..L {
+            r[l] = if mask[l] { yes.0[l] } else { no.0[l] };
+        }
+        Lane(r)
+    }
+}
+
+macro_rules! lane_op {
+    ($trait:ident, $method:ident, $op:tt) => {
+        impl<const L: usize> std::ops::$trait for Lane<L> {
+            type Output = Self;
+            #[inline(always)]
+            fn $method(self, o: Self) -> Self {
+                self.zip(o, |a, b| a $op b)
+            }
+        }
+    };
+}
+lane_op!(Add, add, +);
+lane_op!(Sub, sub, -);
+lane_op!(Mul, mul, *);
+lane_op!(Div, div, /);
+
+impl<const L: usize> std::ops::Neg for Lane<L> {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        self.map(|a| -a)
+    }
+}
+
+/// Class of a state component in a lane's error norm: which of the scalar norm's four partial
+/// sums it joins (0–3), which of its up to three trailing terms it is (4–6), or padding (7).
+const PADDING: f64 = 7.0;
+
+/// The scalar run that occupies a lane: its compiled chain (for the per-step work and the
+/// summary), its watch and its step control.
+struct LaneRun<'a> {
+    job: usize,
+    ode: ChainOde,
+    settings: &'a RunSettings,
+    watch: Watch<'a>,
+    t: f64,
+    /// Time of the last evaluation, which was at the current state.
+    t_eval: f64,
+    h: f64,
+    err_prev: f64,
+    rejected_before: bool,
+    rtol: f64,
+    stats: IntegratorStats,
+    /// The run's own state vector (its layout, not the lanes'): filled where needed.
+    y: Vec<f64>,
+    /// Lane index of each component of `y`.
+    place: Vec<usize>,
+}
+
+/// L runs of one group in structure-of-arrays form, and the queue of runs waiting for a lane.
+struct Lanes<'a, const L: usize> {
+    jobs: &'a [Job<'a>],
+    tableau: Tableau,
+    adaptive: bool,
+    order: f64,
+    p: usize,
+    nd: usize,
+    dim: usize,
+    blast: bool,
+    /// Resonators per element in the lanes (the most any run of the group has).
+    slots_per_element: Vec<usize>,
+    res_owner: Vec<usize>,
+    inv_mass: Vec<Lane<L>>,
+    beta: Vec<Lane<L>>,
+    res_omega2: Vec<Lane<L>>,
+    res_coupling: Vec<Lane<L>>,
+    atol: Vec<Lane<L>>,
+    class: Vec<Lane<L>>,
+    n_real: [f64; L],
+    n_tail: [usize; L],
+    y: Vec<Lane<L>>,
+    stage: Vec<Lane<L>>,
+    f_now: Vec<Lane<L>>,
+    k: Vec<Vec<Lane<L>>>,
+    err: Vec<Lane<L>>,
+    force: Vec<Lane<L>>,
+    overlap: Vec<Lane<L>>,
+    runs: Vec<Option<LaneRun<'a>>>,
+    queue: std::vec::IntoIter<(usize, ChainOde)>,
+    done: Vec<(usize, Result<RunSummary>)>,
+}
+
+impl<'a, const L: usize> Lanes<'a, L> {
+    fn new(jobs: &'a [Job<'a>], key: &GroupKey, members: Vec<(usize, ChainOde)>) -> Self {
+        let p = key.n_primary;
+        // The most resonators any run of the group has on each primary.
+        let mut slots_per_element = vec![0usize; p];
+        for (_, ode) in &members {
+            let mut count = vec![0usize; p];
+            for &o in &ode.res_owner {
+                count[o] += 1;
+            }
+            for (s, c) in slots_per_element.iter_mut().zip(count) {
+                *s = (*s).max(c);
+            }
+        }
+        let res_owner: Vec<usize> = slots_per_element
+            .iter()
+            .enumerate()
+            .flat_map(|(o, &n)| std::iter::repeat_n(o, n))
+            .collect();
+        let r = res_owner.len();
+        let nd = p + r;
+        let dim = 2 * nd + usize::from(key.blast);
+        let method = jobs[members[0].0].settings.method;
+        let tableau = method.tableau();
+        let zeros = |n: usize| vec![Lane::<L>::ZERO; n];
+        Lanes {
+            jobs,
+            order: f64::from(tableau.order),
+            k: (0..tableau.stages()).map(|_| zeros(dim)).collect(),
+            tableau,
+            adaptive: key.adaptive,
+            p,
+            nd,
+            dim,
+            blast: key.blast,
+            slots_per_element,
+            res_owner,
+            inv_mass: vec![Lane::splat(1.0); p],
+            beta: zeros(p + 1),
+            res_omega2: zeros(r),
+            res_coupling: zeros(r),
+            atol: vec![Lane::splat(1.0); dim],
+            class: vec![Lane::splat(PADDING); dim],
+            n_real: [1.0; L],
+            n_tail: [0; L],
+            y: zeros(dim),
+            stage: zeros(dim),
+            f_now: zeros(dim),
+            err: zeros(dim),
+            force: zeros(p + 1),
+            overlap: zeros(p + 1),
+            runs: (0..L).map(|_| None).collect(),
+            queue: members.into_iter(),
+            done: Vec::new(),
+        }
+    }
+
+    #[inline(always)]
+    fn run(mut self) -> Vec<(usize, Result<RunSummary>)> {
+        loop {
+            for l in 0..L {
+                if self.runs[l].is_none() {
+                    self.fill(l);
+                }
+            }
+            if self.runs.iter().all(Option::is_none) {
+                return self.done;
+            }
+            self.iterate();
+        }
+    }
+
+    /// Starts the next queued run in lane l, as [`simulate`] starts it.
+    fn fill(&mut self, l: usize) {
+        let Some((job, mut ode)) = self.queue.next() else {
+            return;
+        };
+        let jobs = self.jobs;
+        let Job {
+            excitation,
+            settings,
+            ..
+        } = jobs[job];
+        let started = std::time::Instant::now();
+        let y0 = ode.initial_state();
+        let units = ode.tolerance_units();
+        let integrator = Integrator::new(
+            settings.method,
+            &mut ode,
+            0.0,
+            y0,
+            &units,
+            settings.sample_interval_s,
+        );
+        let watch = Watch::start(
+            &mut ode,
+            excitation,
+            settings,
+            integrator.y(),
+            &mut (),
+            started,
+        );
+        let (h, err_prev, rtol, atol) = match settings.method {
+            Method::Dopri5 { rtol, atol } => {
+                let (h, err_prev) = integrator.adaptive_control().expect("adaptive");
+                (h, err_prev, rtol, atol)
+            }
+            Method::Rk4 { time_step_s } => (time_step_s, 0.0, 0.0, 0.0),
+        };
+        // Where each of the run's components sits in the lanes.
+        let (p, nd) = (self.p, self.nd);
+        let mut place = Vec::with_capacity(ode.dimension());
+        let mut res_place = Vec::with_capacity(ode.res_owner.len());
+        let mut next_slot = vec![0usize; p];
+        let slot_start: Vec<usize> = self
+            .slots_per_element
+            .iter()
+            .scan(p, |start, &n| {
+                let s = *start;
+                *start += n;
+                Some(s)
+            })
+            .collect();
+        for &o in &ode.res_owner {
+            res_place.push(slot_start[o] + next_slot[o]);
+            next_slot[o] += 1;
+        }
+        place.extend(0..p);
+        place.extend(res_place.iter().copied());
+        place.extend(nd..nd + p);
+        place.extend(res_place.iter().map(|&i| nd + i));
+        if self.blast {
+            place.push(2 * nd);
+        }
+        debug_assert_eq!(place.len(), ode.dimension());
+        // Parameters and state into lane l; padding stays inert.
+        for c in 0..self.dim {
+            self.y[c].0[l] = 0.0;
+            self.f_now[c].0[l] = 0.0;
+            self.atol[c].0[l] = 1.0;
+            self.class[c].0[l] = PADDING;
+        }
+        for j in 0..self.res_owner.len() {
+            self.res_omega2[j].0[l] = 0.0;
+            self.res_coupling[j].0[l] = 0.0;
+        }
+        let n = place.len();
+        let head = n - n % 4;
+        for (i, &c) in place.iter().enumerate() {
+            self.y[c].0[l] = integrator.y()[i];
+            self.f_now[c].0[l] = integrator.f_now()[i];
+            self.atol[c].0[l] = atol * units[i];
+            self.class[c].0[l] = if i < head {
+                (i % 4) as f64
+            } else {
+                (4 + i - head) as f64
+            };
+        }
+        self.n_real[l] = n as f64;
+        self.n_tail[l] = n - head;
+        for i in 0..p {
+            self.inv_mass[i].0[l] = ode.inv_mass[i];
+        }
+        for s in 0..=p {
+            self.beta[s].0[l] = ode.beta[s];
+        }
+        for (j, &c) in res_place.iter().enumerate() {
+            self.res_omega2[c - p].0[l] = ode.res_omega2[j];
+            self.res_coupling[c - p].0[l] = ode.res_coupling[j];
+        }
+        let stats = integrator.stats();
+        self.runs[l] = Some(LaneRun {
+            job,
+            y: vec![0.0; n],
+            place,
+            ode,
+            settings,
+            watch,
+            t: 0.0,
+            t_eval: 0.0,
+            h,
+            err_prev,
+            rejected_before: false,
+            rtol,
+            stats,
+        });
+    }
+
+    /// One attempted step in every occupied lane, then each lane's own bookkeeping.
+    #[inline(always)]
+    fn iterate(&mut self) {
+        let mut h = [0.0; L];
+        let mut t = [0.0; L];
+        for l in 0..L {
+            let Some(run) = &self.runs[l] else { continue };
+            let t_end = run.settings.duration_s;
+            t[l] = run.t;
+            if self.adaptive {
+                let remaining = t_end - run.t;
+                let h_try = run.h.min(remaining);
+                if h_try < min_step_s(run.t, t_end) && h_try < remaining {
+                    self.rerun(l);
+                    continue;
+                }
+                h[l] = h_try;
+            } else {
+                // As the fixed-step integrator: t0 + (n+1) h by multiplication, snapped to t_end.
+                let n = run.stats.steps as f64 + 1.0;
+                let mut t_next = n * run.h;
+                if t_next > t_end || t_end - t_next < 1e-6 * run.h {
+                    t_next = t_end;
+                }
+                h[l] = t_next - run.t;
+            }
+        }
+        self.attempt(&t, &h);
+        let mut err = [0.0; L];
+        if self.adaptive {
+            self.error_norms(&h, &mut err);
+        }
+        let stages = self.tableau.stages();
+        let mut accepted = [false; L];
+        for l in 0..L {
+            let Some(run) = &mut self.runs[l] else {
+                continue;
+            };
+            run.stats.rhs_evaluations += (stages - 1) as u64;
+            if !self.adaptive || err[l] <= 1.0 {
+                accepted[l] = true;
+                continue;
+            }
+            run.stats.rejected_steps += 1;
+            run.rejected_before = true;
+            run.h = next_step_after_reject(h[l], err[l], self.order);
+        }
+        // Commit: accepted lanes take the new state; f at the current point is the FSAL stage
+        // for accepted lanes and the old one (moved to k[0] by `attempt`) for rejected ones.
+        // Empty lanes count as accepted (their values are never read).
+        for l in 0..L {
+            accepted[l] |= self.runs[l].is_none();
+        }
+        let last = stages - 1;
+        if accepted.iter().all(|&a| a) {
+            std::mem::swap(&mut self.y, &mut self.stage);
+            if self.tableau.fsal {
+                std::mem::swap(&mut self.f_now, &mut self.k[last]);
+            }
+        } else {
+            for c in 0..self.dim {
+                self.y[c] = Lane::select(accepted, self.stage[c], self.y[c]);
+                let fsal = if self.tableau.fsal {
+                    self.k[last][c]
+                } else {
+                    self.f_now[c]
+                };
+                self.f_now[c] = Lane::select(accepted, fsal, self.k[0][c]);
+            }
+        }
+        if !self.tableau.fsal {
+            // Fixed steps: every occupied lane accepted; f at the new point, at t + h as the
+            // integrator evaluates it.
+            let mut t_new = [0.0; L];
+            for l in 0..L {
+                t_new[l] = t[l] + h[l];
+            }
+            let load = self.load_forces(&t_new);
+            let mut f_now = std::mem::take(&mut self.f_now);
+            let y = std::mem::take(&mut self.y);
+            self.rhs(&load, &y, &mut f_now);
+            self.y = y;
+            self.f_now = f_now;
+        }
+        for l in 0..L {
+            if accepted[l] && self.runs[l].is_some() {
+                self.after_accept(l, t[l], h[l], err[l]);
+            }
+        }
+    }
+
+    /// Bookkeeping of an accepted step in lane l: time, step control, checks, peaks, the end.
+    fn after_accept(&mut self, l: usize, t0: f64, h: f64, err: f64) {
+        let adaptive = self.adaptive;
+        let order = self.order;
+        let (p, nd) = (self.p, self.nd);
+        let run = self.runs[l].as_mut().expect("occupied");
+        run.stats.steps += 1;
+        if adaptive {
+            run.t = t0 + h;
+            run.t_eval = t0 + self.tableau.c[self.tableau.stages() - 1] * h;
+            run.h = next_step_after_accept(run.h, h, err, run.err_prev, order, run.rejected_before);
+            run.err_prev = err.max(1e-4);
+            run.rejected_before = false;
+        } else {
+            run.stats.rhs_evaluations += 1;
+            run.t_eval = t0 + h;
+            let t_end = run.settings.duration_s;
+            let n = run.stats.steps as f64;
+            let mut t_next = n * run.h;
+            if t_next > t_end || t_end - t_next < 1e-6 * run.h {
+                t_next = t_end;
+            }
+            run.t = t_next;
+        }
+        let t1 = run.t;
+        // The lane's contact cache becomes the run's, with the velocities the rates need.
+        for s in 0..=p {
+            run.ode.force_n[s] = self.force[s].0[l];
+            run.ode.overlap_m[s] = self.overlap[s].0[l];
+        }
+        let n_dof = run.ode.n_dof;
+        for i in 0..p {
+            run.y[n_dof + i] = self.y[nd + i].0[l];
+        }
+        if run.ode.check_contacts(t1).is_err() {
+            self.rerun(l);
+            return;
+        }
+        if run.stats.steps > crate::defaults::MAX_STEPS {
+            let e = too_many_steps(t1, run.settings);
+            let job = run.job;
+            self.vacate(l);
+            self.done.push((job, Err(e)));
+            return;
+        }
+        run.watch.after_step(&run.ode, t0, t1, &run.y);
+        let sample = run.watch.sample_due(t1);
+        let finished = t1 >= run.settings.duration_s * (1.0 - 1e-14);
+        if sample.is_none() && !finished {
+            return;
+        }
+        for (i, &c) in run.place.iter().enumerate() {
+            run.y[i] = self.y[c].0[l];
+        }
+        if let Some((ts, at_step)) = sample {
+            if !at_step {
+                // Not a lane run after all (a sample between steps): the scalar path decides.
+                self.rerun(l);
+                return;
+            }
+            if let Err(e) = run.watch.record(&mut run.ode, ts, &run.y, true, &mut ()) {
+                let job = run.job;
+                self.vacate(l);
+                self.done.push((job, Err(e)));
+                return;
+            }
+        }
+        if finished {
+            let run = self.vacate(l);
+            let summary = run.watch.finish(&run.ode, &run.y, run.stats);
+            self.done.push((run.job, Ok(summary)));
+        }
+    }
+
+    /// Empties lane l (its run has left), leaving a state that stays finite under zero steps.
+    fn vacate(&mut self, l: usize) -> LaneRun<'a> {
+        for c in 0..self.dim {
+            self.y[c].0[l] = 0.0;
+            self.f_now[c].0[l] = 0.0;
+        }
+        self.runs[l].take().expect("occupied")
+    }
+
+    /// Gives lane l's run to the scalar path (which reproduces and diagnoses its failure).
+    fn rerun(&mut self, l: usize) {
+        let run = self.vacate(l);
+        let job = self.jobs[run.job];
+        self.done.push((
+            run.job,
+            simulate(job.chain, job.excitation, job.settings, &mut ()),
+        ));
+    }
+
+    /// The load on the top element of every lane at times t (zero for an impact or an empty lane).
+    #[inline(always)]
+    fn load_forces(&self, t: &[f64; L]) -> [f64; L] {
+        let mut f = [0.0; L];
+        if self.blast {
+            for l in 0..L {
+                if let Some(run) = &self.runs[l] {
+                    f[l] = run.ode.load.as_ref().map_or(0.0, |p| p.force_n(t[l]));
+                }
+            }
+        }
+        f
+    }
+
+    /// The stages of a step of size h[l] from (t[l], y) in every lane: k, and the new state in
+    /// `stage` (for FSAL tableaux the last stage is the new state). Moves f at the current point
+    /// into k[0].
+    #[inline(always)]
+    fn attempt(&mut self, t: &[f64; L], h: &[f64; L]) {
+        std::mem::swap(&mut self.k[0], &mut self.f_now);
+        let stages = self.tableau.stages();
+        let mut stage = std::mem::take(&mut self.stage);
+        for i in 1..stages {
+            combine(&mut stage, &self.y, h, &self.tableau.a[i], &self.k);
+            let mut ts = [0.0; L];
+            for l in 0..L {
+                ts[l] = t[l] + self.tableau.c[i] * h[l];
+            }
+            let load = self.load_forces(&ts);
+            let mut ki = std::mem::take(&mut self.k[i]);
+            self.rhs(&load, &stage, &mut ki);
+            self.k[i] = ki;
+        }
+        if !self.tableau.fsal {
+            combine(&mut stage, &self.y, h, &self.tableau.b, &self.k);
+        }
+        self.stage = stage;
+    }
+
+    /// The equations of motion (ode.rs, the paper's path) in every lane, operation for
+    /// operation: contact forces into the cache, accelerations, resonators, the load's power.
+    #[inline(always)]
+    fn rhs(&mut self, load: &[f64; L], y: &[Lane<L>], dydt: &mut [Lane<L>]) {
+        let (p, nd) = (self.p, self.nd);
+        let (x, v) = (&y[..nd], &y[nd..2 * nd]);
+        let (dx, rest) = dydt.split_at_mut(nd);
+        let dv = &mut rest[..nd];
+        dx.copy_from_slice(v);
+        let force = &mut self.force[..=p];
+        let overlap = &mut self.overlap[..=p];
+        let beta = &self.beta[..=p];
+        let zero = Lane::ZERO;
+        force[0] = Lane(*load);
+        for i in 1..p {
+            let d = x[i - 1] - x[i];
+            overlap[i] = d;
+            let dp = d.max(zero);
+            force[i] = beta[i] * dp * dp.sqrt();
+        }
+        let d = x[p - 1];
+        overlap[p] = d;
+        let dp = d.max(zero);
+        force[p] = beta[p] * dp * dp.sqrt();
+        let inv_mass = &self.inv_mass[..p];
+        for i in 0..p {
+            dv[i] = (force[i] - force[i + 1]) * inv_mass[i];
+        }
+        let r = self.res_owner.len();
+        let xr = &x[p..p + r];
+        let (dvp, dvr) = dv.split_at_mut(p);
+        for j in 0..r {
+            let o = self.res_owner[j];
+            let ext = xr[j] - x[o];
+            dvr[j] = -self.res_omega2[j] * ext;
+            dvp[o] = dvp[o] + self.res_coupling[j] * ext;
+        }
+        if self.blast {
+            rest[nd] = force[0] * v[0];
+        }
+    }
+
+    /// Each lane's weighted RMS error norm, summed exactly as the scalar integrator sums it:
+    /// four partial sums by the run's own component index mod 4, then the trailing components.
+    #[inline(always)]
+    fn error_norms(&mut self, h: &[f64; L], out: &mut [f64; L]) {
+        let e = self
+            .tableau
+            .error
+            .as_ref()
+            .expect("adaptive tableau has error weights");
+        self.err.fill(Lane::ZERO);
+        let h = Lane(*h);
+        for (&ej, kj) in e.iter().zip(&self.k) {
+            if ej != 0.0 {
+                let he = h * Lane::splat(ej);
+                for (ei, &k) in self.err.iter_mut().zip(kj) {
+                    *ei = *ei + he * k;
+                }
+            }
+        }
+        let mut rtol = [0.0; L];
+        for (l, r) in rtol.iter_mut().enumerate() {
+            *r = self.runs[l].as_ref().map_or(0.0, |run| run.rtol);
+        }
+        let rtol = Lane(rtol);
+        let zero = Lane::ZERO;
+        let mut sums = [zero; 4];
+        let mut tail = [zero; 3];
+        for c in 0..self.dim {
+            let r = self.err[c] / (self.atol[c] + rtol * self.y[c].abs().max(self.stage[c].abs()));
+            let r2 = r * r;
+            let class = self.class[c];
+            for (k, s) in sums.iter_mut().enumerate() {
+                *s = *s + Lane::select(class_mask(class, k), r2, zero);
+            }
+            for (k, t) in tail.iter_mut().enumerate() {
+                *t = Lane::select(class_mask(class, 4 + k), r2, *t);
+            }
+        }
+        for l in 0..L {
+            let partial = [sums[0].0[l], sums[1].0[l], sums[2].0[l], sums[3].0[l]];
+            let mut sum: f64 = partial.iter().sum();
+            for t in tail.iter().take(self.n_tail[l]) {
+                sum += t.0[l];
+            }
+            out[l] = (sum / self.n_real[l]).sqrt();
+        }
+    }
+}
+
+/// Lanes whose component is of class k.
+#[inline(always)]
+fn class_mask<const L: usize>(class: Lane<L>, k: usize) -> [bool; L] {
+    let mut m = [false; L];
+    for l in 0..L {
+        m[l] = class.0[l] == k as f64;
+    }
+    m
+}
+
+/// out = y + h Σ_j w_j k_j in every lane with its own h, skipping zero weights: the scalar
+/// integrator's `combine`, lane by lane.
+#[inline(always)]
+fn combine<const L: usize>(
+    out: &mut [Lane<L>],
+    y: &[Lane<L>],
+    h: &[f64; L],
+    weights: &[f64],
+    k: &[Vec<Lane<L>>],
+) {
+    let mut first = true;
+    for (&w, kj) in weights.iter().zip(k) {
+        if w == 0.0 {
+            continue;
+        }
+        let hw = Lane(*h) * Lane::splat(w);
+        if first {
+            for ((o, &yi), &kv) in out.iter_mut().zip(y).zip(kj) {
+                *o = yi + hw * kv;
+            }
+            first = false;
+        } else {
+            for (o, &kv) in out.iter_mut().zip(kj) {
+                *o = *o + hw * kv;
+            }
+        }
+    }
+    if first {
+        out.copy_from_slice(y);
+    }
+}
