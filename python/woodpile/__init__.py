@@ -102,7 +102,8 @@ class Scenario:
             s.replace(**{"chain.rods_mm": [80, 40, 20], "excitation.velocity_m_s": 2.0})
 
         Setting one of two alternative keys removes the other (``velocity_m_s`` replaces
-        ``drop_height_m``, ``rods_mm`` replaces ``elements``). Errors name the key.
+        ``drop_height_m``, ``rods_mm`` replaces ``elements``, ``run.peak_tolerance`` replaces the
+        integrator settings). Errors name the key.
         """
         d = self.to_dict()
         for dotted, value in changes.items():
@@ -130,6 +131,12 @@ _ALTERNATIVES = {
     "excitation.drop_height_m": ["excitation.velocity_m_s"],
     "chain.rods_mm": ["chain.elements"],
     "chain.elements": ["chain.rods_mm"],
+    # A stated peak accuracy replaces the integrator settings, and the other way round.
+    "run.peak_tolerance": ["run.integrator", "run.time_step_s", "run.rtol", "run.atol"],
+    "run.integrator": ["run.peak_tolerance"],
+    "run.time_step_s": ["run.peak_tolerance"],
+    "run.rtol": ["run.peak_tolerance"],
+    "run.atol": ["run.peak_tolerance"],
 }
 
 

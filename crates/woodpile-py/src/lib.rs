@@ -282,24 +282,10 @@ fn simulate(py: Python<'_>, text: &str, base_dir: PathBuf, name: String) -> PyRe
     })
 }
 
-/// Figures of merit of one scenario without recording samples: JSON text of the library's
-/// `RunSummary`, or the error's message prefixed by "error: ".
-fn evaluate_one(text: &str, base_dir: &Path) -> String {
-    let result = Scenario::parse(text)
-        .and_then(|s| resolve(&s, base_dir))
-        .and_then(|r| {
-            run_simulation(&r.chain, &r.excitation, &r.settings, &mut ())
-                .map_err(woodpile_io::Error::from)
-        });
-    match result {
-        Ok(summary) => serde_json::to_string(&summary)
-            .unwrap_or_else(|e| format!("error: cannot serialise the summary: {e}")),
-        Err(e) => format!("error: {e}"),
-    }
-}
-
 /// Runs many scenarios in parallel on `threads` threads (default: one per core), GIL released;
-/// one JSON `RunSummary` (or "error: …") per scenario, in order.
+/// one JSON `RunSummary` (or "error: …" with the message) per scenario, in order. Scenarios
+/// that only need figures of merit (`run.sample_interval_s` = `run.duration_s`) advance together
+/// in SIMD lanes (`woodpile::lanes`), with the same results as one by one.
 #[pyfunction]
 #[pyo3(signature = (texts, base_dir, threads=None))]
 fn evaluate(
@@ -314,9 +300,41 @@ fn evaluate(
             .build()
             .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
         Ok(pool.install(|| {
-            texts
+            let resolved: Vec<Result<Resolved, woodpile_io::Error>> = texts
                 .par_iter()
-                .map(|t| evaluate_one(t, &base_dir))
+                .map(|t| Scenario::parse(t).and_then(|s| resolve(&s, &base_dir)))
+                .collect();
+            let lanes = woodpile::LaneWidth::detect();
+            let batch = resolved
+                .len()
+                .div_ceil(4 * rayon::current_num_threads().max(1))
+                .max(lanes.lanes());
+            resolved
+                .par_chunks(batch)
+                .flat_map_iter(|chunk| {
+                    let jobs: Vec<woodpile::Job<'_>> = chunk
+                        .iter()
+                        .filter_map(|r| r.as_ref().ok())
+                        .map(|r| woodpile::Job {
+                            chain: &r.chain,
+                            excitation: &r.excitation,
+                            settings: &r.settings,
+                        })
+                        .collect();
+                    let mut runs = woodpile::simulate_many(&jobs, lanes).into_iter();
+                    chunk
+                        .iter()
+                        .map(|r| match r {
+                            Err(e) => format!("error: {e}"),
+                            Ok(_) => match runs.next().expect("one result per job") {
+                                Ok(summary) => serde_json::to_string(&summary).unwrap_or_else(
+                                    |e| format!("error: cannot serialise the summary: {e}"),
+                                ),
+                                Err(e) => format!("error: {}", woodpile_io::Error::from(e)),
+                            },
+                        })
+                        .collect::<Vec<String>>()
+                })
                 .collect()
         }))
     })
@@ -474,8 +492,6 @@ struct GaSession {
     state: Option<GaState>,
     /// The designs of the last `ask` (all children, duplicates and cached ones included).
     pending: Option<Vec<Vec<u8>>>,
-    /// Threads of local evaluation.
-    pool: rayon::ThreadPool,
 }
 
 impl GaSession {
@@ -487,17 +503,12 @@ impl GaSession {
             problem.settings,
         )
         .map_err(ga_err)?;
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
         Ok(GaSession {
             config: problem.config.clone(),
             problem,
             ga,
             state: None,
             pending: None,
-            pool,
         })
     }
 
@@ -631,15 +642,7 @@ impl GaSession {
 
     /// Objective values of designs, simulated here in parallel (GIL released).
     fn evaluate(&self, py: Python<'_>, designs: Vec<Vec<u8>>) -> PyResult<Vec<f64>> {
-        py.detach(|| {
-            self.pool.install(|| {
-                designs
-                    .par_iter()
-                    .map(|g| self.ga.evaluate(g))
-                    .collect::<Result<Vec<f64>, _>>()
-                    .map_err(ga_err)
-            })
-        })
+        py.detach(|| self.ga.evaluate_designs(&designs).map_err(ga_err))
     }
 
     /// Why the GA stops now ("generation-limit" or "stalled"), or None to go on.

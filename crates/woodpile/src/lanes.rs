@@ -63,12 +63,17 @@ impl LaneWidth {
         LaneWidth::Eight,
     ];
 
-    /// The width for this CPU: eight with AVX-512 or AVX2 (bench/README.md: two AVX2 registers
-    /// per operation beat one on the 2-core development machine), two otherwise.
+    /// The width for this CPU: eight with AVX-512, four with AVX2 (the fastest on the 2-core
+    /// AVX2 development machine, bench/README.md), two otherwise.
     pub fn detect() -> Self {
         #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            return LaneWidth::Eight;
+        {
+            if std::arch::is_x86_feature_detected!("avx512f") {
+                return LaneWidth::Eight;
+            }
+            if std::arch::is_x86_feature_detected!("avx2") {
+                return LaneWidth::Four;
+            }
         }
         LaneWidth::Two
     }

@@ -439,6 +439,13 @@ pub(crate) fn to_toml(s: &Scenario) -> String {
             "simulated time",
         );
     }
+    if let Some(v) = r.peak_tolerance {
+        commented(
+            &mut o,
+            format!("peak_tolerance = {}", float(v)),
+            "relative accuracy of every contact peak; woodpile chooses the integrator",
+        );
+    }
     if let Some(i) = r.integrator {
         commented(
             &mut o,

@@ -701,6 +701,11 @@ pub struct RunSpec {
     /// impact, 3e-3 for a blast).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub duration_s: Option<f64>,
+    /// Relative accuracy wanted on every contact peak, instead of an integrator: woodpile then
+    /// chooses the method and its settings ([`woodpile::Method::for_peak_tolerance`]). Excludes
+    /// `integrator`, `time_step_s`, `rtol` and `atol`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub peak_tolerance: Option<f64>,
     /// `rk4` (default) or `dopri5`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub integrator: Option<IntegratorKind>,
@@ -840,13 +845,16 @@ impl Scenario {
         if r.duration_s.is_none() {
             r.duration_s = s.excitation.default_duration_s();
         }
-        match *r.integrator.get_or_insert(IntegratorKind::Rk4) {
-            IntegratorKind::Rk4 => {
-                r.time_step_s.get_or_insert(TIME_STEP_S);
-            }
-            IntegratorKind::Dopri5 => {
-                r.rtol.get_or_insert(RTOL);
-                r.atol.get_or_insert(ATOL);
+        // A stated peak accuracy leaves the integrator to woodpile.
+        if r.peak_tolerance.is_none() {
+            match *r.integrator.get_or_insert(IntegratorKind::Rk4) {
+                IntegratorKind::Rk4 => {
+                    r.time_step_s.get_or_insert(TIME_STEP_S);
+                }
+                IntegratorKind::Dopri5 => {
+                    r.rtol.get_or_insert(RTOL);
+                    r.atol.get_or_insert(ATOL);
+                }
             }
         }
         r.sample_interval_s.get_or_insert(SAMPLE_INTERVAL_S);

@@ -949,38 +949,55 @@ fn resolve_run(s: &Scenario, excitation: &Excitation) -> Result<RunSettings, Err
         "run.sample_interval_s",
         r.sample_interval_s.unwrap_or(defaults::SAMPLE_INTERVAL_S),
     )?;
-    let method = match r.integrator.unwrap_or_default() {
-        IntegratorKind::Rk4 => {
-            let why = "with run.integrator = \"rk4\" (a fixed step; set integrator = \"dopri5\" for tolerances)";
-            for (key, v) in [("run.rtol", r.rtol), ("run.atol", r.atol)] {
-                if let Some(v) = v {
-                    return Err(not_applicable(key, v, why));
-                }
-            }
-            let dt = positive(
-                "run.time_step_s",
-                r.time_step_s.unwrap_or(defaults::TIME_STEP_S),
-            )?;
-            if dt >= duration {
-                return Err(Error::invalid(
-                    "run.time_step_s",
-                    float(dt),
-                    format!("must be smaller than run.duration_s = {}", float(duration)),
-                ));
-            }
-            Method::Rk4 { time_step_s: dt }
+    let method = if let Some(tolerance) = r.peak_tolerance {
+        let why = "with run.peak_tolerance (woodpile chooses the integrator for it)";
+        if let Some(i) = r.integrator {
+            return Err(not_applicable("run.integrator", i.name(), why));
         }
-        IntegratorKind::Dopri5 => {
-            if let Some(v) = r.time_step_s {
-                return Err(not_applicable(
-                    "run.time_step_s",
-                    v,
-                    "with run.integrator = \"dopri5\" (adaptive; set rtol/atol)",
-                ));
+        for (key, v) in [
+            ("run.time_step_s", r.time_step_s),
+            ("run.rtol", r.rtol),
+            ("run.atol", r.atol),
+        ] {
+            if let Some(v) = v {
+                return Err(not_applicable(key, float(v), why));
             }
-            let rtol = positive("run.rtol", r.rtol.unwrap_or(defaults::RTOL))?;
-            let atol = positive("run.atol", r.atol.unwrap_or(defaults::ATOL))?;
-            Method::Dopri5 { rtol, atol }
+        }
+        Method::for_peak_tolerance(tolerance)?
+    } else {
+        match r.integrator.unwrap_or_default() {
+            IntegratorKind::Rk4 => {
+                let why = "with run.integrator = \"rk4\" (a fixed step; set integrator = \"dopri5\" for tolerances)";
+                for (key, v) in [("run.rtol", r.rtol), ("run.atol", r.atol)] {
+                    if let Some(v) = v {
+                        return Err(not_applicable(key, v, why));
+                    }
+                }
+                let dt = positive(
+                    "run.time_step_s",
+                    r.time_step_s.unwrap_or(defaults::TIME_STEP_S),
+                )?;
+                if dt >= duration {
+                    return Err(Error::invalid(
+                        "run.time_step_s",
+                        float(dt),
+                        format!("must be smaller than run.duration_s = {}", float(duration)),
+                    ));
+                }
+                Method::Rk4 { time_step_s: dt }
+            }
+            IntegratorKind::Dopri5 => {
+                if let Some(v) = r.time_step_s {
+                    return Err(not_applicable(
+                        "run.time_step_s",
+                        v,
+                        "with run.integrator = \"dopri5\" (adaptive; set rtol/atol)",
+                    ));
+                }
+                let rtol = positive("run.rtol", r.rtol.unwrap_or(defaults::RTOL))?;
+                let atol = positive("run.atol", r.atol.unwrap_or(defaults::ATOL))?;
+                Method::Dopri5 { rtol, atol }
+            }
         }
     };
     if sample > duration {

@@ -6,5 +6,6 @@
 mod element_angles_and_mass_in_mass;
 mod lab_scenario_keys;
 mod paper_values_stated_once;
+mod peak_tolerance_key;
 mod rod_range_catalogue;
 mod run_directory_roundtrip;

@@ -348,6 +348,28 @@ impl BreederGa {
             .collect()
     }
 
+    /// Objective values of designs in order, simulated on the GA's threads in batches of SIMD
+    /// lanes (no cache); the first failure is the error. The values do not depend on the thread
+    /// count, the lane width or the batching (claim `optimize_thread_determinism`).
+    pub fn evaluate_designs<G: AsRef<[u8]> + Sync>(
+        &self,
+        genomes: &[G],
+    ) -> Result<Vec<f64>, OptimizeError> {
+        // Several batches per thread keep every thread busy; each batch fills its lanes.
+        let threads = self.pool.current_num_threads().max(1);
+        let batch = genomes.len().div_ceil(4 * threads).max(self.lanes.lanes());
+        let values: Vec<Result<f64, OptimizeError>> = self.pool.install(|| {
+            genomes
+                .par_chunks(batch)
+                .flat_map_iter(|chunk| {
+                    let genomes: Vec<&[u8]> = chunk.iter().map(|g| g.as_ref()).collect();
+                    self.evaluate_batch(&genomes)
+                })
+                .collect()
+        });
+        values.into_iter().collect()
+    }
+
     /// Objective values of `genomes` in order: cached ones looked up, the others simulated in
     /// parallel (each distinct design once) and written back by index.
     fn evaluate_all(
@@ -378,19 +400,7 @@ impl BreederGa {
             slot.push(todo.len());
             todo.push(g);
         }
-        // Batches of a few lane widths each, several per thread so that threads stay busy:
-        // the values do not depend on the batching (bit-identical lanes).
-        let threads = self.pool.current_num_threads().max(1);
-        let batch = todo.len().div_ceil(4 * threads).max(self.lanes.lanes());
-        let values: Vec<Result<f64, OptimizeError>> = self.pool.install(|| {
-            todo.par_chunks(batch)
-                .flat_map_iter(|chunk| {
-                    let genomes: Vec<&[u8]> = chunk.iter().map(|g| g.as_slice()).collect();
-                    self.evaluate_batch(&genomes)
-                })
-                .collect()
-        });
-        let values = values.into_iter().collect::<Result<Vec<f64>, _>>()?;
+        let values = self.evaluate_designs(&todo)?;
         *evaluations += values.len() as u64;
         if use_cache {
             for (g, &v) in todo.iter().zip(&values) {

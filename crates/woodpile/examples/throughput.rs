@@ -1,0 +1,172 @@
+//! Design-study throughput: how many designs of the paper's impact problem (20 positions, Table 1
+//! rods, resonant cells, the default striker and sensor, 2 ms) the GA's evaluator simulates per
+//! second, at each accuracy setting, one design at a time (`simulate` per design, as the GA did
+//! before lanes) and in SIMD lanes (`BreederGa::evaluate_designs`), on 1 and 2 threads; the
+//! worst relative error of the objective (transmitted peak) over a sample of the designs against
+//! a converged run; and the cost per element of long chains. Medians of `--runs` repetitions.
+//!
+//! Run: `cargo run --release -p woodpile --example throughput [-- --designs 400 --runs 3]`
+//! (bench/throughput.sh runs it beside the peers.)
+
+use rayon::prelude::*;
+use std::time::Instant;
+use woodpile::optimize::{BreederGa, DesignSpace, GaSettings, Objective, StandardObjective};
+use woodpile::{
+    simulate, CellModel, ChainBuilder, Excitation, LaneWidth, Method, RunSettings, Striker,
+};
+
+fn arg(name: &str, default: usize) -> usize {
+    std::env::args()
+        .skip_while(|a| a != name)
+        .nth(1)
+        .map(|s| s.parse().expect("an integer"))
+        .unwrap_or(default)
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn main() -> woodpile::Result<()> {
+    let n_designs = arg("--designs", 400);
+    let runs = arg("--runs", 3);
+    let objective = StandardObjective::TransmittedForce;
+    let settings_for = |method: Method| RunSettings {
+        method,
+        ..RunSettings::paper_impact()
+    };
+    let ga = |method: Method, threads: usize, lanes: LaneWidth| {
+        let mut space = DesignSpace::paper_impact(CellModel::Resonant);
+        space.settings = settings_for(method);
+        let settings = GaSettings {
+            population: n_designs,
+            threads,
+            seed: 1,
+            ..GaSettings::default()
+        };
+        BreederGa::new(space, Box::new(objective), settings)
+            .expect("the paper's problem")
+            .with_lanes(lanes)
+    };
+    let designs = ga(Method::paper(), 1, LaneWidth::One).initial_designs();
+    let space = DesignSpace::paper_impact(CellModel::Resonant);
+    let chains: Vec<_> = designs
+        .iter()
+        .map(|g| space.chain(g))
+        .collect::<woodpile::Result<_>>()?;
+    let impact = Excitation::Impact(Striker::paper());
+
+    // Accuracy of the objective on a sample of the designs, against a converged run.
+    let sample = &chains[..chains.len().min(24)];
+    let converged: Vec<f64> = sample
+        .par_iter()
+        .map(|c| {
+            objective.evaluate(
+                c,
+                &impact,
+                &settings_for(Method::Dopri5 {
+                    rtol: 1e-12,
+                    atol: 1e-18,
+                }),
+            )
+        })
+        .collect::<woodpile::Result<_>>()?;
+    let settings = [
+        ("rk4 0.1us (paper)", Method::paper()),
+        ("peak_tolerance 1e-5", Method::for_peak_tolerance(1e-5)?),
+        ("peak_tolerance 1e-4", Method::for_peak_tolerance(1e-4)?),
+        (
+            "dopri5 rtol 1e-6",
+            Method::Dopri5 {
+                rtol: 1e-6,
+                atol: 1e-12,
+            },
+        ),
+    ];
+    println!(
+        "{n_designs} designs of the paper's impact problem (GA generation 0, seed 1); lane width {:?} detected",
+        LaneWidth::detect()
+    );
+    println!(
+        "{:<22} {:>12} {:>8} {:>14} {:>14} {:>10}",
+        "setting", "objective_err", "threads", "one_by_one/s", "lanes/s", "lane_gain"
+    );
+    for (name, method) in settings {
+        let worst = sample
+            .par_iter()
+            .zip(&converged)
+            .map(|(c, &r)| {
+                objective
+                    .evaluate(c, &impact, &settings_for(method))
+                    .map(|v| ((v - r) / r).abs())
+            })
+            .collect::<woodpile::Result<Vec<f64>>>()?
+            .into_iter()
+            .fold(0.0, f64::max);
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("threads");
+            let one_by_one = median(
+                (0..runs)
+                    .map(|_| {
+                        let t = Instant::now();
+                        pool.install(|| {
+                            chains.par_iter().for_each(|c| {
+                                objective
+                                    .evaluate(c, &impact, &settings_for(method))
+                                    .expect("runs");
+                            })
+                        });
+                        n_designs as f64 / t.elapsed().as_secs_f64()
+                    })
+                    .collect(),
+            );
+            let lanes = ga(method, threads, LaneWidth::detect());
+            let in_lanes = median(
+                (0..runs)
+                    .map(|_| {
+                        let t = Instant::now();
+                        lanes.evaluate_designs(&designs).expect("runs");
+                        n_designs as f64 / t.elapsed().as_secs_f64()
+                    })
+                    .collect(),
+            );
+            println!(
+                "{name:<22} {worst:>12.2e} {threads:>8} {one_by_one:>14.1} {in_lanes:>14.1} {:>9.2}x",
+                in_lanes / one_by_one
+            );
+        }
+    }
+
+    // Cost per element of long chains: 40 mm rods, RK4 at 0.1 µs, 50 µs of simulated time.
+    println!("\nlong chains (40 mm rods, rk4 0.1 us, 50 us simulated, one thread):");
+    println!(
+        "{:>10} {:>12} {:>22}",
+        "elements", "median_ms", "ns/element/us_sim"
+    );
+    for n in [10usize, 100, 1_000, 10_000] {
+        let chain = ChainBuilder::table1_rods(&vec![40; n], CellModel::Resonant)?.build()?;
+        let settings = RunSettings {
+            duration_s: 5e-5,
+            method: Method::paper(),
+            sample_interval_s: 5e-5,
+        };
+        let ms = median(
+            (0..runs)
+                .map(|_| {
+                    simulate(&chain, &impact, &settings, &mut ())
+                        .map(|s| s.wall_time_s * 1e3)
+                        .expect("runs")
+                })
+                .collect(),
+        );
+        println!(
+            "{n:>10} {ms:>12.3} {:>22.2}",
+            ms * 1e6 / (n as f64 * settings.duration_s * 1e6)
+        );
+    }
+    Ok(())
+}
