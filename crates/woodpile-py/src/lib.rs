@@ -327,9 +327,11 @@ fn evaluate(
                         .map(|r| match r {
                             Err(e) => format!("error: {e}"),
                             Ok(_) => match runs.next().expect("one result per job") {
-                                Ok(summary) => serde_json::to_string(&summary).unwrap_or_else(
-                                    |e| format!("error: cannot serialise the summary: {e}"),
-                                ),
+                                Ok(summary) => {
+                                    serde_json::to_string(&summary).unwrap_or_else(|e| {
+                                        format!("error: cannot serialise the summary: {e}")
+                                    })
+                                }
                                 Err(e) => format!("error: {}", woodpile_io::Error::from(e)),
                             },
                         })
