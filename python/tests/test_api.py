@@ -94,6 +94,27 @@ def test_evaluate_equals_single_runs_exactly():
         assert pd.isna(row["error"])
 
 
+def test_figures_of_merit_only_runs_take_simd_lanes_and_give_the_same_numbers():
+    # sample_interval_s = duration_s: the runs advance together in SIMD lanes (woodpile::lanes),
+    # which must report exactly what each run reports alone, with several rod counts, resonator
+    # counts and a failing design in the batch.
+    base = short()
+    duration = base.to_dict()["run"]["duration_s"]
+    scenarios = [
+        base.replace(**{"chain.rods_mm": rods, "run.sample_interval_s": duration, "run.peak_tolerance": 1e-5})
+        for rods in ([80, 40, 20], [20] * 6, [50, 30, 70, 40, 60, 20], [80] * 3, [30, 60])
+    ]
+    too_coarse = base.replace(**{"run.time_step_s": 1e-4, "run.sample_interval_s": duration})
+    table = woodpile.evaluate(scenarios + [too_coarse])
+    for s, (_, row) in zip(scenarios, table.iterrows()):
+        single = woodpile.simulate(s).summary
+        for key in ("transmitted_peak_force_n", "incident_peak_force_n", "rhs_evaluations"):
+            if key in single:
+                assert row[key] == single[key], key
+        assert pd.isna(row["error"])
+    assert "time_step" in table["error"].iloc[-1]
+
+
 def test_a_failing_scenario_gives_an_error_row_not_an_exception():
     bad = short().replace(**{"run.time_step_s": 1e-4, "run.sample_interval_s": 1e-4})
     table = woodpile.evaluate([short(), bad])

@@ -656,28 +656,72 @@ pub(crate) fn min_step_s(t: f64, t_end: f64) -> f64 {
     (1e-14 * t.abs()).max(crate::defaults::MIN_STEP_FRACTION * t_end.abs())
 }
 
-/// out = y + h Σ_j w_j k_j, skipping zero weights; one pass per non-zero weight, no copy.
+/// out = y + h Σ_j w_j k_j, skipping zero weights, added in stage order: ((y + hw₀k₀) + hw₁k₁) + ….
+/// The terms go in groups of up to four per pass over the state (each element's sum in a
+/// register), so a DOPRI5 step makes 8 passes instead of 21; the order of the additions, and so
+/// every bit of the result, is that of one pass per term. No allocation.
 #[inline(always)]
 fn combine(out: &mut [f64], y: &[f64], h: f64, weights: &[f64], k: &[Vec<f64>]) {
-    let mut first = true;
+    const MAX_TERMS: usize = 16;
+    let mut hw = [0.0; MAX_TERMS];
+    let mut ks: [&[f64]; MAX_TERMS] = [&[]; MAX_TERMS];
+    let mut terms = 0;
     for (&w, kj) in weights.iter().zip(k) {
-        if w == 0.0 {
-            continue;
-        }
-        let hw = h * w;
-        if first {
-            for ((o, &yi), &kv) in out.iter_mut().zip(y).zip(kj) {
-                *o = yi + hw * kv;
-            }
-            first = false;
-        } else {
-            for (o, &kv) in out.iter_mut().zip(kj) {
-                *o += hw * kv;
-            }
+        if w != 0.0 {
+            assert!(
+                terms < MAX_TERMS,
+                "a tableau has at most {MAX_TERMS} stages"
+            );
+            hw[terms] = h * w;
+            ks[terms] = kj;
+            terms += 1;
         }
     }
-    if first {
+    if terms == 0 {
         out.copy_from_slice(y);
+        return;
+    }
+    let mut done = 0;
+    while done < terms {
+        let group = (terms - done).min(4);
+        let (hw, ks) = (&hw[done..done + group], &ks[done..done + group]);
+        let base = (done == 0).then_some(y);
+        match group {
+            1 => add_terms::<1>(out, base, hw, ks),
+            2 => add_terms::<2>(out, base, hw, ks),
+            3 => add_terms::<3>(out, base, hw, ks),
+            _ => add_terms::<4>(out, base, hw, ks),
+        }
+        done += group;
+    }
+}
+
+/// out_i = (base_i or out_i) + hw₀ k₀_i + … + hw_{N-1} k_{N-1}_i, left to right.
+#[inline(always)]
+fn add_terms<const N: usize>(out: &mut [f64], base: Option<&[f64]>, hw: &[f64], ks: &[&[f64]]) {
+    let n = out.len();
+    let hw: [f64; N] = std::array::from_fn(|j| hw[j]);
+    let ks: [&[f64]; N] = std::array::from_fn(|j| &ks[j][..n]);
+    match base {
+        Some(y) => {
+            let y = &y[..n];
+            for i in 0..n {
+                let mut acc = y[i];
+                for j in 0..N {
+                    acc += hw[j] * ks[j][i];
+                }
+                out[i] = acc;
+            }
+        }
+        None => {
+            for i in 0..n {
+                let mut acc = out[i];
+                for j in 0..N {
+                    acc += hw[j] * ks[j][i];
+                }
+                out[i] = acc;
+            }
+        }
     }
 }
 
