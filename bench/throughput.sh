@@ -42,7 +42,7 @@ lammps_out=""
 if command -v lmp > /dev/null; then
   echo
   echo "== LAMMPS peer (velocity Verlet; Loop time), one core, medians of 3 runs =="
-  lammps_out=$("$py" bench/peers/lammps_chain.py --reference "$reference" --runs 3 --dt 2e-9 5e-9 1e-8 2e-8)
+  lammps_out=$("$py" bench/peers/lammps_chain.py --reference "$reference" --runs 3 --dt 5e-8 1e-7 1.25e-7 1.5e-7)
   echo "$lammps_out"
 else
   echo
@@ -57,8 +57,8 @@ fastest() { awk -v t="$1" -v e="$2" '$0 ~ t && $e+0 <= 1e-5 { if (m == "" || $(c
 w_peaks=$(echo "$rust_out" | fastest '^(rk4|dopri5) ' 6 4)
 w_full=$(echo "$rust_out" | fastest '^(rk4|dopri5) ' 6 3)
 s_best=$(echo "$scipy_out" | fastest 'rtol=' 5 3)
-n_best=$(echo "$numba_out" | fastest '^numba ' 6 4)
-l_best=$(echo "$lammps_out" | fastest '^lammps ' 6 4)
+n_best=$(echo "$numba_out" | fastest '^numba rk4 ' 6 4)
+l_best=$(echo "$lammps_out" | fastest '^lammps verlet ' 6 4)
 echo
 echo "fastest one run with the transmitted peak within 1e-5 (ms):"
 echo "  woodpile, peaks only: $w_peaks   woodpile, 1 us samples: $w_full"
