@@ -20,6 +20,8 @@
 //! Every function takes a file *stem* (`dir/force_map`) and writes `stem.png` and `stem.svg`,
 //! returning the two paths.
 //!
+//! [`typeset`] lays out and rasterises the bitmaps' text (plotters' own drops glyph bearings).
+//!
 //! [`dirs`] draws the figure set of a whole output directory (a `woodpile simulate` run or a
 //! `woodpile optimize` output), read back through [`woodpile_io`].
 
@@ -28,6 +30,7 @@ mod colormap;
 pub mod dirs;
 mod heatmap;
 mod lines;
+pub mod typeset;
 
 pub use chain::chain_picture;
 pub use colormap::ColorMap;
@@ -115,7 +118,8 @@ pub(crate) fn render(figure: &impl Figure, stem: &Path) -> Result<Vec<PathBuf>> 
         // would pull in the whole `image` crate (a fifth of the test build's dependencies).
         let mut rgb = vec![0u8; 3 * size.0 as usize * size.1 as usize];
         {
-            let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
+            let root =
+                typeset::Typeset(BitMapBackend::with_buffer(&mut rgb, size)).into_drawing_area();
             figure.draw(&root).map_err(fail(&png))?;
             root.present()
                 .map_err(|e| DrawFailure(e.to_string()))

@@ -1,6 +1,7 @@
 //! Claim: every plot function writes a non-empty, valid PNG (signature and IHDR of the requested
 //! size) and an SVG document for small data, without system fonts (the font is bundled).
 //! No tolerance: file checks are exact.
+//! Claims on the bitmaps' text (woodpile_plot::typeset) are at the end.
 
 use std::path::{Path, PathBuf};
 use woodpile::analysis::{
@@ -136,4 +137,84 @@ fn unplottable_data_is_an_error_not_a_panic() {
     let (chain, _) = small_run();
     assert!(plot::chain_picture(&chain, "t", missing_dir).is_err());
     std::fs::remove_dir_all(&dir).ok();
+}
+
+// ---- Text on bitmaps -------------------------------------------------------------------------
+
+/// Column groups of ink (coverage > `ink`) separated by blank columns: (first, last) column.
+fn ink_groups(w: usize, h: usize, raster: &[f32], ink: f32) -> Vec<(usize, usize)> {
+    let inked = |x: usize| (0..h).any(|y| raster[y * w + x] > ink);
+    let mut groups: Vec<(usize, usize)> = Vec::new();
+    for x in 0..w {
+        if inked(x) {
+            match groups.last_mut() {
+                Some(g) if g.1 + 1 == x => g.1 = x,
+                _ => groups.push((x, x)),
+            }
+        }
+    }
+    groups
+}
+
+/// Lowest row with ink (coverage > 0.5) in columns a..=b.
+fn lowest_ink_row(w: usize, h: usize, raster: &[f32], (a, b): (usize, usize)) -> usize {
+    (0..h)
+        .rev()
+        .find(|&y| (a..=b).any(|x| raster[y * w + x] > 0.5))
+        .expect("the group has ink")
+}
+
+#[test]
+fn a_decimal_point_sits_on_the_baseline_with_the_digits() {
+    // "0·2" was the symptom: plotters placed each glyph by its own box. The period's ink must
+    // end on the digits' last row; 1 px allows for anti-aliasing of the round digits' overshoot.
+    for size in [12.0, 16.0, 22.0] {
+        let (w, h, raster) = plot::typeset::Line::new("0.2", size, false).coverage();
+        let groups = ink_groups(w, h, &raster, 0.5);
+        assert_eq!(groups.len(), 3, "0, . and 2 at {size} px: {groups:?}");
+        let bottoms: Vec<usize> = groups
+            .iter()
+            .map(|&g| lowest_ink_row(w, h, &raster, g))
+            .collect();
+        let (lo, hi) = (bottoms.iter().min().unwrap(), bottoms.iter().max().unwrap());
+        assert!(hi - lo <= 1, "bottom rows {bottoms:?} at {size} px");
+    }
+}
+
+#[test]
+fn repeated_letters_are_evenly_spaced() {
+    // "tim e" was the symptom: pen positions rounded down per glyph and bearings dropped (up to
+    // 1 px of error per glyph). Outlines placed at their exact pen positions put the coverage
+    // centroids of equal glyphs one advance apart, to 0.25 px: the rasteriser's coverage is not
+    // exactly translation-invariant (deviations of up to 0.13 px measured), and a glyph placed a
+    // pixel off, as before, fails by 4x.
+    for size in [14.0, 18.0, 24.0] {
+        let line = plot::typeset::Line::new("llllll", size, false);
+        let (w, h, raster) = line.coverage();
+        let groups = ink_groups(w, h, &raster, 0.02);
+        assert_eq!(groups.len(), 6, "six separate l's at {size} px: {groups:?}");
+        // Each glyph's centroid over its own columns and the blank ones up to its neighbours
+        // (where the faintest edge coverage lies).
+        let centroid = |i: usize| {
+            let a = if i == 0 { 0 } else { groups[i - 1].1 + 1 };
+            let b = groups.get(i + 1).map_or(w - 1, |g| g.0 - 1);
+            let (mut m0, mut m1) = (0.0, 0.0);
+            for y in 0..h {
+                for x in a..=b {
+                    let c = f64::from(raster[y * w + x]);
+                    m0 += c;
+                    m1 += c * x as f64;
+                }
+            }
+            m1 / m0
+        };
+        let spacing: Vec<f64> = (1..6).map(|i| centroid(i) - centroid(i - 1)).collect();
+        let advance = f64::from(line.size().0) / 6.0;
+        for s in &spacing {
+            assert!(
+                (s - advance).abs() <= 0.25,
+                "centroid spacings {spacing:?} px, advance {advance} px at {size} px"
+            );
+        }
+    }
 }

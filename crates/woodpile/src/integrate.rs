@@ -657,14 +657,28 @@ pub(crate) fn min_step_s(t: f64, t_end: f64) -> f64 {
 }
 
 /// out = y + h Σ_j w_j k_j, skipping zero weights, added in stage order: ((y + hw₀k₀) + hw₁k₁) + ….
-/// The terms go in groups of up to four per pass over the state (each element's sum in a
-/// register), so a DOPRI5 step makes 8 passes instead of 21; the order of the additions, and so
-/// every bit of the result, is that of one pass per term. No allocation.
 #[inline(always)]
 fn combine(out: &mut [f64], y: &[f64], h: f64, weights: &[f64], k: &[Vec<f64>]) {
+    stage_sum(out, y, weights, k, |w| h * w);
+}
+
+/// out = y + Σ_j hw(w_j) k_j over the non-zero weights w_j, for f64 states and for SIMD lanes
+/// (lanes.rs) alike. The terms go in groups of up to four per pass over the state (each element's
+/// sum in a register), so a DOPRI5 step makes 8 passes instead of 21; the additions run left to
+/// right as with one pass per term, so the bits are those of one pass per term. No allocation.
+#[inline(always)]
+pub(crate) fn stage_sum<T>(
+    out: &mut [T],
+    y: &[T],
+    weights: &[f64],
+    k: &[Vec<T>],
+    hw: impl Fn(f64) -> T,
+) where
+    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
+{
     const MAX_TERMS: usize = 16;
-    let mut hw = [0.0; MAX_TERMS];
-    let mut ks: [&[f64]; MAX_TERMS] = [&[]; MAX_TERMS];
+    let mut factors = [None; MAX_TERMS];
+    let mut ks: [&[T]; MAX_TERMS] = [&[]; MAX_TERMS];
     let mut terms = 0;
     for (&w, kj) in weights.iter().zip(k) {
         if w != 0.0 {
@@ -672,7 +686,7 @@ fn combine(out: &mut [f64], y: &[f64], h: f64, weights: &[f64], k: &[Vec<f64>]) 
                 terms < MAX_TERMS,
                 "a tableau has at most {MAX_TERMS} stages"
             );
-            hw[terms] = h * w;
+            factors[terms] = Some(hw(w));
             ks[terms] = kj;
             terms += 1;
         }
@@ -681,34 +695,38 @@ fn combine(out: &mut [f64], y: &[f64], h: f64, weights: &[f64], k: &[Vec<f64>]) 
         out.copy_from_slice(y);
         return;
     }
+    let factors = factors.map(|f| f.unwrap_or_else(|| hw(0.0)));
     let mut done = 0;
     while done < terms {
         let group = (terms - done).min(4);
-        let (hw, ks) = (&hw[done..done + group], &ks[done..done + group]);
+        let (f, ks) = (&factors[done..done + group], &ks[done..done + group]);
         let base = (done == 0).then_some(y);
         match group {
-            1 => add_terms::<1>(out, base, hw, ks),
-            2 => add_terms::<2>(out, base, hw, ks),
-            3 => add_terms::<3>(out, base, hw, ks),
-            _ => add_terms::<4>(out, base, hw, ks),
+            1 => add_terms::<T, 1>(out, base, f, ks),
+            2 => add_terms::<T, 2>(out, base, f, ks),
+            3 => add_terms::<T, 3>(out, base, f, ks),
+            _ => add_terms::<T, 4>(out, base, f, ks),
         }
         done += group;
     }
 }
 
-/// out_i = (base_i or out_i) + hw₀ k₀_i + … + hw_{N-1} k_{N-1}_i, left to right.
+/// out_i = (base_i or out_i) + f₀ k₀_i + … + f_{N-1} k_{N-1}_i, left to right.
 #[inline(always)]
-fn add_terms<const N: usize>(out: &mut [f64], base: Option<&[f64]>, hw: &[f64], ks: &[&[f64]]) {
+fn add_terms<T, const N: usize>(out: &mut [T], base: Option<&[T]>, f: &[T], ks: &[&[T]])
+where
+    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
+{
     let n = out.len();
-    let hw: [f64; N] = std::array::from_fn(|j| hw[j]);
-    let ks: [&[f64]; N] = std::array::from_fn(|j| &ks[j][..n]);
+    let f: [T; N] = std::array::from_fn(|j| f[j]);
+    let ks: [&[T]; N] = std::array::from_fn(|j| &ks[j][..n]);
     match base {
         Some(y) => {
             let y = &y[..n];
             for i in 0..n {
                 let mut acc = y[i];
                 for j in 0..N {
-                    acc += hw[j] * ks[j][i];
+                    acc = acc + f[j] * ks[j][i];
                 }
                 out[i] = acc;
             }
@@ -717,7 +735,7 @@ fn add_terms<const N: usize>(out: &mut [f64], base: Option<&[f64]>, hw: &[f64], 
             for i in 0..n {
                 let mut acc = out[i];
                 for j in 0..N {
-                    acc += hw[j] * ks[j][i];
+                    acc = acc + f[j] * ks[j][i];
                 }
                 out[i] = acc;
             }

@@ -866,9 +866,8 @@ fn class_mask<const L: usize>(class: Lane<L>, k: usize) -> [bool; L] {
     m
 }
 
-/// out = y + h Σ_j w_j k_j per lane, the terms added in stage order in groups of up to four per
-/// pass, exactly as integrate.rs's `combine` adds them (so every lane matches a scalar run bit for
-/// bit).
+/// out = y + h Σ_j w_j k_j in every lane with its own h: integrate.rs's stage sum, so every lane
+/// adds exactly as a scalar run does.
 #[inline(always)]
 fn combine<const L: usize>(
     out: &mut [Lane<L>],
@@ -877,59 +876,5 @@ fn combine<const L: usize>(
     weights: &[f64],
     k: &[Vec<Lane<L>>],
 ) {
-    const MAX_TERMS: usize = 16;
-    let mut hw = [Lane::<L>::ZERO; MAX_TERMS];
-    let mut ks: [&[Lane<L>]; MAX_TERMS] = [&[]; MAX_TERMS];
-    let mut terms = 0;
-    for (&w, kj) in weights.iter().zip(k) {
-        if w != 0.0 {
-            assert!(
-                terms < MAX_TERMS,
-                "a tableau has at most {MAX_TERMS} stages"
-            );
-            hw[terms] = Lane(*h) * Lane::splat(w);
-            ks[terms] = kj;
-            terms += 1;
-        }
-    }
-    if terms == 0 {
-        out.copy_from_slice(y);
-        return;
-    }
-    let mut done = 0;
-    while done < terms {
-        let group = (terms - done).min(4);
-        let (hw, ks) = (&hw[done..done + group], &ks[done..done + group]);
-        let base = (done == 0).then_some(y);
-        match group {
-            1 => add_terms::<L, 1>(out, base, hw, ks),
-            2 => add_terms::<L, 2>(out, base, hw, ks),
-            3 => add_terms::<L, 3>(out, base, hw, ks),
-            _ => add_terms::<L, 4>(out, base, hw, ks),
-        }
-        done += group;
-    }
-}
-
-/// out_i = (base_i or out_i) + hw₀ k₀_i + … + hw_{N-1} k_{N-1}_i, left to right, per lane.
-#[inline(always)]
-fn add_terms<const L: usize, const N: usize>(
-    out: &mut [Lane<L>],
-    base: Option<&[Lane<L>]>,
-    hw: &[Lane<L>],
-    ks: &[&[Lane<L>]],
-) {
-    let n = out.len();
-    let hw: [Lane<L>; N] = std::array::from_fn(|j| hw[j]);
-    let ks: [&[Lane<L>]; N] = std::array::from_fn(|j| &ks[j][..n]);
-    for i in 0..n {
-        let mut acc = match base {
-            Some(y) => y[i],
-            None => out[i],
-        };
-        for j in 0..N {
-            acc = acc + hw[j] * ks[j][i];
-        }
-        out[i] = acc;
-    }
+    crate::integrate::stage_sum(out, y, weights, k, |w| Lane(*h) * Lane::splat(w));
 }
