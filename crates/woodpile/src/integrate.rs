@@ -415,14 +415,7 @@ impl Integrator {
             .expect("adaptive tableau has error weights");
         let err = &mut self.error;
         err.fill(0.0);
-        for (&ej, kj) in e.iter().zip(&self.k) {
-            if ej != 0.0 {
-                let he = h * ej;
-                for (ei, &k) in err.iter_mut().zip(kj) {
-                    *ei += he * k;
-                }
-            }
-        }
+        stage_sum(err, None, e, &self.k, |ej| h * ej);
         // Four partial sums so that the reduction vectorises (a single running sum is a
         // latency-bound chain of dependent additions).
         const LANES: usize = 4;
@@ -495,13 +488,7 @@ impl Integrator {
     pub fn step_portable<S: OdeSystem>(&mut self, system: &mut S, t_end: f64) -> Result<f64> {
         match self.control {
             Control::Fixed { h } => {
-                // Step to t0 + (n+1) h computed by multiplication (no drift), snapping to t_end
-                // when the remainder is a rounding error.
-                let n = self.stats.steps as f64 + 1.0;
-                let mut t_next = self.t0 + n * h;
-                if t_next > t_end || t_end - t_next < 1e-6 * h {
-                    t_next = t_end;
-                }
+                let t_next = fixed_step_end(self.t0, self.stats.steps, h, t_end);
                 let h_step = t_next - self.t;
                 self.attempt(system, h_step);
                 self.accept(system, h_step);
@@ -650,6 +637,17 @@ pub(crate) fn next_step_after_reject(h_try: f64, err: f64, order: f64) -> f64 {
     h_try * factor.clamp(0.2, 0.9)
 }
 
+/// The end of fixed step number `steps_done + 1` from t0: t0 + (n+1) h computed by multiplication
+/// (no drift), snapped to t_end when the remainder is a rounding error.
+pub(crate) fn fixed_step_end(t0: f64, steps_done: u64, h: f64, t_end: f64) -> f64 {
+    let t_next = t0 + (steps_done as f64 + 1.0) * h;
+    if t_next > t_end || t_end - t_next < 1e-6 * h {
+        t_end
+    } else {
+        t_next
+    }
+}
+
 /// Smallest step allowed at time t of a run to t_end: below MIN_STEP_FRACTION of the run means
 /// more than 1/MIN_STEP_FRACTION steps, a stiff system the tolerance cannot follow in time.
 pub(crate) fn min_step_s(t: f64, t_end: f64) -> f64 {
@@ -659,17 +657,18 @@ pub(crate) fn min_step_s(t: f64, t_end: f64) -> f64 {
 /// out = y + h Σ_j w_j k_j, skipping zero weights, added in stage order: ((y + hw₀k₀) + hw₁k₁) + ….
 #[inline(always)]
 fn combine(out: &mut [f64], y: &[f64], h: f64, weights: &[f64], k: &[Vec<f64>]) {
-    stage_sum(out, y, weights, k, |w| h * w);
+    stage_sum(out, Some(y), weights, k, |w| h * w);
 }
 
-/// out = y + Σ_j hw(w_j) k_j over the non-zero weights w_j, for f64 states and for SIMD lanes
-/// (lanes.rs) alike. The terms go in groups of up to four per pass over the state (each element's
+/// out = base + Σ_j hw(w_j) k_j over the non-zero weights w_j (base = `out` itself when None),
+/// for f64 states and for SIMD lanes (lanes.rs) alike: the stages, the new state and the error
+/// estimate. The terms go in groups of up to four per pass over the state (each element's
 /// sum in a register), so a DOPRI5 step makes 8 passes instead of 21; the additions run left to
 /// right as with one pass per term, so the bits are those of one pass per term. No allocation.
 #[inline(always)]
 pub(crate) fn stage_sum<T>(
     out: &mut [T],
-    y: &[T],
+    base: Option<&[T]>,
     weights: &[f64],
     k: &[Vec<T>],
     hw: impl Fn(f64) -> T,
@@ -692,7 +691,9 @@ pub(crate) fn stage_sum<T>(
         }
     }
     if terms == 0 {
-        out.copy_from_slice(y);
+        if let Some(y) = base {
+            out.copy_from_slice(y);
+        }
         return;
     }
     let factors = factors.map(|f| f.unwrap_or_else(|| hw(0.0)));
@@ -700,7 +701,7 @@ pub(crate) fn stage_sum<T>(
     while done < terms {
         let group = (terms - done).min(4);
         let (f, ks) = (&factors[done..done + group], &ks[done..done + group]);
-        let base = (done == 0).then_some(y);
+        let base = if done == 0 { base } else { None };
         match group {
             1 => add_terms::<T, 1>(out, base, f, ks),
             2 => add_terms::<T, 2>(out, base, f, ks),

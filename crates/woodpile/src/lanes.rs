@@ -32,8 +32,8 @@ use std::collections::BTreeMap;
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::integrate::{
-    min_step_s, next_step_after_accept, next_step_after_reject, Integrator, IntegratorStats,
-    Method, OdeSystem, Tableau,
+    fixed_step_end, min_step_s, next_step_after_accept, next_step_after_reject, Integrator,
+    IntegratorStats, Method, OdeSystem, Tableau,
 };
 use crate::model::Chain;
 use crate::ode::ChainOde;
@@ -308,8 +308,6 @@ struct LaneRun<'a> {
     settings: &'a RunSettings,
     watch: Watch<'a>,
     t: f64,
-    /// Time of the last evaluation, which was at the current state.
-    t_eval: f64,
     h: f64,
     err_prev: f64,
     rejected_before: bool,
@@ -331,8 +329,9 @@ struct Lanes<'a, const L: usize> {
     nd: usize,
     dim: usize,
     blast: bool,
-    /// Resonators per element in the lanes (the most any run of the group has).
-    slots_per_element: Vec<usize>,
+    /// Lane index of each primary's first resonator slot (each primary has as many slots as the
+    /// most resonators any run of the group has on it).
+    slot_start: Vec<usize>,
     res_owner: Vec<usize>,
     inv_mass: Vec<Lane<L>>,
     beta: Vec<Lane<L>>,
@@ -373,6 +372,14 @@ impl<'a, const L: usize> Lanes<'a, L> {
             .enumerate()
             .flat_map(|(o, &n)| std::iter::repeat_n(o, n))
             .collect();
+        let slot_start: Vec<usize> = slots_per_element
+            .iter()
+            .scan(p, |start, &n| {
+                let s = *start;
+                *start += n;
+                Some(s)
+            })
+            .collect();
         let r = res_owner.len();
         let nd = p + r;
         let dim = 2 * nd + usize::from(key.blast);
@@ -389,7 +396,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
             nd,
             dim,
             blast: key.blast,
-            slots_per_element,
+            slot_start,
             res_owner,
             inv_mass: vec![Lane::splat(1.0); p],
             beta: zeros(p + 1),
@@ -468,17 +475,8 @@ impl<'a, const L: usize> Lanes<'a, L> {
         let mut place = Vec::with_capacity(ode.dimension());
         let mut res_place = Vec::with_capacity(ode.res_owner.len());
         let mut next_slot = vec![0usize; p];
-        let slot_start: Vec<usize> = self
-            .slots_per_element
-            .iter()
-            .scan(p, |start, &n| {
-                let s = *start;
-                *start += n;
-                Some(s)
-            })
-            .collect();
         for &o in &ode.res_owner {
-            res_place.push(slot_start[o] + next_slot[o]);
+            res_place.push(self.slot_start[o] + next_slot[o]);
             next_slot[o] += 1;
         }
         place.extend(0..p);
@@ -533,7 +531,6 @@ impl<'a, const L: usize> Lanes<'a, L> {
             settings,
             watch,
             t: 0.0,
-            t_eval: 0.0,
             h,
             err_prev,
             rejected_before: false,
@@ -547,6 +544,8 @@ impl<'a, const L: usize> Lanes<'a, L> {
     fn iterate(&mut self) {
         let mut h = [0.0; L];
         let mut t = [0.0; L];
+        // Fixed steps: where each lane's step ends, as the fixed-step integrator computes it.
+        let mut t_fixed = [0.0; L];
         for l in 0..L {
             let Some(run) = &self.runs[l] else { continue };
             let t_end = run.settings.duration_s;
@@ -560,13 +559,8 @@ impl<'a, const L: usize> Lanes<'a, L> {
                 }
                 h[l] = h_try;
             } else {
-                // As the fixed-step integrator: t0 + (n+1) h by multiplication, snapped to t_end.
-                let n = run.stats.steps as f64 + 1.0;
-                let mut t_next = n * run.h;
-                if t_next > t_end || t_end - t_next < 1e-6 * run.h {
-                    t_next = t_end;
-                }
-                h[l] = t_next - run.t;
+                t_fixed[l] = fixed_step_end(0.0, run.stats.steps, run.h, t_end);
+                h[l] = t_fixed[l] - run.t;
             }
         }
         self.attempt(&t, &h);
@@ -628,36 +622,32 @@ impl<'a, const L: usize> Lanes<'a, L> {
         }
         for l in 0..L {
             if accepted[l] && self.runs[l].is_some() {
-                self.after_accept(l, t[l], h[l], err[l]);
+                let t1 = if self.adaptive {
+                    t[l] + h[l]
+                } else {
+                    t_fixed[l]
+                };
+                self.after_accept(l, t[l], t1, h[l], err[l]);
             }
         }
     }
 
-    /// Bookkeeping of an accepted step in lane l: time, step control, checks, peaks, the end.
-    fn after_accept(&mut self, l: usize, t0: f64, h: f64, err: f64) {
+    /// Bookkeeping of an accepted step [t0, t1] of size h in lane l: time, step control, checks,
+    /// peaks, the end.
+    fn after_accept(&mut self, l: usize, t0: f64, t1: f64, h: f64, err: f64) {
         let adaptive = self.adaptive;
         let order = self.order;
         let (p, nd) = (self.p, self.nd);
         let run = self.runs[l].as_mut().expect("occupied");
         run.stats.steps += 1;
+        run.t = t1;
         if adaptive {
-            run.t = t0 + h;
-            run.t_eval = t0 + self.tableau.c[self.tableau.stages() - 1] * h;
             run.h = next_step_after_accept(run.h, h, err, run.err_prev, order, run.rejected_before);
             run.err_prev = err.max(1e-4);
             run.rejected_before = false;
         } else {
             run.stats.rhs_evaluations += 1;
-            run.t_eval = t0 + h;
-            let t_end = run.settings.duration_s;
-            let n = run.stats.steps as f64;
-            let mut t_next = n * run.h;
-            if t_next > t_end || t_end - t_next < 1e-6 * run.h {
-                t_next = t_end;
-            }
-            run.t = t_next;
         }
-        let t1 = run.t;
         // The lane's contact cache becomes the run's, with the velocities the rates need.
         for s in 0..=p {
             run.ode.force_n[s] = self.force[s].0[l];
@@ -817,15 +807,9 @@ impl<'a, const L: usize> Lanes<'a, L> {
             .as_ref()
             .expect("adaptive tableau has error weights");
         self.err.fill(Lane::ZERO);
-        let h = Lane(*h);
-        for (&ej, kj) in e.iter().zip(&self.k) {
-            if ej != 0.0 {
-                let he = h * Lane::splat(ej);
-                for (ei, &k) in self.err.iter_mut().zip(kj) {
-                    *ei = *ei + he * k;
-                }
-            }
-        }
+        crate::integrate::stage_sum(&mut self.err, None, e, &self.k, |ej| {
+            Lane(*h) * Lane::splat(ej)
+        });
         let mut rtol = [0.0; L];
         for (l, r) in rtol.iter_mut().enumerate() {
             *r = self.runs[l].as_ref().map_or(0.0, |run| run.rtol);
@@ -876,5 +860,5 @@ fn combine<const L: usize>(
     weights: &[f64],
     k: &[Vec<Lane<L>>],
 ) {
-    crate::integrate::stage_sum(out, y, weights, k, |w| Lane(*h) * Lane::splat(w));
+    crate::integrate::stage_sum(out, Some(y), weights, k, |w| Lane(*h) * Lane::splat(w));
 }

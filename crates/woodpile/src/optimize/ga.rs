@@ -301,20 +301,20 @@ impl BreederGa {
     /// objectives); one value per design, in order.
     fn evaluate_batch(&self, genomes: &[&[u8]]) -> Vec<Result<f64, OptimizeError>> {
         let design = |genome: &[u8]| self.space.labels(genome).join(" ");
-        let chains: Vec<Result<Chain, OptimizeError>> = genomes
+        // The designs that build go to the objective together; the others keep their error.
+        let mut built: Vec<Chain> = Vec::with_capacity(genomes.len());
+        let unbuilt: Vec<Option<OptimizeError>> = genomes
             .iter()
-            .map(|g| {
-                self.space
-                    .chain(g)
-                    .map_err(|source| OptimizeError::Simulation {
-                        design: design(g),
-                        source,
-                    })
+            .map(|g| match self.space.chain(g) {
+                Ok(chain) => {
+                    built.push(chain);
+                    None
+                }
+                Err(source) => Some(OptimizeError::Simulation {
+                    design: design(g),
+                    source,
+                }),
             })
-            .collect();
-        let built: Vec<Chain> = chains
-            .iter()
-            .filter_map(|c| c.as_ref().ok().cloned())
             .collect();
         let mut values = self
             .objective
@@ -325,11 +325,13 @@ impl BreederGa {
                 self.lanes,
             )
             .into_iter();
-        chains
+        unbuilt
             .into_iter()
             .zip(genomes)
-            .map(|(chain, g)| {
-                chain?;
+            .map(|(failure, g)| {
+                if let Some(e) = failure {
+                    return Err(e);
+                }
                 let value = values
                     .next()
                     .expect("one value per chain")

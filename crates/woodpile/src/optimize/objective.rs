@@ -38,11 +38,21 @@ pub trait Objective: Send + Sync {
         lanes: LaneWidth,
     ) -> Vec<Result<f64>> {
         let _ = lanes;
-        chains
-            .iter()
-            .map(|c| self.evaluate(c, excitation, settings))
-            .collect()
+        one_by_one(self, chains, excitation, settings)
     }
+}
+
+/// [`Objective::evaluate`] of each chain, in order.
+fn one_by_one(
+    objective: &(impl Objective + ?Sized),
+    chains: &[Chain],
+    excitation: &Excitation,
+    settings: &RunSettings,
+) -> Vec<Result<f64>> {
+    chains
+        .iter()
+        .map(|c| objective.evaluate(c, excitation, settings))
+        .collect()
 }
 
 /// The objectives of issue 3, all over the whole run.
@@ -145,10 +155,7 @@ impl Objective for StandardObjective {
             self,
             StandardObjective::TransmittedForce | StandardObjective::TransmissionRatio
         ) {
-            return chains
-                .iter()
-                .map(|c| self.evaluate(c, excitation, settings))
-                .collect();
+            return one_by_one(self, chains, excitation, settings);
         }
         let peaks_only = peaks_only(settings);
         let jobs: Vec<Job<'_>> = chains
