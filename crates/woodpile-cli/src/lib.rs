@@ -5,12 +5,14 @@
 //! physics lives in [`woodpile`].
 //!
 //! - [`commands`]: one module per subcommand.
+//! - [`progress`]: a bar with an ETA on a terminal, a line per stage otherwise.
 //! - [`CliError`]: every failure, with [`CliError::exit_code`] (2 = bad input, 1 = failed run).
 
 pub mod commands;
 pub mod interrupt;
 pub mod optimize_cmd;
 pub mod plot_cmd;
+pub mod progress;
 pub mod report;
 
 pub use woodpile_io::Error as CliError;

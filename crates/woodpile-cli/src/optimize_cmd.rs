@@ -2,6 +2,7 @@
 //! checkpoint after every generation, exact resume and a clean stop on Ctrl-C.
 
 use crate::commands::Context;
+use crate::progress::Progress;
 use crate::CliError;
 use std::fs;
 use std::ops::ControlFlow;
@@ -116,7 +117,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
 
     crate::interrupt::cooperative();
     let stop = crate::interrupt::stop_flag();
-    let bar = progress_bar(ctx.quiet, problem.settings.generations);
+    let bar = Progress::new("optimize", problem.settings.generations as u64, ctx.quiet);
     let unit = problem.objective.unit().to_string();
     let mut write_error: Option<CliError> = None;
     let mut last_elapsed = initial.as_ref().map_or(0.0, |s| s.elapsed_s);
@@ -135,8 +136,9 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         };
         (last_elapsed, last_evals) = (s.elapsed_s, s.evaluations);
         bar.set_position(s.generation as u64);
-        bar.set_message(format!(
-            "best {:.6e} {unit} | {rate:.0} eval/s | {} evaluations, {} cache hits",
+        bar.detail(format!(
+            "generation {}: best {:.6e} {unit} | {rate:.0} eval/s | {} evaluations, {} cache hits",
+            s.generation,
             s.best().objective,
             s.evaluations,
             s.cache_hits
@@ -144,7 +146,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         ControlFlow::Continue(())
     };
     let outcome = ga.run(initial, stop, &mut observer);
-    bar.finish_and_clear();
+    bar.finish();
     if let Some(e) = write_error {
         return Err(e);
     }
@@ -206,17 +208,4 @@ fn terminal_summary(
         figures.transmitted_peak_force_n,
         out.display()
     )
-}
-
-fn progress_bar(quiet: bool, generations: usize) -> indicatif::ProgressBar {
-    if quiet {
-        return indicatif::ProgressBar::hidden();
-    }
-    let bar = indicatif::ProgressBar::new(generations as u64);
-    if let Ok(style) = indicatif::ProgressStyle::with_template(
-        "generation {pos}/{len} [{bar:25}] {msg} | ETA {eta}",
-    ) {
-        bar.set_style(style.progress_chars("=> "));
-    }
-    bar
 }

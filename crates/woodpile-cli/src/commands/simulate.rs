@@ -1,8 +1,10 @@
 //! `woodpile simulate`: run a scenario file or a built-in scenario and write its outputs.
 
 use super::Context;
+use crate::progress::Progress;
 use crate::CliError;
 use std::path::{Path, PathBuf};
+use woodpile::record::{Layout, Recorder, Sample};
 use woodpile::{simulate, Trajectory};
 use woodpile_io::atomic::{Staging, RUN_MARKER};
 use woodpile_io::limits::RunSize;
@@ -107,12 +109,15 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         .unwrap_or_else(|| Path::new("runs").join(&loaded.name));
     let staging = Staging::prepare(&out, args.overwrite)?;
     let mut trajectory = Trajectory::default();
+    let mut watched = Watched::new(&mut trajectory, resolved.settings.duration_s, ctx.quiet);
     let summary = simulate(
         &resolved.chain,
         &resolved.excitation,
         &resolved.settings,
-        &mut trajectory,
-    )?;
+        &mut watched,
+    );
+    watched.finish();
+    let summary = summary?;
     let accuracy =
         woodpile_io::limits::check_accuracy(&summary, &resolved.excitation, args.allow_inaccurate)?;
     let record = RunRecord {
@@ -140,6 +145,80 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         print!("{}", terminal_summary(&record, &dir));
     }
     Ok(())
+}
+
+/// Wall time after which a run shows its progress: shorter runs stay silent.
+const QUIET_FOR: std::time::Duration = std::time::Duration::from_secs(1);
+
+/// Passes every sample on to a recorder and, once a run has taken longer than [`QUIET_FOR`],
+/// shows how much of the simulated time is done (a bar on a terminal, a line at every tenth
+/// otherwise). Runs that only keep peaks (`sample_interval_s = duration_s`) have no samples to
+/// count and show nothing.
+struct Watched<'a, R> {
+    inner: &'a mut R,
+    duration_s: f64,
+    quiet: bool,
+    started: std::time::Instant,
+    progress: Option<Progress>,
+}
+
+/// Steps of a run's progress: permille of the simulated time.
+const PERMILLE: u64 = 1000;
+
+impl<'a, R: Recorder> Watched<'a, R> {
+    fn new(inner: &'a mut R, duration_s: f64, quiet: bool) -> Self {
+        Watched {
+            inner,
+            duration_s,
+            quiet,
+            started: std::time::Instant::now(),
+            progress: None,
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(p) = &self.progress {
+            p.finish();
+        }
+    }
+}
+
+impl<R: Recorder> Recorder for Watched<'_, R> {
+    fn start(&mut self, layout: &Layout) {
+        self.inner.start(layout);
+    }
+
+    fn record(&mut self, sample: &Sample<'_>) {
+        self.inner.record(sample);
+        if self.quiet || self.started.elapsed() < QUIET_FOR {
+            return;
+        }
+        let done =
+            (sample.time_s / self.duration_s * PERMILLE as f64).clamp(0.0, PERMILLE as f64) as u64;
+        let p = self.progress.get_or_insert_with(|| {
+            let p = Progress::since("simulate", PERMILLE, false, self.started);
+            p.set_position(done);
+            p.stage(simulated(sample.time_s, self.duration_s));
+            p
+        });
+        // Lines at every tenth of the simulated time; the bar at every permille.
+        let before = p.position();
+        if done > before {
+            p.set_position(done);
+            if done / 100 > before / 100 {
+                p.stage(simulated(sample.time_s, self.duration_s));
+            }
+        }
+    }
+}
+
+/// `0.5 of 2 ms simulated`.
+fn simulated(time_s: f64, duration_s: f64) -> String {
+    format!(
+        "{:.4} of {:.4} ms simulated",
+        time_s * 1e3,
+        duration_s * 1e3
+    )
 }
 
 /// The short human-readable report printed after a run.

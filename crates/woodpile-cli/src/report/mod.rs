@@ -25,6 +25,7 @@ mod runs;
 mod text;
 
 use crate::commands::Context;
+use crate::progress::Progress;
 use crate::CliError;
 use doc::Doc;
 use runs::{Results, Setup};
@@ -64,20 +65,9 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         .num_threads(args.threads)
         .build()
         .map_err(|e| CliError::invalid("--threads", args.threads, e.to_string()))?;
-    let bar = if ctx.quiet {
-        indicatif::ProgressBar::hidden()
-    } else {
-        let bar = indicatif::ProgressBar::new(STEPS);
-        if let Ok(style) = indicatif::ProgressStyle::with_template(
-            "report {pos}/{len} [{bar:25}] {elapsed} | {msg}",
-        ) {
-            bar.set_style(style.progress_chars("=> "));
-        }
-        bar.enable_steady_tick(std::time::Duration::from_millis(200));
-        bar
-    };
+    let bar = Progress::new("report", STEPS, ctx.quiet);
     let result = pool.install(|| build(args, &bar));
-    bar.finish_and_clear();
+    bar.finish();
     let (doc, summary) = result?;
     let title = "woodpile: reproduction of Kim, Yang et al. 2017 (impact and blast mitigation with locally resonant woodpiles)";
     let md = doc.markdown(title);
@@ -102,25 +92,24 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
 const STEPS: u64 = 15;
 
 /// Runs everything and assembles the document; returns it and a short text summary.
-/// Runs everything and assembles the document; returns it and a short text summary.
-fn build(args: &Args, bar: &indicatif::ProgressBar) -> Result<(Doc, String), CliError> {
+fn build(args: &Args, bar: &Progress) -> Result<(Doc, String), CliError> {
     let s = Setup::new(args, bar);
-    bar.set_message("homogeneous chains under impact");
+    bar.stage("homogeneous chains under impact");
     let (impact_cases, wall_compare, waves) = runs::impact_homogeneous(&s)?;
     let (ga_res, ga_rig, optima) = runs::optima(&s)?;
-    bar.set_message("layer-by-layer protocol");
+    bar.stage("layer-by-layer protocol");
     let (protocol, protocol_damped, protocol_map_files, protocol_peak_files) =
         runs::protocol(&s, &optima[0].0)?;
     bar.inc(1);
-    bar.set_message("blast cases");
+    bar.stage("blast cases");
     let blast = runs::blast(&s)?;
     let fine = runs::fine(&s)?;
-    bar.set_message("transmission spectrum");
+    bar.stage("transmission spectrum");
     let transmission = runs::transmission(&s)?;
-    bar.set_message("effective-mass curves");
+    bar.stage("effective-mass curves");
     let cells_files = cells_figures(&s.figs, 0.0)?;
     bar.inc(1);
-    bar.set_message("writing the report");
+    bar.stage("writing the report");
     let r = Results {
         impact_cases,
         wall_compare,

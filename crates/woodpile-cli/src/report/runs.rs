@@ -3,6 +3,7 @@
 //! `woodpile_io::study`; this module only runs and draws them.
 
 use super::Args;
+use crate::progress::Progress;
 use crate::CliError;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
@@ -25,8 +26,8 @@ use woodpile_plot::dirs::objective_label;
 pub struct Setup<'a> {
     /// The command's arguments.
     pub args: &'a Args,
-    /// The progress bar.
-    pub bar: &'a indicatif::ProgressBar,
+    /// Progress: a bar on a terminal, a line per stage otherwise.
+    pub bar: &'a Progress,
     /// `OUT/figures`.
     pub figs: PathBuf,
     /// The GA cache in `OUT/cache`.
@@ -49,7 +50,7 @@ pub struct Setup<'a> {
 
 impl<'a> Setup<'a> {
     /// The paper's loads with the defaults of docs/physics.md.
-    pub fn new(args: &'a Args, bar: &'a indicatif::ProgressBar) -> Self {
+    pub fn new(args: &'a Args, bar: &'a Progress) -> Self {
         let striker = Striker::paper();
         let (f0, td) = match BlastProfile::paper() {
             BlastProfile::Friedlander {
@@ -158,7 +159,7 @@ fn run_ga(
     label: &'static str,
     threads: usize,
     cache: &Cache,
-    bar: &indicatif::ProgressBar,
+    bar: &Progress,
 ) -> Result<GaRun, CliError> {
     study::ga_run(
         cfg,
@@ -166,7 +167,7 @@ fn run_ga(
         threads,
         cache,
         &mut |s: &GaState, total: usize| {
-            bar.set_message(format!(
+            bar.detail(format!(
                 "{label} GA: generation {}/{total}, best {:.3}, {} evaluations",
                 s.generation,
                 s.best().objective,
@@ -270,15 +271,15 @@ pub fn optima(s: &Setup) -> Result<(GaRun, GaRun, Vec<(Case, Vec<Vec<PathBuf>>)>
     let bar = s.bar;
     let (impact, impact_settings, impact_text) = (&s.impact, &s.impact_settings, &s.impact_text);
     let (quick, seed, threads) = (s.args.quick, s.args.seed, s.args.threads);
-    bar.set_message("resonant GA");
+    bar.stage("resonant GA");
     let cfg = study::ga_problem(ModelSpec::Resonant, seed, quick)?;
     let ga_res = run_ga(&cfg, "resonant", threads, &s.cache, bar)?;
     bar.inc(1);
-    bar.set_message("rigid GA");
+    bar.stage("rigid GA");
     let cfg = study::ga_problem(ModelSpec::Rigid, seed, quick)?;
     let ga_rig = run_ga(&cfg, "rigid", threads, &s.cache, bar)?;
     bar.inc(1);
-    bar.set_message("figures of the optima");
+    bar.stage("figures of the optima");
     let optima: Vec<(Case, Vec<Vec<PathBuf>>)> = [&ga_res, &ga_rig]
         .par_iter()
         .map(|ga| {
@@ -467,7 +468,7 @@ pub fn blast(s: &Setup) -> Result<BlastRuns, CliError> {
             band_rows.push((c.name.clone(), b, band_contrast(&c.trajectory, b)?));
         }
     }
-    bar.set_message("blast sweep (F0 × Td)");
+    bar.stage("blast sweep (F0 × Td)");
     // The quick report checks only that the sweep is made: four loads.
     let (peaks, durations): (&[f64], &[f64]) = if s.args.quick {
         (&[100.0, 400.0], &[2e-4, 5e-4])
@@ -549,7 +550,7 @@ pub struct FineRuns {
 /// Runs the two GAs over derived cells (docs/physics.md §13).
 pub fn fine(s: &Setup) -> Result<FineRuns, CliError> {
     let (quick, seed, threads) = (s.args.quick, s.args.seed, s.args.threads);
-    s.bar.set_message("GA over derived cells, 7 lengths");
+    s.bar.stage("GA over derived cells, 7 lengths");
     let seven = run_ga(
         &study::derived_ga_problem(10.0, seed, quick)?,
         "derived, 7 lengths",
@@ -558,8 +559,7 @@ pub fn fine(s: &Setup) -> Result<FineRuns, CliError> {
         s.bar,
     )?;
     s.bar.inc(1);
-    s.bar
-        .set_message("GA over derived cells, every length by 1 mm");
+    s.bar.stage("GA over derived cells, every length by 1 mm");
     let fine = run_ga(
         &study::derived_ga_problem(1.0, seed, quick)?,
         "derived, 1 mm steps",

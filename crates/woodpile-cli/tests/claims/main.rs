@@ -21,6 +21,7 @@ mod optimize_interrupt_resume;
 mod output_files;
 mod plot_opt_dir;
 mod plot_run_dir;
+mod progress_lines;
 mod report_quick;
 mod scenario_roundtrip;
 mod transmission_command;

@@ -72,11 +72,28 @@ fn quick_report_writes_every_file_it_names() {
     // reuses them.
     let cached = std::fs::read_dir(out.join("cache")).unwrap().count();
     assert_eq!(cached, 4);
+    // The rerun without --quiet, its stderr a pipe: one progress line per stage (see
+    // progress_lines for the format).
     let o = common::run_in(
         tmp.path(),
-        &["report", "--quick", "--out", out.to_str().unwrap(), "-q"],
+        &["report", "--quick", "--out", out.to_str().unwrap()],
     );
     assert!(o.status.success());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    crate::progress_lines::check_lines(&stderr, "report", 15);
+    for stage in [
+        "homogeneous chains under impact",
+        "resonant GA",
+        "layer-by-layer protocol",
+        "blast cases",
+        "transmission spectrum",
+        "writing the report",
+    ] {
+        assert!(
+            stderr.lines().any(|l| l.ends_with(stage)),
+            "no progress line for the stage {stage:?} in:\n{stderr}"
+        );
+    }
     let md2 = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md2.contains("all four GA results reused from cache/"));
 }
