@@ -337,6 +337,12 @@ pub fn optima(s: &Setup) -> Result<(GaRun, GaRun, Vec<(Case, Vec<Vec<PathBuf>>)>
                 &short,
                 &fig(&format!("{slug}_force_map")),
             )?);
+            // Paper Fig. 6 is the energy map of the two optima.
+            files.push(plot::energy_map(
+                &energy_map(t)?,
+                &short,
+                &fig(&format!("{slug}_energy_map")),
+            )?);
             Ok((case, files))
         })
         .collect::<Result<Vec<_>, CliError>>()?;

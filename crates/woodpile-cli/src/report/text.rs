@@ -4,7 +4,8 @@
 use super::doc::Doc;
 use super::runs::{join_mm, pct, ratio, BlastRuns, Results, Setup};
 use std::path::PathBuf;
-use woodpile::RunSummary;
+use woodpile::analysis::FirstTransit;
+use woodpile::{CellModel, RunSummary, Trajectory};
 use woodpile_io::study::{self, PaperValue};
 
 /// The striker's restitution, NaN (shown as n/a) when the striker had not left by the end.
@@ -424,7 +425,7 @@ fn homogeneous(doc: &mut Doc, s: &Setup, r: &Results) {
         ..
     } = r;
     let out = s.args.out.as_path();
-    doc.h2("Homogeneous chains under impact (Figs. 5 a–c, 6)");
+    doc.h2("Homogeneous chains under impact (Fig. 5 a–c)");
     doc.p("Twenty identical rods on the sensor, hit by the striker. The paper: 20 mm rods carry a solitary wave with a small oscillating tail (a nanopteron); 40 and 80 mm rods split the wave into groups separated in time (80 mm: two groups ~0.2 ms apart).");
     doc.p("Measured on the wall force, during the first transit only (from the wave's arrival at the wall, for as long as it took to get there from contact 1; later events include reflections): the separated peaks, i.e. local maxima of at least 5 % of the window's maximum, two neighbouring maxima counting as one unless the force between them falls below half the smaller one.");
     let mut prow = Vec::new();
@@ -460,19 +461,92 @@ fn homogeneous(doc: &mut Doc, s: &Setup, r: &Results) {
         ],
         prow,
     );
-    doc.figure(wall_compare, out, "Wall force of the four homogeneous chains under the impact: the arrival and grouping of the transmitted wave.");
-    for (c, files) in impact_cases {
+    doc.figure(wall_compare, out, "Wall force of the four homogeneous chains under the impact. What to see: when each wave arrives and how it is grouped (the table above counts the separated peaks of the first transit).");
+    for (((c, files), w), h) in impact_cases
+        .iter()
+        .zip(waves)
+        .zip(&study::IMPACT_HOMOGENEOUS)
+    {
         doc.h3(format!("{} under impact", c.chain_title));
+        let (panel, paper) = match (h.rod_mm, h.model) {
+            (_, CellModel::Rigid) => (
+                "no panel in the paper",
+                "the reference for the resonant 20 mm chain",
+            ),
+            (20, _) => (
+                "Fig. 5 a",
+                "the paper's 20 mm chain carries one solitary wave with a small oscillating tail",
+            ),
+            (40, _) => (
+                "Fig. 5 b",
+                "the paper's 40 mm chain splits the wave into groups separated in time",
+            ),
+            (80, _) => (
+                "Fig. 5 c",
+                "the paper's 80 mm chain splits it into two groups ~0.2 ms apart",
+            ),
+            _ => (
+                "no panel in the paper",
+                "compare with the paper's 20, 40 and 80 mm chains",
+            ),
+        };
+        let t = &c.trajectory;
         let captions = [
-            "contact force map (contact × time): the wave's path through the chain (Fig. 5 a–c).",
-            "energy of each layer over the striker's initial energy (Fig. 6).",
-            "force histories at the striker contact, contact 1, the middle contact and the wall.",
-            "amplitude spectra of contact 1, the middle contact and the wall; the negative-effective-mass bands of the rods are shaded.",
+            format!(
+                "contact force over contact and time ({panel}). What to see: the pulse takes {:.3} ms from contact 1 to the wall and reaches it as {}; {paper}. Later traces are reflections from the wall and the striker.",
+                (w.arrival_wall_s - w.arrival_top_s) * 1e3,
+                pulses_text(w)
+            ),
+            format!(
+                "energy of each layer as a share of the striker's initial energy (the paper draws this map for the optima only, Fig. 6). What to see: {}.",
+                energy_held_text(t)
+            ),
+            format!(
+                "force at the striker contact, contact 1, the middle contact and the wall; the second panel zooms on the first arrivals. What to see: the incident peak {:.1} N against {:.1} N transmitted to the wall ({}).",
+                c.summary.incident_peak_force_n,
+                c.summary.transmitted_peak_force_n,
+                pct(ratio(&c.summary))
+            ),
+            "magnitude of the Fourier transform |F̂(f)| [N/Hz] of contact 1, the middle contact and the wall, the rods' negative-effective-mass bands shaded (no panel in the paper: its spectra, Fig. 9, are of the blast). What to see: how the wall's spectrum compares with contact 1's inside the shaded bands, where the chain carries no linear wave (docs/physics.md §3).".to_string(),
         ];
         for (f, cap) in files.iter().zip(captions) {
             doc.figure(f, out, format!("{}, impact: {cap}", c.chain_title));
         }
     }
+}
+
+/// `one pulse` or `3 separated pulses, the two largest 0.156 ms apart`.
+fn pulses_text(w: &FirstTransit) -> String {
+    match (w.peaks.len(), w.main_gap_s()) {
+        (0, _) => "no pulse above 5 % of its maximum".to_string(),
+        (1, _) => "one pulse".to_string(),
+        (n, Some(gap)) => format!(
+            "{n} separated pulses, the two largest {:.3} ms apart",
+            gap * 1e3
+        ),
+        (n, None) => format!("{n} separated pulses"),
+    }
+}
+
+/// Where the energy of an impact sits at the end of the run: the layer holding the largest
+/// share of the initial energy, and the striker's share.
+fn energy_held_text(t: &Trajectory) -> String {
+    let (Some(&e0), Some(&t_end)) = (t.total_energy_j().first(), t.times_s.last()) else {
+        return "the energy's path through the chain".to_string();
+    };
+    if e0 <= 0.0 {
+        return "the energy's path through the chain".to_string();
+    }
+    let last = |layer: usize| t.layer_energy_j(layer).last().copied().unwrap_or(0.0) / e0;
+    let (layer, share) = (1..t.n_contacts())
+        .map(|l| (l, last(l)))
+        .fold((0, f64::NEG_INFINITY), |a, b| if b.1 > a.1 { b } else { a });
+    format!(
+        "at {:.1} ms the striker carries {:.1} % of the initial energy, and layer {layer}, the element holding most, {:.1} %",
+        t_end * 1e3,
+        100.0 * last(0),
+        100.0 * share
+    )
 }
 
 /// The GA optima under the impact (paper Fig. 5 d, e).
@@ -484,7 +558,7 @@ fn optima(doc: &mut Doc, s: &Setup, r: &Results) {
         ..
     } = r;
     let out = s.args.out.as_path();
-    doc.h2("Optimised chains under impact (Fig. 5 d, e)");
+    doc.h2("Optimised chains under impact (Figs. 5 d, e, 6, 7 c)");
     doc.p(format!(
         "The breeder GA searched the 7^20 arrangements of Table 1 rods for the least peak wall force, once with resonant rods and once with rigid ones. Resonant optimum (top to bottom, mm): `{}`; rigid optimum: `{}`. The paper's resonant optimum puts long rods (80, 70 mm) at the top and short rods in a disordered pattern at the bottom; its rigid optimum alternates heavy and light rods.",
         join_mm(&ga_res.rods),
@@ -524,13 +598,35 @@ fn optima(doc: &mut Doc, s: &Setup, r: &Results) {
         ],
         grow,
     );
-    for (ga, (_, files)) in [ga_res, ga_rig].iter().zip(optima) {
+    for (ga, (c, files)) in [ga_res, ga_rig].iter().zip(optima) {
         doc.h3(format!("{} optimum", ga.model));
+        let resonant = ga.model == "resonant";
+        let (d, paper_chain, paper_forces, fig6) = if resonant {
+            ("d", "long rods (80, 70 mm) at the top, lengths decreasing toward the sensor, short rods in a disordered pattern at the bottom", "159.6 N incident, 28.5 N transmitted (17.9 %)", "a")
+        } else {
+            (
+                "e",
+                "heavy and light rods alternating",
+                "148.4 N incident, 85.5 N transmitted (57.6 %)",
+                "b",
+            )
+        };
+        let summary = &c.summary;
         let captions = [
-            "convergence of the breeder GA: best and mean peak wall force per generation.",
-            "the best chain, rods to scale, top (striker) to bottom (sensor) (Fig. 5 d, e right).",
-            "incident force (contact 1) and transmitted force (wall) of the best chain.",
-            "contact force map of the best chain.",
+            "convergence of the breeder GA (no panel in the paper): best and mean peak wall force per generation. What to see: the best never rises (one elite is kept); a best still falling at the last generation means the search had not converged.".to_string(),
+            format!("the best chain, rods to scale, top (striker) to bottom (sensor) (Fig. 5 {d}, right). What to see: the arrangement; the paper's {} optimum has {paper_chain}.", ga.model),
+            format!(
+                "incident force (contact 1) and transmitted force (wall) of the best chain ({}). What to see: {:.1} N incident, {:.1} N transmitted ({}); the paper: {paper_forces}.",
+                if resonant { "Fig. 7 c, simulation" } else { "no panel in the paper" },
+                summary.incident_peak_force_n,
+                summary.transmitted_peak_force_n,
+                pct(ratio(summary))
+            ),
+            format!("contact force over contact and time (Fig. 5 {d}). What to see: how the incident pulse is split and spread on its way to the wall."),
+            format!(
+                "energy of each layer as a share of the striker's initial energy (Fig. 6 {fig6}). What to see: {}.",
+                energy_held_text(&c.trajectory)
+            ),
         ];
         for (f, cap) in files.iter().zip(captions) {
             doc.figure(
@@ -565,7 +661,17 @@ fn protocol(doc: &mut Doc, s: &Setup, r: &Results) {
         protocol.peak_wall_force_n.iter().copied().fold(f64::INFINITY, f64::min),
         1 + protocol.peak_wall_force_n.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1)).map_or(0, |p| p.0),
     ));
-    doc.figure(protocol_map_files, out, "Layer-by-layer protocol on the resonant GA optimum under the impact: wall force of the first k rods on the sensor over time (Fig. 7 a).");
+    let peaks = &protocol.peak_wall_force_n;
+    let drop = peaks[0] - peaks[n - 1];
+    let first_eleven = if n > 11 && drop > 0.0 {
+        format!(
+            " {} of the drop from interface 1 to the wall happens by interface 11 (the paper: attenuation mostly within the first eleven rods).",
+            pct((peaks[0] - peaks[10]) / drop)
+        )
+    } else {
+        String::new()
+    };
+    doc.figure(protocol_map_files, out, format!("Layer-by-layer protocol on the resonant GA optimum under the impact: wall force of the first k rods on the sensor over time (Fig. 7 a; the paper's is measured). What to see: how the ridges of the incident pulse split and fade from interface to interface.{first_eleven}"));
     // Damped over lossless, averaged over the front and the rear half of the chain.
     let mean_ratio = |range: std::ops::Range<usize>| {
         let len = range.len() as f64;
@@ -585,7 +691,7 @@ fn protocol(doc: &mut Doc, s: &Setup, r: &Results) {
             "here the losses do not lower the rear peaks more than the front ones, so damping of this size alone does not reproduce the direction of that discrepancy."
         },
     ));
-    doc.figure(protocol_peak_files, out, "Layer-by-layer protocol on the resonant GA optimum under the impact: peak force per interface, protocol (lossless and damped) against the full chain's contact peaks (Fig. 7 b).");
+    doc.figure(protocol_peak_files, out, "Layer-by-layer protocol on the resonant GA optimum under the impact: peak force per interface, protocol (lossless and damped) against the full chain's contact peaks (Fig. 7 b; the paper's red dots are measured). What to see: where along the chain the peaks fall, and how far the damped protocol lies below the lossless one toward the rear (the paper's measured peaks are below its simulation there, which it attributes to damping).");
 }
 
 /// The blast cases (paper Figs. 8, 9).
@@ -652,13 +758,40 @@ fn blast(doc: &mut Doc, s: &Setup, r: &Results) {
         "The blast load (contact 0, Fig. 8) and the wall force of the four chains.",
     );
     blast_sweep(doc, out, sweep, sweep_files);
-    for (c, files) in blast_cases {
+    let panels = [("a", "b"), ("c", "d"), ("e", "f"), ("g", "h")];
+    for (((c, files), (force_panel, spectrum_panel)), (_, _, energy_share)) in
+        blast_cases.iter().zip(panels).zip(blast_energy)
+    {
         doc.h3(format!("{} under the blast", c.chain_title));
+        let bands: Vec<String> = band_rows
+            .iter()
+            .filter(|(name, _, _)| *name == c.name)
+            .map(|(_, (lo, hi), contrast)| {
+                format!(
+                    "{:.1}–{:.1} kHz, {} ({})",
+                    lo * 1e-3,
+                    hi * 1e-3,
+                    pct(*contrast),
+                    if *contrast < 1.0 { "a dip" } else { "no dip" }
+                )
+            })
+            .collect();
+        let bands_text = if bands.is_empty() {
+            "no common band: the rods' bands differ (the paper finds none in its optimised chain either)".to_string()
+        } else {
+            format!("the mean amplitude inside each shaded negative-mass band against its flanks: {} (the paper's low-energy bands: 38–55 kHz for 20 mm, 10–15 kHz for 40 mm, 2.7–3.9 and 15–20 kHz for 80 mm rods)", bands.join("; "))
+        };
+        let paper_waves = match force_panel {
+            "a" => "the paper: at 20 mm the resonance (~55 kHz) changes little",
+            "c" => "the paper: the 40 mm rods' resonance (~15 kHz) disintegrates the waves into modulated patterns",
+            "e" => "the paper: the 80 mm rods' resonances (~4 and ~20 kHz) disintegrate the waves into modulated patterns",
+            _ => "the paper: the optimised chain's wall force is blunted and low",
+        };
         let captions = [
-            "contact force map (Fig. 9 a, c, e, g).",
-            "energy of each layer over the injected energy.",
-            "spectrum map: magnitude of the Fourier transform of each contact force |F̂(f)| [N/Hz] per contact and frequency (Fig. 9 b, d, f, h).",
-            "amplitude spectra of contact 1, the middle contact and the wall, negative-mass bands shaded.",
+            format!("contact force over contact and time (Fig. 9 {force_panel}). What to see: the load's long pulse makes the top rods touch several times and launches several waves; {paper_waves}; the wall peak is {:.1} N.", c.summary.transmitted_peak_force_n),
+            format!("energy of each layer as a share of the injected energy (the paper reads its peak transmitted energy from Fig. 9's colours). What to see: the last layer's peak energy is {} of the 20 mm chain's (table above).", pct(*energy_share)),
+            format!("magnitude of the Fourier transform of each contact force |F̂(f)| [N/Hz] per contact and frequency (Fig. 9 {spectrum_panel}). What to see: {bands_text}."),
+            "magnitude spectra of contact 1, the middle contact and the wall, negative-mass bands shaded (no panel in the paper; the same data as the map before it, on a line plot).".to_string(),
         ];
         for (f, cap) in files.iter().zip(captions) {
             doc.figure(f, out, format!("{}, blast: {cap}", c.chain_title));
@@ -677,13 +810,13 @@ fn cells_and_reproducing(doc: &mut Doc, s: &Setup, r: &Results) {
     doc.figure(
         &ef[..2.min(ef.len())],
         out,
-        "Effective mass of the 20, 30, 40 mm rods (one resonator each) (Fig. 3 a).",
+        "Effective mass of the 20, 30, 40 mm rods (one resonator each) (Fig. 3 a). What to see: M_eff/M_total is negative (shaded) above each rod's local resonance, in bands that move down as the rods get longer.",
     );
     if ef.len() > 2 {
         doc.figure(
             &ef[2..],
             out,
-            "Effective mass of the 50–80 mm rods (two resonators each) (Fig. 3 b).",
+            "Effective mass of the 50–80 mm rods (two resonators each) (Fig. 3 b). What to see: two negative-mass bands per rod (first and third bending modes), lower for longer rods.",
         );
     }
 
