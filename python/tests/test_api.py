@@ -165,8 +165,26 @@ def test_cells_and_band_gaps():
     assert first_gap[0] < c["local_resonances_hz"][0] < first_gap[1]
     derived = woodpile.cells(45, diameter_mm=6.0, material="steel")
     assert derived["primary_mass_kg"] > 0 and len(derived["resonator_masses_kg"]) >= 1
-    f, a = woodpile.spectrum(np.sin(2 * np.pi * 1000 * np.arange(1000) * 1e-5), 1e-5)
+    f, a = woodpile.spectrum(np.sin(2 * np.pi * 1000 * np.arange(1000) * 1e-5), 1e-5, scaling="amplitude")
     assert abs(f[np.argmax(a)] - 1000) < 1e-9 and abs(a.max() - 1) < 1e-9
+
+
+def test_default_spectrum_of_a_pulse_does_not_depend_on_the_record_length():
+    """Claim: woodpile.spectrum's default (the Fourier-transform magnitude) gives the same values
+    for a 50 µs half-sine pulse recorded for 2 ms and for 4 ms, at the frequencies both records
+    share (every other bin of the longer one). Tolerance 1e-9 relative: the two sums hold the same
+    nonzero samples, so only rounding differs. A bad scaling name is refused naming the field."""
+    dt = 1e-6
+    def pulse(duration_s):
+        t = np.arange(round(duration_s / dt)) * dt
+        return np.where(t < 50e-6, 100.0 * np.sin(np.pi * t / 50e-6), 0.0)
+    f2, a2 = woodpile.spectrum(pulse(2e-3), dt)
+    f4, a4 = woodpile.spectrum(pulse(4e-3), dt)
+    assert np.allclose(f4[::2][: len(f2)], f2, rtol=0, atol=1e-6)
+    assert np.allclose(a4[::2][: len(a2)], a2, rtol=1e-9, atol=1e-12 * a2.max())
+    with pytest.raises(woodpile.WoodpileError) as e:
+        woodpile.spectrum(pulse(2e-3), dt, scaling="power")
+    assert e.value.field == "scaling"
 
 
 SMALL_GA = {

@@ -401,9 +401,15 @@ def band_gaps(cell: Mapping[str, Any], beta: float, precompression_n: float) -> 
     return {"pass_bands_hz": np.array(passes), "gaps_hz": np.array(gaps)}
 
 
-def spectrum(signal: Sequence[float], sample_interval_s: float):
-    """One-sided amplitude spectrum of a uniformly sampled signal: (frequencies [Hz], amplitudes)."""
-    return _core.spectrum(list(map(float, signal)), float(sample_interval_s))
+def spectrum(signal: Sequence[float], sample_interval_s: float, scaling: str = "fourier"):
+    """One-sided spectrum of a uniformly sampled signal: (frequencies [Hz], values).
+
+    ``scaling="fourier"`` (default) gives the magnitude of the Fourier transform |F̂(f)| in the
+    signal's unit times seconds (N/Hz for a force): for a transient (an impact, a blast) it does
+    not depend on the record length or the sample interval, so spectra of two runs compare
+    directly; the figures use it. ``scaling="amplitude"`` gives the sine amplitude (N), right for
+    steady signals only: the same pulse in a record twice as long reads half."""
+    return _core.spectrum(list(map(float, signal)), float(sample_interval_s), str(scaling))
 
 
 def transmission(

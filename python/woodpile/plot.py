@@ -54,8 +54,9 @@ def energy_map(run: Any, ax: Any = None, *, cmap: str = "magma"):
 
 
 def spectra(run: Any, contacts: Sequence[int] | None = None, ax: Any = None, *, max_frequency_hz: float = 60e3):
-    """Amplitude spectra [N] of contact forces against frequency [kHz] (the paper's Fig. 9 b, d,
-    f, h); by default the first element contact and the wall."""
+    """Spectra of contact forces, the Fourier transform's magnitude |F̂(f)| [N/Hz] (independent of
+    the record length), against frequency [kHz] (the paper's Fig. 9 b, d, f, h); by default the
+    first element contact and the wall."""
     from . import spectrum
 
     ax = _axes(ax)
@@ -66,7 +67,7 @@ def spectra(run: Any, contacts: Sequence[int] | None = None, ax: Any = None, *, 
         keep = (f > 0) & (f <= max_frequency_hz)
         ax.semilogy(f[keep] * 1e-3, a[keep], label=f"contact {c}")
     ax.set_xlabel("frequency [kHz]")
-    ax.set_ylabel("amplitude [N]")
+    ax.set_ylabel("|F̂(f)| [N/Hz]")
     ax.legend()
     return ax
 

@@ -455,19 +455,33 @@ fn band_gaps(
     Ok((b.pass_bands_hz, b.gaps_hz))
 }
 
-/// One-sided amplitude spectrum of a uniformly sampled signal: (frequencies [Hz], amplitudes).
+/// One-sided spectrum of a uniformly sampled signal: (frequencies [Hz], values). `scaling`:
+/// "fourier" (|F̂(f)| in unit·s, independent of the record length for a transient) or
+/// "amplitude" (the sine amplitude, for steady signals).
 #[pyfunction]
+#[pyo3(signature = (signal, sample_interval_s, scaling = "fourier"))]
 fn spectrum<'py>(
     py: Python<'py>,
     signal: Vec<f64>,
     sample_interval_s: f64,
+    scaling: &str,
 ) -> PyResult<ArrayPair<'py>> {
-    let s = woodpile::Spectrum::of(
-        &signal,
-        sample_interval_s,
-        &woodpile::analysis::SpectrumSettings::default(),
-    )
-    .map_err(core_err)?;
+    let scaling = match scaling {
+        "fourier" => woodpile::analysis::Scaling::FourierMagnitude,
+        "amplitude" => woodpile::analysis::Scaling::Amplitude,
+        other => {
+            return Err(py_err(woodpile_io::Error::invalid(
+                "scaling",
+                other,
+                "\"fourier\" (Fourier-transform magnitude, for transients) or \"amplitude\" (sine amplitude, for steady signals)",
+            )))
+        }
+    };
+    let settings = woodpile::analysis::SpectrumSettings {
+        scaling,
+        ..Default::default()
+    };
+    let s = woodpile::Spectrum::of(&signal, sample_interval_s, &settings).map_err(core_err)?;
     Ok((
         PyArray1::from_vec(py, s.frequencies_hz),
         PyArray1::from_vec(py, s.amplitudes),
