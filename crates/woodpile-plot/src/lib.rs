@@ -26,6 +26,7 @@
 //! `woodpile optimize` output), read back through [`woodpile_io`].
 
 mod chain;
+mod colorbar;
 mod colormap;
 pub mod dirs;
 mod heatmap;
