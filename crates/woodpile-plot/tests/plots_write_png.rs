@@ -305,11 +305,12 @@ fn maps_of_a_10000_element_chain_stay_small() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// Claim: a single spike in one of 10,000 rows survives the row reduction (each drawn row holds
-/// the largest magnitude of its group of ~33 rows): the map shows the colour of the top of the
-/// scale (viridis' last colour, exactly: no tolerance, a cell is filled with one colour) left of
-/// the colour bar. Averaging the group would draw it at 1/33 of the scale, taking the first row
-/// would drop it.
+/// Claim: a single spike (7.31 N, the rest ≤ 0.2 N) in one of 10,000 rows survives the row
+/// reduction (each drawn row holds the largest magnitude of its group of ~33 rows): the colour
+/// bar's top is labelled 7.31, and the map shows the top colour (viridis' last, compared exactly:
+/// a cell is filled with one colour) left of the colour bar on 1 to 100 pixels, one cell (17 ×
+/// ~2 px) and not the background. Averaging the group would draw the spike at 1/33 of its
+/// height, keeping the group's first row would drop it.
 #[test]
 fn row_reduction_keeps_a_spike_in_one_row_of_10000() {
     let dir = out_dir("spike");
@@ -318,7 +319,7 @@ fn row_reduction_keeps_a_spike_in_one_row_of_10000() {
         50,
         |r, c| {
             if (r, c) == (6_789, 20) {
-                1.0
+                7.31
             } else {
                 0.1 * ((r + c) % 3) as f64
             }
@@ -335,7 +336,12 @@ fn row_reduction_keeps_a_spike_in_one_row_of_10000() {
             (p[0], p[1], p[2]) == (top.0, top.1, top.2)
         })
         .count();
-    assert!(spike_pixels > 0, "no pixel of the top colour in the map");
+    assert!(
+        (1..=100).contains(&spike_pixels),
+        "{spike_pixels} pixels of the top colour in the map"
+    );
+    let texts = svg_texts(&paths[1]);
+    assert!(texts.iter().any(|t| t == "7.31"), "top label in {texts:?}");
     std::fs::remove_dir_all(&dir).ok();
 }
 
