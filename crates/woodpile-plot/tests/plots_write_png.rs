@@ -277,9 +277,10 @@ fn png_pixels(path: &Path) -> (usize, usize, Vec<u8>) {
 }
 
 /// Claim: the maps of a 10,001-contact chain over 2,000 samples (20 M values) stay small: SVG
-/// under 5 MB (the target; 75 KB and 90 KB measured for the force and energy maps, as
-/// the cells travel as one PNG image of at most 300 × 600 pixels; drawn as rectangles they would
-/// take ~16 MB), PNG at the fixed 1100 × 620 px and under 1 MB (122 KB measured). And the y axis
+/// under 5 MB (the target; 85 KB and 113 KB measured for the force and energy maps, as
+/// the cells travel as one PNG image of at most 300 × 600 cells, each a block of whole pixels;
+/// drawn as rectangles they take 15.5 MB), PNG at the fixed 1100 × 620 px and under 1 MB (122 KB
+/// and 144 KB measured). And the y axis
 /// names real contacts (5000 and 10000 among its labels), not drawn-row numbers.
 #[test]
 fn maps_of_a_10000_element_chain_stay_small() {
