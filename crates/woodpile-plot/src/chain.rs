@@ -21,7 +21,7 @@ struct ChainPicture<'a> {
 /// Chains of more than 40 elements are summarised, so the picture's size is bounded whatever
 /// their length (950 × 840 px): the first and last 10 elements to scale with an ellipsis
 /// between, and beside them a strip of every element's length (top to bottom, groups of
-/// elements drawn as the range of their lengths beyond 500), as the title states.
+/// elements drawn as the range of their lengths beyond 350), as the title states.
 pub fn chain_picture(chain: &Chain, title: &str, stem: &Path) -> Result<Vec<PathBuf>> {
     let widths_mm: Vec<f64> = chain
         .elements()
@@ -63,9 +63,9 @@ const RODS_PANEL_PX: u32 = 620;
 /// Width of the strip's panel of a summarised chain \[px\].
 const STRIP_PANEL_PX: u32 = 330;
 
-/// Most rows of the strip: longer chains are grouped, each group drawn as the range of its
-/// elements' lengths.
-const STRIP_MAX_ROWS: usize = 500;
+/// Most rows of the strip (at least 2 px each): longer chains are grouped, each group drawn as
+/// the range of its elements' lengths.
+const STRIP_MAX_ROWS: usize = 350;
 
 impl ChainPicture<'_> {
     /// Whether the chain is summarised (too long to draw every element).
@@ -223,7 +223,7 @@ impl ChainPicture<'_> {
         let k = n.min(STRIP_MAX_ROWS);
         let per_row = n.div_ceil(k);
         let x_desc = if per_row > 1 {
-            format!("length [mm], range of {per_row} per row")
+            format!("length [mm], range of ≤ {per_row} per row")
         } else {
             "length [mm]".to_string()
         };
@@ -289,11 +289,10 @@ impl Figure for ChainPicture<'_> {
         }
         let n = self.widths_mm.len();
         let caption = format!(
-            "{}: first and last {SHOWN_AT_EACH_END} of {n} elements to scale; strip: every \
-             element's length",
+            "{}: first and last {SHOWN_AT_EACH_END} of {n} elements to scale, strip: all lengths",
             self.title
         );
-        let body = root.titled(&caption, (FONT, 18))?;
+        let body = root.titled(&caption, (FONT, 17))?;
         let (rods, strip) = body.split_horizontally(RODS_PANEL_PX);
         self.draw_rods(&rods, None)?;
         self.draw_strip(&strip)
