@@ -17,6 +17,11 @@ struct ChainPicture<'a> {
 /// Draws the elements of `chain` top to bottom as bars whose width is the rod length (spheres as
 /// their diameter), coloured by length, labelled with the length and the layer index; the wall
 /// at the bottom.
+///
+/// Chains of more than 40 elements are summarised, so the picture's size is bounded whatever
+/// their length (950 × 840 px): the first and last 10 elements to scale with an ellipsis
+/// between, and beside them a strip of every element's length (top to bottom, groups of
+/// elements drawn as the range of their lengths beyond 350), as the title states.
 pub fn chain_picture(chain: &Chain, title: &str, stem: &Path) -> Result<Vec<PathBuf>> {
     let widths_mm: Vec<f64> = chain
         .elements()
@@ -42,29 +47,86 @@ pub fn chain_picture(chain: &Chain, title: &str, stem: &Path) -> Result<Vec<Path
     )
 }
 
-impl Figure for ChainPicture<'_> {
-    fn size(&self) -> (u32, u32) {
-        let n = self.widths_mm.len() as u32;
-        (620, 150 + 30 * (n + 2))
+/// Chains longer than this are summarised: the first and last [`SHOWN_AT_EACH_END`] elements
+/// to scale, and a strip of every element's length beside them.
+const SUMMARISED_ABOVE: usize = 40;
+
+/// Elements drawn to scale at each end of a summarised chain.
+const SHOWN_AT_EACH_END: usize = 10;
+
+/// Height of one element's row \[px\].
+const ROW_PX: u32 = 30;
+
+/// Width of the rods' panel \[px\].
+const RODS_PANEL_PX: u32 = 620;
+
+/// Width of the strip's panel of a summarised chain \[px\].
+const STRIP_PANEL_PX: u32 = 330;
+
+/// Most rows of the strip (at least 2 px each): longer chains are grouped, each group drawn as
+/// the range of its elements' lengths.
+const STRIP_MAX_ROWS: usize = 350;
+
+impl ChainPicture<'_> {
+    /// Whether the chain is summarised (too long to draw every element).
+    fn summarised(&self) -> bool {
+        self.widths_mm.len() > SUMMARISED_ABOVE
     }
 
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    /// The rows of the rods' panel, top to bottom: an element's index, or None for the ellipsis.
+    fn shown(&self) -> Vec<Option<usize>> {
+        let n = self.widths_mm.len();
+        if self.summarised() {
+            (0..SHOWN_AT_EACH_END)
+                .map(Some)
+                .chain(std::iter::once(None))
+                .chain((n - SHOWN_AT_EACH_END..n).map(Some))
+                .collect()
+        } else {
+            (0..n).map(Some).collect()
+        }
+    }
+
+    /// Colour of an element of width `w` \[mm\]: viridis over the chain's range of widths.
+    fn colour(&self, w: f64) -> RGBColor {
+        let (min_w, max_w) = self.width_range();
+        let t = if max_w > min_w {
+            (w - min_w) / (max_w - min_w)
+        } else {
+            0.5
+        };
+        ColorMap::Viridis.rgb(0.15 + 0.7 * t)
+    }
+
+    /// Smallest and largest element width \[mm\].
+    fn width_range(&self) -> (f64, f64) {
+        self.widths_mm
+            .iter()
+            .fold((f64::INFINITY, 0.0_f64), |(a, b), w| (a.min(*w), b.max(*w)))
+    }
+
+    /// The rods (or the first and last ones and an ellipsis) to scale, the wall at the bottom.
+    fn draw_rods<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        caption: Option<&str>,
+    ) -> DrawResult
     where
         DB::ErrorType: 'static,
     {
-        root.fill(&WHITE)?;
+        let shown = self.shown();
         let n = self.widths_mm.len();
+        let rows = shown.len();
         let widest = self.widths_mm.iter().copied().fold(0.0, f64::max);
         let half = 0.5 * widest.max(20.0) + 30.0;
-        let (min_w, max_w) = self
-            .widths_mm
-            .iter()
-            .fold((f64::INFINITY, 0.0_f64), |(a, b), w| (a.min(*w), b.max(*w)));
-        let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, (FONT, 20))
+        let mut builder = ChartBuilder::on(area);
+        if let Some(caption) = caption {
+            builder.caption(caption, (FONT, 20));
+        }
+        let mut chart = builder
             .margin(15)
             .x_label_area_size(40)
-            .build_cartesian_2d(-half..half, -(n as f64) - 1.2..0.8)?;
+            .build_cartesian_2d(-half..half, -(rows as f64) - 1.2..0.8)?;
         chart
             .configure_mesh()
             .disable_mesh()
@@ -93,23 +155,32 @@ impl Figure for ChainPicture<'_> {
             0.1,
             (HPos::Center, VPos::Center),
         )))?;
-        for (i, (&w, e)) in self.widths_mm.iter().zip(self.chain.elements()).enumerate() {
-            let y = -(i as f64) - 1.0;
-            let t = if max_w > min_w {
-                (w - min_w) / (max_w - min_w)
-            } else {
-                0.5
+        let elements = self.chain.elements();
+        for (slot, element) in shown.iter().enumerate() {
+            let y = -(slot as f64) - 1.0;
+            let Some(i) = *element else {
+                let hidden = n - 2 * SHOWN_AT_EACH_END;
+                chart.draw_series([
+                    text("⋮".to_string(), -half + 8.0, y, (HPos::Left, VPos::Center)),
+                    text(
+                        format!("⋮  {hidden} more elements (strip, right)"),
+                        0.0,
+                        y,
+                        (HPos::Center, VPos::Center),
+                    ),
+                ])?;
+                continue;
             };
-            let colour = ColorMap::Viridis.rgb(0.15 + 0.7 * t);
+            let w = self.widths_mm[i];
             chart.draw_series(std::iter::once(Rectangle::new(
                 [(-0.5 * w, y - 0.32), (0.5 * w, y + 0.32)],
-                colour.filled(),
+                self.colour(w).filled(),
             )))?;
             chart.draw_series(std::iter::once(Rectangle::new(
                 [(-0.5 * w, y - 0.32), (0.5 * w, y + 0.32)],
                 BLACK.mix(0.6).stroke_width(1),
             )))?;
-            let label = match e.body {
+            let label = match elements[i].body {
                 Body::Rod { .. } => format!("{w:.0} mm"),
                 Body::Sphere { .. } => format!("sphere {w:.0} mm"),
             };
@@ -123,7 +194,7 @@ impl Figure for ChainPicture<'_> {
                 ),
             ])?;
         }
-        let wall_y = -(n as f64) - 0.85;
+        let wall_y = -(rows as f64) - 0.85;
         if !matches!(self.chain.wall(), Wall::Free) {
             chart.draw_series(std::iter::once(Rectangle::new(
                 [(-half * 0.8, wall_y - 0.25), (half * 0.8, wall_y + 0.12)],
@@ -138,5 +209,92 @@ impl Figure for ChainPicture<'_> {
             )))?;
         }
         Ok(())
+    }
+
+    /// Every element's length, top to bottom: one bar per element, or per group of elements
+    /// (spanning their shortest to longest, coloured by their mean) when the chain is longer
+    /// than the strip has rows.
+    fn draw_strip<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let n = self.widths_mm.len();
+        let (_, max_w) = self.width_range();
+        let k = n.min(STRIP_MAX_ROWS);
+        let per_row = n.div_ceil(k);
+        let x_desc = if per_row > 1 {
+            format!("length [mm], range of ≤ {per_row} per row")
+        } else {
+            "length [mm]".to_string()
+        };
+        let mut chart = ChartBuilder::on(area)
+            .margin(15)
+            .margin_top(45)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(0.0..1.08 * max_w, -(n as f64)..0.0)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(x_desc)
+            .x_labels(5)
+            .x_label_formatter(&|x| format!("{x:.0}"))
+            .y_desc("element (1 = top)")
+            .y_label_formatter(&|y| {
+                let i = -y;
+                if (i - i.round()).abs() > 1e-6 {
+                    String::new()
+                } else {
+                    format!("{}", (i.round() as usize).clamp(1, n))
+                }
+            })
+            .label_style((FONT, 14))
+            .axis_desc_style((FONT, 15))
+            .draw()?;
+        let bar = 0.004 * max_w;
+        chart.draw_series((0..k).map(|g| {
+            let (e0, e1) = (g * n / k, (g + 1) * n / k);
+            let group = &self.widths_mm[e0..e1];
+            let (lo, hi) = group
+                .iter()
+                .fold((f64::INFINITY, 0.0_f64), |(a, b), w| (a.min(*w), b.max(*w)));
+            let mean = group.iter().sum::<f64>() / group.len() as f64;
+            Rectangle::new(
+                [(lo - bar, -(e1 as f64)), (hi + bar, -(e0 as f64))],
+                self.colour(mean).filled(),
+            )
+        }))?;
+        Ok(())
+    }
+}
+
+impl Figure for ChainPicture<'_> {
+    fn size(&self) -> (u32, u32) {
+        let rows = self.shown().len() as u32;
+        let width = if self.summarised() {
+            RODS_PANEL_PX + STRIP_PANEL_PX
+        } else {
+            RODS_PANEL_PX
+        };
+        (width, 150 + ROW_PX * (rows + 2))
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE)?;
+        if !self.summarised() {
+            return self.draw_rods(root, Some(&self.title));
+        }
+        let n = self.widths_mm.len();
+        let caption = format!(
+            "{}: first and last {SHOWN_AT_EACH_END} of {n} elements to scale, strip: all lengths",
+            self.title
+        );
+        let body = root.titled(&caption, (FONT, 17))?;
+        let (rods, strip) = body.split_horizontally(RODS_PANEL_PX);
+        self.draw_rods(&rods, None)?;
+        self.draw_strip(&strip)
     }
 }

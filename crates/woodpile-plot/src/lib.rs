@@ -20,12 +20,19 @@
 //! Every function takes a file *stem* (`dir/force_map`) and writes `stem.png` and `stem.svg`,
 //! returning the two paths.
 //!
+//! Heat maps of long chains are reduced to at most 300 rows × 600 columns of cells (each the
+//! largest magnitude of its group, so peaks survive) and their SVG embeds the cells as one
+//! image; colour bars label both limits and mark what saturates ("≥", "≤", a cap). Chain
+//! pictures of more than 40 elements show the first and last 10 to scale and a strip of every
+//! length.
+//!
 //! [`typeset`] lays out and rasterises the bitmaps' text (plotters' own drops glyph bearings).
 //!
 //! [`dirs`] draws the figure set of a whole output directory (a `woodpile simulate` run or a
 //! `woodpile optimize` output), read back through [`woodpile_io`].
 
 mod chain;
+mod colorbar;
 mod colormap;
 pub mod dirs;
 mod heatmap;
