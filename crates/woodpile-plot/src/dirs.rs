@@ -185,7 +185,7 @@ fn draw_run(dir: &Path, out: &Path, plot: &RunPlot) -> Result<Vec<PathBuf>, Erro
     };
     let spectrum_map = contact_spectrum_map(&t, &settings)?;
     let (f0, f1) = plot.frequency_hz;
-    let khz = |v: f64| format!("{}", (v * 1e3).round() / 1e6);
+    let khz = |v: f64| format!("{}", v.round() / 1e3);
     let nyquist = spectrum_map.cols.values.last().copied().unwrap_or(0.0);
     let Some(spectrum_map) = columns_between(&spectrum_map, f0, f1)? else {
         return Err(Error::invalid(
