@@ -124,7 +124,7 @@ fn output(args: &Args) -> Result<Output, CliError> {
         dpi: args.dpi,
         ..Output::default()
     };
-    let place = out.place((woodpile_plot::output::REFERENCE_WIDTH, 620));
+    let place = out.place((woodpile_plot::output::REFERENCE_WIDTH, 620), 1);
     let side = place.pixels.0.max(place.pixels.1);
     if f64::from(side) > woodpile_plot::output::MAX_PIXELS_PER_SIDE && formats_png(&out) {
         return Err(CliError::invalid(

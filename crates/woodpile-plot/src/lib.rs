@@ -93,6 +93,13 @@ pub(crate) type DrawResult = std::result::Result<(), DrawFailure>;
 pub(crate) trait Figure {
     /// Canvas size in logical units.
     fn size(&self) -> (u32, u32);
+    /// Logical units per layout unit: a figure that lays out on a nominal canvas (e.g. 1100 ×
+    /// 600) with every length and font size multiplied by this factor, so that plotters'
+    /// integer coordinates are finer than the layout grid. Its printed size by default is that
+    /// of the nominal canvas.
+    fn subdivision(&self) -> u32 {
+        1
+    }
     /// Draws on a white canvas of the drawing area's size: [`Figure::size`], or that width
     /// with another height when the output asks for another aspect ratio.
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult

@@ -43,6 +43,13 @@ pub struct ConvergencePoint {
 
 const LEGEND_FONT: u32 = 15;
 
+/// Drawing units per layout unit of the line plots: they lay out as 1100 × 600 (or 1000 × 600)
+/// with 15–22-unit text, on a canvas 4 times finer, every length multiplied by 4. plotters
+/// rounds coordinates to whole units of the canvas; on the layout grid (1/1100 of the width)
+/// a nearly flat curve drawn 2100 px wide (7 in at 300 dpi) climbs in visible 2-px steps, on
+/// the fine grid in sub-pixel ones.
+const FINE: u32 = 4;
+
 /// A polyline broken into segments (a new segment where the line must not be joined).
 type Segments = Vec<Vec<(f64, f64)>>;
 
@@ -100,7 +107,7 @@ impl LinePlot {
         if self.zero_line {
             chart.draw_series(LineSeries::new(
                 [(self.x_range.0, 0.0), (self.x_range.1, 0.0)],
-                BLACK.mix(0.5).stroke_width(1),
+                BLACK.mix(0.5).stroke_width(FINE),
             ))?;
         }
         for (i, (label, segments)) in self.series.iter().enumerate() {
@@ -108,14 +115,14 @@ impl LinePlot {
             // Dense series (spectra) 1 px wide: the miter joins of their sharp peaks would
             // overshoot the frame by far at 2 px.
             let points: usize = segments.iter().map(Vec::len).sum();
-            let style = colour.stroke_width(if points > 1000 { 1 } else { 2 });
+            let style = colour.stroke_width(FINE * if points > 1000 { 1 } else { 2 });
             legend.push((label.as_str(), Swatch::Line(colour)));
             for seg in segments {
                 chart.draw_series(LineSeries::new(seg.iter().copied(), style))?;
                 if self.markers {
                     chart.draw_series(
                         seg.iter()
-                            .map(|&(x, y)| Circle::new((x, y), 4, colour.filled())),
+                            .map(|&(x, y)| Circle::new((x, y), 4 * FINE, colour.filled())),
                     )?;
                 }
             }
@@ -147,34 +154,35 @@ where
     if entries.is_empty() {
         return Ok(());
     }
-    let style =
-        TextStyle::from((FONT, LEGEND_FONT).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
+    let style = TextStyle::from((FONT, LEGEND_FONT * FINE).into_font())
+        .pos(Pos::new(HPos::Left, VPos::Center));
     let mut sizes = Vec::with_capacity(entries.len());
     for (label, _) in entries {
         sizes.push(area.estimate_text_size(label, &style)?);
     }
     let text_w = sizes.iter().map(|s| s.0).max().unwrap_or(0) as i32;
-    let row = sizes.iter().map(|s| s.1).max().unwrap_or(0) as i32 + 6;
-    let (pad, swatch, gap) = (8, 22, 8);
+    let f = FINE as i32;
+    let row = sizes.iter().map(|s| s.1).max().unwrap_or(0) as i32 + 6 * f;
+    let (pad, swatch, gap) = (8 * f, 22 * f, 8 * f);
     let (w, _) = area.dim_in_pixel();
     let box_w = pad + swatch + gap + text_w + pad;
-    let box_h = pad + row * entries.len() as i32 + pad - 6;
-    let (x0, y0) = (w as i32 - 10 - box_w, 10);
+    let box_h = pad + row * entries.len() as i32 + pad - 6 * f;
+    let (x0, y0) = (w as i32 - 10 * f - box_w, 10 * f);
     area.draw(&Rectangle::new(
         [(x0, y0), (x0 + box_w, y0 + box_h)],
         WHITE.mix(0.85).filled(),
     ))?;
     area.draw(&Rectangle::new(
         [(x0, y0), (x0 + box_w, y0 + box_h)],
-        BLACK.mix(0.4).stroke_width(1),
+        BLACK.mix(0.4).stroke_width(FINE),
     ))?;
     for (k, (label, sw)) in entries.iter().enumerate() {
-        let y = y0 + pad + row * k as i32 + (row - 6) / 2;
+        let y = y0 + pad + row * k as i32 + (row - 6 * f) / 2;
         let x = x0 + pad;
         match *sw {
             Swatch::Line(c) => area.draw(&PathElement::new(
                 [(x, y), (x + swatch, y)],
-                c.stroke_width(3),
+                c.stroke_width(3 * FINE),
             ))?,
             Swatch::Band(c) => area.draw(&Rectangle::new(
                 [(x, y - row / 3), (x + swatch, y + row / 3)],
@@ -192,7 +200,11 @@ where
 
 impl Figure for LinePlot {
     fn size(&self) -> (u32, u32) {
-        self.size
+        (self.size.0 * FINE, self.size.1 * FINE)
+    }
+
+    fn subdivision(&self) -> u32 {
+        FINE
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
@@ -204,10 +216,10 @@ impl Figure for LinePlot {
         let (y0, y1) = self.y_range;
         let mut builder = ChartBuilder::on(root);
         builder
-            .caption(&self.title, (FONT, 22))
-            .margin(15)
-            .x_label_area_size(50)
-            .y_label_area_size(85);
+            .caption(&self.title, (FONT, 22 * FINE))
+            .margin(15 * FINE)
+            .x_label_area_size(50 * FINE)
+            .y_label_area_size(85 * FINE);
         if self.log_y {
             let mut chart = builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())?;
             chart
@@ -216,8 +228,11 @@ impl Figure for LinePlot {
                 .x_label_formatter(&|v| format_number(*v))
                 .y_desc(&self.y_label)
                 .y_label_formatter(&|v| format_number(*v))
-                .label_style((FONT, 15))
-                .axis_desc_style((FONT, 17))
+                .label_style((FONT, 15 * FINE))
+                .axis_desc_style((FONT, 17 * FINE))
+                .set_all_tick_mark_size(5 * FINE)
+                .axis_style(BLACK.stroke_width(FINE))
+                .bold_line_style(BLACK.mix(0.2).stroke_width(FINE))
                 .light_line_style(WHITE.mix(0.0))
                 .draw()?;
             self.draw_on(&mut chart, y0, y1)
@@ -229,8 +244,11 @@ impl Figure for LinePlot {
                 .x_label_formatter(&|v| format_number(*v))
                 .y_desc(&self.y_label)
                 .y_label_formatter(&|v| format_number(*v))
-                .label_style((FONT, 15))
-                .axis_desc_style((FONT, 17))
+                .label_style((FONT, 15 * FINE))
+                .axis_desc_style((FONT, 17 * FINE))
+                .set_all_tick_mark_size(5 * FINE)
+                .axis_style(BLACK.stroke_width(FINE))
+                .bold_line_style(BLACK.mix(0.2).stroke_width(FINE))
                 .light_line_style(WHITE.mix(0.0))
                 .draw()?;
             self.draw_on(&mut chart, y0, y1)

@@ -2,7 +2,9 @@
 //!
 //! Every figure lays itself out in *logical units*: a canvas of its own size (1100 × 620 for the
 //! maps, 1100 × 600 for the line plots, 1000 × 600 for the GA convergence, 620 wide for the chain
-//! picture), text 14–22 units high. Writing maps logical units to paper:
+//! picture), text 14–22 units high; the line plots subdivide each unit in 4 (a 4400 × 2400
+//! canvas, every length × 4) so that their curves are not rounded to the layout grid. Writing
+//! maps logical units to paper:
 //!
 //! - the printed size is the logical size times a length per unit: by default
 //!   [`DEFAULT_WIDTH_IN`] / [`REFERENCE_WIDTH`] (7 in, 178 mm, a double-column journal figure,
@@ -175,14 +177,17 @@ impl Output {
         Ok(())
     }
 
-    /// Where a figure laid out on a `logical` canvas is printed and drawn.
-    pub fn place(&self, logical: (u32, u32)) -> Placement {
+    /// Where a figure drawn on a `logical` canvas, `subdivision` units per layout unit (1 for
+    /// most figures, 4 for the line plots), is printed and drawn.
+    pub fn place(&self, logical: (u32, u32), subdivision: u32) -> Placement {
         let (lw, lh) = (f64::from(logical.0), f64::from(logical.1));
         // Inches per logical unit.
         let unit = match (self.width_in, self.height_in) {
             (Some(w), _) => w / lw,
             (None, Some(h)) => h / lh,
-            (None, None) => DEFAULT_WIDTH_IN / f64::from(REFERENCE_WIDTH),
+            (None, None) => {
+                DEFAULT_WIDTH_IN / f64::from(REFERENCE_WIDTH) / f64::from(subdivision.max(1))
+            }
         };
         let (w_in, h_in, lh) = match (self.width_in, self.height_in) {
             (Some(w), Some(h)) => (w, h, (h / unit).round().max(1.0)),
@@ -226,7 +231,7 @@ pub fn current_output() -> Output {
 /// order of `output.formats`.
 pub(crate) fn write(figure: &impl Figure, stem: &Path, output: &Output) -> Result<Vec<PathBuf>> {
     output.check()?;
-    let place = output.place(figure.size());
+    let place = output.place(figure.size(), figure.subdivision());
     let (pw, ph) = place.pixels;
     if f64::from(pw.max(ph)) > MAX_PIXELS_PER_SIDE {
         return Err(PlotError::BadData {
@@ -263,11 +268,14 @@ pub(crate) fn write(figure: &impl Figure, stem: &Path, output: &Output) -> Resul
             Format::Svg => {
                 let mut svg = String::new();
                 {
+                    // plotters writes `font-size` = size / 1.24; the bitmap's em is
+                    // size × em_per_size(): the SVG's text is given the bitmap's em.
                     let backend = Scaled::new(
                         SVGBackend::with_string(&mut svg, place.logical),
                         place.logical,
                         output.text_scale,
-                    );
+                    )
+                    .with_drawn_text(1.24 * crate::typeset::em_per_size());
                     let root = backend.into_drawing_area();
                     figure.draw(&root).map_err(fail(&path))?;
                     root.present()
@@ -302,6 +310,9 @@ pub(crate) struct Scaled<B> {
     sx: f64,
     sy: f64,
     text: f64,
+    /// Factor on the size handed to the wrapped backend's text, beyond `text` (1 for the
+    /// bitmap; for the SVG, what makes its `font-size` the bitmap's em).
+    drawn: f64,
 }
 
 impl<B: DrawingBackend> Scaled<B> {
@@ -313,7 +324,13 @@ impl<B: DrawingBackend> Scaled<B> {
             inner,
             logical,
             text,
+            drawn: 1.0,
         }
+    }
+
+    /// The same, handing the wrapped backend text `drawn` times the laid-out size.
+    pub(crate) fn with_drawn_text(self, drawn: f64) -> Self {
+        Scaled { drawn, ..self }
     }
 
     fn at(&self, (x, y): BackendCoord) -> BackendCoord {
@@ -512,7 +529,7 @@ impl<B: DrawingBackend> DrawingBackend for Scaled<B> {
     ) -> Drawn<B::ErrorType> {
         let resized = Resized {
             style,
-            size: style.size() * self.text * self.sx,
+            size: style.size() * self.text * self.drawn * self.sx,
         };
         self.inner.draw_text(text, &resized, self.at(pos))
     }

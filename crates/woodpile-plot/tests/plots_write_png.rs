@@ -307,7 +307,8 @@ fn png_pixels_follow_printed_size_times_dpi() {
 
 /// Claim: an SVG declares its printed size in inches in its root element and keeps the
 /// figure's logical units in its viewBox, so it prints at the stated size: `width="3.5000in"`,
-/// `height="1.9091in"` (3.5 × 600 / 1100, 4 decimals) and `viewBox="0 0 1100 600"`. Exact text.
+/// `height="1.9091in"` (3.5 × 600 / 1100, 4 decimals) and `viewBox="0 0 4400 2400"` (the line
+/// plots lay out 1100 × 600 on a 4 times finer canvas). Exact text.
 #[test]
 fn svg_declares_its_printed_size() {
     let dir = out_dir("svgsize");
@@ -326,7 +327,7 @@ fn svg_declares_its_printed_size() {
     assert!(
         root.contains("width=\"3.5000in\"")
             && root.contains("height=\"1.9091in\"")
-            && root.contains("viewBox=\"0 0 1100 600\""),
+            && root.contains("viewBox=\"0 0 4400 2400\""),
         "{root}"
     );
     std::fs::remove_dir_all(&dir).ok();
@@ -429,4 +430,55 @@ fn the_first_arrivals_window_follows_the_data() {
     ];
     assert_eq!(plot::onset_window_s(&times, &silent, 0.5), None);
     assert_eq!(plot::onset_window_s(&times, &series, 0.3), None);
+}
+
+/// Printed em sizes [pt] of an SVG's texts: `font-size` (user units) × printed width
+/// (`width="…in"` × 72 pt) / viewBox width.
+fn svg_text_pt(svg: &str) -> Vec<f64> {
+    let attr = |s: &str, name: &str| -> Option<String> {
+        let i = s.find(&format!("{name}=\""))? + name.len() + 2;
+        Some(s[i..i + s[i..].find('"')?].to_string())
+    };
+    let root = &svg[svg.find("<svg").unwrap()..];
+    let width_in: f64 = attr(root, "width")
+        .unwrap()
+        .trim_end_matches("in")
+        .parse()
+        .unwrap();
+    let view: Vec<f64> = attr(root, "viewBox")
+        .unwrap()
+        .split(' ')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    svg.split("<text ")
+        .skip(1)
+        .map(|t| attr(t, "font-size").unwrap().parse::<f64>().unwrap() * width_in * 72.0 / view[2])
+        .collect()
+}
+
+/// Claim: with the default output, text prints at journal sizes: every text of the force map's
+/// and the force histories' SVG (ticks, legends, axis and colour-bar titles) has an em of 7.0 to
+/// 9.0 pt at the declared size, except the figure title (the largest), at most 12 pt. Computed
+/// from the SVG's own numbers; the bitmap uses the same em (typeset::em_per_size).
+#[test]
+fn default_text_prints_at_7_to_9_pt() {
+    let dir = out_dir("textpt");
+    let (_, t) = small_run();
+    let files = [
+        plot::force_map(&force_map(&t).unwrap(), "3 rods", &dir.join("map")).unwrap(),
+        plot::force_histories(&t.times_s, &histories(&t), "3 rods", &dir.join("h")).unwrap(),
+    ];
+    for f in &files {
+        let mut pt = svg_text_pt(&std::fs::read_to_string(&f[1]).unwrap());
+        pt.sort_by(f64::total_cmp);
+        pt.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+        eprintln!("{}: {pt:.2?} pt", f[1].display());
+        let (title, body) = pt.split_last().unwrap();
+        assert!(*title <= 12.0, "title {title} pt");
+        assert!(
+            body.iter().all(|p| (7.0..=9.0).contains(p)),
+            "text sizes {pt:?} pt"
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
 }
