@@ -352,12 +352,12 @@ pub fn force_histories_between(
 }
 
 /// The time window of the first arrivals, chosen from the data: from the record's start to the
-/// latest *arrival* among the series plus twice the *first pulse* of the first series (the
+/// latest *arrival* among the series plus four times the *first pulse* of the first series (the
 /// driven contact), at most the record's end. A series arrives at the first sample where
 /// |F| reaches 10 % of its largest |F|; the first pulse lasts from the first series' arrival to
 /// the first later sample where its |F| is below 10 % of that largest value again. With the
 /// paper's striker on 20 rods this shows the incident pulses and the wall's first rise (about
-/// 0–0.45 ms of a 2 ms record). None when a series never rises above zero or the window would
+/// 0–0.43 ms of a 2 ms record). None when a series never rises above zero or the window would
 /// cover more than `max_fraction` of the record (zooming would not help).
 pub fn onset_window_s(times_s: &[f64], series: &[Series], max_fraction: f64) -> Option<(f64, f64)> {
     let (t0, t1) = (*times_s.first()?, *times_s.last()?);

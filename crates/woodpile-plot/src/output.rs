@@ -22,7 +22,8 @@
 //!   wide it would be 5.9 pt). With the defaults (7 in, text scale 1.3) the em size of the text
 //!   prints at 7.2 pt (colour-bar ticks, 14 units), 7.7 pt (tick labels and legends, 15), 8.7 pt
 //!   (axis titles, 17) and 11.3 pt (figure titles, 22); the figures' font sizes are the
-//!   ascent-to-descent height of DejaVu Sans, 1.164 em.
+//!   ascent-to-descent height of DejaVu Sans, 1.164 em (typeset::em_per_size). A line of text
+//!   that would run off the canvas at that size (a long title) is set smaller to fit.
 //!
 //! PDF: plotters has no PDF backend, and a PDF stack would outweigh the rest of the crate;
 //! convert the SVG (`rsvg-convert -f pdf -o fig.pdf fig.svg`, Inkscape, or a browser's print).
@@ -34,8 +35,9 @@ use crate::typeset::{Line, Typeset};
 use crate::{DrawFailure, Figure, PlotError, Result};
 use plotters::prelude::*;
 use plotters_backend::{
-    text_anchor::Pos, BackendColor, BackendCoord, BackendStyle, BackendTextStyle, DrawingErrorKind,
-    FontFamily, FontStyle, FontTransform,
+    text_anchor::{HPos, Pos},
+    BackendColor, BackendCoord, BackendStyle, BackendTextStyle, DrawingErrorKind, FontFamily,
+    FontStyle, FontTransform,
 };
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
@@ -340,6 +342,35 @@ impl<B: DrawingBackend> Scaled<B> {
         )
     }
 
+    /// `size`, or smaller where a line of text set at `size` would run off the canvas (a title
+    /// longer than the figure is wide): the room is measured from the anchor along the line's
+    /// direction, both ways for a centred line, less 2 % of the canvas.
+    fn fitted<S: BackendTextStyle>(
+        &self,
+        text: &str,
+        style: &S,
+        size: f64,
+        pos: BackendCoord,
+    ) -> f64 {
+        let bold = matches!(style.style(), FontStyle::Bold);
+        let width = f64::from(Line::new(text, size, bold).size().0);
+        let (w, h) = (f64::from(self.logical.0), f64::from(self.logical.1));
+        let (at, extent) = match style.transform() {
+            FontTransform::Rotate90 | FontTransform::Rotate270 => (f64::from(pos.1), h),
+            _ => (f64::from(pos.0), w),
+        };
+        let room = match style.anchor().h_pos {
+            HPos::Left => extent - at,
+            HPos::Right => at,
+            HPos::Center => 2.0 * at.min(extent - at),
+        } - 0.02 * extent;
+        if width > room && room > 0.0 {
+            size * room / width
+        } else {
+            size
+        }
+    }
+
     fn stroke<S: BackendStyle>(&self, style: &S) -> Stroke {
         Stroke {
             color: style.color(),
@@ -527,9 +558,10 @@ impl<B: DrawingBackend> DrawingBackend for Scaled<B> {
         style: &S,
         pos: BackendCoord,
     ) -> Drawn<B::ErrorType> {
+        let size = style.size() * self.text;
         let resized = Resized {
             style,
-            size: style.size() * self.text * self.drawn * self.sx,
+            size: self.fitted(text, style, size, pos) * self.drawn * self.sx,
         };
         self.inner.draw_text(text, &resized, self.at(pos))
     }

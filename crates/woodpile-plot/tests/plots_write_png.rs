@@ -482,3 +482,44 @@ fn default_text_prints_at_7_to_9_pt() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Claim: a line of text too long for the figure (here a 140-character title) is set smaller
+/// so that it stays on the canvas: in the SVG, the title's width at its font size (measured
+/// with the bitmap's typesetter, the same font) fits both ways from its centred anchor, where at
+/// the default size it would not. Exact arithmetic on the SVG's numbers.
+#[test]
+fn a_too_long_title_is_set_smaller_to_fit() {
+    let dir = out_dir("fit");
+    let (_, t) = small_run();
+    let title = "A title far too long for any figure: ".repeat(4);
+    let title = title.trim_end();
+    let files =
+        plot::force_histories(&t.times_s, &histories(&t), title, &dir.join("long")).unwrap();
+    let svg = std::fs::read_to_string(&files[1]).unwrap();
+    let root = &svg[svg.find("viewBox=\"").unwrap() + 9..];
+    let view_w: f64 = root.split(' ').nth(2).unwrap().parse().unwrap();
+    let text = svg
+        .split("<text ")
+        .find(|t| t.contains(title))
+        .expect("the title is drawn");
+    let num = |name: &str| -> f64 {
+        let i = text.find(&format!("{name}=\"")).unwrap() + name.len() + 2;
+        text[i..i + text[i..].find('"').unwrap()].parse().unwrap()
+    };
+    // The SVG's font-size is the em; the typesetter takes the ascent-to-descent size.
+    let size = num("font-size") / plot::typeset::em_per_size();
+    let width = f64::from(plot::typeset::Line::new(title, size, false).size().0);
+    let x = num("x");
+    assert!(
+        width <= 2.0 * x.min(view_w - x),
+        "title {width} units wide at x = {x} on a {view_w}-unit canvas"
+    );
+    let default_size = 22.0 * 4.0 * plot::output::DEFAULT_TEXT_SCALE;
+    let default_width = f64::from(
+        plot::typeset::Line::new(title, default_size, false)
+            .size()
+            .0,
+    );
+    assert!(default_width > view_w, "the test title must be too long");
+    std::fs::remove_dir_all(&dir).ok();
+}
