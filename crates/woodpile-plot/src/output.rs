@@ -342,9 +342,11 @@ impl<B: DrawingBackend> Scaled<B> {
         )
     }
 
-    /// `size`, or smaller where a line of text set at `size` would run off the canvas (a title
-    /// longer than the figure is wide): the room is measured from the anchor along the line's
-    /// direction, both ways for a centred line, less 2 % of the canvas.
+    /// `size`, or smaller where a long line of text set at `size` would run off the canvas (a
+    /// title longer than the figure is wide): the room is measured from the anchor along the
+    /// line's direction, both ways for a centred line, less 2 % of the canvas. Only lines longer
+    /// than a quarter of the canvas are fitted: a tick label centred on the frame's last tick
+    /// may reach the edge and keeps its size.
     fn fitted<S: BackendTextStyle>(
         &self,
         text: &str,
@@ -364,7 +366,7 @@ impl<B: DrawingBackend> Scaled<B> {
             HPos::Right => at,
             HPos::Center => 2.0 * at.min(extent - at),
         } - 0.02 * extent;
-        if width > room && room > 0.0 {
+        if width > room && width > 0.25 * extent && room > 0.0 {
             size * room / width
         } else {
             size
