@@ -1,12 +1,15 @@
 //! `woodpile plot DIR`: the figures of an output directory, written to `DIR/plots/` as PNG and
-//! SVG. What is drawn for a run and for an optimisation is [`woodpile_plot::dirs`].
+//! SVG (or the formats of `--format`), sized for a journal page. What is drawn for a run and for
+//! an optimisation is [`woodpile_plot::dirs`]; how the figures are sized is
+//! [`woodpile_plot::output`].
 
 use crate::commands::Context;
 use crate::CliError;
 use std::path::PathBuf;
 use woodpile::analysis::Window;
 use woodpile_io::rundir::{detect_dir, DirKind};
-use woodpile_plot::dirs::{plot_optimization, plot_run};
+use woodpile_plot::dirs::{plot_optimization, plot_run, RunPlot};
+use woodpile_plot::{Format, Output};
 
 /// Arguments of `woodpile plot`.
 #[derive(Debug, Clone, clap::Args)]
@@ -18,40 +21,166 @@ pub struct Args {
     /// Where to write the figures (default: DIR/plots).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Highest frequency drawn in the spectra, in kHz.
-    #[arg(long, value_name = "KHZ", default_value_t = 80.0)]
-    pub max_frequency_khz: f64,
+    /// Time window of the force histories and the force and energy maps, in ms, e.g.
+    /// `--time-ms 0,0.4`. Default: the whole record, plus `force_histories_onset`, the
+    /// histories zoomed on the first arrivals (chosen from the data).
+    #[arg(long, value_name = "START,END", allow_hyphen_values = true)]
+    pub time_ms: Option<String>,
+    /// Frequency window of the spectra and the spectrum map, in kHz, e.g.
+    /// `--frequency-khz 5,40` [default: 0,80].
+    #[arg(
+        long,
+        value_name = "LO,HI",
+        allow_hyphen_values = true,
+        conflicts_with = "max_frequency_khz"
+    )]
+    pub frequency_khz: Option<String>,
+    /// Highest frequency drawn in the spectra, in kHz (same as `--frequency-khz 0,KHZ`).
+    #[arg(long, value_name = "KHZ")]
+    pub max_frequency_khz: Option<f64>,
     /// A contact force to draw as a history and a spectrum (repeatable): `contact_K` (K = 0..N),
-    /// `striker` or `load` (contact 0), `incident` (contact 1), `wall` (contact N).
-    /// Default: the striker or load, the incident contact and the wall.
+    /// `striker`, `load` or `actuator` (contact 0, labelled by what drives the run), `incident`
+    /// (contact 1), `wall` (contact N). Default: contact 0, the incident contact and the wall.
     #[arg(long = "signal", value_name = "NAME")]
     pub signals: Vec<String>,
     /// Window of the spectra: rectangular, hann, hamming, blackman-harris, flat-top.
     #[arg(long, value_name = "NAME", default_value = "rectangular")]
     pub window: String,
+    /// Files written per figure, comma-separated: png, svg. No PDF (plotters has none):
+    /// convert the SVG, e.g. `rsvg-convert -f pdf -o fig.pdf fig.svg`.
+    #[arg(long, value_name = "LIST", default_value = "png,svg")]
+    pub format: String,
+    /// Resolution of the PNG files, in dots per inch (30 to 2400).
+    #[arg(
+        long,
+        value_name = "DPI",
+        default_value_t = 300.0,
+        allow_hyphen_values = true
+    )]
+    pub dpi: f64,
+    /// Printed width of every figure, in inches (0.5 to 50). Default: 7 in (178 mm, a
+    /// double-column figure) for the maps, histories and spectra, narrower figures in
+    /// proportion; text then prints at 7.2 to 8.7 pt (titles 11.3 pt).
+    #[arg(long, value_name = "IN", allow_hyphen_values = true)]
+    pub width_in: Option<f64>,
+    /// Printed height of every figure, in inches (0.5 to 50). Default: from the width and the
+    /// figure's own aspect ratio.
+    #[arg(long, value_name = "IN", allow_hyphen_values = true)]
+    pub height_in: Option<f64>,
+}
+
+/// `START,END` with START < END, both finite, as a pair.
+fn parse_range(flag: &str, text: &str, unit: &str) -> Result<(f64, f64), CliError> {
+    let bad = |reason: &str| CliError::invalid(flag, text, reason.to_string());
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    let [a, b] = parts[..] else {
+        return Err(bad(&format!(
+            "must be START,END in {unit} (two numbers separated by a comma)"
+        )));
+    };
+    let (a, b) = match (a.parse::<f64>(), b.parse::<f64>()) {
+        (Ok(a), Ok(b)) if a.is_finite() && b.is_finite() => (a, b),
+        _ => {
+            return Err(bad(&format!(
+                "must be START,END in {unit}, two finite numbers"
+            )))
+        }
+    };
+    if a < 0.0 || b <= a {
+        return Err(bad(&format!("must have 0 <= START < END (in {unit})")));
+    }
+    Ok((a, b))
+}
+
+/// The output options of the flags, each checked and named in its error.
+fn output(args: &Args) -> Result<Output, CliError> {
+    let formats = Format::parse_list(&args.format)
+        .map_err(|reason| CliError::invalid("--format", &args.format, reason))?;
+    if !(args.dpi.is_finite() && (30.0..=2400.0).contains(&args.dpi)) {
+        return Err(CliError::invalid(
+            "--dpi",
+            args.dpi,
+            "must be a number from 30 to 2400 (dots per inch)",
+        ));
+    }
+    for (flag, v) in [
+        ("--width-in", args.width_in),
+        ("--height-in", args.height_in),
+    ] {
+        if let Some(v) = v {
+            if !(v.is_finite() && (0.5..=50.0).contains(&v)) {
+                return Err(CliError::invalid(
+                    flag,
+                    v,
+                    "must be a number of inches from 0.5 to 50",
+                ));
+            }
+        }
+    }
+    let out = Output {
+        formats,
+        width_in: args.width_in,
+        height_in: args.height_in,
+        dpi: args.dpi,
+        ..Output::default()
+    };
+    let place = out.place((woodpile_plot::output::REFERENCE_WIDTH, 620), 1);
+    let side = place.pixels.0.max(place.pixels.1);
+    if f64::from(side) > woodpile_plot::output::MAX_PIXELS_PER_SIDE && formats_png(&out) {
+        return Err(CliError::invalid(
+            "--dpi",
+            args.dpi,
+            format!(
+                "gives PNG files {side} px wide or high at this size; at most {} px: lower --dpi or the size",
+                woodpile_plot::output::MAX_PIXELS_PER_SIDE
+            ),
+        ));
+    }
+    Ok(out)
+}
+
+fn formats_png(out: &Output) -> bool {
+    out.formats.contains(&Format::Png)
 }
 
 /// Runs `woodpile plot`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let window = Window::from_name(&args.window).map_err(CliError::at("--window"))?;
-    if !(args.max_frequency_khz.is_finite() && args.max_frequency_khz > 0.0) {
-        return Err(CliError::invalid(
-            "--max-frequency-khz",
-            args.max_frequency_khz,
-            "must be a finite number > 0",
-        ));
-    }
+    let frequency_khz = match (&args.frequency_khz, args.max_frequency_khz) {
+        (Some(text), _) => parse_range("--frequency-khz", text, "kHz")?,
+        (None, Some(max)) => {
+            if !(max.is_finite() && max > 0.0) {
+                return Err(CliError::invalid(
+                    "--max-frequency-khz",
+                    max,
+                    "must be a finite number > 0",
+                ));
+            }
+            (0.0, max)
+        }
+        (None, None) => (0.0, 80.0),
+    };
+    let time_ms = args
+        .time_ms
+        .as_deref()
+        .map(|text| parse_range("--time-ms", text, "ms"))
+        .transpose()?;
+    let output = output(args)?;
     let out = args.out.clone().unwrap_or_else(|| args.dir.join("plots"));
     let files = match detect_dir(&args.dir)? {
         DirKind::Run => plot_run(
             &args.dir,
             &out,
-            args.max_frequency_khz * 1e3,
-            window,
-            &args.signals,
+            &RunPlot {
+                time_s: time_ms.map(|(a, b)| (a * 1e-3, b * 1e-3)),
+                frequency_hz: (frequency_khz.0 * 1e3, frequency_khz.1 * 1e3),
+                window,
+                signals: args.signals.clone(),
+                output,
+            },
         )?,
         DirKind::Optimization => {
-            let (files, note) = plot_optimization(&args.dir, &out)?;
+            let (files, note) = plot_optimization(&args.dir, &out, &output)?;
             if let (Some(note), false) = (note, ctx.quiet) {
                 eprintln!("note: {note}");
             }
@@ -60,12 +189,30 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     };
     if !ctx.quiet {
         println!("wrote {} files to {}", files.len(), out.display());
+        // One line per figure: its PNG, or its first file when no PNG is written.
+        let first = output_first_ext(&files);
         for f in files
             .iter()
-            .filter(|f| f.extension().is_some_and(|e| e == "png"))
+            .filter(|f| f.extension().is_some_and(|e| e == first.as_str()))
         {
             println!("  {}", f.display());
         }
     }
     Ok(())
+}
+
+/// The extension listed per figure: png when written, else the first file's.
+fn output_first_ext(files: &[PathBuf]) -> String {
+    if files
+        .iter()
+        .any(|f| f.extension().is_some_and(|e| e == "png"))
+    {
+        "png".to_string()
+    } else {
+        files
+            .first()
+            .and_then(|f| f.extension())
+            .map(|e| e.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    }
 }

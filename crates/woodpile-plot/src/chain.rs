@@ -125,7 +125,7 @@ impl ChainPicture<'_> {
         }
         let mut chart = builder
             .margin(15)
-            .x_label_area_size(40)
+            .x_label_area_size(55)
             .build_cartesian_2d(-half..half, -(rows as f64) - 1.2..0.8)?;
         chart
             .configure_mesh()
@@ -197,7 +197,7 @@ impl ChainPicture<'_> {
         let wall_y = -(rows as f64) - 0.85;
         if !matches!(self.chain.wall(), Wall::Free) {
             chart.draw_series(std::iter::once(Rectangle::new(
-                [(-half * 0.8, wall_y - 0.25), (half * 0.8, wall_y + 0.12)],
+                [(-half * 0.8, wall_y - 0.35), (half * 0.8, wall_y + 0.21)],
                 RGBColor(90, 90, 90).filled(),
             )))?;
             chart.draw_series(std::iter::once(Text::new(

@@ -2,7 +2,9 @@
 //! `woodpile plot DIR` and `woodpile cells --plot DIR` draw.
 //!
 //! - [`plot_run`]: a `woodpile simulate` run (it holds `run.json`): force, energy and spectrum
-//!   maps, force histories at chosen contacts, their spectra, and a picture of the chain.
+//!   maps, force histories at chosen contacts (and the same zoomed on the first arrivals), their
+//!   spectra, and a picture of the chain, with the time and frequency windows and the output
+//!   of a [`RunPlot`].
 //! - [`plot_optimization`]: a `woodpile optimize` output (it holds `history.csv`): the GA's
 //!   convergence and, once it has finished, the best chain to scale (paper Fig. 5 d, e, right).
 //! - [`cells_figures`]: the catalogue's effective-mass curves with the negative-mass bands
@@ -10,14 +12,15 @@
 //!
 //! Errors are [`woodpile_io::Error`], the type every front end reports.
 
-use crate::{ConvergencePoint, PlotError, Series};
+use crate::{with_output, ConvergencePoint, Output, PlotError, Series};
 use std::fs;
 use std::path::{Path, PathBuf};
 use woodpile::analysis::{
-    contact_spectrum_map, energy_map, force_map, linspace, Scaling, Spectrum, SpectrumSettings,
-    Window,
+    contact_spectrum_map, energy_map, force_map, linspace, Axis, Scaling, Spectrum,
+    SpectrumSettings, Window,
 };
 use woodpile::model::TABLE1_LENGTHS_MM;
+use woodpile::Map2;
 use woodpile::{EffectiveMassCurve, UnitCell};
 use woodpile_io::optimize::read_output;
 use woodpile_io::rundir::{read_error, read_run_info, read_trajectory};
@@ -63,19 +66,95 @@ pub fn describe_chain(labels: &[String]) -> String {
     }
 }
 
-/// Draws every figure of a run directory into `out`; returns the files written.
-pub fn plot_run(
-    dir: &Path,
-    out: &Path,
-    max_frequency_hz: f64,
-    window: Window,
-    signals: &[String],
-) -> Result<Vec<PathBuf>, Error> {
+/// What [`plot_run`] draws of a run, and how it writes it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunPlot {
+    /// Time window \[s\] of the force histories and the force and energy maps; None: the whole
+    /// record, plus `force_histories_onset`, the histories zoomed on the first arrivals
+    /// ([`crate::onset_window_s`]). The spectra are always those of the whole record.
+    pub time_s: Option<(f64, f64)>,
+    /// Frequency window \[Hz\] of the spectra and the spectrum map.
+    pub frequency_hz: (f64, f64),
+    /// Window function of the spectra.
+    pub window: Window,
+    /// Contacts drawn as histories and spectra (names as for [`signal_contact`]); empty: the
+    /// driven contact, contact 1 and the wall.
+    pub signals: Vec<String>,
+    /// Formats, printed size and resolution.
+    pub output: Output,
+}
+
+impl Default for RunPlot {
+    /// The whole record, 0–80 kHz, rectangular window, default contacts and output.
+    fn default() -> Self {
+        RunPlot {
+            time_s: None,
+            frequency_hz: (0.0, 80e3),
+            window: Window::Rectangular,
+            signals: Vec::new(),
+            output: Output::default(),
+        }
+    }
+}
+
+/// What drives contact 0 of a run, from its excitation (`impact …`, `blast …`, `drive …`):
+/// the name its legends and titles give it.
+pub fn contact0_role(excitation: &str) -> Option<&'static str> {
+    match excitation.split_whitespace().next() {
+        Some("impact") => Some("striker"),
+        Some("blast") => Some("load"),
+        Some("drive") => Some("actuator"),
+        _ => None,
+    }
+}
+
+/// The columns of `map` with `lo <= x <= hi`; None when fewer than 2 are inside.
+fn columns_between(map: &Map2, lo: f64, hi: f64) -> Result<Option<Map2>, Error> {
+    let keep: Vec<usize> = (0..map.n_cols())
+        .filter(|&c| lo <= map.cols.values[c] && map.cols.values[c] <= hi)
+        .collect();
+    if keep.len() < 2 {
+        return Ok(None);
+    }
+    let cols = Axis::new(
+        map.cols.name.clone(),
+        map.cols.unit.clone(),
+        keep.iter().map(|&c| map.cols.values[c]).collect(),
+    );
+    let data = (0..map.n_rows())
+        .flat_map(|r| {
+            let row = map.row(r);
+            keep.iter().map(move |&c| row[c])
+        })
+        .collect();
+    Ok(Some(Map2::new(
+        map.rows.clone(),
+        cols,
+        map.value_name.clone(),
+        map.value_unit.clone(),
+        data,
+    )?))
+}
+
+/// Draws every figure of a run directory into `out`: `force_map`, `energy_map`,
+/// `spectrum_map`, `force_histories`, `force_histories_onset` (without a time window, when the
+/// first arrivals take less than half the record), `spectra` and `chain` (when the scenario
+/// still resolves), each in the formats of `plot.output` (by default `.png` and `.svg`).
+/// Returns the files written. A time or frequency window with fewer than 2 samples inside is an
+/// error naming the flag (`--time-ms`, `--frequency-khz`) and the range the run covers.
+pub fn plot_run(dir: &Path, out: &Path, plot: &RunPlot) -> Result<Vec<PathBuf>, Error> {
+    plot.output.check()?;
+    with_output(&plot.output, || draw_run(dir, out, plot))
+}
+
+fn draw_run(dir: &Path, out: &Path, plot: &RunPlot) -> Result<Vec<PathBuf>, Error> {
     let info = read_run_info(dir)?;
     let n = info.labels.len();
-    let signal_picks = signals
+    let role = contact0_role(&info.excitation);
+    let signal_picks = plot
+        .signals
         .iter()
-        .map(|name| signal_contact(name, n))
+        .map(|name| signal_contact_of(name, n, role))
         .collect::<Result<Vec<_>, _>>()?;
     let t = read_trajectory(dir, n)?;
     if t.len() < 2 {
@@ -84,42 +163,78 @@ pub fn plot_run(
             "fewer than 2 samples: nothing to plot",
         ));
     }
+    let (t0, t1) = (t.times_s[0], t.times_s[t.len() - 1]);
+    let ms = |v: f64| format!("{}", (v * 1e6).round() / 1e3);
+    let (w0, w1) = plot.time_s.unwrap_or((t0, t1));
+    let inside = t.times_s.iter().filter(|&&x| w0 <= x && x <= w1).count();
+    if inside < 2 {
+        return Err(Error::invalid(
+            "--time-ms",
+            format!("{},{}", ms(w0), ms(w1)),
+            format!(
+                "holds {inside} sample(s), at least 2 are needed; the run covers {} to {} ms",
+                ms(t0),
+                ms(t1)
+            ),
+        ));
+    }
+    let settings = SpectrumSettings {
+        window: plot.window,
+        scaling: Scaling::FourierMagnitude,
+        ..SpectrumSettings::default()
+    };
+    let spectrum_map = contact_spectrum_map(&t, &settings)?;
+    let (f0, f1) = plot.frequency_hz;
+    let khz = |v: f64| format!("{}", v.round() / 1e3);
+    let nyquist = spectrum_map.cols.values.last().copied().unwrap_or(0.0);
+    let Some(spectrum_map) = columns_between(&spectrum_map, f0, f1)? else {
+        return Err(Error::invalid(
+            "--frequency-khz",
+            format!("{},{}", khz(f0), khz(f1)),
+            format!(
+                "holds fewer than 2 frequencies of the spectra, which cover 0 to {} kHz",
+                khz(nyquist)
+            ),
+        ));
+    };
     create_dir(out)?;
-    let title = format!(
-        "{}: {}, {}",
-        info.name,
-        describe_chain(&info.labels),
-        info.excitation
-    );
+    let chain = describe_chain(&info.labels);
+    // Short enough for the maps' width at the default text size: a long chain is described
+    // by the chain picture, not the titles.
+    let title = if chain.chars().count() <= 24 {
+        format!("{}: {chain}, {}", info.name, info.excitation)
+    } else {
+        format!("{}, {}", info.name, info.excitation)
+    };
     let stem = |s: &str| out.join(s);
+    let windowed = |map: Map2| -> Result<Map2, Error> {
+        Ok(match plot.time_s {
+            Some((a, b)) => columns_between(&map, a, b)?.unwrap_or(map),
+            None => map,
+        })
+    };
     let mut files = Vec::new();
     files.extend(crate::force_map(
-        &force_map(&t)?,
+        &windowed(force_map(&t)?)?,
         &title,
         &stem("force_map"),
     )?);
     files.extend(crate::energy_map(
-        &energy_map(&t)?,
+        &windowed(energy_map(&t)?)?,
         &title,
         &stem("energy_map"),
     )?);
-    let settings = SpectrumSettings {
-        window,
-        scaling: Scaling::FourierMagnitude,
-        ..SpectrumSettings::default()
-    };
     files.extend(crate::spectrum_map(
-        &contact_spectrum_map(&t, &settings)?,
+        &spectrum_map,
         &title,
-        max_frequency_hz,
+        f1,
         &stem("spectrum_map"),
     )?);
-    let striker_label = if info.excitation.starts_with("impact") {
-        "contact 0 (striker)"
-    } else {
-        "contact 0 (load)"
+    let contact0 = match role {
+        Some(r) => format!("contact 0 ({r})"),
+        None => "contact 0".to_string(),
     };
-    let mut picks = vec![(0, striker_label.to_string())];
+    let mut picks = vec![(0, contact0)];
     if n >= 2 {
         picks.push((1, "contact 1 (incident)".to_string()));
     }
@@ -131,12 +246,24 @@ pub fn plot_run(
         .iter()
         .map(|(c, l)| Series::new(l.clone(), t.contact_force_n(*c)))
         .collect();
-    files.extend(crate::force_histories(
+    files.extend(crate::force_histories_between(
         &t.times_s,
         &series,
         &title,
+        (w0, w1),
         &stem("force_histories"),
     )?);
+    if plot.time_s.is_none() {
+        if let Some(onset) = crate::onset_window_s(&t.times_s, &series, 0.5) {
+            files.extend(crate::force_histories_between(
+                &t.times_s,
+                &series,
+                &format!("{title}: first arrivals"),
+                onset,
+                &stem("force_histories_onset"),
+            )?);
+        }
+    }
     let dt = woodpile::analysis::sample_interval_s(&t)?;
     let spectra = picks
         .iter()
@@ -148,24 +275,40 @@ pub fn plot_run(
         })
         .collect::<Result<Vec<_>, woodpile::Error>>()?;
     let refs: Vec<(String, &Spectrum)> = spectra.iter().map(|(l, s)| (l.clone(), s)).collect();
-    files.extend(crate::spectra(
+    files.extend(crate::spectra_between(
         &refs,
         &woodpile::analysis::chain_bands_hz(&info.cells),
         &title,
-        max_frequency_hz,
+        (f0, f1),
         &stem("spectra"),
     )?);
     if let Some(chain) = &info.chain {
-        let chain_title = format!("{} ({} elements, top to bottom)", info.name, n);
+        let chain_title = format!("{}, {n} elements", info.name);
         files.extend(crate::chain_picture(chain, &chain_title, &stem("chain"))?);
     }
     Ok(files)
 }
 
-/// The contact a `--signal` name designates, with its legend label.
+/// The contact a `--signal` name designates, with its legend label: `contact_K` (K = 0..n),
+/// `striker`, `load` or `actuator` (contact 0), `incident` (contact 1), `wall` (contact n).
 pub fn signal_contact(name: &str, n: usize) -> Result<(usize, String), Error> {
+    let role = match name {
+        "striker" | "load" | "actuator" => Some(name),
+        _ => None,
+    };
+    signal_contact_of(name, n, role)
+}
+
+/// [`signal_contact`] in a run whose contact 0 is driven by `role` (see [`contact0_role`]):
+/// contact 0 is labelled by the run's role whatever name selected it, so a blast run's contact
+/// 0 is never called the striker.
+pub fn signal_contact_of(
+    name: &str,
+    n: usize,
+    role: Option<&str>,
+) -> Result<(usize, String), Error> {
     let contact = match name {
-        "striker" | "load" => Some(0),
+        "striker" | "load" | "actuator" => Some(0),
         "incident" if n >= 2 => Some(1),
         "wall" => Some(n),
         _ => name
@@ -175,10 +318,10 @@ pub fn signal_contact(name: &str, n: usize) -> Result<(usize, String), Error> {
     };
     contact
         .map(|c| {
-            let label = if name.starts_with("contact_") {
-                format!("contact {c}")
-            } else {
-                format!("contact {c} ({name})")
+            let label = match (c, role) {
+                (0, Some(r)) => format!("contact 0 ({r})"),
+                _ if name.starts_with("contact_") || c == 0 => format!("contact {c}"),
+                _ => format!("contact {c} ({name})"),
             };
             (c, label)
         })
@@ -186,12 +329,14 @@ pub fn signal_contact(name: &str, n: usize) -> Result<(usize, String), Error> {
             Error::invalid(
                 "--signal",
                 name,
-                format!("unknown signal; valid: contact_0 .. contact_{n}, striker, load, incident, wall"),
+                format!("unknown signal; valid: contact_0 .. contact_{n}, striker, load, actuator (contact 0), incident, wall"),
             )
         })
 }
 
-/// The catalogue's effective-mass curves (paper Fig. 3 a: 20–40 mm, b: 50–80 mm) into `dir`.
+/// The catalogue's effective-mass curves (paper Fig. 3 a: 20–40 mm, b: 50–80 mm) into `dir`:
+/// `effective_mass_20_40mm` and `effective_mass_50_80mm`, in the formats of the
+/// [`Output`] in effect (by default `.png` and `.svg`).
 pub fn cells_figures(dir: &Path, resonator_ratio: f64) -> Result<Vec<PathBuf>, Error> {
     create_dir(dir)?;
     let f = linspace(0.0, 60e3, 3001);
@@ -207,21 +352,32 @@ pub fn cells_figures(dir: &Path, resonator_ratio: f64) -> Result<Vec<PathBuf>, E
             Ok((format!("{l} mm"), curve))
         })
         .collect::<Result<Vec<_>, woodpile::Error>>()?;
-    let damped = if resonator_ratio > 0.0 {
-        format!(" (real part, resonators damped at ζ = {resonator_ratio})")
+    // Titles short enough for the figure's width at the default text size (see
+    // crate::output); the axis says what is drawn.
+    let (one, two, shaded) = if resonator_ratio > 0.0 {
+        let z = format!("ζ = {resonator_ratio} (real part)");
+        (
+            format!("20, 30, 40 mm rods, {z}"),
+            format!("50–80 mm rods, {z}"),
+            "undamped bands shaded",
+        )
     } else {
-        String::new()
+        (
+            "20, 30, 40 mm rods (one resonator)".to_string(),
+            "50–80 mm rods (two resonators)".to_string(),
+            "negative-mass bands shaded",
+        )
     };
     let mut files = Vec::new();
     for (curves, title, name) in [
         (
             &curves[..3],
-            format!("Effective mass of 20, 30, 40 mm rods (one resonator){damped}, undamped negative-mass bands shaded"),
+            format!("{one}; {shaded}"),
             "effective_mass_20_40mm",
         ),
         (
             &curves[3..],
-            format!("Effective mass of 50–80 mm rods (two resonators){damped}, undamped negative-mass bands shaded"),
+            format!("{two}; {shaded}"),
             "effective_mass_50_80mm",
         ),
     ] {
@@ -244,8 +400,18 @@ pub fn objective_label(name: &str, unit: &str) -> String {
 
 /// Draws the figures of a `woodpile optimize` output into `out`: `convergence` (best and mean
 /// objective per generation) and, once the run has written `best.toml`, `best_chain` (rods to
-/// scale, top to bottom). Returns the files written and a note when the chain could not be drawn.
-pub fn plot_optimization(dir: &Path, out: &Path) -> Result<(Vec<PathBuf>, Option<String>), Error> {
+/// scale, top to bottom), each in the formats of `output` (by default `.png` and `.svg`).
+/// Returns the files written and a note when the chain could not be drawn.
+pub fn plot_optimization(
+    dir: &Path,
+    out: &Path,
+    output: &Output,
+) -> Result<(Vec<PathBuf>, Option<String>), Error> {
+    output.check()?;
+    with_output(output, || draw_optimization(dir, out))
+}
+
+fn draw_optimization(dir: &Path, out: &Path) -> Result<(Vec<PathBuf>, Option<String>), Error> {
     let output = read_output(dir)?;
     let points: Vec<ConvergencePoint> = output
         .history

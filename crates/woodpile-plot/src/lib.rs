@@ -10,15 +10,17 @@
 //! | [`energy_map`] | layer energy / injected energy [%], layer × time | Fig. 6 |
 //! | [`spectrum_map`] | force spectrum (log), contact × frequency | Fig. 9 b, d, f, h |
 //! | [`protocol_map`], [`peaks_per_layer`] | layer-by-layer protocol | Fig. 7 a, b |
-//! | [`force_histories`] | force at chosen contacts vs time | Fig. 7 c |
-//! | [`spectra`] | amplitude spectra (log) with negative-mass bands shaded | Fig. 9 |
+//! | [`force_histories`], [`force_histories_between`] | force at chosen contacts vs time | Fig. 7 c |
+//! | [`spectra`], [`spectra_between`] | amplitude spectra (log) with negative-mass bands shaded | Fig. 9 |
 //! | [`effective_mass`] | M_eff/M_total vs frequency with bands shaded | Fig. 3 |
 //! | [`transmission`] | transmission spectrum (dB) with the predicted gaps shaded | – |
 //! | [`convergence`] | best and mean objective per GA generation | – |
 //! | [`chain_picture`] | rods to scale, top to bottom | Fig. 5 d, e (right) |
 //!
-//! Every function takes a file *stem* (`dir/force_map`) and writes `stem.png` and `stem.svg`,
-//! returning the two paths.
+//! Every function takes a file *stem* (`dir/force_map`) and writes `stem.png` and `stem.svg`
+//! (the formats, printed size and resolution of the [`Output`] in effect: by default PNG at
+//! 300 dpi and SVG, full-width figures 7 in wide; see [`output`] and [`with_output`]),
+//! returning the paths written.
 //!
 //! Heat maps of long chains are reduced to at most 300 rows × 600 columns of cells (each the
 //! largest magnitude of its group, so peaks survive) and their SVG embeds the cells as one
@@ -37,15 +39,17 @@ mod colormap;
 pub mod dirs;
 mod heatmap;
 mod lines;
+pub mod output;
 pub mod typeset;
 
 pub use chain::chain_picture;
 pub use colormap::ColorMap;
 pub use heatmap::{energy_map, force_map, protocol_map, spectrum_map, Heatmap};
 pub use lines::{
-    convergence, effective_mass, force_histories, peaks_per_layer, spectra, transmission,
-    ConvergencePoint, Series,
+    convergence, effective_mass, force_histories, force_histories_between, onset_window_s,
+    peaks_per_layer, spectra, spectra_between, transmission, ConvergencePoint, Series,
 };
+pub use output::{with_output, Format, Output};
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -89,10 +93,22 @@ impl<E: std::error::Error + Send + Sync> From<DrawingAreaErrorKind<E>> for DrawF
 pub(crate) type DrawResult = std::result::Result<(), DrawFailure>;
 
 /// A figure that can be drawn on any plotters backend.
+///
+/// A figure lays itself out in logical units on a canvas of its own [`Figure::size`] (text
+/// 14–22 units high); [`render`] maps the units to the printed size and the bitmap's pixels
+/// (see [`output`]), so no figure knows the output's resolution.
 pub(crate) trait Figure {
-    /// Canvas size in pixels.
+    /// Canvas size in logical units.
     fn size(&self) -> (u32, u32);
-    /// Draws on a white canvas.
+    /// Logical units per layout unit: a figure that lays out on a nominal canvas (e.g. 1100 ×
+    /// 600) with every length and font size multiplied by this factor, so that plotters'
+    /// integer coordinates are finer than the layout grid. Its printed size by default is that
+    /// of the nominal canvas.
+    fn subdivision(&self) -> u32 {
+        1
+    }
+    /// Draws on a white canvas of the drawing area's size: [`Figure::size`], or that width
+    /// with another height when the output asks for another aspect ratio.
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
     where
         DB::ErrorType: 'static;
@@ -110,47 +126,32 @@ fn register_fonts() {
     });
 }
 
-/// Writes `stem.png` and `stem.svg`.
+/// Writes the figure in the formats of the [`Output`] in effect on this thread (by default
+/// `stem.png` and `stem.svg`); returns the files written.
 pub(crate) fn render(figure: &impl Figure, stem: &Path) -> Result<Vec<PathBuf>> {
     register_fonts();
-    let size = figure.size();
-    let png = with_extension(stem, "png");
-    let svg = with_extension(stem, "svg");
-    let fail = |path: &Path| {
-        let path = path.to_path_buf();
-        move |e: DrawFailure| PlotError::Draw { path, reason: e.0 }
-    };
-    {
-        // Drawn into an RGB buffer and encoded with the `png` crate: plotters' own encoder
-        // would pull in the whole `image` crate (a fifth of the test build's dependencies).
-        let mut rgb = vec![0u8; 3 * size.0 as usize * size.1 as usize];
-        {
-            let root =
-                typeset::Typeset(BitMapBackend::with_buffer(&mut rgb, size)).into_drawing_area();
-            figure.draw(&root).map_err(fail(&png))?;
-            root.present()
-                .map_err(|e| DrawFailure(e.to_string()))
-                .map_err(fail(&png))?;
-        }
-        write_png(&png, size, &rgb).map_err(fail(&png))?;
-    }
-    {
-        let root = SVGBackend::new(&svg, size).into_drawing_area();
-        figure.draw(&root).map_err(fail(&svg))?;
-        root.present()
-            .map_err(|e| DrawFailure(e.to_string()))
-            .map_err(fail(&svg))?;
-    }
-    Ok(vec![png, svg])
+    output::write(figure, stem, &output::current_output())
 }
 
-/// Encodes an 8-bit RGB buffer of `size` pixels as the PNG file `path`.
-fn write_png(path: &Path, size: (u32, u32), rgb: &[u8]) -> std::result::Result<(), DrawFailure> {
+/// Encodes an 8-bit RGB buffer of `size` pixels as the PNG file `path`, declaring `dpi` in its
+/// `pHYs` chunk (pixels per metre, rounded) so that documents place it at its printed size.
+fn write_png(
+    path: &Path,
+    size: (u32, u32),
+    dpi: f64,
+    rgb: &[u8],
+) -> std::result::Result<(), DrawFailure> {
     let fail = |e: &dyn std::fmt::Display| DrawFailure(e.to_string());
     let file = std::fs::File::create(path).map_err(|e| fail(&e))?;
     let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), size.0, size.1);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
+    let per_metre = (dpi / 0.0254).round() as u32;
+    encoder.set_pixel_dims(Some(png::PixelDimensions {
+        xppu: per_metre,
+        yppu: per_metre,
+        unit: png::Unit::Meter,
+    }));
     let mut writer = encoder.write_header().map_err(|e| fail(&e))?;
     writer.write_image_data(rgb).map_err(|e| fail(&e))?;
     writer.finish().map_err(|e| fail(&e))

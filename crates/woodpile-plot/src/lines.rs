@@ -7,6 +7,7 @@ use crate::{
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::path::{Path, PathBuf};
 use woodpile::{EffectiveMassCurve, Spectrum};
 
@@ -41,6 +42,13 @@ pub struct ConvergencePoint {
 }
 
 const LEGEND_FONT: u32 = 15;
+
+/// Drawing units per layout unit of the line plots: they lay out as 1100 × 600 (or 1000 × 600)
+/// with 15–22-unit text, on a canvas 4 times finer, every length multiplied by 4. plotters
+/// rounds coordinates to whole units of the canvas; on the layout grid (1/1100 of the width)
+/// a nearly flat curve drawn 2100 px wide (7 in at 300 dpi) climbs in visible 2-px steps, on
+/// the fine grid in sub-pixel ones.
+const FINE: u32 = 4;
 
 /// A polyline broken into segments (a new segment where the line must not be joined).
 type Segments = Vec<Vec<(f64, f64)>>;
@@ -78,6 +86,7 @@ impl LinePlot {
         DB::ErrorType: 'static,
         Y: Ranged<ValueType = f64>,
     {
+        let mut legend: Vec<(&str, Swatch)> = Vec::new();
         for (lo, hi, colour, label) in &self.bands {
             let c = match colour {
                 Some(i) => series_color(*i).mix(0.15),
@@ -87,20 +96,18 @@ impl LinePlot {
             if hi <= lo {
                 continue;
             }
-            let s = chart.draw_series(std::iter::once(Rectangle::new(
+            chart.draw_series(std::iter::once(Rectangle::new(
                 [(lo, y_lo), (hi, y_hi)],
                 c.filled(),
             )))?;
             if let Some(label) = label {
-                s.label(label.as_str()).legend(move |(x, y)| {
-                    Rectangle::new([(x, y - 6), (x + 18, y + 6)], c.filled())
-                });
+                legend.push((label.as_str(), Swatch::Band(c)));
             }
         }
         if self.zero_line {
             chart.draw_series(LineSeries::new(
                 [(self.x_range.0, 0.0), (self.x_range.1, 0.0)],
-                BLACK.mix(0.5).stroke_width(1),
+                BLACK.mix(0.5).stroke_width(FINE),
             ))?;
         }
         for (i, (label, segments)) in self.series.iter().enumerate() {
@@ -108,36 +115,96 @@ impl LinePlot {
             // Dense series (spectra) 1 px wide: the miter joins of their sharp peaks would
             // overshoot the frame by far at 2 px.
             let points: usize = segments.iter().map(Vec::len).sum();
-            let style = colour.stroke_width(if points > 1000 { 1 } else { 2 });
-            for (k, seg) in segments.iter().enumerate() {
-                let s = chart.draw_series(LineSeries::new(seg.iter().copied(), style))?;
-                if k == 0 {
-                    s.label(label.as_str()).legend(move |(x, y)| {
-                        PathElement::new([(x, y), (x + 18, y)], colour.stroke_width(3))
-                    });
-                }
+            let style = colour.stroke_width(FINE * if points > 1000 { 1 } else { 2 });
+            legend.push((label.as_str(), Swatch::Line(colour)));
+            for seg in segments {
+                chart.draw_series(LineSeries::new(seg.iter().copied(), style))?;
                 if self.markers {
                     chart.draw_series(
                         seg.iter()
-                            .map(|&(x, y)| Circle::new((x, y), 4, colour.filled())),
+                            .map(|&(x, y)| Circle::new((x, y), 4 * FINE, colour.filled())),
                     )?;
                 }
             }
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.4))
-            .label_font((FONT, LEGEND_FONT))
-            .draw()?;
-        Ok(())
+        draw_legend(&chart.plotting_area().strip_coord_spec(), &legend)
     }
+}
+
+/// What a legend entry shows left of its label.
+#[derive(Clone, Copy)]
+enum Swatch {
+    /// A line in the series' colour.
+    Line(RGBColor),
+    /// A filled box in the band's colour.
+    Band(RGBAColor),
+}
+
+/// A legend in the upper right corner of `area` (the plotting area). Drawn here rather than by
+/// plotters' series labels, which size their box from the font at the figure's logical size:
+/// the labels' sizes are measured through the backend, so the box fits text that the output
+/// enlarges (see [`crate::output`]).
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    entries: &[(&str, Swatch)],
+) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
+    if entries.is_empty() {
+        return Ok(());
+    }
+    let style = TextStyle::from((FONT, LEGEND_FONT * FINE).into_font())
+        .pos(Pos::new(HPos::Left, VPos::Center));
+    let mut sizes = Vec::with_capacity(entries.len());
+    for (label, _) in entries {
+        sizes.push(area.estimate_text_size(label, &style)?);
+    }
+    let text_w = sizes.iter().map(|s| s.0).max().unwrap_or(0) as i32;
+    let f = FINE as i32;
+    let row = sizes.iter().map(|s| s.1).max().unwrap_or(0) as i32 + 6 * f;
+    let (pad, swatch, gap) = (8 * f, 22 * f, 8 * f);
+    let (w, _) = area.dim_in_pixel();
+    let box_w = pad + swatch + gap + text_w + pad;
+    let box_h = pad + row * entries.len() as i32 + pad - 6 * f;
+    let (x0, y0) = (w as i32 - 10 * f - box_w, 10 * f);
+    area.draw(&Rectangle::new(
+        [(x0, y0), (x0 + box_w, y0 + box_h)],
+        WHITE.mix(0.85).filled(),
+    ))?;
+    area.draw(&Rectangle::new(
+        [(x0, y0), (x0 + box_w, y0 + box_h)],
+        BLACK.mix(0.4).stroke_width(FINE),
+    ))?;
+    for (k, (label, sw)) in entries.iter().enumerate() {
+        let y = y0 + pad + row * k as i32 + (row - 6 * f) / 2;
+        let x = x0 + pad;
+        match *sw {
+            Swatch::Line(c) => area.draw(&PathElement::new(
+                [(x, y), (x + swatch, y)],
+                c.stroke_width(3 * FINE),
+            ))?,
+            Swatch::Band(c) => area.draw(&Rectangle::new(
+                [(x, y - row / 3), (x + swatch, y + row / 3)],
+                c.filled(),
+            ))?,
+        }
+        area.draw(&Text::new(
+            label.to_string(),
+            (x + swatch + gap, y),
+            style.clone(),
+        ))?;
+    }
+    Ok(())
 }
 
 impl Figure for LinePlot {
     fn size(&self) -> (u32, u32) {
-        self.size
+        (self.size.0 * FINE, self.size.1 * FINE)
+    }
+
+    fn subdivision(&self) -> u32 {
+        FINE
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
@@ -149,10 +216,10 @@ impl Figure for LinePlot {
         let (y0, y1) = self.y_range;
         let mut builder = ChartBuilder::on(root);
         builder
-            .caption(&self.title, (FONT, 22))
-            .margin(15)
-            .x_label_area_size(50)
-            .y_label_area_size(85);
+            .caption(&self.title, (FONT, 22 * FINE))
+            .margin(15 * FINE)
+            .x_label_area_size(50 * FINE)
+            .y_label_area_size(85 * FINE);
         if self.log_y {
             let mut chart = builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())?;
             chart
@@ -161,8 +228,11 @@ impl Figure for LinePlot {
                 .x_label_formatter(&|v| format_number(*v))
                 .y_desc(&self.y_label)
                 .y_label_formatter(&|v| format_number(*v))
-                .label_style((FONT, 15))
-                .axis_desc_style((FONT, 17))
+                .label_style((FONT, 15 * FINE))
+                .axis_desc_style((FONT, 17 * FINE))
+                .set_all_tick_mark_size(5 * FINE)
+                .axis_style(BLACK.stroke_width(FINE))
+                .bold_line_style(BLACK.mix(0.2).stroke_width(FINE))
                 .light_line_style(WHITE.mix(0.0))
                 .draw()?;
             self.draw_on(&mut chart, y0, y1)
@@ -174,8 +244,11 @@ impl Figure for LinePlot {
                 .x_label_formatter(&|v| format_number(*v))
                 .y_desc(&self.y_label)
                 .y_label_formatter(&|v| format_number(*v))
-                .label_style((FONT, 15))
-                .axis_desc_style((FONT, 17))
+                .label_style((FONT, 15 * FINE))
+                .axis_desc_style((FONT, 17 * FINE))
+                .set_all_tick_mark_size(5 * FINE)
+                .axis_style(BLACK.stroke_width(FINE))
+                .bold_line_style(BLACK.mix(0.2).stroke_width(FINE))
                 .light_line_style(WHITE.mix(0.0))
                 .draw()?;
             self.draw_on(&mut chart, y0, y1)
@@ -191,11 +264,29 @@ fn bad(what: &str, reason: impl Into<String>) -> PlotError {
 }
 
 /// Force histories at chosen contacts (e.g. the striker contact, contact 1 and the wall): time
-/// in ms, force in N.
+/// in ms, force in N, over the whole record. Writes `stem.png` and `stem.svg` (the formats of
+/// the [`crate::Output`] in effect).
 pub fn force_histories(
     times_s: &[f64],
     series: &[Series],
     title: &str,
+    stem: &Path,
+) -> Result<Vec<PathBuf>> {
+    if times_s.len() < 2 || series.is_empty() {
+        return Err(bad(title, "needs at least 2 samples and 1 series"));
+    }
+    let (t0, t1) = (times_s[0], times_s[times_s.len() - 1]);
+    force_histories_between(times_s, series, title, (t0, t1), stem)
+}
+
+/// [`force_histories`] over the samples with `window_s.0 <= t <= window_s.1` only (the axis
+/// spans the first to the last of them). An error when fewer than 2 samples are inside, saying
+/// which times the record covers. Writes `stem.png` and `stem.svg`.
+pub fn force_histories_between(
+    times_s: &[f64],
+    series: &[Series],
+    title: &str,
+    window_s: (f64, f64),
     stem: &Path,
 ) -> Result<Vec<PathBuf>> {
     if times_s.len() < 2 || series.is_empty() {
@@ -212,9 +303,29 @@ pub fn force_histories(
             ),
         ));
     }
-    let (_, hi) = finite_range(title, series.iter().flat_map(|s| s.values.iter().copied()))?;
-    let (lo, _) = finite_range(title, series.iter().flat_map(|s| s.values.iter().copied()))?;
+    let inside: Vec<usize> = (0..times_s.len())
+        .filter(|&i| window_s.0 <= times_s[i] && times_s[i] <= window_s.1)
+        .collect();
+    if inside.len() < 2 {
+        return Err(bad(
+            title,
+            format!(
+                "fewer than 2 samples between {} and {} ms; the record covers {} to {} ms",
+                window_s.0 * 1e3,
+                window_s.1 * 1e3,
+                times_s[0] * 1e3,
+                times_s[times_s.len() - 1] * 1e3
+            ),
+        ));
+    }
+    let values = || {
+        series
+            .iter()
+            .flat_map(|s| inside.iter().map(|&i| s.values[i]))
+    };
+    let (lo, hi) = finite_range(title, values())?;
     let (y0, y1) = padded(lo.min(0.0), hi * 1.08);
+    let (first, last) = (inside[0], inside[inside.len() - 1]);
     LinePlot {
         title: title.to_string(),
         x_label: "time [ms]".into(),
@@ -222,18 +333,15 @@ pub fn force_histories(
         series: series
             .iter()
             .map(|s| {
-                let pts = times_s
+                let pts = inside
                     .iter()
-                    .map(|t| t * 1e3)
-                    .zip(s.values.iter().copied());
-                (
-                    s.label.clone(),
-                    vec![pts.filter(|p| p.1.is_finite()).collect()],
-                )
+                    .map(|&i| (times_s[i] * 1e3, s.values[i]))
+                    .filter(|p| p.1.is_finite());
+                (s.label.clone(), vec![pts.collect()])
             })
             .collect(),
         bands: Vec::new(),
-        x_range: (times_s[0] * 1e3, times_s[times_s.len() - 1] * 1e3),
+        x_range: (times_s[first] * 1e3, times_s[last] * 1e3),
         y_range: (y0, y1),
         log_y: false,
         markers: false,
@@ -243,9 +351,48 @@ pub fn force_histories(
     .write(stem)
 }
 
+/// The time window of the first arrivals, chosen from the data: from the record's start to the
+/// latest *arrival* among the series plus four times the *first pulse* of the first series (the
+/// driven contact), at most the record's end. A series arrives at the first sample where
+/// |F| reaches 10 % of its largest |F|; the first pulse lasts from the first series' arrival to
+/// the first later sample where its |F| is below 10 % of that largest value again. With the
+/// paper's striker on 20 rods this shows the incident pulses and the wall's first rise (about
+/// 0–0.43 ms of a 2 ms record). None when a series never rises above zero or the window would
+/// cover more than `max_fraction` of the record (zooming would not help).
+pub fn onset_window_s(times_s: &[f64], series: &[Series], max_fraction: f64) -> Option<(f64, f64)> {
+    let (t0, t1) = (*times_s.first()?, *times_s.last()?);
+    let peak = |s: &Series| {
+        s.values
+            .iter()
+            .map(|v| v.abs())
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::max)
+    };
+    let arrival = |s: &Series| {
+        let level = 0.1 * peak(s);
+        (level > 0.0)
+            .then(|| s.values.iter().position(|v| v.abs() >= level))
+            .flatten()
+    };
+    let mut latest = 0;
+    for s in series {
+        latest = latest.max(arrival(s)?);
+    }
+    let first = series.first()?;
+    let start = arrival(first)?;
+    let level = 0.1 * peak(first);
+    let end = first.values[start..]
+        .iter()
+        .position(|v| v.abs() < level)
+        .map_or(first.values.len() - 1, |k| start + k);
+    let pulse = times_s[end.min(times_s.len() - 1)] - times_s[start];
+    let stop = (times_s[latest.min(times_s.len() - 1)] + 4.0 * pulse).min(t1);
+    (stop > t0 && stop - t0 <= max_fraction * (t1 - t0)).then_some((t0, stop))
+}
+
 /// Spectra (log scale, labelled by their [`woodpile::analysis::Scaling`]: amplitude \[N\] or
 /// |F̂(f)| \[N/Hz\]; frequency in kHz up to `max_frequency_hz`) with the negative-effective-mass
-/// bands `bands_hz` shaded (paper Fig. 9).
+/// bands `bands_hz` shaded (paper Fig. 9). Writes `stem.png` and `stem.svg`.
 pub fn spectra(
     spectra: &[(String, &Spectrum)],
     bands_hz: &[(f64, f64)],
@@ -253,15 +400,29 @@ pub fn spectra(
     max_frequency_hz: f64,
     stem: &Path,
 ) -> Result<Vec<PathBuf>> {
+    spectra_between(spectra, bands_hz, title, (0.0, max_frequency_hz), stem)
+}
+
+/// [`spectra`] between `window_hz.0` and `window_hz.1` (the axis spans the window, or up to the
+/// highest frequency computed). 0 Hz (the mean force) is never drawn. An error when no
+/// frequency lies inside. Writes `stem.png` and `stem.svg`.
+pub fn spectra_between(
+    spectra: &[(String, &Spectrum)],
+    bands_hz: &[(f64, f64)],
+    title: &str,
+    window_hz: (f64, f64),
+    stem: &Path,
+) -> Result<Vec<PathBuf>> {
     if spectra.is_empty() {
         return Err(bad(title, "no spectrum"));
     }
+    let (lo_hz, max_frequency_hz) = window_hz;
     let in_range = |s: &Spectrum| -> Vec<(f64, f64)> {
         s.frequencies_hz
             .iter()
             .zip(&s.amplitudes)
             .skip(1) // 0 Hz: the mean force, not a vibration
-            .take_while(|(f, _)| **f <= max_frequency_hz)
+            .filter(|(f, _)| lo_hz <= **f && **f <= max_frequency_hz)
             .map(|(f, a)| (f * 1e-3, *a))
             .collect()
     };
@@ -312,7 +473,7 @@ pub fn spectra(
             })
             .collect(),
         bands,
-        x_range: (0.0, x_max),
+        x_range: (lo_hz * 1e-3, x_max.max(lo_hz * 1e-3 + 1e-9)),
         y_range: (floor, top * 2.0),
         log_y: true,
         markers: false,
@@ -324,6 +485,7 @@ pub fn spectra(
 
 /// Effective-mass curves M_eff/M_total against frequency in kHz, clipped to ±`y_limit`, each
 /// curve's negative-mass bands shaded in its colour (paper Fig. 3).
+/// Writes `stem.png` and `stem.svg`.
 pub fn effective_mass(
     curves: &[(String, EffectiveMassCurve)],
     title: &str,
@@ -402,6 +564,7 @@ pub fn effective_mass(
 }
 
 /// Convergence of a genetic algorithm: best and mean objective per generation.
+/// Writes `stem.png` and `stem.svg`.
 pub fn convergence(
     points: &[ConvergencePoint],
     objective_label: &str,
@@ -443,6 +606,7 @@ pub fn convergence(
 
 /// Peak force per interface k = 1..N (one or more series, e.g. protocol vs full chain; paper
 /// Fig. 7 b).
+/// Writes `stem.png` and `stem.svg`.
 pub fn peaks_per_layer(
     series: &[Series],
     title: &str,
@@ -484,6 +648,7 @@ pub fn peaks_per_layer(
 
 /// A transmission spectrum T_dB against frequency in kHz, the predicted band gaps shaded grey and
 /// the measured stop bands (below `threshold_db`) marked by a dashed level (docs/physics.md §15).
+/// Writes `stem.png` and `stem.svg`.
 pub fn transmission(
     spectrum: &woodpile::analysis::TransmissionSpectrum,
     threshold_db: f64,

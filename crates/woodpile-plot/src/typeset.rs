@@ -24,6 +24,13 @@ fn faces() -> &'static (FontRef<'static>, FontRef<'static>) {
     })
 }
 
+/// The em of DejaVu Sans per unit of the size a [`Line`] is laid out at (its ascent-to-descent
+/// height): units per em / (ascent − descent) of the regular face, 2048 / 2384 = 0.859.
+pub fn em_per_size() -> f64 {
+    let face = &faces().0;
+    f64::from(face.units_per_em().unwrap_or(2048.0)) / f64::from(face.height_unscaled())
+}
+
 /// A line of text laid out at a pixel size in DejaVu Sans: glyph pen positions from the left
 /// end of the baseline (kerned, in floating point), the advance width and the ascent and
 /// descent \[px\]. Every bitmap figure's text is drawn from one.

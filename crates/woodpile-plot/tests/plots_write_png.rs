@@ -233,6 +233,17 @@ fn svg_texts(path: &Path) -> Vec<String> {
         .collect()
 }
 
+/// The figures' own layout, one pixel per layout unit (the default printed widths at
+/// 1100 px / 7 in, text as laid out): the pixel claims below are stated in it, whatever the
+/// default resolution.
+fn layout_pixels() -> plot::Output {
+    plot::Output {
+        dpi: f64::from(plot::output::REFERENCE_WIDTH) / plot::output::DEFAULT_WIDTH_IN,
+        text_scale: 1.0,
+        ..Default::default()
+    }
+}
+
 /// A map `rows` × `cols` (index rows, time columns 1 µs apart) with values `f(row, col)`.
 fn map_of(
     rows: woodpile::analysis::Axis,
@@ -279,7 +290,7 @@ fn png_pixels(path: &Path) -> (usize, usize, Vec<u8>) {
 /// Claim: the maps of a 10,001-contact chain over 2,000 samples (20 M values) stay small: SVG
 /// under 5 MB (the issue's target; 85 KB and 113 KB measured for the force and energy maps, as
 /// the cells travel as one PNG image of at most 300 × 600 cells, each a block of whole pixels;
-/// drawn as rectangles they take 15.5 MB), PNG at the fixed 1100 × 620 px and under 1 MB (122 KB
+/// drawn as rectangles they take 15.5 MB), PNG at the fixed 1100 × 620 px of the layout and under 1 MB (122 KB
 /// and 144 KB measured). And the y axis
 /// names real contacts (5000 and 10000 among its labels), not drawn-row numbers.
 #[test]
@@ -288,8 +299,12 @@ fn maps_of_a_10000_element_chain_stay_small() {
     let map = travelling_pulse(10_001, 2_000);
     let mut energy = map.clone();
     energy.data.iter_mut().for_each(|v| *v /= 3000.0);
-    let force = plot::force_map(&map, "10,000 rods", &dir.join("force")).unwrap();
-    let energy = plot::energy_map(&energy, "10,000 rods", &dir.join("energy")).unwrap();
+    let (force, energy) = plot::with_output(&layout_pixels(), || {
+        (
+            plot::force_map(&map, "10,000 rods", &dir.join("force")).unwrap(),
+            plot::energy_map(&energy, "10,000 rods", &dir.join("energy")).unwrap(),
+        )
+    });
     for paths in [&force, &energy] {
         check(paths);
         let png = std::fs::metadata(&paths[0]).unwrap().len();
@@ -326,7 +341,9 @@ fn row_reduction_keeps_a_spike_in_one_row_of_10000() {
             }
         },
     );
-    let paths = plot::force_map(&map, "one spike", &dir.join("spike")).unwrap();
+    let paths = plot::with_output(&layout_pixels(), || {
+        plot::force_map(&map, "one spike", &dir.join("spike")).unwrap()
+    });
     let (w, h, rgb) = png_pixels(&paths[0]);
     let top = plot::ColorMap::Viridis.rgb(1.0);
     // The map ends left of x = 900 px (the colour bar starts right of it).
@@ -417,7 +434,9 @@ fn the_picture_of_a_10000_rod_chain_is_bounded() {
         .unwrap()
         .build()
         .unwrap();
-    let paths = plot::chain_picture(&chain, "10,000 rods", &dir.join("chain")).unwrap();
+    let paths = plot::with_output(&layout_pixels(), || {
+        plot::chain_picture(&chain, "10,000 rods", &dir.join("chain")).unwrap()
+    });
     check(&paths);
     let (w, h, _) = png_pixels(&paths[0]);
     assert!(w <= 1000 && h <= 900, "{w} × {h}");
@@ -430,5 +449,310 @@ fn the_picture_of_a_10000_rod_chain_is_bounded() {
             .any(|t| t.contains("first and last 10 of 10000")),
         "{texts:?}"
     );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+// --- output options and histories ---
+
+/// Width and height of a PNG file from its IHDR chunk, and its pHYs pixels per metre (None
+/// without a pHYs chunk).
+fn png_info(path: &Path) -> ((u32, u32), Option<(u32, u32)>) {
+    let png = std::fs::read(path).unwrap();
+    assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n", "{}", path.display());
+    let be = |i: usize| u32::from_be_bytes(png[i..i + 4].try_into().unwrap());
+    let size = (be(16), be(20));
+    // Walk the chunks: length, type, data, CRC.
+    let mut i = 8;
+    let mut phys = None;
+    while i + 8 <= png.len() {
+        let len = be(i) as usize;
+        if &png[i + 4..i + 8] == b"pHYs" {
+            assert_eq!(png[i + 16], 1, "pHYs unit is the metre");
+            phys = Some((be(i + 8), be(i + 12)));
+        }
+        i += 12 + len;
+    }
+    (size, phys)
+}
+
+/// The x-axis tick labels of an SVG written by plotters: centred texts hanging below their
+/// anchor (`text-anchor="middle"`, `dy="0.76em"`) that are numbers.
+fn svg_x_ticks(svg: &str) -> Vec<f64> {
+    svg.split("<text ")
+        .skip(1)
+        .filter(|t| t.contains("text-anchor=\"middle\"") && t.contains("dy=\"0.76em\""))
+        .filter_map(|t| {
+            let body = &t[t.find('>')? + 1..t.find("</text>")?];
+            body.trim().parse::<f64>().ok()
+        })
+        .collect()
+}
+
+fn histories(t: &Trajectory) -> Vec<plot::Series> {
+    vec![
+        plot::Series::new("contact 0", t.contact_force_n(0)),
+        plot::Series::new("wall", t.contact_force_n(3)),
+    ]
+}
+
+/// Claim: a PNG is exactly the printed size times the resolution, in pixels, and declares that
+/// resolution: 3.5 in at 600 dpi is 2100 px wide and 23622 px/m (600 / 0.0254, rounded), its
+/// height the figure's aspect (1100 × 600 units: 3.5 × 600 / 1100 in, 1145.45 → 1145 px); with
+/// both sizes given, 3 × 2.5 in at 200 dpi is 600 × 500 px; the defaults give 7 in at 300 dpi,
+/// 2100 px. Exact: the only rounding is to whole pixels, stated here.
+#[test]
+fn png_pixels_follow_printed_size_times_dpi() {
+    let dir = out_dir("dpi");
+    let (_, t) = small_run();
+    let series = histories(&t);
+    let draw = |output: &plot::Output, name: &str| {
+        plot::with_output(output, || {
+            plot::force_histories(&t.times_s, &series, "3 rods", &dir.join(name)).unwrap()
+        })
+    };
+    let column = plot::Output {
+        width_in: Some(3.5),
+        dpi: 600.0,
+        ..plot::Output::default()
+    };
+    let files = draw(&column, "column");
+    assert_eq!(
+        png_info(&files[0]),
+        ((2100, 1145), Some((23622, 23622))),
+        "3.5 in at 600 dpi"
+    );
+    let boxed = plot::Output {
+        width_in: Some(3.0),
+        height_in: Some(2.5),
+        dpi: 200.0,
+        ..plot::Output::default()
+    };
+    let files = draw(&boxed, "boxed");
+    assert_eq!(png_info(&files[0]).0, (600, 500), "3 × 2.5 in at 200 dpi");
+    let files = plot::force_histories(&t.times_s, &series, "3 rods", &dir.join("default")).unwrap();
+    assert_eq!(
+        png_info(&files[0]),
+        ((2100, 1145), Some((11811, 11811))),
+        "the default: 7 in at 300 dpi"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Claim: an SVG declares its printed size in inches in its root element and keeps the
+/// figure's logical units in its viewBox, so it prints at the stated size: `width="3.5000in"`,
+/// `height="1.9091in"` (3.5 × 600 / 1100, 4 decimals) and `viewBox="0 0 4400 2400"` (the line
+/// plots lay out 1100 × 600 on a 4 times finer canvas). Exact text.
+#[test]
+fn svg_declares_its_printed_size() {
+    let dir = out_dir("svgsize");
+    let (_, t) = small_run();
+    let series = histories(&t);
+    let output = plot::Output {
+        width_in: Some(3.5),
+        ..plot::Output::default()
+    };
+    let files = plot::with_output(&output, || {
+        plot::force_histories(&t.times_s, &series, "3 rods", &dir.join("h")).unwrap()
+    });
+    let svg = std::fs::read_to_string(&files[1]).unwrap();
+    let root = &svg[svg.find("<svg").unwrap()..];
+    let root = &root[..root.find('>').unwrap()];
+    assert!(
+        root.contains("width=\"3.5000in\"")
+            && root.contains("height=\"1.9091in\"")
+            && root.contains("viewBox=\"0 0 4400 2400\""),
+        "{root}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Claim: only the requested formats are written, in the requested order: `svg` alone writes
+/// no PNG; outside `with_output` the default (PNG and SVG) is back. Exact.
+#[test]
+fn only_the_requested_formats_are_written() {
+    let dir = out_dir("formats");
+    let (chain, t) = small_run();
+    let svg_only = plot::Output {
+        formats: plot::Format::parse_list("svg").unwrap(),
+        ..plot::Output::default()
+    };
+    let files = plot::with_output(&svg_only, || {
+        plot::chain_picture(&chain, "chain", &dir.join("chain")).unwrap()
+    });
+    assert_eq!(files, vec![dir.join("chain.svg")]);
+    assert!(!dir.join("chain.png").exists());
+    let files = plot::force_map(&force_map(&t).unwrap(), "map", &dir.join("map")).unwrap();
+    assert_eq!(files, vec![dir.join("map.png"), dir.join("map.svg")]);
+    let err = plot::Format::parse_list("png,pdf").unwrap_err();
+    assert!(
+        err.contains("pdf") && err.contains("svg") && err.contains("rsvg-convert"),
+        "says PDF is not written and how to get one: {err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Claim: histories drawn over a time window span only that window: every x tick label of the
+/// SVG lies in [0.1, 0.2] ms (there are at least 3), where the whole record's reach 0.3 ms; a
+/// window without 2 samples is an error that says which times the record covers. Exact (the
+/// tick labels are rounded to 3 significant digits, which a window ending on 0.2 cannot exceed).
+#[test]
+fn a_time_window_limits_the_histories() {
+    let dir = out_dir("window");
+    let (_, t) = small_run();
+    let series = histories(&t);
+    let files = plot::force_histories_between(
+        &t.times_s,
+        &series,
+        "3 rods",
+        (0.1e-3, 0.2e-3),
+        &dir.join("w"),
+    )
+    .unwrap();
+    let ticks = svg_x_ticks(&std::fs::read_to_string(&files[1]).unwrap());
+    assert!(ticks.len() >= 3, "{ticks:?}");
+    assert!(
+        ticks.iter().all(|&x| (0.1..=0.2).contains(&x)),
+        "ticks {ticks:?} outside 0.1–0.2 ms"
+    );
+    let files = plot::force_histories(&t.times_s, &series, "3 rods", &dir.join("all")).unwrap();
+    let all = svg_x_ticks(&std::fs::read_to_string(&files[1]).unwrap());
+    assert!(all.iter().any(|&x| x >= 0.25), "whole record: {all:?}");
+    let err = plot::force_histories_between(
+        &t.times_s,
+        &series,
+        "3 rods",
+        (1e-3, 2e-3),
+        &dir.join("empty"),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("covers 0 to 0.3 ms"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Claim: the first-arrivals window is chosen from the data as documented. Synthetic record,
+/// 0.01 ms steps over 10 ms (levels placed between samples, so no sample sits on a threshold):
+/// series 0 a triangle pulse of peak 1 at 0.105 ms, 0.105 ms half-width, at or above 10 % of its
+/// peak from 0.0105 to 0.1995 ms, i.e. from the sample at 0.02 ms to the first sample below,
+/// 0.20 ms: a 0.18 ms first pulse; series 1 a ramp from 3.005 ms to its peak 1 at 4.005 ms,
+/// reaching 10 % at 3.105 ms, i.e. at the sample 3.11 ms. The window is 0 to
+/// 3.11 + 4 × 0.18 = 3.83 ms, to 1e-9 ms (sample times are exact multiples of 0.01 ms up to
+/// rounding); with a series that never rises there is none, nor when the window would cover
+/// more than the allowed fraction of the record (3.83 of 10 ms > 0.3).
+#[test]
+fn the_first_arrivals_window_follows_the_data() {
+    let times: Vec<f64> = (0..=1000).map(|i| i as f64 * 1e-5).collect();
+    let pulse: Vec<f64> = times
+        .iter()
+        .map(|&t| (1.0 - (t - 1.05e-4).abs() / 1.05e-4).max(0.0))
+        .collect();
+    let ramp: Vec<f64> = times
+        .iter()
+        .map(|&t| ((t - 3.005e-3) / 1e-3).clamp(0.0, 1.0))
+        .collect();
+    let series = vec![
+        plot::Series::new("driven", pulse.clone()),
+        plot::Series::new("far", ramp),
+    ];
+    let (a, b) = plot::onset_window_s(&times, &series, 0.5).expect("a window");
+    assert_eq!(a, 0.0);
+    assert!((b - 3.83e-3).abs() <= 1e-12, "window ends at {b} s");
+    let silent = vec![
+        plot::Series::new("driven", pulse),
+        plot::Series::new("nothing", vec![0.0; times.len()]),
+    ];
+    assert_eq!(plot::onset_window_s(&times, &silent, 0.5), None);
+    assert_eq!(plot::onset_window_s(&times, &series, 0.3), None);
+}
+
+/// Printed em sizes [pt] of an SVG's texts: `font-size` (user units) × printed width
+/// (`width="…in"` × 72 pt) / viewBox width.
+fn svg_text_pt(svg: &str) -> Vec<f64> {
+    let attr = |s: &str, name: &str| -> Option<String> {
+        let i = s.find(&format!("{name}=\""))? + name.len() + 2;
+        Some(s[i..i + s[i..].find('"')?].to_string())
+    };
+    let root = &svg[svg.find("<svg").unwrap()..];
+    let width_in: f64 = attr(root, "width")
+        .unwrap()
+        .trim_end_matches("in")
+        .parse()
+        .unwrap();
+    let view: Vec<f64> = attr(root, "viewBox")
+        .unwrap()
+        .split(' ')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    svg.split("<text ")
+        .skip(1)
+        .map(|t| attr(t, "font-size").unwrap().parse::<f64>().unwrap() * width_in * 72.0 / view[2])
+        .collect()
+}
+
+/// Claim: with the default output, text prints at journal sizes: every text of the force map's
+/// and the force histories' SVG (ticks, legends, axis and colour-bar titles) has an em of 7.0 to
+/// 9.0 pt at the declared size, except the figure title (the largest), at most 12 pt. Computed
+/// from the SVG's own numbers; the bitmap uses the same em (typeset::em_per_size).
+#[test]
+fn default_text_prints_at_7_to_9_pt() {
+    let dir = out_dir("textpt");
+    let (_, t) = small_run();
+    let files = [
+        plot::force_map(&force_map(&t).unwrap(), "3 rods", &dir.join("map")).unwrap(),
+        plot::force_histories(&t.times_s, &histories(&t), "3 rods", &dir.join("h")).unwrap(),
+    ];
+    for f in &files {
+        let mut pt = svg_text_pt(&std::fs::read_to_string(&f[1]).unwrap());
+        pt.sort_by(f64::total_cmp);
+        pt.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+        eprintln!("{}: {pt:.2?} pt", f[1].display());
+        let (title, body) = pt.split_last().unwrap();
+        assert!(*title <= 12.0, "title {title} pt");
+        assert!(
+            body.iter().all(|p| (7.0..=9.0).contains(p)),
+            "text sizes {pt:?} pt"
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Claim: a line of text too long for the figure (here a 140-character title) is set smaller
+/// so that it stays on the canvas: in the SVG, the title's width at its font size (measured
+/// with the bitmap's typesetter, the same font) fits both ways from its centred anchor, where at
+/// the default size it would not. Exact arithmetic on the SVG's numbers.
+#[test]
+fn a_too_long_title_is_set_smaller_to_fit() {
+    let dir = out_dir("fit");
+    let (_, t) = small_run();
+    let title = "A title far too long for any figure: ".repeat(4);
+    let title = title.trim_end();
+    let files =
+        plot::force_histories(&t.times_s, &histories(&t), title, &dir.join("long")).unwrap();
+    let svg = std::fs::read_to_string(&files[1]).unwrap();
+    let root = &svg[svg.find("viewBox=\"").unwrap() + 9..];
+    let view_w: f64 = root.split(' ').nth(2).unwrap().parse().unwrap();
+    let text = svg
+        .split("<text ")
+        .find(|t| t.contains(title))
+        .expect("the title is drawn");
+    let num = |name: &str| -> f64 {
+        let i = text.find(&format!("{name}=\"")).unwrap() + name.len() + 2;
+        text[i..i + text[i..].find('"').unwrap()].parse().unwrap()
+    };
+    // The SVG's font-size is the em; the typesetter takes the ascent-to-descent size.
+    let size = num("font-size") / plot::typeset::em_per_size();
+    let width = f64::from(plot::typeset::Line::new(title, size, false).size().0);
+    let x = num("x");
+    assert!(
+        width <= 2.0 * x.min(view_w - x),
+        "title {width} units wide at x = {x} on a {view_w}-unit canvas"
+    );
+    let default_size = 22.0 * 4.0 * plot::output::DEFAULT_TEXT_SCALE;
+    let default_width = f64::from(
+        plot::typeset::Line::new(title, default_size, false)
+            .size()
+            .0,
+    );
+    assert!(default_width > view_w, "the test title must be too long");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -2,7 +2,8 @@
 //! convergence and the best chain (rods to scale, paper Fig. 5 d, e right) into OPT_DIR/plots;
 //! an unfinished run (no best.toml yet) still gets its convergence; a directory that is neither
 //! a run nor an optimisation, or an optimisation without history.csv, or a corrupt history, is
-//! refused with exit code 2 and a message that says what was expected.
+//! refused with exit code 2 and a message that says what was expected. `--format svg` writes
+//! the same figures as SVG only.
 //! No tolerance: file existence and exit codes are exact.
 
 use crate::common;
@@ -32,6 +33,11 @@ fn optimisation_output_gets_convergence_and_best_chain() {
         assert!(p.is_file(), "{} missing", p.display());
         assert!(std::fs::metadata(&p).unwrap().len() > 1000);
     }
+    // The output options apply to an optimisation's figures too: SVG only.
+    let o = common::run_in(d, &["plot", "opt", "--out", "svg", "--format", "svg", "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(d.join("svg/convergence.svg").is_file() && d.join("svg/best_chain.svg").is_file());
+    assert!(!d.join("svg/convergence.png").exists() && !d.join("svg/best_chain.png").exists());
 
     // An unfinished run: history and checkpoint only.
     std::fs::create_dir(d.join("partial")).unwrap();

@@ -148,3 +148,188 @@ fn cells_plot_draws_the_effective_mass_curves() {
     assert_png(&dir.join("effective_mass_20_40mm.png"));
     assert_png(&dir.join("effective_mass_50_80mm.png"));
 }
+
+/// Width of a PNG file from its IHDR chunk.
+fn png_width(path: &Path) -> u32 {
+    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    u32::from_be_bytes(bytes[16..20].try_into().unwrap())
+}
+
+/// The x-axis tick labels of a plotters SVG: centred texts hanging below their anchor that are
+/// numbers.
+fn svg_x_ticks(path: &Path) -> Vec<f64> {
+    let svg = std::fs::read_to_string(path).unwrap();
+    svg.split("<text ")
+        .skip(1)
+        .filter(|t| t.contains("text-anchor=\"middle\"") && t.contains("dy=\"0.76em\""))
+        .filter_map(|t| {
+            let body = &t[t.find('>')? + 1..t.find("</text>")?];
+            body.trim().parse::<f64>().ok()
+        })
+        .collect()
+}
+
+/// Claim: `woodpile plot` writes the formats, printed size and windows asked for:
+/// `--format svg` writes every figure as SVG and no PNG; `--dpi 150 --width-in 3.5` gives
+/// PNG files 525 px wide (3.5 × 150, exact); `--time-ms 0.1,0.2` gives force histories, force
+/// and energy maps whose x tick labels all lie in [0.1, 0.2] ms (3 or more of them) and no
+/// zoomed onset figure (the window is the user's); `--frequency-khz 20,60` gives spectra whose
+/// ticks lie in [20, 60] kHz; `--max-frequency-khz` still works. Exact: tick labels are
+/// printed to 3 significant digits, which cannot leave windows ending on these values.
+#[test]
+fn plot_writes_the_formats_sizes_and_windows_asked_for() {
+    let tmp = tempfile::tempdir().unwrap();
+    let run = simulate(tmp.path());
+    let out = |name: &str| tmp.path().join(name);
+    let path = |p: &Path| p.to_str().unwrap().to_string();
+    let plot = |extra: &[&str], dir: &Path| {
+        let mut args = vec![
+            "plot".to_string(),
+            path(&run),
+            "--out".into(),
+            path(dir),
+            "-q".into(),
+        ];
+        args.extend(extra.iter().map(|s| s.to_string()));
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = woodpile(&refs);
+        assert!(o.status.success(), "{extra:?}: {}", stderr(&o));
+    };
+
+    plot(&["--format", "svg"], &out("svg"));
+    let names: Vec<String> = std::fs::read_dir(out("svg"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(names.iter().any(|n| n == "force_map.svg"), "{names:?}");
+    assert!(
+        names.iter().all(|n| n.ends_with(".svg")),
+        "--format svg wrote {names:?}"
+    );
+
+    plot(
+        &["--dpi", "150", "--width-in", "3.5", "--format", "png"],
+        &out("small"),
+    );
+    for name in ["force_map", "force_histories", "spectra", "chain"] {
+        assert_eq!(
+            png_width(&out("small").join(format!("{name}.png"))),
+            525,
+            "{name}"
+        );
+    }
+
+    plot(&["--time-ms", "0.1,0.2"], &out("window"));
+    for name in ["force_histories", "force_map", "energy_map"] {
+        let ticks = svg_x_ticks(&out("window").join(format!("{name}.svg")));
+        assert!(ticks.len() >= 3, "{name}: {ticks:?}");
+        assert!(
+            ticks.iter().all(|&x| (0.1..=0.2).contains(&x)),
+            "{name}: ticks {ticks:?} outside 0.1–0.2 ms"
+        );
+    }
+    assert!(!out("window").join("force_histories_onset.png").exists());
+
+    plot(
+        &["--frequency-khz", "20,60", "--format", "svg"],
+        &out("band"),
+    );
+    let ticks = svg_x_ticks(&out("band").join("spectra.svg"));
+    assert!(ticks.len() >= 3, "{ticks:?}");
+    assert!(
+        ticks.iter().all(|&f| (20.0..=60.0).contains(&f)),
+        "spectra ticks {ticks:?} outside 20–60 kHz"
+    );
+    plot(
+        &["--max-frequency-khz", "40", "--format", "svg"],
+        &out("max"),
+    );
+    let ticks = svg_x_ticks(&out("max").join("spectra.svg"));
+    assert!(
+        ticks.iter().all(|&f| (0.0..=40.0).contains(&f)) && ticks.contains(&40.0),
+        "{ticks:?}"
+    );
+}
+
+/// Claim: a bad output or window flag exits with code 2 and a message naming the flag and what
+/// is valid (and, for `pdf`, how to get one); an empty window names the range the run covers
+/// (the test run: 0 to 0.3 ms). Exact.
+#[test]
+fn bad_plot_flags_exit_2_naming_the_flag() {
+    let tmp = tempfile::tempdir().unwrap();
+    let run = simulate(tmp.path());
+    let dir = run.to_str().unwrap();
+    for (args, expected) in [
+        (
+            &["--format", "pdf"][..],
+            &["--format", "svg", "rsvg-convert"][..],
+        ),
+        (&["--format", "jpg"], &["--format", "png, svg"]),
+        (&["--dpi", "0"], &["--dpi", "30 to 2400"]),
+        (&["--dpi", "nan"], &["--dpi"]),
+        (&["--width-in", "-2"], &["--width-in", "0.5 to 50"]),
+        (&["--height-in", "100"], &["--height-in", "0.5 to 50"]),
+        (&["--time-ms", "0.2,0.1"], &["--time-ms", "START < END"]),
+        (&["--time-ms", "1"], &["--time-ms", "START,END"]),
+        (&["--time-ms", "5,6"], &["--time-ms", "covers 0 to 0.3 ms"]),
+        (
+            &["--frequency-khz", "900,1000"],
+            &["--frequency-khz", "cover 0 to"],
+        ),
+        (
+            &["--frequency-khz", "1,2", "--max-frequency-khz", "3"],
+            &["--frequency-khz", "--max-frequency-khz"],
+        ),
+        (
+            &["--max-frequency-khz", "0"],
+            &["--max-frequency-khz", "> 0"],
+        ),
+    ] {
+        let mut all = vec!["plot", dir, "-q"];
+        all.extend_from_slice(args);
+        let o = woodpile(&all);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        for e in expected {
+            assert!(
+                stderr(&o).contains(e),
+                "{args:?}: `{e}` missing from {}",
+                stderr(&o)
+            );
+        }
+    }
+}
+
+/// Claim: the figures of a blast run call contact 0 the load, never the striker, even when it
+/// is selected as `--signal striker`: the legends of the histories and spectra say
+/// `contact 0 (load)` and no SVG text says `striker`. Exact.
+#[test]
+fn blast_runs_are_not_labelled_striker() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("blast.toml");
+    std::fs::write(
+        &file,
+        "[chain]\nrods_mm = [20, 40]\n[excitation]\nkind = \"blast\"\n[run]\nduration_s = 3e-4\n",
+    )
+    .unwrap();
+    let run = tmp.path().join("run");
+    let o = woodpile(&[
+        "simulate",
+        file.to_str().unwrap(),
+        "--out",
+        run.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for extra in [&[][..], &["--signal", "striker", "--signal", "wall"]] {
+        let mut args = vec!["plot", run.to_str().unwrap(), "-q", "--format", "svg"];
+        args.extend_from_slice(extra);
+        let o = woodpile(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        for name in ["force_histories", "spectra"] {
+            let svg =
+                std::fs::read_to_string(run.join("plots").join(format!("{name}.svg"))).unwrap();
+            assert!(svg.contains("contact 0 (load)"), "{name} {extra:?}");
+            assert!(!svg.contains("striker"), "{name} {extra:?} says striker");
+        }
+    }
+}
