@@ -352,13 +352,14 @@ pub fn force_histories_between(
 }
 
 /// The time window of the first arrivals, chosen from the data: from the record's start to the
-/// latest *arrival* among the series plus four times the *first pulse* of the first series (the
-/// driven contact), at most the record's end. A series arrives at the first sample where
-/// |F| reaches 10 % of its largest |F|; the first pulse lasts from the first series' arrival to
-/// the first later sample where its |F| is below 10 % of that largest value again. With the
-/// paper's striker on 20 rods this shows the incident pulses and the wall's first rise (about
-/// 0–0.43 ms of a 2 ms record). None when a series never rises above zero or the window would
-/// cover more than `max_fraction` of the record (zooming would not help).
+/// latest *first strong peak* among the series plus two *first pulses* of the first series (the
+/// driven contact), at most the record's end. A series' first strong peak is the first sample
+/// where |F| is at least half its largest |F| and not below the next sample's; the first pulse
+/// lasts from the first series' arrival (the first sample where |F| reaches 10 % of its largest
+/// |F|) to the first later sample where |F| is below that level again. With the paper's striker
+/// on 20 rods of 80 mm this shows the incident pulses and the wall's first large peak (0–0.59 ms
+/// of a 2 ms record). None when a series never rises above zero or the window would cover more
+/// than `max_fraction` of the record (zooming would not help).
 pub fn onset_window_s(times_s: &[f64], series: &[Series], max_fraction: f64) -> Option<(f64, f64)> {
     let (t0, t1) = (*times_s.first()?, *times_s.last()?);
     let peak = |s: &Series| {
@@ -368,25 +369,34 @@ pub fn onset_window_s(times_s: &[f64], series: &[Series], max_fraction: f64) -> 
             .filter(|v| v.is_finite())
             .fold(0.0, f64::max)
     };
-    let arrival = |s: &Series| {
-        let level = 0.1 * peak(s);
+    let first_at_least = |s: &Series, fraction: f64| {
+        let level = fraction * peak(s);
         (level > 0.0)
             .then(|| s.values.iter().position(|v| v.abs() >= level))
             .flatten()
     };
+    let first_strong_peak = |s: &Series| {
+        let from = first_at_least(s, 0.5)?;
+        let v = &s.values;
+        Some(
+            (from..v.len())
+                .find(|&i| i + 1 == v.len() || v[i].abs() >= v[i + 1].abs())
+                .unwrap_or(v.len() - 1),
+        )
+    };
     let mut latest = 0;
     for s in series {
-        latest = latest.max(arrival(s)?);
+        latest = latest.max(first_strong_peak(s)?);
     }
     let first = series.first()?;
-    let start = arrival(first)?;
+    let start = first_at_least(first, 0.1)?;
     let level = 0.1 * peak(first);
     let end = first.values[start..]
         .iter()
         .position(|v| v.abs() < level)
         .map_or(first.values.len() - 1, |k| start + k);
     let pulse = times_s[end.min(times_s.len() - 1)] - times_s[start];
-    let stop = (times_s[latest.min(times_s.len() - 1)] + 4.0 * pulse).min(t1);
+    let stop = (times_s[latest.min(times_s.len() - 1)] + 2.0 * pulse).min(t1);
     (stop > t0 && stop - t0 <= max_fraction * (t1 - t0)).then_some((t0, stop))
 }
 

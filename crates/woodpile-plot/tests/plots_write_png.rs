@@ -634,11 +634,11 @@ fn a_time_window_limits_the_histories() {
 /// 0.01 ms steps over 10 ms (levels placed between samples, so no sample sits on a threshold):
 /// series 0 a triangle pulse of peak 1 at 0.105 ms, 0.105 ms half-width, at or above 10 % of its
 /// peak from 0.0105 to 0.1995 ms, i.e. from the sample at 0.02 ms to the first sample below,
-/// 0.20 ms: a 0.18 ms first pulse; series 1 a ramp from 3.005 ms to its peak 1 at 4.005 ms,
-/// reaching 10 % at 3.105 ms, i.e. at the sample 3.11 ms. The window is 0 to
-/// 3.11 + 4 × 0.18 = 3.83 ms, to 1e-9 ms (sample times are exact multiples of 0.01 ms up to
-/// rounding); with a series that never rises there is none, nor when the window would cover
-/// more than the allowed fraction of the record (3.83 of 10 ms > 0.3).
+/// 0.20 ms: a 0.18 ms first pulse; series 1 a ramp from 3.005 ms to its peak 1 at 4.005 ms, then
+/// flat: its first strong peak (at least half the peak, not below the next sample) is the sample
+/// 4.01 ms. The window is 0 to 4.01 + 2 × 0.18 = 4.37 ms, to 1e-9 ms (sample times are exact
+/// multiples of 0.01 ms up to rounding); with a series that never rises there is none, nor when
+/// the window would cover more than the allowed fraction of the record (4.37 of 10 ms > 0.3).
 #[test]
 fn the_first_arrivals_window_follows_the_data() {
     let times: Vec<f64> = (0..=1000).map(|i| i as f64 * 1e-5).collect();
@@ -656,7 +656,7 @@ fn the_first_arrivals_window_follows_the_data() {
     ];
     let (a, b) = plot::onset_window_s(&times, &series, 0.5).expect("a window");
     assert_eq!(a, 0.0);
-    assert!((b - 3.83e-3).abs() <= 1e-12, "window ends at {b} s");
+    assert!((b - 4.37e-3).abs() <= 1e-12, "window ends at {b} s");
     let silent = vec![
         plot::Series::new("driven", pulse),
         plot::Series::new("nothing", vec![0.0; times.len()]),

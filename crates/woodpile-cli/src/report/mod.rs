@@ -1,6 +1,6 @@
 //! `woodpile report --out DIR [--quick] [--seed S] [--threads T]`: runs everything the paper's
 //! figures and numbers need, draws every figure into `DIR/figures/` (PNG and SVG), and writes
-//! `DIR/report.md` and a self-contained `DIR/report.html` (figures embedded as data URIs) with a
+//! `DIR/report.md` and a self-contained `DIR/report.html` (figures embedded as SVG data URIs) with a
 //! comparison table: each number the paper reports (docs/physics.md §9) beside ours.
 //!
 //! What runs (docs/physics.md defaults throughout):

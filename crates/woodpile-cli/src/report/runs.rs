@@ -228,6 +228,16 @@ pub fn impact_homogeneous(
                 &title,
                 &fig(&format!("impact_{slug}_force_histories")),
             )?);
+            // The same, zoomed on the first arrivals (over 2 ms the pulses are slivers).
+            let onset = plot::onset_window_s(&t.times_s, &series, 1.0)
+                .unwrap_or((t.times_s[0], t.times_s[t.times_s.len() - 1]));
+            files.push(plot::force_histories_between(
+                &t.times_s,
+                &series,
+                &title,
+                onset,
+                &fig(&format!("impact_{slug}_force_histories_onset")),
+            )?);
             files.push(draw_spectra(
                 &case,
                 &title,

@@ -501,8 +501,9 @@ fn homogeneous(doc: &mut Doc, s: &Setup, r: &Results) {
                 "energy of each layer as a share of the striker's initial energy (the paper draws this map for the optima only, Fig. 6). What to see: {}.",
                 energy_held_text(t)
             ),
+            "force at the striker contact, contact 1, the middle contact and the wall over the whole run (no panel in the paper). What to see: the first transit and the echoes that follow it.".to_string(),
             format!(
-                "force at the striker contact, contact 1, the middle contact and the wall; the second panel zooms on the first arrivals. What to see: the incident peak {:.1} N against {:.1} N transmitted to the wall ({}).",
+                "the same forces zoomed on the first arrivals. What to see: the incident peak {:.1} N against {:.1} N transmitted to the wall ({}); a wall force above the incident one is the wall's reflection adding to the arriving wave.",
                 c.summary.incident_peak_force_n,
                 c.summary.transmitted_peak_force_n,
                 pct(ratio(&c.summary))

@@ -40,9 +40,9 @@ fn quick_report_writes_every_file_it_names() {
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(!html.is_empty());
     let figures = figures_named(&md);
-    // Impact (4 chains × 4 + 1), optima (2 × 5: Fig. 6 is their energy maps), protocol (2), blast (4 × 4 + 1 + the F0 × Td
+    // Impact (4 chains × 5 + 1), optima (2 × 5: Fig. 6 is their energy maps), protocol (2), blast (4 × 4 + 1 + the F0 × Td
     // sweep), the fine design space's optimum (1), Fig. 3 (2).
-    assert_eq!(figures.len(), 51, "figures named: {figures:?}");
+    assert_eq!(figures.len(), 55, "figures named: {figures:?}");
     for f in &figures {
         let png = out.join(f);
         assert!(png.is_file(), "{f} is named in report.md but missing");
@@ -58,7 +58,8 @@ fn quick_report_writes_every_file_it_names() {
         );
     }
     assert_eq!(
-        html.matches("<img src=\"data:image/png;base64,").count(),
+        html.matches("<img src=\"data:image/svg+xml;base64,")
+            .count(),
         figures.len()
     );
     // The comparison table carries the paper's numbers beside ours.
