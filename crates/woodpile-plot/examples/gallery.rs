@@ -26,8 +26,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut t = Trajectory::default();
     simulate(&chain, &impact, &settings, &mut t)?;
     let title = "20 resonant rods (paper blast optimum), impact 1.98 m/s";
-    plot::force_map(&force_map(&t)?, title, &stem("force_map"))?;
-    plot::energy_map(&energy_map(&t)?, title, &stem("energy_map"))?;
+    plot::force_map(&force_map(&t)?, title, Some("striker"), &stem("force_map"))?;
+    plot::energy_map(
+        &energy_map(&t)?,
+        title,
+        Some("striker"),
+        &stem("energy_map"),
+    )?;
     let n = chain.len();
     let series = [
         (0, "contact 0 (striker)"),
@@ -39,6 +44,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     plot::chain_picture(
         &chain,
         "paper blast optimum (top to bottom)",
+        Some("striker"),
         &stem("chain"),
     )?;
     draw_spectra(&t, &[], title, &stem("spectra"))?;
@@ -51,11 +57,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let title80 = "20 × 80 mm resonant rods, Friedlander blast 200 N / 0.2 ms";
     let bands = UnitCell::table1(80)?.negative_mass_bands_hz();
     draw_spectra(&t80, &bands, title80, &stem("spectra_80mm_blast"))?;
-    plot::force_map(&force_map(&t80)?, title80, &stem("force_map_80mm_blast"))?;
+    plot::force_map(
+        &force_map(&t80)?,
+        title80,
+        Some("load"),
+        &stem("force_map_80mm_blast"),
+    )?;
     plot::spectrum_map(
         &contact_spectrum_map(&t80, &SpectrumSettings::default())?,
         title80,
         60e3,
+        Some("load"),
         &stem("spectrum_map_80mm_blast"),
     )?;
 

@@ -10,6 +10,8 @@ use woodpile::{Body, Chain, Wall};
 struct ChainPicture<'a> {
     chain: &'a Chain,
     title: String,
+    /// What drives the top (`striker`, `load`, `actuator`), for the label above the chain.
+    contact0: String,
     /// Extent of every element along the picture's x axis [mm] (rod length, sphere diameter).
     widths_mm: Vec<f64>,
 }
@@ -21,8 +23,14 @@ struct ChainPicture<'a> {
 /// Chains of more than 40 elements are summarised, so the picture's size is bounded whatever
 /// their length (950 × 840 px): the first and last 10 elements to scale with an ellipsis
 /// between, and beside them a strip of every element's length (top to bottom, groups of
-/// elements drawn as the range of their lengths beyond 350), as the title states.
-pub fn chain_picture(chain: &Chain, title: &str, stem: &Path) -> Result<Vec<PathBuf>> {
+/// elements drawn as the range of their lengths beyond 350), as the title states. `contact0`
+/// names what drives the top, as in [`crate::force_map`].
+pub fn chain_picture(
+    chain: &Chain,
+    title: &str,
+    contact0: Option<&str>,
+    stem: &Path,
+) -> Result<Vec<PathBuf>> {
     let widths_mm: Vec<f64> = chain
         .elements()
         .iter()
@@ -41,6 +49,9 @@ pub fn chain_picture(chain: &Chain, title: &str, stem: &Path) -> Result<Vec<Path
         &ChainPicture {
             chain,
             title: title.to_string(),
+            contact0: crate::heatmap::contact0_name(contact0)
+                .replace(", ", " / ")
+                .replace(" or ", " / "),
             widths_mm,
         },
         stem,
@@ -150,7 +161,7 @@ impl ChainPicture<'_> {
             (HPos::Left, VPos::Center),
         )))?;
         chart.draw_series(std::iter::once(text(
-            "striker / load ↓".to_string(),
+            format!("{} ↓", self.contact0),
             0.0,
             0.1,
             (HPos::Center, VPos::Center),

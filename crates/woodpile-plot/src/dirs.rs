@@ -217,17 +217,20 @@ fn draw_run(dir: &Path, out: &Path, plot: &RunPlot) -> Result<Vec<PathBuf>, Erro
     files.extend(crate::force_map(
         &windowed(force_map(&t)?)?,
         &title,
+        role,
         &stem("force_map"),
     )?);
     files.extend(crate::energy_map(
         &windowed(energy_map(&t)?)?,
         &title,
+        role,
         &stem("energy_map"),
     )?);
     files.extend(crate::spectrum_map(
         &spectrum_map,
         &title,
         f1,
+        role,
         &stem("spectrum_map"),
     )?);
     let contact0 = match role {
@@ -284,7 +287,12 @@ fn draw_run(dir: &Path, out: &Path, plot: &RunPlot) -> Result<Vec<PathBuf>, Erro
     )?);
     if let Some(chain) = &info.chain {
         let chain_title = format!("{}, {n} elements", info.name);
-        files.extend(crate::chain_picture(chain, &chain_title, &stem("chain"))?);
+        files.extend(crate::chain_picture(
+            chain,
+            &chain_title,
+            role,
+            &stem("chain"),
+        )?);
     }
     Ok(files)
 }
@@ -480,6 +488,7 @@ fn draw_optimization(dir: &Path, out: &Path) -> Result<(Vec<PathBuf>, Option<Str
     files.extend(crate::chain_picture(
         &chain,
         chain_title.trim_end(),
+        contact0_role(excitation),
         &out.join("best_chain"),
     )?);
     Ok((files, None))

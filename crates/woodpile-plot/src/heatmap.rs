@@ -380,14 +380,27 @@ pub(crate) fn format_number(v: f64) -> String {
     }
 }
 
+/// What drives contact 0, for axis labels: the given name, or "striker, load or actuator".
+pub fn contact0_name(contact0: Option<&str>) -> &str {
+    contact0.unwrap_or("striker, load or actuator")
+}
+
 /// Contact force map (contact × time): time in ms, force in N, viridis (paper Figs. 5, 9),
 /// linear colours from 0 up to the largest force (the peak of the pulse is the quantity read off
 /// this map, so it is not saturated; set [`Heatmap::log_decades`] for log colours).
-pub fn force_map(map: &Map2, title: &str, stem: &Path) -> Result<Vec<PathBuf>> {
+///
+/// `contact0` names what drives contact 0 (`striker`, `load`, `actuator`, see [`contact0_name`]),
+/// so the axis says it; None: "striker, load or actuator".
+pub fn force_map(
+    map: &Map2,
+    title: &str,
+    contact0: Option<&str>,
+    stem: &Path,
+) -> Result<Vec<PathBuf>> {
     Heatmap {
         x_scale: 1e3,
         x_label: "time [ms]".into(),
-        y_label: "contact (0 = striker, load or actuator; N = wall)".into(),
+        y_label: format!("contact (0 = {}; N = wall)", contact0_name(contact0)),
         value_label: "contact force [N]".into(),
         ..Heatmap::new(map, title)
     }
@@ -403,12 +416,19 @@ pub fn force_map(map: &Map2, title: &str, stem: &Path) -> Result<Vec<PathBuf>> {
 /// former default, ~25 %) paint the striker and the first layers one flat colour. Over
 /// 0.1 %…100 % every decade of the wave takes a third of the range and nothing saturates at the
 /// top; energies below 0.1 % (the chain ahead of the wave) take the bottom colour, marked "≤".
-pub fn energy_map(map: &Map2, title: &str, stem: &Path) -> Result<Vec<PathBuf>> {
+///
+/// `contact0` as in [`force_map`] (layer 0 is what drives contact 0).
+pub fn energy_map(
+    map: &Map2,
+    title: &str,
+    contact0: Option<&str>,
+    stem: &Path,
+) -> Result<Vec<PathBuf>> {
     Heatmap {
         color_map: ColorMap::Inferno,
         x_scale: 1e3,
         x_label: "time [ms]".into(),
-        y_label: "layer (0 = striker, load or actuator)".into(),
+        y_label: format!("layer (0 = {})", contact0_name(contact0)),
         value_scale: 100.0,
         value_label: "layer energy / injected energy [%]".into(),
         log_decades: Some(3.0),
@@ -418,18 +438,20 @@ pub fn energy_map(map: &Map2, title: &str, stem: &Path) -> Result<Vec<PathBuf>> 
 }
 
 /// Spectrum map (contact × frequency): frequency in kHz up to `max_frequency_hz`, amplitude in
-/// N on a log colour scale over 4 decades (paper Fig. 9 b, d, f, h).
+/// N on a log colour scale over 4 decades (paper Fig. 9 b, d, f, h); `contact0` as in
+/// [`force_map`].
 pub fn spectrum_map(
     map: &Map2,
     title: &str,
     max_frequency_hz: f64,
+    contact0: Option<&str>,
     stem: &Path,
 ) -> Result<Vec<PathBuf>> {
     Heatmap {
         x_scale: 1e-3,
         x_label: "frequency [kHz]".into(),
         x_max: Some(max_frequency_hz * 1e-3),
-        y_label: "contact (0 = striker, load or actuator; N = wall)".into(),
+        y_label: format!("contact (0 = {}; N = wall)", contact0_name(contact0)),
         value_label: format!("{} [{}] (log)", map.value_name, map.value_unit),
         log_decades: Some(4.0),
         ..Heatmap::new(map, title)

@@ -71,10 +71,26 @@ fn every_plot_writes_png_and_svg() {
     let stem = |n: &str| dir.join(n);
     let (chain, t) = small_run();
     let title = "3 rods, impact";
-    check(&plot::force_map(&force_map(&t).unwrap(), title, &stem("force_map")).unwrap());
-    check(&plot::energy_map(&energy_map(&t).unwrap(), title, &stem("energy_map")).unwrap());
+    check(
+        &plot::force_map(
+            &force_map(&t).unwrap(),
+            title,
+            Some("striker"),
+            &stem("force_map"),
+        )
+        .unwrap(),
+    );
+    check(
+        &plot::energy_map(
+            &energy_map(&t).unwrap(),
+            title,
+            Some("striker"),
+            &stem("energy_map"),
+        )
+        .unwrap(),
+    );
     let smap = contact_spectrum_map(&t, &SpectrumSettings::default()).unwrap();
-    check(&plot::spectrum_map(&smap, title, 100e3, &stem("spectrum_map")).unwrap());
+    check(&plot::spectrum_map(&smap, title, 100e3, None, &stem("spectrum_map")).unwrap());
     let series = vec![
         plot::Series::new("contact 0", t.contact_force_n(0)),
         plot::Series::new("wall", t.contact_force_n(3)),
@@ -112,7 +128,7 @@ fn every_plot_writes_png_and_svg() {
         })
         .collect();
     check(&plot::convergence(&points, "wall force [N]", "GA", &stem("convergence")).unwrap());
-    check(&plot::chain_picture(&chain, "chain", &stem("chain")).unwrap());
+    check(&plot::chain_picture(&chain, "chain", Some("striker"), &stem("chain")).unwrap());
     let settings = RunSettings {
         duration_s: 2e-4,
         ..RunSettings::paper_impact()
@@ -135,7 +151,7 @@ fn unplottable_data_is_an_error_not_a_panic() {
     assert!(plot::convergence(&[], "y", "t", &stem).is_err());
     let missing_dir = Path::new("/nonexistent-dir-for-woodpile/x");
     let (chain, _) = small_run();
-    assert!(plot::chain_picture(&chain, "t", missing_dir).is_err());
+    assert!(plot::chain_picture(&chain, "t", None, missing_dir).is_err());
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -301,8 +317,8 @@ fn maps_of_a_10000_element_chain_stay_small() {
     energy.data.iter_mut().for_each(|v| *v /= 3000.0);
     let (force, energy) = plot::with_output(&layout_pixels(), || {
         (
-            plot::force_map(&map, "10,000 rods", &dir.join("force")).unwrap(),
-            plot::energy_map(&energy, "10,000 rods", &dir.join("energy")).unwrap(),
+            plot::force_map(&map, "10,000 rods", None, &dir.join("force")).unwrap(),
+            plot::energy_map(&energy, "10,000 rods", None, &dir.join("energy")).unwrap(),
         )
     });
     for paths in [&force, &energy] {
@@ -342,7 +358,7 @@ fn row_reduction_keeps_a_spike_in_one_row_of_10000() {
         },
     );
     let paths = plot::with_output(&layout_pixels(), || {
-        plot::force_map(&map, "one spike", &dir.join("spike")).unwrap()
+        plot::force_map(&map, "one spike", None, &dir.join("spike")).unwrap()
     });
     let (w, h, rgb) = png_pixels(&paths[0]);
     let top = plot::ColorMap::Viridis.rgb(1.0);
@@ -373,7 +389,7 @@ fn colour_bars_label_both_limits_and_say_what_saturates() {
     let dir = out_dir("bars");
     let rows = || woodpile::analysis::Axis::index("contact", 8);
     let linear = map_of(rows(), 40, |r, c| 7.31 * ((r * 40 + c) as f64 / 319.0));
-    let paths = plot::force_map(&linear, "linear", &dir.join("linear")).unwrap();
+    let paths = plot::force_map(&linear, "linear", None, &dir.join("linear")).unwrap();
     let texts = svg_texts(&paths[1]);
     for label in ["0", "7.31"] {
         assert!(texts.iter().any(|t| t == label), "{label} in {texts:?}");
@@ -389,7 +405,7 @@ fn colour_bars_label_both_limits_and_say_what_saturates() {
             23.6 * 0.3f64.powi(r as i32)
         }
     });
-    let paths = plot::spectrum_map(&log, "log", 1e9, &dir.join("log")).unwrap();
+    let paths = plot::spectrum_map(&log, "log", 1e9, None, &dir.join("log")).unwrap();
     let texts = svg_texts(&paths[1]);
     for label in ["23.6", "10", "1", "0.1", "0.01", "≤ 0.00236"] {
         assert!(texts.iter().any(|t| t == label), "{label} in {texts:?}");
@@ -435,7 +451,7 @@ fn the_picture_of_a_10000_rod_chain_is_bounded() {
         .build()
         .unwrap();
     let paths = plot::with_output(&layout_pixels(), || {
-        plot::chain_picture(&chain, "10,000 rods", &dir.join("chain")).unwrap()
+        plot::chain_picture(&chain, "10,000 rods", None, &dir.join("chain")).unwrap()
     });
     check(&paths);
     let (w, h, _) = png_pixels(&paths[0]);
@@ -577,11 +593,11 @@ fn only_the_requested_formats_are_written() {
         ..plot::Output::default()
     };
     let files = plot::with_output(&svg_only, || {
-        plot::chain_picture(&chain, "chain", &dir.join("chain")).unwrap()
+        plot::chain_picture(&chain, "chain", None, &dir.join("chain")).unwrap()
     });
     assert_eq!(files, vec![dir.join("chain.svg")]);
     assert!(!dir.join("chain.png").exists());
-    let files = plot::force_map(&force_map(&t).unwrap(), "map", &dir.join("map")).unwrap();
+    let files = plot::force_map(&force_map(&t).unwrap(), "map", None, &dir.join("map")).unwrap();
     assert_eq!(files, vec![dir.join("map.png"), dir.join("map.svg")]);
     let err = plot::Format::parse_list("png,pdf").unwrap_err();
     assert!(
@@ -698,7 +714,7 @@ fn default_text_prints_at_7_to_9_pt() {
     let dir = out_dir("textpt");
     let (_, t) = small_run();
     let files = [
-        plot::force_map(&force_map(&t).unwrap(), "3 rods", &dir.join("map")).unwrap(),
+        plot::force_map(&force_map(&t).unwrap(), "3 rods", None, &dir.join("map")).unwrap(),
         plot::force_histories(&t.times_s, &histories(&t), "3 rods", &dir.join("h")).unwrap(),
     ];
     for f in &files {

@@ -109,16 +109,22 @@ fn homogeneous(length_mm: u32, model: CellModel) -> Result<Chain, CliError> {
     Ok(ChainBuilder::table1_rods(&[length_mm; 20], model)?.build()?)
 }
 
-/// The force map and the energy map of a run: `STEM_force_map` and `STEM_energy_map`.
-fn draw_maps(t: &Trajectory, title: &str, stem: &Path) -> Result<Vec<Vec<PathBuf>>, CliError> {
+/// The force map and the energy map of a run: `STEM_force_map` and `STEM_energy_map`;
+/// `contact0` names what drives it (`striker`, `load`).
+fn draw_maps(
+    t: &Trajectory,
+    title: &str,
+    contact0: &str,
+    stem: &Path,
+) -> Result<Vec<Vec<PathBuf>>, CliError> {
     let with = |suffix: &str| {
         let mut s = stem.as_os_str().to_owned();
         s.push(suffix);
         PathBuf::from(s)
     };
     Ok(vec![
-        plot::force_map(&force_map(t)?, title, &with("_force_map"))?,
-        plot::energy_map(&energy_map(t)?, title, &with("_energy_map"))?,
+        plot::force_map(&force_map(t)?, title, Some(contact0), &with("_force_map"))?,
+        plot::energy_map(&energy_map(t)?, title, Some(contact0), &with("_energy_map"))?,
     ])
 }
 
@@ -214,7 +220,7 @@ pub fn impact_homogeneous(
             let title = format!("{chain_title}, {impact_text}");
             let t = &case.trajectory;
             let n = t.n_elements;
-            let mut files = draw_maps(t, &title, &fig(&format!("impact_{slug}")))?;
+            let mut files = draw_maps(t, &title, "striker", &fig(&format!("impact_{slug}")))?;
             let series = [
                 (0, "contact 0 (striker)".to_string()),
                 (1, "contact 1 (incident)".to_string()),
@@ -329,6 +335,7 @@ pub fn optima(s: &Setup) -> Result<(GaRun, GaRun, Vec<(Case, Vec<Vec<PathBuf>>)>
             files.push(plot::chain_picture(
                 &case.chain,
                 &format!("GA optimum, {} model, impact", ga.model),
+                Some("striker"),
                 &fig(&format!("{slug}_chain")),
             )?);
             let series = [
@@ -345,12 +352,14 @@ pub fn optima(s: &Setup) -> Result<(GaRun, GaRun, Vec<(Case, Vec<Vec<PathBuf>>)>
             files.push(plot::force_map(
                 &force_map(t)?,
                 &short,
+                Some("striker"),
                 &fig(&format!("{slug}_force_map")),
             )?);
             // Paper Fig. 6 is the energy map of the two optima.
             files.push(plot::energy_map(
                 &energy_map(t)?,
                 &short,
+                Some("striker"),
                 &fig(&format!("{slug}_energy_map")),
             )?);
             Ok((case, files))
@@ -436,11 +445,12 @@ pub fn blast(s: &Setup) -> Result<BlastRuns, CliError> {
             let case = simulate_case(name, slug, chain_title, chain, blast, blast_settings)?;
             let title = format!("{chain_title}, {blast_text}");
             let t = &case.trajectory;
-            let mut files = draw_maps(t, &title, &fig(&format!("blast_{slug}")))?;
+            let mut files = draw_maps(t, &title, "load", &fig(&format!("blast_{slug}")))?;
             files.push(plot::spectrum_map(
                 &contact_spectrum_map(t, &FOURIER)?,
                 &title,
                 max_hz,
+                Some("load"),
                 &fig(&format!("blast_{slug}_spectrum_map")),
             )?);
             files.push(draw_spectra(
@@ -589,6 +599,7 @@ pub fn fine(s: &Setup) -> Result<FineRuns, CliError> {
     let files = plot::chain_picture(
         &fine.chain,
         "GA optimum over rods of every length 20-80 mm (1 mm), cells from beam theory",
+        Some("striker"),
         &s.figs.join("optimum_fine_chain"),
     )?;
     Ok(FineRuns {

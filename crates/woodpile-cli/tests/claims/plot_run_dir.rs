@@ -301,7 +301,8 @@ fn bad_plot_flags_exit_2_naming_the_flag() {
 
 /// Claim: the figures of a blast run call contact 0 the load, never the striker, even when it
 /// is selected as `--signal striker`: the legends of the histories and spectra say
-/// `contact 0 (load)` and no SVG text says `striker`. Exact.
+/// `contact 0 (load)`, the maps' axes `0 = load`, the chain picture `load ↓`, and no SVG text
+/// says `striker`. Exact.
 #[test]
 fn blast_runs_are_not_labelled_striker() {
     let tmp = tempfile::tempdir().unwrap();
@@ -325,11 +326,28 @@ fn blast_runs_are_not_labelled_striker() {
         args.extend_from_slice(extra);
         let o = woodpile(&args);
         assert!(o.status.success(), "{}", stderr(&o));
+        let svg = |name: &str| {
+            std::fs::read_to_string(run.join("plots").join(format!("{name}.svg"))).unwrap()
+        };
         for name in ["force_histories", "spectra"] {
-            let svg =
-                std::fs::read_to_string(run.join("plots").join(format!("{name}.svg"))).unwrap();
-            assert!(svg.contains("contact 0 (load)"), "{name} {extra:?}");
-            assert!(!svg.contains("striker"), "{name} {extra:?} says striker");
+            assert!(svg(name).contains("contact 0 (load)"), "{name} {extra:?}");
+        }
+        for name in ["force_map", "energy_map", "spectrum_map"] {
+            assert!(svg(name).contains("0 = load"), "{name} {extra:?}");
+        }
+        assert!(svg("chain").contains("load ↓"), "chain {extra:?}");
+        for name in [
+            "force_histories",
+            "spectra",
+            "force_map",
+            "energy_map",
+            "spectrum_map",
+            "chain",
+        ] {
+            assert!(
+                !svg(name).contains("striker"),
+                "{name} {extra:?} says striker"
+            );
         }
     }
 }
