@@ -414,7 +414,6 @@ impl Integrator {
             .as_ref()
             .expect("adaptive tableau has error weights");
         let err = &mut self.error;
-        err.fill(0.0);
         stage_sum(err, None, e, &self.k, |ej| h * ej);
         // Four partial sums so that the reduction vectorises (a single running sum is a
         // latency-bound chain of dependent additions).
@@ -660,11 +659,12 @@ fn combine(out: &mut [f64], y: &[f64], h: f64, weights: &[f64], k: &[Vec<f64>]) 
     stage_sum(out, Some(y), weights, k, |w| h * w);
 }
 
-/// out = base + Σ_j hw(w_j) k_j over the non-zero weights w_j (base = `out` itself when None),
-/// for f64 states and for SIMD lanes (lanes.rs) alike: the stages, the new state and the error
-/// estimate. The terms go in groups of up to four per pass over the state (each element's
-/// sum in a register), so a DOPRI5 step makes 8 passes instead of 21; the additions run left to
-/// right as with one pass per term, so the bits are those of one pass per term. No allocation.
+/// out = base + Σ_j hw(w_j) k_j over the non-zero weights w_j (out = Σ_j hw(w_j) k_j when `base`
+/// is None: `out` is only written), for f64 states and for SIMD lanes (lanes.rs) alike: the
+/// stages, the new state and the error estimate. The terms go in groups of up to four per pass
+/// over the state (each element's sum in a register), so a DOPRI5 step makes 8 passes instead of
+/// 21; the additions run left to right as with one pass per term, so the bits are those of one
+/// pass per term (without a base, those of 0 + Σ but for the sign of a zero sum). No allocation.
 #[inline(always)]
 pub(crate) fn stage_sum<T>(
     out: &mut [T],
@@ -691,8 +691,9 @@ pub(crate) fn stage_sum<T>(
         }
     }
     if terms == 0 {
-        if let Some(y) = base {
-            out.copy_from_slice(y);
+        match base {
+            Some(y) => out.copy_from_slice(y),
+            None => out.fill(hw(0.0)),
         }
         return;
     }
@@ -701,28 +702,43 @@ pub(crate) fn stage_sum<T>(
     while done < terms {
         let group = (terms - done).min(4);
         let (f, ks) = (&factors[done..done + group], &ks[done..done + group]);
-        let base = if done == 0 { base } else { None };
+        let start = match (done, base) {
+            (0, Some(y)) => Start::From(y),
+            (0, None) => Start::Nothing,
+            _ => Start::Out,
+        };
         match group {
-            1 => add_terms::<T, 1>(out, base, f, ks),
-            2 => add_terms::<T, 2>(out, base, f, ks),
-            3 => add_terms::<T, 3>(out, base, f, ks),
-            _ => add_terms::<T, 4>(out, base, f, ks),
+            1 => add_terms::<T, 1>(out, start, f, ks),
+            2 => add_terms::<T, 2>(out, start, f, ks),
+            3 => add_terms::<T, 3>(out, start, f, ks),
+            _ => add_terms::<T, 4>(out, start, f, ks),
         }
         done += group;
     }
 }
 
-/// out_i = (base_i or out_i) + f₀ k₀_i + … + f_{N-1} k_{N-1}_i, left to right.
+/// What a pass of [`add_terms`] adds its terms to.
+#[derive(Clone, Copy)]
+enum Start<'a, T> {
+    /// A base vector.
+    From(&'a [T]),
+    /// The output's own values.
+    Out,
+    /// Nothing: the first term starts the sum.
+    Nothing,
+}
+
+/// out_i = (base_i, out_i or nothing) + f₀ k₀_i + … + f_{N-1} k_{N-1}_i, left to right.
 #[inline(always)]
-fn add_terms<T, const N: usize>(out: &mut [T], base: Option<&[T]>, f: &[T], ks: &[&[T]])
+fn add_terms<T, const N: usize>(out: &mut [T], start: Start<'_, T>, f: &[T], ks: &[&[T]])
 where
     T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
 {
     let n = out.len();
     let f: [T; N] = std::array::from_fn(|j| f[j]);
     let ks: [&[T]; N] = std::array::from_fn(|j| &ks[j][..n]);
-    match base {
-        Some(y) => {
+    match start {
+        Start::From(y) => {
             let y = &y[..n];
             for i in 0..n {
                 let mut acc = y[i];
@@ -732,10 +748,19 @@ where
                 out[i] = acc;
             }
         }
-        None => {
+        Start::Out => {
             for i in 0..n {
                 let mut acc = out[i];
                 for j in 0..N {
+                    acc = acc + f[j] * ks[j][i];
+                }
+                out[i] = acc;
+            }
+        }
+        Start::Nothing => {
+            for i in 0..n {
+                let mut acc = f[0] * ks[0][i];
+                for j in 1..N {
                     acc = acc + f[j] * ks[j][i];
                 }
                 out[i] = acc;
