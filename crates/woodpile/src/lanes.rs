@@ -3,8 +3,10 @@
 //! A design study simulates thousands of chains of one problem. [`simulate_many`] advances `L`
 //! of them at once, in structure-of-arrays form: every state component is an `[f64; L]`, one
 //! value per run, so each arithmetic operation of the equations of motion and of the Runge–Kutta
-//! stages is one vector instruction over L runs (AVX-512: 8 doubles, AVX2: 4, SSE2: 2; the
-//! instruction set is chosen at run time, the width by [`LaneWidth`]).
+//! stages is one vector instruction over L runs (AVX2: 4 doubles, SSE2: 2; the instruction set
+//! is chosen at run time, the width by [`LaneWidth`]). There is no AVX-512 build: on the AVX-512
+//! development machine it was slower than the AVX2 build at every width, 8 lanes 2.3× slower
+//! (LLVM vectorised the loops over state components with gathers; bench/README.md).
 //!
 //! Each lane keeps its own time, step size and step-size controller, so lanes never wait for
 //! each other: a lane whose run has ended takes the next run of the queue. Runs of one lane group
@@ -51,7 +53,7 @@ pub enum LaneWidth {
     Two,
     /// Four runs (one AVX2 register).
     Four,
-    /// Eight runs (one AVX-512 register, or two AVX2 registers).
+    /// Eight runs (two AVX2 registers).
     Eight,
 }
 
@@ -64,14 +66,11 @@ impl LaneWidth {
         LaneWidth::Eight,
     ];
 
-    /// The width for this CPU: eight with AVX-512, four with AVX2 (the fastest on the 2-core
-    /// AVX2 development machine, bench/README.md), two otherwise.
+    /// The width for this CPU: four with AVX2 (also on CPUs with AVX-512, whose build was slower
+    /// at every width: bench/README.md), two otherwise.
     pub fn detect() -> Self {
         #[cfg(target_arch = "x86_64")]
         {
-            if std::arch::is_x86_feature_detected!("avx512f") {
-                return LaneWidth::Eight;
-            }
             if std::arch::is_x86_feature_detected!("avx2") {
                 return LaneWidth::Four;
             }
@@ -196,10 +195,6 @@ fn run_group<const L: usize>(
 ) -> Vec<(usize, Result<RunSummary>)> {
     #[cfg(target_arch = "x86_64")]
     {
-        if std::arch::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU supports AVX-512F (checked on the line above).
-            return unsafe { run_group_avx512::<L>(jobs, key, members, peak_watch) };
-        }
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU supports AVX2 (checked on the line above).
             return unsafe { run_group_avx2::<L>(jobs, key, members, peak_watch) };
@@ -213,19 +208,6 @@ fn run_group<const L: usize>(
 #[target_feature(enable = "avx2")]
 #[allow(unsafe_code)]
 unsafe fn run_group_avx2<const L: usize>(
-    jobs: &[Job<'_>],
-    key: &GroupKey,
-    members: Vec<(usize, ChainOde)>,
-    peak_watch: PeakWatch,
-) -> Vec<(usize, Result<RunSummary>)> {
-    Lanes::<L>::new(jobs, key, members, peak_watch).run()
-}
-
-/// [`run_group`] compiled for AVX-512F (no FMA).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-#[allow(unsafe_code)]
-unsafe fn run_group_avx512<const L: usize>(
     jobs: &[Job<'_>],
     key: &GroupKey,
     members: Vec<(usize, ChainOde)>,
