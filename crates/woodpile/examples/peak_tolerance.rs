@@ -25,7 +25,9 @@ fn main() -> woodpile::Result<()> {
             Method::for_peak_tolerance(tol)?,
         ));
     }
-    for rtol in [1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8, 3e-9, 1e-9, 3e-10, 1e-10, 3e-11] {
+    for rtol in [
+        1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8, 3e-9, 1e-9, 3e-10, 1e-10, 3e-11,
+    ] {
         methods.push((
             format!("dopri5 rtol={rtol:e}"),
             Method::Dopri5 {

@@ -387,6 +387,14 @@ impl Integrator {
         &self.y_prev
     }
 
+    /// Exchanges the state at the start of the last step with `buffer` (of the same length), so
+    /// that a caller can keep it without a copy. Until the next step, [`Integrator::y_prev`] then
+    /// holds `buffer`'s old contents and [`Integrator::interpolate`] is not valid.
+    pub(crate) fn exchange_y_prev(&mut self, buffer: &mut Vec<f64>) {
+        debug_assert_eq!(buffer.len(), self.y_prev.len());
+        std::mem::swap(&mut self.y_prev, buffer);
+    }
+
     /// Current state.
     pub fn y(&self) -> &[f64] {
         &self.y

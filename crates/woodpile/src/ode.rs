@@ -474,8 +474,29 @@ impl ChainOde {
     /// evaluation. The load's rate and a damped contact's are NaN (their peaks are not refined).
     pub fn contact_force_rates(&self, y: &[f64], out: &mut [f64]) {
         let v = &y[self.n_dof..2 * self.n_dof];
-        for (c, rate) in out[..self.n_layers()].iter_mut().enumerate() {
-            *rate = self.contact_force_rate(c, v);
+        if self.lab.is_some() {
+            for (c, rate) in out[..self.n_layers()].iter_mut().enumerate() {
+                *rate = self.contact_force_rate(c, v);
+            }
+            return;
+        }
+        // The paper's model (no damping): the same formula without the per-contact law lookup.
+        let p = self.n_primary;
+        let first = 1 - self.shift;
+        for (c, slot) in (first..=p).enumerate() {
+            let d = self.overlap_m[slot];
+            out[c] = if slot == 0 {
+                f64::NAN
+            } else if d > 0.0 {
+                let ddot = if slot == p {
+                    v[p - 1]
+                } else {
+                    v[slot - 1] - v[slot]
+                };
+                1.5 * self.force_n[slot] * ddot / d
+            } else {
+                0.0
+            };
         }
     }
 

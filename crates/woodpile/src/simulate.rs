@@ -578,8 +578,8 @@ pub(crate) fn simulate_watching(
     while integrator.t() < t_end * (1.0 - 1e-14) {
         integrator.step(&mut ode, t_end)?;
         let (t0, t1) = (integrator.t_prev(), integrator.t());
-        recent.push(t0, integrator.y_prev());
         if let Err(coarse) = ode.check_contacts(t1) {
+            recent.push(t0, integrator.y_prev());
             let culprit = ode.stiffest_contact().map(|c| c.0);
             return Err(diagnose_blow_up(
                 chain, excitation, &recent, t1, culprit, coarse,
@@ -598,6 +598,8 @@ pub(crate) fn simulate_watching(
             };
             watch.record(&mut ode, ts, y, at_step, recorder)?;
         }
+        // Dense output is done with this step: keep its start state without a copy.
+        recent.keep(t0, &mut integrator);
     }
     Ok(watch.finish(&ode, integrator.y(), integrator.stats()))
 }
@@ -752,8 +754,9 @@ fn stiffest_during_steps(
     watch.stiffest.map(|(c, _)| c)
 }
 
-/// The start states of the last few steps (a ring allocated once; one copy per step), so that a
-/// blow-up can be traced back to the step where it began.
+/// The start states of the last few steps (a ring allocated once, whose buffers are exchanged
+/// with the integrator's: no copy per step), so that a blow-up can be traced back to the step
+/// where it began.
 struct RecentStates {
     times: Vec<f64>,
     states: Vec<Vec<f64>>,
@@ -775,9 +778,21 @@ impl RecentStates {
         }
     }
 
+    /// Keeps a copy of the start state y of a step at t.
     fn push(&mut self, t: f64, y: &[f64]) {
-        self.times[self.next] = t;
         self.states[self.next].copy_from_slice(y);
+        self.advance(t);
+    }
+
+    /// Keeps the integrator's start state of its last step (at t) by exchanging buffers with it
+    /// (no copy); see [`Integrator::exchange_y_prev`].
+    fn keep(&mut self, t: f64, integrator: &mut Integrator) {
+        integrator.exchange_y_prev(&mut self.states[self.next]);
+        self.advance(t);
+    }
+
+    fn advance(&mut self, t: f64) {
+        self.times[self.next] = t;
         self.next = (self.next + 1) % Self::DEPTH;
         self.len = (self.len + 1).min(Self::DEPTH);
     }
