@@ -4,7 +4,8 @@
 //! - `single`: one run of the benchmark problem (docs/physics.md §9 chain, resonant, the default
 //!   impact, 2 ms, peaks only), `--repeat` times;
 //! - `ga`: the first `--designs` designs of the paper's impact GA (generation 0, seed 1) through
-//!   `BreederGa::evaluate_designs` on one thread, lanes `--lanes` wide (1, 2, 4 or 8).
+//!   `BreederGa::evaluate_designs` on `--threads` threads (default 1), lanes `--lanes` wide (1, 2,
+//!   4 or 8; default 4).
 //!
 //! The method: `--rk4 DT` (fixed step \[s\]), `--rtol R` (DOPRI5, atol = R·1e-6) or `--tol T`
 //! (`Method::for_peak_tolerance`); default `--tol 1e-4`. Prints the objective values' sum and the
@@ -69,7 +70,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 Box::new(StandardObjective::TransmittedForce),
                 GaSettings {
                     population: n,
-                    threads: 1,
+                    threads: arg::<usize>("--threads").unwrap_or(1),
                     seed: 1,
                     ..GaSettings::default()
                 },
