@@ -19,13 +19,15 @@ fn main() -> woodpile::Result<()> {
         ("blast rigid", CellModel::Rigid, false),
     ];
     let mut methods: Vec<(String, Method)> = Vec::new();
-    for tol in [1e-4, 1e-5, 1e-6] {
+    for tol in [1e-3, 1e-4, 1e-5, 1e-6] {
         methods.push((
             format!("tolerance {tol:e}"),
             Method::for_peak_tolerance(tol)?,
         ));
     }
-    for rtol in [1e-6, 1e-7, 1e-8, 1e-9] {
+    for rtol in [
+        1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8, 3e-9, 1e-9, 3e-10, 1e-10, 3e-11,
+    ] {
         methods.push((
             format!("dopri5 rtol={rtol:e}"),
             Method::Dopri5 {
@@ -75,9 +77,14 @@ fn main() -> woodpile::Result<()> {
                     (0, 0.0),
                     |best, (c, e)| if e > best.1 { (c, e) } else { best },
                 );
+            let rtol = match method {
+                Method::Dopri5 { rtol, .. } => *rtol,
+                Method::Rk4 { .. } => f64::NAN,
+            };
             println!(
-                "  {label:<22} rhs {:>7}  worst peak error {worst:.2e} (contact {contact})",
-                s.stats.rhs_evaluations
+                "  {label:<22} rtol {rtol:>8.2e}  rhs {:>7}  worst peak error {worst:.2e} (contact {contact}), {:.2} rtol^0.6",
+                s.stats.rhs_evaluations,
+                worst / rtol.powf(0.6)
             );
         }
     }

@@ -3,8 +3,10 @@
 //! A design study simulates thousands of chains of one problem. [`simulate_many`] advances `L`
 //! of them at once, in structure-of-arrays form: every state component is an `[f64; L]`, one
 //! value per run, so each arithmetic operation of the equations of motion and of the Runge–Kutta
-//! stages is one vector instruction over L runs (AVX-512: 8 doubles, AVX2: 4, SSE2: 2; the
-//! instruction set is chosen at run time, the width by [`LaneWidth`]).
+//! stages is one vector instruction over L runs (AVX2: 4 doubles, SSE2: 2; the instruction set
+//! is chosen at run time, the width by [`LaneWidth`]). There is no AVX-512 build: on the AVX-512
+//! development machine it was slower than the AVX2 build at every width, 8 lanes 2.3× slower
+//! (LLVM vectorised the loops over state components with gathers; bench/README.md).
 //!
 //! Each lane keeps its own time, step size and step-size controller, so lanes never wait for
 //! each other: a lane whose run has ended takes the next run of the queue. Runs of one lane group
@@ -12,7 +14,7 @@
 //! of resonators are padded with massless-in-effect resonators (k = 0: they exert exactly zero
 //! force) and the error norm skips the padding.
 //!
-//! **The lanes compute bit for bit what [`simulate`] computes** for the same run: every lane
+//! **The lanes compute bit for bit what [`simulate`](crate::simulate()) computes** for the same run: every lane
 //! performs the scalar path's operations in the same order (IEEE arithmetic, no fused
 //! multiply–add, square roots correctly rounded in both), the error norm sums in the scalar
 //! order, and the per-step work (peaks, checks, the final summary) is the scalar code itself.
@@ -22,7 +24,7 @@
 //!
 //! Lanes take the runs whose figures of merit need no samples (`sample_interval_s` equal to
 //! `duration_s`, as the GA's force objectives run) and the paper's physics; runs with the lab
-//! physics of docs/physics.md §14, or that record samples, go to [`simulate`].
+//! physics of docs/physics.md §14, or that record samples, go to [`simulate`](crate::simulate()).
 
 // Lane loops index several arrays by the lane number l: the plain form that LLVM vectorizes.
 #![allow(clippy::needless_range_loop)]
@@ -38,7 +40,8 @@ use crate::integrate::{
 use crate::model::Chain;
 use crate::ode::ChainOde;
 use crate::simulate::{
-    check_resonator_stability, simulate, too_many_steps, RunSettings, RunSummary, Watch,
+    check_resonator_stability, simulate_watching, too_many_steps, PeakWatch, RunSettings,
+    RunSummary, Watch,
 };
 
 /// How many runs advance together.
@@ -50,7 +53,7 @@ pub enum LaneWidth {
     Two,
     /// Four runs (one AVX2 register).
     Four,
-    /// Eight runs (one AVX-512 register, or two AVX2 registers).
+    /// Eight runs (two AVX2 registers).
     Eight,
 }
 
@@ -63,14 +66,11 @@ impl LaneWidth {
         LaneWidth::Eight,
     ];
 
-    /// The width for this CPU: eight with AVX-512, four with AVX2 (the fastest on the 2-core
-    /// AVX2 development machine, bench/README.md), two otherwise.
+    /// The width for this CPU: four with AVX2 (also on CPUs with AVX-512, whose build was slower
+    /// at every width: bench/README.md), two otherwise.
     pub fn detect() -> Self {
         #[cfg(target_arch = "x86_64")]
         {
-            if std::arch::is_x86_feature_detected!("avx512f") {
-                return LaneWidth::Eight;
-            }
             if std::arch::is_x86_feature_detected!("avx2") {
                 return LaneWidth::Four;
             }
@@ -108,27 +108,45 @@ pub struct Job<'a> {
     pub settings: &'a RunSettings,
 }
 
-/// Runs every job, in lanes where it can (see the module documentation) and on [`simulate`]
+/// Runs every job, in lanes where it can (see the module documentation) and on [`simulate`](crate::simulate())
 /// otherwise, with no recorder. The results are in the order of `jobs` and equal, bit for bit
 /// except `wall_time_s`, to `simulate(chain, excitation, settings, &mut ())` of each job.
 pub fn simulate_many(jobs: &[Job<'_>], width: LaneWidth) -> Vec<Result<RunSummary>> {
+    simulate_many_watching(jobs, width, PeakWatch::Every)
+}
+
+/// [`simulate_many`], tracking over every step only the contact peaks that `peak_watch` names
+/// (the force objectives of a design study need two of them: [`PeakWatch::FiguresOfMerit`]).
+/// Each result equals, bit for bit except `wall_time_s`, what [`simulate`](crate::simulate()) gives the job, except
+/// the peaks not tracked, which are NaN.
+pub fn simulate_many_watching(
+    jobs: &[Job<'_>],
+    width: LaneWidth,
+    peak_watch: PeakWatch,
+) -> Vec<Result<RunSummary>> {
     let mut results: Vec<Option<Result<RunSummary>>> = (0..jobs.len()).map(|_| None).collect();
     let mut groups: BTreeMap<GroupKey, Vec<(usize, ChainOde)>> = BTreeMap::new();
     for (index, job) in jobs.iter().enumerate() {
         match lane_ready(job) {
             Ok(Some((key, ode))) => groups.entry(key).or_default().push((index, ode)),
             Ok(None) => {
-                results[index] = Some(simulate(job.chain, job.excitation, job.settings, &mut ()))
+                results[index] = Some(simulate_watching(
+                    job.chain,
+                    job.excitation,
+                    job.settings,
+                    &mut (),
+                    peak_watch,
+                ))
             }
             Err(e) => results[index] = Some(Err(e)),
         }
     }
     for (key, members) in groups {
         let done = match width {
-            LaneWidth::One => run_group::<1>(jobs, &key, members),
-            LaneWidth::Two => run_group::<2>(jobs, &key, members),
-            LaneWidth::Four => run_group::<4>(jobs, &key, members),
-            LaneWidth::Eight => run_group::<8>(jobs, &key, members),
+            LaneWidth::One => run_group::<1>(jobs, &key, members, peak_watch),
+            LaneWidth::Two => run_group::<2>(jobs, &key, members, peak_watch),
+            LaneWidth::Four => run_group::<4>(jobs, &key, members, peak_watch),
+            LaneWidth::Eight => run_group::<8>(jobs, &key, members, peak_watch),
         };
         for (index, result) in done {
             results[index] = Some(result);
@@ -149,7 +167,7 @@ struct GroupKey {
     adaptive: bool,
 }
 
-/// Checks a job as [`simulate`] does (same errors, same order) and compiles it; `None` when it
+/// Checks a job as [`simulate`](crate::simulate()) does (same errors, same order) and compiles it; `None` when it
 /// is not for the lanes.
 fn lane_ready(job: &Job<'_>) -> Result<Option<(GroupKey, ChainOde)>> {
     job.settings.validate()?;
@@ -173,19 +191,16 @@ fn run_group<const L: usize>(
     jobs: &[Job<'_>],
     key: &GroupKey,
     members: Vec<(usize, ChainOde)>,
+    peak_watch: PeakWatch,
 ) -> Vec<(usize, Result<RunSummary>)> {
     #[cfg(target_arch = "x86_64")]
     {
-        if std::arch::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU supports AVX-512F (checked on the line above).
-            return unsafe { run_group_avx512::<L>(jobs, key, members) };
-        }
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU supports AVX2 (checked on the line above).
-            return unsafe { run_group_avx2::<L>(jobs, key, members) };
+            return unsafe { run_group_avx2::<L>(jobs, key, members, peak_watch) };
         }
     }
-    Lanes::<L>::new(jobs, key, members).run()
+    Lanes::<L>::new(jobs, key, members, peak_watch).run()
 }
 
 /// [`run_group`] compiled for AVX2 (no FMA: the results stay those of the portable build).
@@ -196,20 +211,9 @@ unsafe fn run_group_avx2<const L: usize>(
     jobs: &[Job<'_>],
     key: &GroupKey,
     members: Vec<(usize, ChainOde)>,
+    peak_watch: PeakWatch,
 ) -> Vec<(usize, Result<RunSummary>)> {
-    Lanes::<L>::new(jobs, key, members).run()
-}
-
-/// [`run_group`] compiled for AVX-512F (no FMA).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-#[allow(unsafe_code)]
-unsafe fn run_group_avx512<const L: usize>(
-    jobs: &[Job<'_>],
-    key: &GroupKey,
-    members: Vec<(usize, ChainOde)>,
-) -> Vec<(usize, Result<RunSummary>)> {
-    Lanes::<L>::new(jobs, key, members).run()
+    Lanes::<L>::new(jobs, key, members, peak_watch).run()
 }
 
 /// One value per lane, with IEEE arithmetic lane by lane. Operations take and return values, so
@@ -296,10 +300,6 @@ impl<const L: usize> std::ops::Neg for Lane<L> {
     }
 }
 
-/// Class of a state component in a lane's error norm: which of the scalar norm's four partial
-/// sums it joins (0–3), which of its up to three trailing terms it is (4–6), or padding (7).
-const PADDING: f64 = 7.0;
-
 /// The scalar run that occupies a lane: its compiled chain (for the per-step work and the
 /// summary), its watch and its step control.
 struct LaneRun<'a> {
@@ -322,6 +322,7 @@ struct LaneRun<'a> {
 /// L runs of one group in structure-of-arrays form, and the queue of runs waiting for a lane.
 struct Lanes<'a, const L: usize> {
     jobs: &'a [Job<'a>],
+    peak_watch: PeakWatch,
     tableau: Tableau,
     adaptive: bool,
     order: f64,
@@ -338,9 +339,6 @@ struct Lanes<'a, const L: usize> {
     res_omega2: Vec<Lane<L>>,
     res_coupling: Vec<Lane<L>>,
     atol: Vec<Lane<L>>,
-    class: Vec<Lane<L>>,
-    n_real: [f64; L],
-    n_tail: [usize; L],
     y: Vec<Lane<L>>,
     stage: Vec<Lane<L>>,
     f_now: Vec<Lane<L>>,
@@ -348,13 +346,20 @@ struct Lanes<'a, const L: usize> {
     err: Vec<Lane<L>>,
     force: Vec<Lane<L>>,
     overlap: Vec<Lane<L>>,
+    /// Overlap limit per slot (infinite where there is none, and in empty lanes).
+    limit: Vec<Lane<L>>,
     runs: Vec<Option<LaneRun<'a>>>,
     queue: std::vec::IntoIter<(usize, ChainOde)>,
     done: Vec<(usize, Result<RunSummary>)>,
 }
 
 impl<'a, const L: usize> Lanes<'a, L> {
-    fn new(jobs: &'a [Job<'a>], key: &GroupKey, members: Vec<(usize, ChainOde)>) -> Self {
+    fn new(
+        jobs: &'a [Job<'a>],
+        key: &GroupKey,
+        members: Vec<(usize, ChainOde)>,
+        peak_watch: PeakWatch,
+    ) -> Self {
         let p = key.n_primary;
         // The most resonators any run of the group has on each primary.
         let mut slots_per_element = vec![0usize; p];
@@ -388,6 +393,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
         let zeros = |n: usize| vec![Lane::<L>::ZERO; n];
         Lanes {
             jobs,
+            peak_watch,
             order: f64::from(tableau.order),
             k: (0..tableau.stages()).map(|_| zeros(dim)).collect(),
             tableau,
@@ -403,15 +409,13 @@ impl<'a, const L: usize> Lanes<'a, L> {
             res_omega2: zeros(r),
             res_coupling: zeros(r),
             atol: vec![Lane::splat(1.0); dim],
-            class: vec![Lane::splat(PADDING); dim],
-            n_real: [1.0; L],
-            n_tail: [0; L],
             y: zeros(dim),
             stage: zeros(dim),
             f_now: zeros(dim),
             err: zeros(dim),
             force: zeros(p + 1),
             overlap: zeros(p + 1),
+            limit: vec![Lane::splat(f64::INFINITY); p + 1],
             runs: (0..L).map(|_| None).collect(),
             queue: members.into_iter(),
             done: Vec::new(),
@@ -433,7 +437,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
         }
     }
 
-    /// Starts the next queued run in lane l, as [`simulate`] starts it.
+    /// Starts the next queued run in lane l, as [`simulate`](crate::simulate()) starts it.
     fn fill(&mut self, l: usize) {
         let Some((job, mut ode)) = self.queue.next() else {
             return;
@@ -462,6 +466,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
             integrator.y(),
             &mut (),
             started,
+            self.peak_watch,
         );
         let (h, err_prev, rtol, atol) = match settings.method {
             Method::Dopri5 { rtol, atol } => {
@@ -492,31 +497,23 @@ impl<'a, const L: usize> Lanes<'a, L> {
             self.y[c].0[l] = 0.0;
             self.f_now[c].0[l] = 0.0;
             self.atol[c].0[l] = 1.0;
-            self.class[c].0[l] = PADDING;
         }
         for j in 0..self.res_owner.len() {
             self.res_omega2[j].0[l] = 0.0;
             self.res_coupling[j].0[l] = 0.0;
         }
         let n = place.len();
-        let head = n - n % 4;
         for (i, &c) in place.iter().enumerate() {
             self.y[c].0[l] = integrator.y()[i];
             self.f_now[c].0[l] = integrator.f_now()[i];
             self.atol[c].0[l] = atol * units[i];
-            self.class[c].0[l] = if i < head {
-                (i % 4) as f64
-            } else {
-                (4 + i - head) as f64
-            };
         }
-        self.n_real[l] = n as f64;
-        self.n_tail[l] = n - head;
         for i in 0..p {
             self.inv_mass[i].0[l] = ode.inv_mass[i];
         }
         for s in 0..=p {
             self.beta[s].0[l] = ode.beta[s];
+            self.limit[s].0[l] = ode.overlap_limits_by_slot()[s];
         }
         for (j, &c) in res_place.iter().enumerate() {
             self.res_omega2[c - p].0[l] = ode.res_omega2[j];
@@ -620,6 +617,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
             self.y = y;
             self.f_now = f_now;
         }
+        let blown_up = self.check_contacts();
         for l in 0..L {
             if accepted[l] && self.runs[l].is_some() {
                 let t1 = if self.adaptive {
@@ -627,14 +625,31 @@ impl<'a, const L: usize> Lanes<'a, L> {
                 } else {
                     t_fixed[l]
                 };
-                self.after_accept(l, t[l], t1, h[l], err[l]);
+                self.after_accept(l, t[l], t1, h[l], err[l], blown_up[l]);
             }
         }
     }
 
+    /// [`ChainOde::check_contacts`] of the force cache in every lane at once: whether it would
+    /// fail (a non-finite force or overlap, or an overlap beyond its contact's limit). A lane that
+    /// fails goes to the scalar path, which names the contact and the cause.
+    #[inline(always)]
+    fn check_contacts(&self) -> [bool; L] {
+        let mut bad = [false; L];
+        let first = usize::from(!self.blast);
+        for s in first..=self.p {
+            let (f, d, limit) = (self.force[s], self.overlap[s], self.limit[s]);
+            for l in 0..L {
+                bad[l] |=
+                    !f.0[l].is_finite() || (s > 0 && !d.0[l].is_finite()) || d.0[l] > limit.0[l];
+            }
+        }
+        bad
+    }
+
     /// Bookkeeping of an accepted step [t0, t1] of size h in lane l: time, step control, checks,
     /// peaks, the end.
-    fn after_accept(&mut self, l: usize, t0: f64, t1: f64, h: f64, err: f64) {
+    fn after_accept(&mut self, l: usize, t0: f64, t1: f64, h: f64, err: f64, blown_up: bool) {
         let adaptive = self.adaptive;
         let order = self.order;
         let (p, nd) = (self.p, self.nd);
@@ -648,18 +663,36 @@ impl<'a, const L: usize> Lanes<'a, L> {
         } else {
             run.stats.rhs_evaluations += 1;
         }
-        // The lane's contact cache becomes the run's, with the velocities the rates need.
-        for s in 0..=p {
-            run.ode.force_n[s] = self.force[s].0[l];
-            run.ode.overlap_m[s] = self.overlap[s].0[l];
-        }
-        let n_dof = run.ode.n_dof;
-        for i in 0..p {
-            run.y[n_dof + i] = self.y[nd + i].0[l];
-        }
-        if run.ode.check_contacts(t1).is_err() {
+        if blown_up {
             self.rerun(l);
             return;
+        }
+        let finished = t1 >= run.settings.duration_s * (1.0 - 1e-14);
+        let sample = run.watch.sample_due(t1);
+        // The lane's contact cache becomes the run's, with the velocities the rates need: every
+        // slot, or only those of the watched contacts until a step that samples or ends the run.
+        let n_dof = run.ode.n_dof;
+        match run.watch.watched() {
+            Some(watched) if !finished && sample.is_none() => {
+                let first = 1 - run.ode.shift;
+                for &c in watched {
+                    let s = c + first;
+                    run.ode.force_n[s] = self.force[s].0[l];
+                    run.ode.overlap_m[s] = self.overlap[s].0[l];
+                    for i in [s.saturating_sub(1), s.min(p - 1)] {
+                        run.y[n_dof + i] = self.y[nd + i].0[l];
+                    }
+                }
+            }
+            _ => {
+                for s in 0..=p {
+                    run.ode.force_n[s] = self.force[s].0[l];
+                    run.ode.overlap_m[s] = self.overlap[s].0[l];
+                }
+                for i in 0..p {
+                    run.y[n_dof + i] = self.y[nd + i].0[l];
+                }
+            }
         }
         if run.stats.steps > crate::defaults::MAX_STEPS {
             let e = too_many_steps(t1, run.settings);
@@ -669,8 +702,6 @@ impl<'a, const L: usize> Lanes<'a, L> {
             return;
         }
         run.watch.after_step(&run.ode, t0, t1, &run.y);
-        let sample = run.watch.sample_due(t1);
-        let finished = t1 >= run.settings.duration_s * (1.0 - 1e-14);
         if sample.is_none() && !finished {
             return;
         }
@@ -712,7 +743,13 @@ impl<'a, const L: usize> Lanes<'a, L> {
         let job = self.jobs[run.job];
         self.done.push((
             run.job,
-            simulate(job.chain, job.excitation, job.settings, &mut ()),
+            simulate_watching(
+                job.chain,
+                job.excitation,
+                job.settings,
+                &mut (),
+                self.peak_watch,
+            ),
         ));
     }
 
@@ -798,7 +835,8 @@ impl<'a, const L: usize> Lanes<'a, L> {
     }
 
     /// Each lane's weighted RMS error norm, summed exactly as the scalar integrator sums it:
-    /// four partial sums by the run's own component index mod 4, then the trailing components.
+    /// the squared weighted errors of every component at once, then, lane by lane, in the run's
+    /// own component order (`place`): four partial sums by index mod 4, then the trailing ones.
     #[inline(always)]
     fn error_norms(&mut self, h: &[f64; L], out: &mut [f64; L]) {
         let e = self
@@ -806,7 +844,6 @@ impl<'a, const L: usize> Lanes<'a, L> {
             .error
             .as_ref()
             .expect("adaptive tableau has error weights");
-        self.err.fill(Lane::ZERO);
         crate::integrate::stage_sum(&mut self.err, None, e, &self.k, |ej| {
             Lane(*h) * Lane::splat(ej)
         });
@@ -815,39 +852,31 @@ impl<'a, const L: usize> Lanes<'a, L> {
             *r = self.runs[l].as_ref().map_or(0.0, |run| run.rtol);
         }
         let rtol = Lane(rtol);
-        let zero = Lane::ZERO;
-        let mut sums = [zero; 4];
-        let mut tail = [zero; 3];
         for c in 0..self.dim {
             let r = self.err[c] / (self.atol[c] + rtol * self.y[c].abs().max(self.stage[c].abs()));
-            let r2 = r * r;
-            let class = self.class[c];
-            for (k, s) in sums.iter_mut().enumerate() {
-                *s = *s + Lane::select(class_mask(class, k), r2, zero);
-            }
-            for (k, t) in tail.iter_mut().enumerate() {
-                *t = Lane::select(class_mask(class, 4 + k), r2, *t);
-            }
+            self.err[c] = r * r;
         }
         for l in 0..L {
-            let partial = [sums[0].0[l], sums[1].0[l], sums[2].0[l], sums[3].0[l]];
-            let mut sum: f64 = partial.iter().sum();
-            for t in tail.iter().take(self.n_tail[l]) {
-                sum += t.0[l];
+            let Some(run) = &self.runs[l] else {
+                out[l] = 0.0;
+                continue;
+            };
+            let place = &run.place;
+            let n = place.len();
+            let head = n - n % 4;
+            let mut partial = [0.0; 4];
+            for cs in place[..head].chunks_exact(4) {
+                for (s, &c) in partial.iter_mut().zip(cs) {
+                    *s += self.err[c].0[l];
+                }
             }
-            out[l] = (sum / self.n_real[l]).sqrt();
+            let mut sum: f64 = partial.iter().sum();
+            for &c in &place[head..] {
+                sum += self.err[c].0[l];
+            }
+            out[l] = (sum / n as f64).sqrt();
         }
     }
-}
-
-/// Lanes whose component is of class k.
-#[inline(always)]
-fn class_mask<const L: usize>(class: Lane<L>, k: usize) -> [bool; L] {
-    let mut m = [false; L];
-    for l in 0..L {
-        m[l] = class.0[l] == k as f64;
-    }
-    m
 }
 
 /// out = y + h Σ_j w_j k_j in every lane with its own h: integrate.rs's stage sum, so every lane

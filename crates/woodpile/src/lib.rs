@@ -64,7 +64,7 @@ pub use excitation::{
     Sweep,
 };
 pub use integrate::{Integrator, IntegratorStats, Method, OdeSystem, Tableau};
-pub use lanes::{simulate_many, Job, LaneWidth};
+pub use lanes::{simulate_many, simulate_many_watching, Job, LaneWidth};
 pub use model::{
     BeamTheory, Body, CellModel, Chain, ChainBuilder, ContactDamping, Damping, Element, Material,
     Preload, Reduction, Resonator, ResonatorDamping, Rod, Surface, UnitCell, Wall,
@@ -72,4 +72,4 @@ pub use model::{
 };
 pub use optimize::{BreederGa, DesignSpace, GaSettings, Objective, StandardObjective};
 pub use record::{EndForces, Layout, Recorder, Sample, Trajectory};
-pub use simulate::{simulate, EnergyBalance, Restitution, RunSettings, RunSummary};
+pub use simulate::{simulate, EnergyBalance, PeakWatch, Restitution, RunSettings, RunSummary};

@@ -474,16 +474,18 @@ impl ChainOde {
     /// evaluation. The load's rate and a damped contact's are NaN (their peaks are not refined).
     pub fn contact_force_rates(&self, y: &[f64], out: &mut [f64]) {
         let v = &y[self.n_dof..2 * self.n_dof];
+        if self.lab.is_some() {
+            for (c, rate) in out[..self.n_layers()].iter_mut().enumerate() {
+                *rate = self.contact_force_rate(c, v);
+            }
+            return;
+        }
+        // The paper's model (no damping): the same formula without the per-contact law lookup.
         let p = self.n_primary;
         let first = 1 - self.shift;
         for (c, slot) in (first..=p).enumerate() {
             let d = self.overlap_m[slot];
-            let f = self.force_n[slot];
-            let damped = self
-                .lab
-                .as_ref()
-                .is_some_and(|lab| lab.law[slot] != SlotLaw::None);
-            out[c] = if slot == 0 || damped {
+            out[c] = if slot == 0 {
                 f64::NAN
             } else if d > 0.0 {
                 let ddot = if slot == p {
@@ -491,11 +493,44 @@ impl ChainOde {
                 } else {
                     v[slot - 1] - v[slot]
                 };
-                1.5 * f * ddot / d
+                1.5 * self.force_n[slot] * ddot / d
             } else {
                 0.0
             };
         }
+    }
+
+    /// Rate dF/dt [N/s] of paper contact c, from the velocities `v` of the state of the last
+    /// evaluation (only those of the contact's two primaries are read); NaN for the load and a
+    /// damped contact, as in [`ChainOde::contact_force_rates`].
+    #[inline]
+    pub(crate) fn contact_force_rate(&self, c: usize, v: &[f64]) -> f64 {
+        let p = self.n_primary;
+        let slot = c + 1 - self.shift;
+        let d = self.overlap_m[slot];
+        let f = self.force_n[slot];
+        let damped = self
+            .lab
+            .as_ref()
+            .is_some_and(|lab| lab.law[slot] != SlotLaw::None);
+        if slot == 0 || damped {
+            f64::NAN
+        } else if d > 0.0 {
+            let ddot = if slot == p {
+                v[p - 1]
+            } else {
+                v[slot - 1] - v[slot]
+            };
+            1.5 * f * ddot / d
+        } else {
+            0.0
+        }
+    }
+
+    /// Overlap limit of every slot 0..=P \[m\] (infinite where there is none): what
+    /// [`ChainOde::check_contacts`] compares each overlap with.
+    pub(crate) fn overlap_limits_by_slot(&self) -> &[f64] {
+        &self.overlap_limit_m
     }
 
     /// Checks the last evaluation for a blow-up: a non-finite force or an overlap beyond the

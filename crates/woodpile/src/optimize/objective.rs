@@ -5,10 +5,10 @@
 
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
-use crate::lanes::{simulate_many, Job, LaneWidth};
+use crate::lanes::{simulate_many_watching, Job, LaneWidth};
 use crate::model::Chain;
 use crate::record::{Layout, Recorder, Sample};
-use crate::simulate::{simulate, RunSettings, RunSummary};
+use crate::simulate::{simulate, simulate_watching, PeakWatch, RunSettings, RunSummary};
 
 /// A figure of merit to minimise. Implement it to optimise for your own quantity; it must be a
 /// deterministic function of its arguments (the GA caches and compares values bit for bit).
@@ -125,7 +125,13 @@ impl Objective for StandardObjective {
     ) -> Result<f64> {
         match self {
             StandardObjective::TransmittedForce | StandardObjective::TransmissionRatio => {
-                let summary = simulate(chain, excitation, &peaks_only(settings), &mut ())?;
+                let summary = simulate_watching(
+                    chain,
+                    excitation,
+                    &peaks_only(settings),
+                    &mut (),
+                    PeakWatch::FiguresOfMerit,
+                )?;
                 self.force_value(summary, settings)
             }
             StandardObjective::TransmittedEnergy => {
@@ -166,7 +172,7 @@ impl Objective for StandardObjective {
                 settings: &peaks_only,
             })
             .collect();
-        simulate_many(&jobs, lanes)
+        simulate_many_watching(&jobs, lanes, PeakWatch::FiguresOfMerit)
             .into_iter()
             .map(|summary| self.force_value(summary?, settings))
             .collect()
@@ -186,7 +192,9 @@ impl StandardObjective {
 
 /// Peak forces are tracked over every integration step whatever the sample grid, so the force
 /// objectives observe only the start and the end (no per-sample energies): the same peaks (bit
-/// for bit with fixed steps), less work per evaluation, and runs that fit SIMD lanes.
+/// for bit with fixed steps), less work per evaluation, and runs that fit SIMD lanes. They track
+/// only the incident and transmitted peaks ([`PeakWatch::FiguresOfMerit`]), bit for bit those
+/// of a run that tracks every contact.
 fn peaks_only(settings: &RunSettings) -> RunSettings {
     RunSettings {
         sample_interval_s: settings.duration_s,

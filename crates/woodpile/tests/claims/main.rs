@@ -30,6 +30,7 @@ mod energy_conservation_impact;
 mod fe_rod_frequencies;
 mod lab_energy_balance;
 mod lanes_bit_identical;
+mod lanes_figures_of_merit;
 mod nesterenko_solitary_wave;
 mod no_tension;
 mod optimize_cache_transparent;

@@ -1,9 +1,11 @@
-//! Claim: a stated peak accuracy holds. With `Method::for_peak_tolerance(tol)`, every contact
-//! peak of the paper's four kinds of run (the docs/physics.md §9 chain under the paper's impact
-//! and blast, resonant and rigid cells) is within `tol` (relative) of a converged run
-//! (Dormand–Prince at rtol = 1e-12), for tol =
-//! 1e-4 and 1e-5. Tolerance: the stated one itself; the measured worst errors are 9.1e-6 and
-//! 1.2e-6 (examples/peak_tolerance.rs), so the claim fails if the mapping loses a decade.
+//! Claim: a stated peak accuracy holds, with a margin. With `Method::for_peak_tolerance(tol)`,
+//! every contact peak of the paper's four kinds of run (the docs/physics.md §9 chain under the
+//! paper's impact and blast, resonant and rigid cells) is within tol/2 (relative) of a converged
+//! run (Dormand–Prince at rtol = 1e-12), for tol = 1e-3, 1e-4, 1e-5 and 1e-6. Tolerance: half
+//! the stated one. The rule puts the measured error envelope 0.75 rtol^0.6 three times below
+//! tol; the measured worst errors are tol/3.3, tol/4.7, tol/5.6 and tol/5.0
+//! (examples/peak_tolerance.rs, docs/physics.md §8), so the claim fails if the rule loses most
+//! of its safety factor (the old rule rtol = 1e-4 tol left only tol/1.6 at 1e-6).
 
 use woodpile::{
     simulate, BlastProfile, CellModel, ChainBuilder, Excitation, Method, RunSettings, Striker,
@@ -44,10 +46,10 @@ fn every_contact_peak_within_the_stated_tolerance() {
             Excitation::Impact(Striker::paper()),
             Excitation::Blast(BlastProfile::paper()),
         ] {
-            for tolerance in [1e-4, 1e-5] {
+            for tolerance in [1e-3, 1e-4, 1e-5, 1e-6] {
                 let worst = worst_error(cells, excitation.clone(), tolerance);
                 assert!(
-                    worst <= tolerance,
+                    worst <= tolerance / 2.0,
                     "{cells:?}, {excitation:?}, tolerance {tolerance:e}: worst peak error {worst:e}"
                 );
             }
