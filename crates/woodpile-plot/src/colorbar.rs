@@ -177,9 +177,10 @@ impl ColorScale {
     }
 
     /// Ticks of a bar `bar_px` pixels high: both limits, and the round values at least a label's
-    /// height away from them and from each other.
+    /// height away from them and from each other (labels as printed: the output's text scale
+    /// enlarges them beyond the layout's font size).
     fn ticks(&self, bar_px: f64) -> Vec<(f64, String)> {
-        let min_gap = 1.3 * TICK_FONT_PX / bar_px.max(1.0);
+        let min_gap = 1.3 * text_scale() * TICK_FONT_PX / bar_px.max(1.0);
         let mut kept: Vec<(f64, String)> = Vec::new();
         for (t, label) in self.candidate_ticks() {
             if kept.iter().all(|(k, _)| (k - t).abs() >= min_gap) {
@@ -188,6 +189,13 @@ impl ColorScale {
         }
         kept
     }
+}
+
+/// How much larger than laid out the text prints (the output's text scale, at least 1): text
+/// widths and heights measured here are multiplied by it, so labels printed larger do not
+/// overlap.
+fn text_scale() -> f64 {
+    crate::output::current_output().text_scale.max(1.0)
 }
 
 /// A colour bar: a scale and its label (quantity and unit).
@@ -204,14 +212,22 @@ impl ColorBar<'_> {
         self.scale
             .candidate_ticks()
             .iter()
-            .map(|(_, s)| Line::new(s, TICK_FONT_PX, false).size().0.ceil() as i32)
+            .map(|(_, s)| {
+                Line::new(s, TICK_FONT_PX * text_scale(), false)
+                    .size()
+                    .0
+                    .ceil() as i32
+            })
             .max()
             .unwrap_or(0)
     }
 
     /// Width the bar, its ticks, tick labels and label take \[px\].
     pub(crate) fn width(&self) -> u32 {
-        let label_height = Line::new(self.label, LABEL_FONT_PX, false).size().1.ceil() as i32;
+        let label_height = Line::new(self.label, LABEL_FONT_PX * text_scale(), false)
+            .size()
+            .1
+            .ceil() as i32;
         (MARGIN_PX
             + BAR_WIDTH_PX
             + TICK_LENGTH_PX
@@ -272,7 +288,9 @@ impl ColorBar<'_> {
             ))?;
             root.draw(&Text::new(label, (label_x, py), style.clone()))?;
         }
-        let label_height = Line::new(self.label, LABEL_FONT_PX, false).size().1;
+        let label_height = Line::new(self.label, LABEL_FONT_PX * text_scale(), false)
+            .size()
+            .1;
         let desc_x = label_x + self.tick_label_width() + 2 * GAP_PX + (label_height / 2.0) as i32;
         root.draw(&Text::new(
             self.label.to_string(),

@@ -67,6 +67,8 @@ struct LinePlot {
     y_range: (f64, f64),
     log_y: bool,
     markers: bool,
+    /// x takes whole numbers only (generations, interfaces): ticks only at whole numbers.
+    integer_x: bool,
     zero_line: bool,
     size: (u32, u32),
 }
@@ -214,6 +216,13 @@ impl Figure for LinePlot {
         root.fill(&WHITE)?;
         let (x0, x1) = self.x_range;
         let (y0, y1) = self.y_range;
+        // plotters picks round steps (1, 2, 5 × 10^k) for at most this many labels: at most one
+        // per whole number keeps the steps whole.
+        let x_labels = if self.integer_x {
+            ((x1 - x0).floor() as usize + 1).clamp(2, 11)
+        } else {
+            10
+        };
         let mut builder = ChartBuilder::on(root);
         builder
             .caption(&self.title, (FONT, 22 * FINE))
@@ -225,6 +234,7 @@ impl Figure for LinePlot {
             chart
                 .configure_mesh()
                 .x_desc(&self.x_label)
+                .x_labels(x_labels)
                 .x_label_formatter(&|v| format_number(*v))
                 .y_desc(&self.y_label)
                 .y_label_formatter(&|v| format_number(*v))
@@ -241,6 +251,7 @@ impl Figure for LinePlot {
             chart
                 .configure_mesh()
                 .x_desc(&self.x_label)
+                .x_labels(x_labels)
                 .x_label_formatter(&|v| format_number(*v))
                 .y_desc(&self.y_label)
                 .y_label_formatter(&|v| format_number(*v))
@@ -345,6 +356,7 @@ pub fn force_histories_between(
         y_range: (y0, y1),
         log_y: false,
         markers: false,
+        integer_x: false,
         zero_line: false,
         size: (1100, 600),
     }
@@ -487,6 +499,7 @@ pub fn spectra_between(
         y_range: (floor, top * 2.0),
         log_y: true,
         markers: false,
+        integer_x: false,
         zero_line: false,
         size: (1100, 600),
     }
@@ -567,6 +580,7 @@ pub fn effective_mass(
         y_range: (-y_limit, y_limit),
         log_y: false,
         markers: false,
+        integer_x: false,
         zero_line: true,
         size: (1100, 600),
     }
@@ -608,6 +622,7 @@ pub fn convergence(
         y_range: (y0, y1),
         log_y: false,
         markers: points.len() <= 40,
+        integer_x: true,
         zero_line: false,
         size: (1000, 600),
     }
@@ -650,6 +665,7 @@ pub fn peaks_per_layer(
         y_range: padded(0.0, hi * 1.1),
         log_y: false,
         markers: true,
+        integer_x: true,
         zero_line: false,
         size: (1000, 600),
     }
@@ -713,6 +729,7 @@ pub fn transmission(
         y_range: (lo, hi),
         log_y: false,
         markers: false,
+        integer_x: false,
         zero_line: true,
         size: (1100, 600),
     }
