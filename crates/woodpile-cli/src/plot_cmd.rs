@@ -43,6 +43,11 @@ pub struct Args {
     /// (contact 1), `wall` (contact N). Default: contact 0, the incident contact and the wall.
     #[arg(long = "signal", value_name = "NAME")]
     pub signals: Vec<String>,
+    /// Colours of the force and energy maps: auto (force linear from 0 to the largest force,
+    /// energy log over 3 decades), robust (linear up to the 99.5 % quantile of the non-zero
+    /// cells; larger values saturate, marked on the bar) or log (3 decades below the largest).
+    #[arg(long, value_name = "SCALE", default_value = "auto")]
+    pub colours: String,
     /// Window of the spectra: rectangular, hann, hamming, blackman-harris, flat-top.
     #[arg(long, value_name = "NAME", default_value = "rectangular")]
     pub window: String,
@@ -60,7 +65,8 @@ pub struct Args {
     pub dpi: f64,
     /// Printed width of every figure, in inches (0.5 to 50). Default: 7 in (178 mm, a
     /// double-column figure) for the maps, histories and spectra, narrower figures in
-    /// proportion; text then prints at 7.2 to 8.7 pt (titles 11.3 pt).
+    /// proportion. Text prints at 7.2 to 8.7 pt (titles 11.3 pt) at any width: the figure lays
+    /// itself out on a canvas of that width (3.5 in: a single column).
     #[arg(long, value_name = "IN", allow_hyphen_values = true)]
     pub width_in: Option<f64>,
     /// Printed height of every figure, in inches (0.5 to 50). Default: from the width and the
@@ -146,6 +152,13 @@ fn formats_png(out: &Output) -> bool {
 /// Runs `woodpile plot`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let window = Window::from_name(&args.window).map_err(CliError::at("--window"))?;
+    let map_colours = woodpile_plot::MapColours::from_name(&args.colours).map_err(|_| {
+        CliError::invalid(
+            "--colours",
+            &args.colours,
+            format!("valid: {}", woodpile_plot::MapColours::NAMES),
+        )
+    })?;
     let frequency_khz = match (&args.frequency_khz, args.max_frequency_khz) {
         (Some(text), _) => parse_range("--frequency-khz", text, "kHz")?,
         (None, Some(max)) => {
@@ -176,6 +189,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
                 frequency_hz: (frequency_khz.0 * 1e3, frequency_khz.1 * 1e3),
                 window,
                 signals: args.signals.clone(),
+                map_colours,
                 output,
             },
         )?,

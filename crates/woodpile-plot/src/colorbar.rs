@@ -191,12 +191,7 @@ impl ColorScale {
     }
 }
 
-/// How much larger than laid out the text prints (the output's text scale, at least 1): text
-/// widths and heights measured here are multiplied by it, so labels printed larger do not
-/// overlap.
-fn text_scale() -> f64 {
-    crate::output::current_output().text_scale.max(1.0)
-}
+use crate::output::text_scale;
 
 /// A colour bar: a scale and its label (quantity and unit).
 pub(crate) struct ColorBar<'a> {
@@ -288,14 +283,15 @@ impl ColorBar<'_> {
             ))?;
             root.draw(&Text::new(label, (label_x, py), style.clone()))?;
         }
-        let label_height = Line::new(self.label, LABEL_FONT_PX * text_scale(), false)
-            .size()
-            .1;
+        let (label_length, label_height) =
+            Line::new(self.label, LABEL_FONT_PX * text_scale(), false).size();
+        // A label longer than the bar (a small figure) is set smaller to fit its height.
+        let fit = (f64::from(y.end - y.start) / f64::from(label_length)).min(1.0);
         let desc_x = label_x + self.tick_label_width() + 2 * GAP_PX + (label_height / 2.0) as i32;
         root.draw(&Text::new(
             self.label.to_string(),
             (desc_x, (y.start + y.end) / 2),
-            TextStyle::from((FONT, LABEL_FONT_PX).into_font())
+            TextStyle::from((FONT, LABEL_FONT_PX * fit).into_font())
                 .transform(FontTransform::Rotate270)
                 .pos(Pos::new(HPos::Center, VPos::Center)),
         ))?;

@@ -80,6 +80,8 @@ pub struct RunPlot {
     /// Contacts drawn as histories and spectra (names as for [`signal_contact`]); empty: the
     /// driven contact, contact 1 and the wall.
     pub signals: Vec<String>,
+    /// Colours of the force and energy maps.
+    pub map_colours: crate::MapColours,
     /// Formats, printed size and resolution.
     pub output: Output,
 }
@@ -92,6 +94,7 @@ impl Default for RunPlot {
             frequency_hz: (0.0, 80e3),
             window: Window::Rectangular,
             signals: Vec::new(),
+            map_colours: crate::MapColours::Auto,
             output: Output::default(),
         }
     }
@@ -214,18 +217,25 @@ fn draw_run(dir: &Path, out: &Path, plot: &RunPlot) -> Result<Vec<PathBuf>, Erro
         })
     };
     let mut files = Vec::new();
-    files.extend(crate::force_map(
-        &windowed(force_map(&t)?)?,
-        &title,
-        role,
-        &stem("force_map"),
-    )?);
-    files.extend(crate::energy_map(
-        &windowed(energy_map(&t)?)?,
-        &title,
-        role,
-        &stem("energy_map"),
-    )?);
+    let colours = plot.map_colours;
+    files.extend(
+        colours
+            .apply(crate::force_heatmap(
+                &windowed(force_map(&t)?)?,
+                &title,
+                role,
+            ))
+            .write(&stem("force_map"))?,
+    );
+    files.extend(
+        colours
+            .apply(crate::energy_heatmap(
+                &windowed(energy_map(&t)?)?,
+                &title,
+                role,
+            ))
+            .write(&stem("energy_map"))?,
+    );
     files.extend(crate::spectrum_map(
         &spectrum_map,
         &title,

@@ -292,23 +292,40 @@ impl Figure for Cells<'_, '_> {
             scale: &self.scale,
             label: &h.value_label,
         };
-        let (w, _) = self.size();
+        let (w, _) = root.dim_in_pixel();
         let (main, _) = root.split_horizontally(w - bar.width());
         let n = m.n_rows();
         let (y_top, y_bottom) = (0.5, -(n as f64) + 0.5);
         let (x0, x1) = (self.bins[0].0, self.bins[self.bins.len() - 1].1);
-        // The y-label area holds the widest row label, the tick marks and the axis label.
+        // The y-label area holds the widest row label, the tick marks and the axis label, all
+        // measured at their printed size (the output's text scale).
+        let ts = crate::output::text_scale();
         let widest_row_label = groups(n, 200)
             .into_iter()
             .map(|(r, _)| r)
             .chain([n - 1])
             .map(|r| {
                 let s = self.row_label(-(r as f64));
-                Line::new(&s, AXIS_TICK_FONT_PX, false).size().0.ceil() as u32
+                Line::new(&s, AXIS_TICK_FONT_PX * ts, false).size().0.ceil() as u32
             })
             .max()
             .unwrap_or(0);
-        let axis_label_height = Line::new(&h.y_label, AXIS_LABEL_FONT_PX, false)
+        // A y label longer than the plotting height (a small figure) drops its parenthesis.
+        let (_, root_h) = root.dim_in_pixel();
+        let plot_height = f64::from(root_h) - 2.0 * 12.0 - 50.0 - 1.5 * 22.0 * ts;
+        let y_label = match h.y_label.split_once(" (") {
+            Some((short, _))
+                if f64::from(
+                    Line::new(&h.y_label, AXIS_LABEL_FONT_PX * ts, false)
+                        .size()
+                        .0,
+                ) > plot_height =>
+            {
+                short.to_string()
+            }
+            _ => h.y_label.clone(),
+        };
+        let axis_label_height = Line::new(&y_label, AXIS_LABEL_FONT_PX * ts, false)
             .size()
             .1
             .ceil() as u32;
@@ -323,7 +340,7 @@ impl Figure for Cells<'_, '_> {
             .disable_mesh()
             .x_desc(&h.x_label)
             .x_label_formatter(&|v| format_number(*v))
-            .y_desc(&h.y_label)
+            .y_desc(&y_label)
             .y_labels(n.min(12))
             .y_label_formatter(&|y| self.row_label(*y))
             .label_style((FONT, AXIS_TICK_FONT_PX))
@@ -385,9 +402,70 @@ pub fn contact0_name(contact0: Option<&str>) -> &str {
     contact0.unwrap_or("striker, load or actuator")
 }
 
+/// How the colours of the force and energy maps follow their values (`woodpile plot --colours`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MapColours {
+    /// Each map's own default: force linear from 0 to the largest force (the peak is what the map
+    /// is read for), energy log over 3 decades (see [`energy_map`]).
+    #[default]
+    Auto,
+    /// Linear, the top limit at the 99.5 % quantile of the non-zero cells (robust: a few extreme
+    /// cells, such as the striker's at t = 0, saturate, marked "≥" on the bar).
+    Robust,
+    /// Log over 3 decades below the largest value (weak echoes and tails become visible).
+    Log,
+}
+
+impl MapColours {
+    /// The names `woodpile plot --colours` takes.
+    pub const NAMES: &'static str = "auto, robust, log";
+
+    /// Parses a name of [`MapColours::NAMES`].
+    pub fn from_name(name: &str) -> std::result::Result<Self, String> {
+        match name {
+            "auto" => Ok(MapColours::Auto),
+            "robust" => Ok(MapColours::Robust),
+            "log" => Ok(MapColours::Log),
+            other => Err(format!(
+                "unknown colour scale `{other}`; valid: {}",
+                Self::NAMES
+            )),
+        }
+    }
+
+    /// Applies the choice to a map's style (Auto keeps it).
+    pub fn apply(self, heatmap: Heatmap<'_>) -> Heatmap<'_> {
+        match self {
+            MapColours::Auto => heatmap,
+            MapColours::Robust => Heatmap {
+                log_decades: None,
+                saturate_quantile: Some(0.995),
+                ..heatmap
+            },
+            MapColours::Log => Heatmap {
+                log_decades: Some(3.0),
+                saturate_quantile: None,
+                ..heatmap
+            },
+        }
+    }
+}
+
+/// The style of [`force_map`]: contact × time, time in ms, force in N, viridis, linear colours
+/// from 0 to the largest force.
+pub fn force_heatmap<'a>(map: &'a Map2, title: &str, contact0: Option<&str>) -> Heatmap<'a> {
+    Heatmap {
+        x_scale: 1e3,
+        x_label: "time [ms]".into(),
+        y_label: format!("contact (0 = {}; N = wall)", contact0_name(contact0)),
+        value_label: "contact force [N]".into(),
+        ..Heatmap::new(map, title)
+    }
+}
+
 /// Contact force map (contact × time): time in ms, force in N, viridis (paper Figs. 5, 9),
 /// linear colours from 0 up to the largest force (the peak of the pulse is the quantity read off
-/// this map, so it is not saturated; set [`Heatmap::log_decades`] for log colours).
+/// this map, so it is not saturated; [`MapColours`] gives robust or log colours).
 ///
 /// `contact0` names what drives contact 0 (`striker`, `load`, `actuator`, see [`contact0_name`]),
 /// so the axis says it; None: "striker, load or actuator".
@@ -397,14 +475,22 @@ pub fn force_map(
     contact0: Option<&str>,
     stem: &Path,
 ) -> Result<Vec<PathBuf>> {
+    force_heatmap(map, title, contact0).write(stem)
+}
+
+/// The style of [`energy_map`]: layer × time, % of the injected energy, inferno, log colours
+/// over 3 decades.
+pub fn energy_heatmap<'a>(map: &'a Map2, title: &str, contact0: Option<&str>) -> Heatmap<'a> {
     Heatmap {
+        color_map: ColorMap::Inferno,
         x_scale: 1e3,
         x_label: "time [ms]".into(),
-        y_label: format!("contact (0 = {}; N = wall)", contact0_name(contact0)),
-        value_label: "contact force [N]".into(),
+        y_label: format!("layer (0 = {})", contact0_name(contact0)),
+        value_scale: 100.0,
+        value_label: "layer energy / injected energy [%]".into(),
+        log_decades: Some(3.0),
         ..Heatmap::new(map, title)
     }
-    .write(stem)
 }
 
 /// Energy map (layer × time): time in ms, energy in % of the injected energy, inferno
@@ -424,17 +510,7 @@ pub fn energy_map(
     contact0: Option<&str>,
     stem: &Path,
 ) -> Result<Vec<PathBuf>> {
-    Heatmap {
-        color_map: ColorMap::Inferno,
-        x_scale: 1e3,
-        x_label: "time [ms]".into(),
-        y_label: format!("layer (0 = {})", contact0_name(contact0)),
-        value_scale: 100.0,
-        value_label: "layer energy / injected energy [%]".into(),
-        log_decades: Some(3.0),
-        ..Heatmap::new(map, title)
-    }
-    .write(stem)
+    energy_heatmap(map, title, contact0).write(stem)
 }
 
 /// Spectrum map (contact × frequency): frequency in kHz up to `max_frequency_hz`, amplitude in

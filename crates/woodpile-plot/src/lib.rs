@@ -44,7 +44,10 @@ pub mod typeset;
 
 pub use chain::chain_picture;
 pub use colormap::ColorMap;
-pub use heatmap::{contact0_name, energy_map, force_map, protocol_map, spectrum_map, Heatmap};
+pub use heatmap::{
+    contact0_name, energy_heatmap, energy_map, force_heatmap, force_map, protocol_map,
+    spectrum_map, Heatmap, MapColours,
+};
 pub use lines::{
     convergence, effective_mass, force_histories, force_histories_between, onset_window_s,
     peaks_per_layer, spectra, spectra_between, transmission, ConvergencePoint, Series,

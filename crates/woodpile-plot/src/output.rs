@@ -6,12 +6,12 @@
 //! canvas, every length × 4) so that their curves are not rounded to the layout grid. Writing
 //! maps logical units to paper:
 //!
-//! - the printed size is the logical size times a length per unit: by default
-//!   [`DEFAULT_WIDTH_IN`] / [`REFERENCE_WIDTH`] (7 in, 178 mm, a double-column journal figure,
-//!   for the 1100-unit-wide figures; narrower figures print narrower in proportion, so text has
-//!   one printed size in every figure); with [`Output::width_in`] or [`Output::height_in`] each
-//!   figure prints at exactly that width or height (both: at that size, the canvas taking that
-//!   aspect ratio);
+//! - a logical unit has one printed length, [`DEFAULT_WIDTH_IN`] / [`REFERENCE_WIDTH`] (the
+//!   1100-unit-wide figures print 7 in, 178 mm, a double-column journal figure; narrower
+//!   figures print narrower in proportion), so text has one printed size in every figure at
+//!   every size; with [`Output::width_in`] or [`Output::height_in`] each figure prints at exactly
+//!   that width or height and lays itself out on a canvas of that many units (a 3.5 in single
+//!   column: half as wide, same text), keeping its aspect ratio unless both are given;
 //! - the PNG is drawn at [`Output::dpi`] through a scaling backend (every coordinate, stroke
 //!   width and font size multiplied by the pixels per unit), so it is sharp at its resolution
 //!   rather than an enlarged small bitmap, and it carries that resolution in its `pHYs` chunk;
@@ -181,22 +181,29 @@ impl Output {
 
     /// Where a figure drawn on a `logical` canvas, `subdivision` units per layout unit (1 for
     /// most figures, 4 for the line plots), is printed and drawn.
+    ///
+    /// The length of a logical unit on paper is fixed ([`DEFAULT_WIDTH_IN`] per
+    /// [`REFERENCE_WIDTH`] layout units), so text prints at one size whatever the figure's size:
+    /// a width or height asked for changes the canvas the figure lays itself out on (a 3.5 in
+    /// single-column figure gets a canvas half as wide, its plotting area shrinking around
+    /// text of the same printed size), keeping the figure's aspect ratio unless both are given.
     pub fn place(&self, logical: (u32, u32), subdivision: u32) -> Placement {
         let (lw, lh) = (f64::from(logical.0), f64::from(logical.1));
         // Inches per logical unit.
-        let unit = match (self.width_in, self.height_in) {
-            (Some(w), _) => w / lw,
-            (None, Some(h)) => h / lh,
-            (None, None) => {
-                DEFAULT_WIDTH_IN / f64::from(REFERENCE_WIDTH) / f64::from(subdivision.max(1))
-            }
+        let unit = DEFAULT_WIDTH_IN / f64::from(REFERENCE_WIDTH) / f64::from(subdivision.max(1));
+        let (cw, ch) = match (self.width_in, self.height_in) {
+            (Some(w), Some(h)) => (w / unit, h / unit),
+            (Some(w), None) => (w / unit, lh * w / unit / lw),
+            (None, Some(h)) => (lw * h / unit / lh, h / unit),
+            (None, None) => (lw, lh),
         };
-        let (w_in, h_in, lh) = match (self.width_in, self.height_in) {
-            (Some(w), Some(h)) => (w, h, (h / unit).round().max(1.0)),
-            _ => (lw * unit, lh * unit, lh),
-        };
+        let (cw, ch) = (cw.round().max(1.0), ch.round().max(1.0));
+        let (w_in, h_in) = (
+            self.width_in.unwrap_or(cw * unit),
+            self.height_in.unwrap_or(ch * unit),
+        );
         Placement {
-            logical: (logical.0, lh as u32),
+            logical: (cw as u32, ch as u32),
             inches: (w_in, h_in),
             pixels: (
                 (w_in * self.dpi).round().max(1.0) as u32,
@@ -222,6 +229,12 @@ pub fn with_output<R>(output: &Output, f: impl FnOnce() -> R) -> R {
     }
     let _restore = Restore(CURRENT.with(|c| c.borrow_mut().replace(output.clone())));
     f()
+}
+
+/// How much larger than laid out the text prints (the output's text scale, at least 1): layouts
+/// that measure text multiply by it, so labels printed larger do not overlap.
+pub(crate) fn text_scale() -> f64 {
+    current_output().text_scale.max(1.0)
 }
 
 /// The output in effect on this thread.

@@ -556,8 +556,10 @@ fn png_pixels_follow_printed_size_times_dpi() {
 
 /// Claim: an SVG declares its printed size in inches in its root element and keeps the
 /// figure's logical units in its viewBox, so it prints at the stated size: `width="3.5000in"`,
-/// `height="1.9091in"` (3.5 × 600 / 1100, 4 decimals) and `viewBox="0 0 4400 2400"` (the line
-/// plots lay out 1100 × 600 on a 4 times finer canvas). Exact text.
+/// `height="1.9091in"` (3.5 × 600 / 1100, 4 decimals) and `viewBox="0 0 2200 1200"`: a unit
+/// prints at one length (7 in per 1100 layout units, the line plots 4 units per layout unit),
+/// so a 3.5 in figure lays out on a canvas half as wide as the 7 in default (4400 × 2400) and
+/// its text prints at the default's size. Exact text.
 #[test]
 fn svg_declares_its_printed_size() {
     let dir = out_dir("svgsize");
@@ -576,7 +578,7 @@ fn svg_declares_its_printed_size() {
     assert!(
         root.contains("width=\"3.5000in\"")
             && root.contains("height=\"1.9091in\"")
-            && root.contains("viewBox=\"0 0 4400 2400\""),
+            && root.contains("viewBox=\"0 0 2200 1200\""),
         "{root}"
     );
     std::fs::remove_dir_all(&dir).ok();
@@ -705,18 +707,33 @@ fn svg_text_pt(svg: &str) -> Vec<f64> {
         .collect()
 }
 
-/// Claim: with the default output, text prints at journal sizes: every text of the force map's
-/// and the force histories' SVG (ticks, legends, axis and colour-bar titles) has an em of 7.0 to
-/// 9.0 pt at the declared size, except the figure title (the largest), at most 12 pt. Computed
-/// from the SVG's own numbers; the bitmap uses the same em (typeset::em_per_size).
+/// Claim: text prints at journal sizes, in the default double-column width (7 in) and in a
+/// single column (3.5 in): every text of the force map's and the force histories' SVG (ticks,
+/// legends, axis and colour-bar titles) has an em of 7.0 to 9.0 pt at the declared size, except
+/// the figure title (the largest), at most 12 pt. Computed from the SVG's own numbers; the
+/// bitmap uses the same em (typeset::em_per_size).
 #[test]
 fn default_text_prints_at_7_to_9_pt() {
     let dir = out_dir("textpt");
     let (_, t) = small_run();
-    let files = [
-        plot::force_map(&force_map(&t).unwrap(), "3 rods", None, &dir.join("map")).unwrap(),
-        plot::force_histories(&t.times_s, &histories(&t), "3 rods", &dir.join("h")).unwrap(),
-    ];
+    let draw = |name: &str| {
+        [
+            plot::force_map(&force_map(&t).unwrap(), "3 rods", None, &dir.join(name)).unwrap(),
+            plot::force_histories(
+                &t.times_s,
+                &histories(&t),
+                "3 rods",
+                &dir.join(name.to_owned() + "_h"),
+            )
+            .unwrap(),
+        ]
+    };
+    let single = plot::Output {
+        width_in: Some(3.5),
+        ..plot::Output::default()
+    };
+    let mut files = draw("double").to_vec();
+    files.extend(plot::with_output(&single, || draw("single")));
     for f in &files {
         let mut pt = svg_text_pt(&std::fs::read_to_string(&f[1]).unwrap());
         pt.sort_by(f64::total_cmp);

@@ -174,7 +174,9 @@ fn svg_x_ticks(path: &Path) -> Vec<f64> {
 /// PNG files 525 px wide (3.5 × 150, exact); `--time-ms 0.1,0.2` gives force histories, force
 /// and energy maps whose x tick labels all lie in [0.1, 0.2] ms (3 or more of them) and no
 /// zoomed onset figure (the window is the user's); `--frequency-khz 20,60` gives spectra whose
-/// ticks lie in [20, 60] kHz; `--max-frequency-khz` still works. Exact: tick labels are
+/// ticks lie in [20, 60] kHz; `--max-frequency-khz` still works; `--colours log` and `robust`
+/// change the maps' colour bars (auto force map: no saturation mark; log: a "≤" bottom; robust:
+/// a saturated "≥" top). Exact: tick labels are
 /// printed to 3 significant digits, which cannot leave windows ending on these values.
 #[test]
 fn plot_writes_the_formats_sizes_and_windows_asked_for() {
@@ -249,6 +251,31 @@ fn plot_writes_the_formats_sizes_and_windows_asked_for() {
         ticks.iter().all(|&f| (0.0..=40.0).contains(&f)) && ticks.contains(&40.0),
         "{ticks:?}"
     );
+
+    // Colour scales of the maps: by default the force map's bar is linear from 0 and nothing
+    // saturates (no "≤"/"≥" mark); with --colours log its bottom is marked "≤ …" (log colours
+    // saturate below); with --colours robust the energy map's top saturates, marked "≥ …".
+    let bar_texts = |dir: &Path, name: &str| -> Vec<String> {
+        let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).unwrap();
+        svg.split("<text")
+            .skip(1)
+            .filter_map(|t| Some(t[t.find('>')? + 1..t.find("</text>")?].trim().to_string()))
+            .collect()
+    };
+    plot(&["--format", "svg"], &out("auto"));
+    let auto = bar_texts(&out("auto"), "force_map");
+    assert!(
+        !auto
+            .iter()
+            .any(|t| t.starts_with("≤ ") || t.starts_with("≥ ")),
+        "{auto:?}"
+    );
+    plot(&["--colours", "log", "--format", "svg"], &out("log"));
+    let log = bar_texts(&out("log"), "force_map");
+    assert!(log.iter().any(|t| t.starts_with("≤ ")), "{log:?}");
+    plot(&["--colours", "robust", "--format", "svg"], &out("robust"));
+    let robust = bar_texts(&out("robust"), "energy_map");
+    assert!(robust.iter().any(|t| t.starts_with("≥ ")), "{robust:?}");
 }
 
 /// Claim: a bad output or window flag exits with code 2 and a message naming the flag and what
@@ -266,6 +293,10 @@ fn bad_plot_flags_exit_2_naming_the_flag() {
         ),
         (&["--format", "jpg"], &["--format", "png, svg"]),
         (&["--dpi", "0"], &["--dpi", "30 to 2400"]),
+        (
+            &["--colours", "rainbow"],
+            &["--colours", "auto, robust, log"],
+        ),
         (&["--dpi", "nan"], &["--dpi"]),
         (&["--width-in", "-2"], &["--width-in", "0.5 to 50"]),
         (&["--height-in", "100"], &["--height-in", "0.5 to 50"]),
