@@ -233,24 +233,33 @@ impl ChainPicture<'_> {
         let (_, max_w) = self.width_range();
         let k = n.min(STRIP_MAX_ROWS);
         let per_row = n.div_ceil(k);
-        let x_desc = if per_row > 1 {
-            format!("length [mm], range of ≤ {per_row} per row")
+        // The y axis is the long one: it carries what a row is.
+        let y_desc = if per_row > 1 {
+            format!("element, 1 = top (a row: the range of ≤ {per_row})")
         } else {
-            "length [mm]".to_string()
+            "element, 1 = top".to_string()
         };
+        // Label areas from the widest tick label and the title's height at the printed size.
+        let ts = crate::output::text_scale();
+        let widest = crate::typeset::Line::new(&n.to_string(), 14.0 * ts, false)
+            .size()
+            .0;
+        let desc_height = crate::typeset::Line::new(&y_desc, 16.0 * ts, false)
+            .size()
+            .1;
         let mut chart = ChartBuilder::on(area)
             .margin(15)
             .margin_top(45)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
+            .x_label_area_size(40.0 * ts)
+            .y_label_area_size((widest + desc_height) as f64 + 20.0)
             .build_cartesian_2d(0.0..1.08 * max_w, -(n as f64)..0.0)?;
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_desc(x_desc)
+            .x_desc("length [mm]")
             .x_labels(5)
             .x_label_formatter(&|x| format!("{x:.0}"))
-            .y_desc("element (1 = top)")
+            .y_desc(y_desc)
             .y_label_formatter(&|y| {
                 let i = -y;
                 if (i - i.round()).abs() > 1e-6 {
