@@ -138,6 +138,7 @@ fn method_name(m: &Method) -> &'static str {
     match m {
         Method::Rk4 { .. } => "rk4",
         Method::Dopri5 { .. } => "dopri5",
+        Method::Dopri5Events { .. } => "dopri5-events",
     }
 }
 

@@ -35,6 +35,13 @@ fn main() -> woodpile::Result<()> {
                 atol: rtol * 1e-6,
             },
         ));
+        methods.push((
+            format!("events rtol={rtol:e}"),
+            Method::Dopri5Events {
+                rtol,
+                atol: rtol * 1e-6,
+            },
+        ));
     }
     for (name, cells, impact) in cases {
         let chain = ChainBuilder::table1_rods(&PAPER_OPTIMIZED_CHAIN_MM, cells)?.build()?;
@@ -78,13 +85,14 @@ fn main() -> woodpile::Result<()> {
                     |best, (c, e)| if e > best.1 { (c, e) } else { best },
                 );
             let rtol = match method {
-                Method::Dopri5 { rtol, .. } => *rtol,
+                Method::Dopri5 { rtol, .. } | Method::Dopri5Events { rtol, .. } => *rtol,
                 Method::Rk4 { .. } => f64::NAN,
             };
             println!(
-                "  {label:<22} rtol {rtol:>8.2e}  rhs {:>7}  worst peak error {worst:.2e} (contact {contact}), {:.2} rtol^0.6",
+                "  {label:<22} rtol {rtol:>8.2e}  rhs {:>7}  worst peak error {worst:.2e} (contact {contact}), {:.2} rtol^0.6, {:.2} rtol^0.75",
                 s.stats.rhs_evaluations,
-                worst / rtol.powf(0.6)
+                worst / rtol.powf(0.6),
+                worst / rtol.powf(0.75)
             );
         }
     }

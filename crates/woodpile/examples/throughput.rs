@@ -77,6 +77,34 @@ fn main() -> woodpile::Result<()> {
         ("peak_tolerance 1e-5", Method::for_peak_tolerance(1e-5)?),
         ("peak_tolerance 1e-4", Method::for_peak_tolerance(1e-4)?),
         (
+            "old rule 1e-5 (dopri5)",
+            Method::Dopri5 {
+                rtol: 1.2e-9,
+                atol: 1.2e-15,
+            },
+        ),
+        (
+            "old rule 1e-4 (dopri5)",
+            Method::Dopri5 {
+                rtol: 5.58e-8,
+                atol: 5.58e-14,
+            },
+        ),
+        (
+            "events rtol 3e-7",
+            Method::Dopri5Events {
+                rtol: 3e-7,
+                atol: 3e-13,
+            },
+        ),
+        (
+            "events rtol 1e-7",
+            Method::Dopri5Events {
+                rtol: 1e-7,
+                atol: 1e-13,
+            },
+        ),
+        (
             "dopri5 rtol 1e-8",
             Method::Dopri5 {
                 rtol: 1e-8,

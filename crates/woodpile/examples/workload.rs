@@ -7,7 +7,8 @@
 //!   `BreederGa::evaluate_designs` on `--threads` threads (default 1), lanes `--lanes` wide (1, 2,
 //!   4 or 8; default 4).
 //!
-//! The method: `--rk4 DT` (fixed step \[s\]), `--rtol R` (DOPRI5, atol = R·1e-6) or `--tol T`
+//! The method: `--rk4 DT` (fixed step \[s\]), `--rtol R` (DOPRI5, atol = R·1e-6; with `--events`
+//! event-aware, `Method::Dopri5Events`) or `--tol T`
 //! (`Method::for_peak_tolerance`); default `--tol 1e-4`. Prints the objective values' sum and the
 //! RHS evaluations so that two builds can be checked to do the same work.
 //!
@@ -32,9 +33,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let method = if let Some(dt) = arg::<f64>("--rk4") {
         Method::Rk4 { time_step_s: dt }
     } else if let Some(rtol) = arg::<f64>("--rtol") {
-        Method::Dopri5 {
-            rtol,
-            atol: rtol * 1e-6,
+        if std::env::args().any(|a| a == "--events") {
+            Method::Dopri5Events {
+                rtol,
+                atol: rtol * 1e-6,
+            }
+        } else {
+            Method::Dopri5 {
+                rtol,
+                atol: rtol * 1e-6,
+            }
         }
     } else {
         Method::for_peak_tolerance(arg::<f64>("--tol").unwrap_or(1e-4))?

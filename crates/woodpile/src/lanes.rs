@@ -34,8 +34,9 @@ use std::collections::BTreeMap;
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::integrate::{
-    fixed_step_end, min_step_s, next_step_after_accept, next_step_after_reject, Integrator,
-    IntegratorStats, Method, OdeSystem, Tableau,
+    crossing_quadratic, crossing_root, fixed_step_end, landing_window, min_step_s,
+    next_step_after_accept, next_step_after_reject, Integrator, IntegratorStats, Method, OdeSystem,
+    Tableau,
 };
 use crate::model::Chain;
 use crate::ode::ChainOde;
@@ -165,6 +166,8 @@ struct GroupKey {
     shift: usize,
     blast: bool,
     adaptive: bool,
+    /// Event-aware stepping ([`Method::Dopri5Events`]).
+    events: bool,
 }
 
 /// Checks a job as [`simulate`](crate::simulate()) does (same errors, same order) and compiles it; `None` when it
@@ -180,7 +183,11 @@ fn lane_ready(job: &Job<'_>) -> Result<Option<(GroupKey, ChainOde)>> {
         n_primary: ode.n_primary,
         shift: ode.shift,
         blast: ode.is_blast(),
-        adaptive: matches!(job.settings.method, Method::Dopri5 { .. }),
+        adaptive: matches!(
+            job.settings.method,
+            Method::Dopri5 { .. } | Method::Dopri5Events { .. }
+        ),
+        events: matches!(job.settings.method, Method::Dopri5Events { .. }),
     };
     Ok(Some((key, ode)))
 }
@@ -308,9 +315,13 @@ struct LaneRun<'a> {
     settings: &'a RunSettings,
     watch: Watch<'a>,
     t: f64,
+    /// Start of the last accepted step (event-aware stepping).
+    t_prev: f64,
     h: f64,
     err_prev: f64,
     rejected_before: bool,
+    /// Whether this iteration's step was shortened to land on a predicted crossing.
+    landing: bool,
     rtol: f64,
     stats: IntegratorStats,
     /// The run's own state vector (its layout, not the lanes'): filled where needed.
@@ -325,6 +336,7 @@ struct Lanes<'a, const L: usize> {
     peak_watch: PeakWatch,
     tableau: Tableau,
     adaptive: bool,
+    events: bool,
     order: f64,
     p: usize,
     nd: usize,
@@ -398,6 +410,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
             k: (0..tableau.stages()).map(|_| zeros(dim)).collect(),
             tableau,
             adaptive: key.adaptive,
+            events: key.events,
             p,
             nd,
             dim,
@@ -469,7 +482,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
             self.peak_watch,
         );
         let (h, err_prev, rtol, atol) = match settings.method {
-            Method::Dopri5 { rtol, atol } => {
+            Method::Dopri5 { rtol, atol } | Method::Dopri5Events { rtol, atol } => {
                 let (h, err_prev) = integrator.adaptive_control().expect("adaptive");
                 (h, err_prev, rtol, atol)
             }
@@ -528,9 +541,11 @@ impl<'a, const L: usize> Lanes<'a, L> {
             settings,
             watch,
             t: 0.0,
+            t_prev: 0.0,
             h,
             err_prev,
             rejected_before: false,
+            landing: false,
             rtol,
             stats,
         });
@@ -543,6 +558,8 @@ impl<'a, const L: usize> Lanes<'a, L> {
         let mut t = [0.0; L];
         // Fixed steps: where each lane's step ends, as the fixed-step integrator computes it.
         let mut t_fixed = [0.0; L];
+        // Lanes whose step event-aware stepping may shorten.
+        let mut want = [false; L];
         for l in 0..L {
             let Some(run) = &self.runs[l] else { continue };
             let t_end = run.settings.duration_s;
@@ -555,9 +572,21 @@ impl<'a, const L: usize> Lanes<'a, L> {
                     continue;
                 }
                 h[l] = h_try;
+                want[l] = self.events && !run.rejected_before && run.stats.steps > 0;
             } else {
                 t_fixed[l] = fixed_step_end(0.0, run.stats.steps, run.h, t_end);
                 h[l] = t_fixed[l] - run.t;
+            }
+        }
+        if self.events {
+            let landing = self.predict_crossings(&h, want);
+            for l in 0..L {
+                if let Some(run) = self.runs[l].as_mut() {
+                    run.landing = landing[l].is_some();
+                    if let Some(tau) = landing[l] {
+                        h[l] = tau;
+                    }
+                }
             }
         }
         self.attempt(&t, &h);
@@ -630,6 +659,50 @@ impl<'a, const L: usize> Lanes<'a, L> {
         }
     }
 
+    /// Event-aware stepping in every lane at once: for each lane in `want` (adaptive, after an
+    /// accepted step), the step that lands on a predicted crossing of a contact's overlap within
+    /// its next step of size h\[l\], as [`Integrator`] predicts it ([`first_crossing`]: the same
+    /// switching functions, the same arithmetic vectorised over lanes, the same bits).
+    #[inline(always)]
+    fn predict_crossings(&self, h: &[f64; L], mut want: [bool; L]) -> [Option<f64>; L] {
+        let mut dt = [1.0; L];
+        for l in 0..L {
+            if let Some(run) = self.runs[l].as_ref().filter(|_| want[l]) {
+                dt[l] = run.t - run.t_prev;
+                want[l] = dt[l] > 0.0;
+            }
+        }
+        let mut first = [None; L];
+        if !want.iter().any(|&w| w) {
+            return first;
+        }
+        let p = self.p;
+        let (hv, dtv, half) = (Lane(*h), Lane(dt), Lane::splat(0.5));
+        let (y, f, k0) = (&self.y, &self.f_now, &self.k[0]);
+        // ChainOde::switches: overlaps of contact slots 1..=P from positions, their rates from f
+        // now and f at the start of the last step (k[0]); a free end (β = 0) never crosses.
+        for s in 1..=p {
+            let (g, d, d_prev) = if s == p {
+                (y[p - 1], f[p - 1], k0[p - 1])
+            } else {
+                (y[s - 1] - y[s], f[s - 1] - f[s], k0[s - 1] - k0[s])
+            };
+            let (c, gh) = crossing_quadratic(g, d, d_prev, dtv, hv, half);
+            for l in 0..L {
+                if want[l] && self.beta[s].0[l] != 0.0 && (g.0[l] > 0.0) != (gh.0[l] > 0.0) {
+                    let tau = crossing_root(g.0[l], d.0[l], c.0[l], gh.0[l], h[l]);
+                    if first[l].is_none_or(|f: f64| tau < f) {
+                        first[l] = Some(tau);
+                    }
+                }
+            }
+        }
+        for l in 0..L {
+            first[l] = landing_window(first[l], h[l]);
+        }
+        first
+    }
+
     /// [`ChainOde::check_contacts`] of the force cache in every lane at once: whether it would
     /// fail (a non-finite force or overlap, or an overlap beyond its contact's limit). A lane that
     /// fails goes to the scalar path, which names the contact and the cause.
@@ -657,9 +730,14 @@ impl<'a, const L: usize> Lanes<'a, L> {
         run.stats.steps += 1;
         run.t = t1;
         if adaptive {
-            run.h = next_step_after_accept(run.h, h, err, run.err_prev, order, run.rejected_before);
-            run.err_prev = err.max(1e-4);
+            // A step shortened to land on a crossing keeps the proposal (as the integrator).
+            if !run.landing {
+                run.h =
+                    next_step_after_accept(run.h, h, err, run.err_prev, order, run.rejected_before);
+                run.err_prev = err.max(1e-4);
+            }
             run.rejected_before = false;
+            run.t_prev = t0;
         } else {
             run.stats.rhs_evaluations += 1;
         }

@@ -110,6 +110,8 @@ pub struct ChainOde {
     pub(crate) res_coupling: Vec<f64>,
     /// β per slot (slot 0 unused); 0 for a free end.
     pub(crate) beta: Vec<f64>,
+    /// Contact slots 1..=P with β = 0 (a free end), for [`OdeSystem::switches`].
+    free_slots: Vec<usize>,
     overlap_limit_m: Vec<f64>,
     pub(crate) load: Option<BlastProfile>,
     /// Contact force per slot at the last evaluation \[N\].
@@ -201,6 +203,7 @@ impl ChainOde {
             .zip(&res_owner)
             .map(|(k, &o)| k / mass_kg[o])
             .collect();
+        let free_slots = (1..=n_primary).filter(|&s| beta[s] == 0.0).collect();
         let mut ode = ChainOde {
             n_primary,
             n_dof: n_primary + res_mass_kg.len(),
@@ -213,6 +216,7 @@ impl ChainOde {
             res_mass_kg,
             res_stiffness,
             beta,
+            free_slots,
             overlap_limit_m,
             load,
             force_n: vec![0.0; n_primary + 1],
@@ -718,6 +722,24 @@ impl OdeSystem for ChainOde {
         }
         if self.load.is_some() {
             rest[nd] = force[0] * v[0];
+        }
+    }
+
+    fn switch_count(&self) -> usize {
+        self.n_primary
+    }
+
+    fn switches(&self, y: &[f64], out: &mut [f64]) {
+        // Contact slots 1..=P: their overlaps, linear in the positions; a free end (β = 0) never
+        // closes: constant 1.
+        let p = self.n_primary;
+        let (x, out) = (&y[..p], &mut out[..p]);
+        for i in 0..p - 1 {
+            out[i] = x[i] - x[i + 1];
+        }
+        out[p - 1] = x[p - 1];
+        for &slot in &self.free_slots {
+            out[slot - 1] = 1.0;
         }
     }
 }

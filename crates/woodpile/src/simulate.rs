@@ -92,7 +92,7 @@ impl RunSettings {
                 };
                 Some(n.max(1.0) as u64)
             }
-            Method::Dopri5 { .. } => None,
+            Method::Dopri5 { .. } | Method::Dopri5Events { .. } => None,
         }
     }
 

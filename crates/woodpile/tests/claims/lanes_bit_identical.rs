@@ -2,8 +2,9 @@
 //! run reports alone (`simulate`): every contact peak and its time, the energy balance, the
 //! restitution, the integrator's step counts. Checked on 27 random chains of Table 1 rods (1 or 2
 //! resonators per cell, so lanes carry padding; 3, 8 and 20 rods, so runs fall into several
-//! groups; resonant and rigid), under the paper's impact and blast, with Dormand–Prince and
-//! RK4, at every lane width. Tolerance: none. The lanes perform the scalar path's operations in
+//! groups; resonant and rigid), under the paper's impact and blast, with Dormand–Prince (with
+//! and without event-aware stepping, which must land on the same steps in the lanes) and RK4, at
+//! every lane width. Tolerance: none. The lanes perform the scalar path's operations in
 //! its order, so anything but equality is a bug (and would make GA results depend on the lane
 //! width and the grouping of designs).
 
@@ -98,6 +99,24 @@ fn impact_dopri5() {
 #[test]
 fn blast_dopri5() {
     let method = Method::Dopri5 {
+        rtol: 1e-7,
+        atol: 1e-13,
+    };
+    check(&Excitation::Blast(BlastProfile::paper()), method, 6e-4);
+}
+
+#[test]
+fn impact_dopri5_events() {
+    let method = Method::Dopri5Events {
+        rtol: 1e-7,
+        atol: 1e-13,
+    };
+    check(&Excitation::Impact(Striker::paper()), method, 6e-4);
+}
+
+#[test]
+fn blast_dopri5_events() {
+    let method = Method::Dopri5Events {
         rtol: 1e-7,
         atol: 1e-13,
     };
