@@ -488,19 +488,29 @@ impl ChainOde {
         let p = self.n_primary;
         let first = 1 - self.shift;
         for (c, slot) in (first..=p).enumerate() {
-            let d = self.overlap_m[slot];
             out[c] = if slot == 0 {
                 f64::NAN
-            } else if d > 0.0 {
-                let ddot = if slot == p {
-                    v[p - 1]
-                } else {
-                    v[slot - 1] - v[slot]
-                };
-                1.5 * self.force_n[slot] * ddot / d
             } else {
-                0.0
+                self.elastic_rate(slot, v)
             };
+        }
+    }
+
+    /// dF/dt [N/s] of the elastic contact of slot 1..=P: F = β δ^{3/2} gives
+    /// 1.5 F δ'/δ while the contact is closed, 0 while it is open.
+    #[inline]
+    fn elastic_rate(&self, slot: usize, v: &[f64]) -> f64 {
+        let p = self.n_primary;
+        let d = self.overlap_m[slot];
+        if d > 0.0 {
+            let ddot = if slot == p {
+                v[p - 1]
+            } else {
+                v[slot - 1] - v[slot]
+            };
+            1.5 * self.force_n[slot] * ddot / d
+        } else {
+            0.0
         }
     }
 
@@ -509,25 +519,15 @@ impl ChainOde {
     /// damped contact, as in [`ChainOde::contact_force_rates`].
     #[inline]
     pub(crate) fn contact_force_rate(&self, c: usize, v: &[f64]) -> f64 {
-        let p = self.n_primary;
         let slot = c + 1 - self.shift;
-        let d = self.overlap_m[slot];
-        let f = self.force_n[slot];
         let damped = self
             .lab
             .as_ref()
             .is_some_and(|lab| lab.law[slot] != SlotLaw::None);
         if slot == 0 || damped {
             f64::NAN
-        } else if d > 0.0 {
-            let ddot = if slot == p {
-                v[p - 1]
-            } else {
-                v[slot - 1] - v[slot]
-            };
-            1.5 * f * ddot / d
         } else {
-            0.0
+            self.elastic_rate(slot, v)
         }
     }
 
