@@ -221,8 +221,8 @@ impl Method {
         // Calibrated (examples/peak_tolerance.rs, docs/physics.md §8): on the paper's impact and
         // blast runs, resonant and rigid, the worst error of any contact peak with event-aware
         // stepping at rtol from 1e-5 to 3e-11 stays below PEAK_ERROR_PREFACTOR · rtol^0.75 (it
-        // falls slower than rtol: the error test weighs positions, a contact force depends on
-        // their difference, and a step landing near a contact's opening still meets its kink).
+        // falls slower than rtol: a step landing near a contact's opening or closing still meets
+        // its kink; an error test on the overlaps did not change that, bench/README.md).
         // rtol is chosen so that this envelope is PEAK_SAFETY_FACTOR times below the tolerance.
         let rtol = (peak_tolerance / (PEAK_SAFETY_FACTOR * PEAK_ERROR_PREFACTOR))
             .powf(1.0 / PEAK_ERROR_EXPONENT)
