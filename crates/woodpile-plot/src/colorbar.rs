@@ -204,15 +204,11 @@ pub(crate) struct ColorBar<'a> {
 impl ColorBar<'_> {
     /// Widest tick label \[px\].
     fn tick_label_width(&self) -> i32 {
+        let size = TICK_FONT_PX * text_scale();
         self.scale
             .candidate_ticks()
             .iter()
-            .map(|(_, s)| {
-                Line::new(s, TICK_FONT_PX * text_scale(), false)
-                    .size()
-                    .0
-                    .ceil() as i32
-            })
+            .map(|(_, s)| Line::new(s, size, false).size().0.ceil() as i32)
             .max()
             .unwrap_or(0)
     }

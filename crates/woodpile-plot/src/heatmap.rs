@@ -105,15 +105,7 @@ impl<'a> Heatmap<'a> {
             });
         }
         finite_range(&self.title, m.data.iter().copied())?;
-        let cells = Cells::of(self);
-        let paths = render(&cells, stem)?;
-        for svg in paths
-            .iter()
-            .filter(|p| p.extension().is_some_and(|e| e == "svg"))
-        {
-            cells.embed_in_svg(svg)?;
-        }
-        Ok(paths)
+        render(&Cells::of(self), stem)
     }
 
     /// Columns kept (those up to `x_max`), grouped into at most [`MAX_DRAWN_COLUMNS`] bins:
@@ -228,28 +220,21 @@ impl<'h, 'a> Cells<'h, 'a> {
         Ok(bytes)
     }
 
-    /// Replaces the placeholder rectangle of the SVG at `path` by the cells' image (an SVG drawn
-    /// without the placeholder is left as it is). Each cell is repeated over a whole number of
+    /// Replaces the placeholder rectangle of the SVG text by the cells' image (an SVG drawn
+    /// without the placeholder is returned as it is). Each cell is repeated over a whole number of
     /// image pixels so that the image has at least the rectangle's pixels: viewers that smooth
     /// scaled images (some ignore `image-rendering`) then blur only a cell's outermost pixel, and
     /// those that honour it show sharp cells at any zoom.
-    fn embed_in_svg(&self, path: &Path) -> Result<()> {
-        let fail = |reason: String| PlotError::Draw {
-            path: path.to_path_buf(),
-            reason,
-        };
-        let svg = std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))?;
+    fn embed_in_svg(&self, svg: String) -> std::result::Result<String, String> {
         let Some(at) = svg.find(SVG_CELLS_PLACEHOLDER_FILL) else {
-            return Ok(());
+            return Ok(svg);
         };
-        let start = svg[..at]
-            .rfind("<rect")
-            .ok_or_else(|| fail("no <rect".into()))?;
-        let end = at + svg[at..].find("/>").ok_or_else(|| fail("no />".into()))? + 2;
+        let start = svg[..at].rfind("<rect").ok_or("no <rect")?;
+        let end = at + svg[at..].find("/>").ok_or("no />")? + 2;
         let rect = &svg[start..end];
-        let attribute = |name: &str| -> Result<String> {
+        let attribute = |name: &str| -> std::result::Result<String, String> {
             let key = format!(" {name}=\"");
-            let i = rect.find(&key).ok_or_else(|| fail(format!("no {name}")))? + key.len();
+            let i = rect.find(&key).ok_or(format!("no {name}"))? + key.len();
             Ok(rect[i..i + rect[i..].find('"').unwrap_or(0)].to_string())
         };
         let (width, height) = (attribute("width")?, attribute("height")?);
@@ -261,7 +246,7 @@ impl<'h, 'a> Cells<'h, 'a> {
             pixels(&width, self.bins.len()),
             pixels(&height, self.row_groups.len()),
         );
-        let png = self.png(k).map_err(|e| fail(e.to_string()))?;
+        let png = self.png(k).map_err(|e| e.to_string())?;
         let image = format!(
             "<image x=\"{}\" y=\"{}\" width=\"{width}\" height=\"{height}\" \
              preserveAspectRatio=\"none\" image-rendering=\"optimizeSpeed\" \
@@ -271,14 +256,17 @@ impl<'h, 'a> Cells<'h, 'a> {
             attribute("y")?,
             base64::engine::general_purpose::STANDARD.encode(png)
         );
-        let out = format!("{}{}{}", &svg[..start], image, &svg[end..]);
-        std::fs::write(path, out).map_err(|e| fail(e.to_string()))
+        Ok(format!("{}{}{}", &svg[..start], image, &svg[end..]))
     }
 }
 
 impl Figure for Cells<'_, '_> {
     fn size(&self) -> (u32, u32) {
         (1100, 620)
+    }
+
+    fn finish_svg(&self, svg: String) -> std::result::Result<String, String> {
+        self.embed_in_svg(svg)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult

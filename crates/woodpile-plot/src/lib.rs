@@ -110,6 +110,11 @@ pub(crate) trait Figure {
     fn subdivision(&self) -> u32 {
         1
     }
+    /// The SVG text as drawn, finished before it is written (e.g. a placeholder replaced by an
+    /// embedded image); by default unchanged. An error is the reason it could not be.
+    fn finish_svg(&self, svg: String) -> std::result::Result<String, String> {
+        Ok(svg)
+    }
     /// Draws on a white canvas of the drawing area's size: [`Figure::size`], or that width
     /// with another height when the output asks for another aspect ratio.
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
@@ -136,28 +141,40 @@ pub(crate) fn render(figure: &impl Figure, stem: &Path) -> Result<Vec<PathBuf>> 
     output::write(figure, stem, &output::current_output())
 }
 
-/// Encodes an 8-bit RGB buffer of `size` pixels as the PNG file `path`, declaring `dpi` in its
-/// `pHYs` chunk (pixels per metre, rounded) so that documents place it at its printed size.
-fn write_png(
-    path: &Path,
-    size: (u32, u32),
-    dpi: f64,
-    rgb: &[u8],
-) -> std::result::Result<(), DrawFailure> {
+/// Encodes an 8-bit RGB buffer of `size` pixels as PNG bytes, declaring `dpi` in the `pHYs`
+/// chunk (pixels per metre, rounded) so that documents place it at its printed size.
+fn encode_png(size: (u32, u32), dpi: f64, rgb: &[u8]) -> std::result::Result<Vec<u8>, DrawFailure> {
     let fail = |e: &dyn std::fmt::Display| DrawFailure(e.to_string());
-    let file = std::fs::File::create(path).map_err(|e| fail(&e))?;
-    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), size.0, size.1);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    let per_metre = (dpi / 0.0254).round() as u32;
-    encoder.set_pixel_dims(Some(png::PixelDimensions {
-        xppu: per_metre,
-        yppu: per_metre,
-        unit: png::Unit::Meter,
-    }));
-    let mut writer = encoder.write_header().map_err(|e| fail(&e))?;
-    writer.write_image_data(rgb).map_err(|e| fail(&e))?;
-    writer.finish().map_err(|e| fail(&e))
+    let mut bytes = Vec::new();
+    {
+        let mut encoder = png::Encoder::new(&mut bytes, size.0, size.1);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        let per_metre = (dpi / 0.0254).round() as u32;
+        encoder.set_pixel_dims(Some(png::PixelDimensions {
+            xppu: per_metre,
+            yppu: per_metre,
+            unit: png::Unit::Meter,
+        }));
+        let mut writer = encoder.write_header().map_err(|e| fail(&e))?;
+        writer.write_image_data(rgb).map_err(|e| fail(&e))?;
+        writer.finish().map_err(|e| fail(&e))?;
+    }
+    Ok(bytes)
+}
+
+/// Writes a figure file whole: under a temporary name beside it, then renamed, so that an
+/// interrupted or failed run never leaves a half-written figure.
+fn write_whole(path: &Path, bytes: &[u8]) -> std::result::Result<(), DrawFailure> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .ok_or_else(|| DrawFailure(format!("{} names no file", path.display())))?;
+    woodpile_io::atomic::write_atomic(dir, &name, bytes).map_err(|e| DrawFailure(e.to_string()))
 }
 
 /// `stem` + `.ext`, keeping any dots already in the file name.

@@ -278,7 +278,8 @@ pub(crate) fn write(figure: &impl Figure, stem: &Path, output: &Output) -> Resul
                         .map_err(|e| DrawFailure(e.to_string()))
                         .map_err(fail(&path))?;
                 }
-                crate::write_png(&path, (pw, ph), output.dpi, &rgb).map_err(fail(&path))?;
+                let png = crate::encode_png((pw, ph), output.dpi, &rgb).map_err(fail(&path))?;
+                crate::write_whole(&path, &png).map_err(fail(&path))?;
             }
             Format::Svg => {
                 let mut svg = String::new();
@@ -297,10 +298,11 @@ pub(crate) fn write(figure: &impl Figure, stem: &Path, output: &Output) -> Resul
                         .map_err(|e| DrawFailure(e.to_string()))
                         .map_err(fail(&path))?;
                 }
-                let svg = physical_svg(&svg, place.logical, place.inches);
-                std::fs::write(&path, svg)
-                    .map_err(|e| DrawFailure(e.to_string()))
+                let svg = figure
+                    .finish_svg(physical_svg(&svg, place.logical, place.inches))
+                    .map_err(DrawFailure)
                     .map_err(fail(&path))?;
+                crate::write_whole(&path, svg.as_bytes()).map_err(fail(&path))?;
             }
         }
         files.push(path);

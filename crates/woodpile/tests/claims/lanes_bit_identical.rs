@@ -8,33 +8,8 @@
 //! its order, so anything but equality is a bug (and would make GA results depend on the lane
 //! width and the grouping of designs).
 
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use woodpile::{
-    simulate, simulate_many, BlastProfile, CellModel, Chain, ChainBuilder, Excitation, Job,
-    LaneWidth, Method, RunSettings, RunSummary, Striker, TABLE1_LENGTHS_MM,
-};
-
-fn chains() -> Vec<Chain> {
-    let mut rng = ChaCha8Rng::seed_from_u64(7);
-    (0..27)
-        .map(|i| {
-            let n = [3, 8, 20][i % 3];
-            let rods: Vec<u32> = (0..n)
-                .map(|_| TABLE1_LENGTHS_MM[rng.random_range(0..TABLE1_LENGTHS_MM.len())])
-                .collect();
-            let model = if i % 5 == 4 {
-                CellModel::Rigid
-            } else {
-                CellModel::Resonant
-            };
-            ChainBuilder::table1_rods(&rods, model)
-                .unwrap()
-                .build()
-                .unwrap()
-        })
-        .collect()
-}
+use crate::lanes_common::{alone, jobs, peaks_only, random_chains};
+use woodpile::{simulate_many, BlastProfile, Excitation, LaneWidth, Method, RunSummary, Striker};
 
 fn same(a: &RunSummary, b: &RunSummary) -> bool {
     let a = RunSummary {
@@ -55,24 +30,10 @@ fn same(a: &RunSummary, b: &RunSummary) -> bool {
 }
 
 fn check(excitation: &Excitation, method: Method, duration_s: f64) {
-    let chains = chains();
-    let settings = RunSettings {
-        duration_s,
-        method,
-        sample_interval_s: duration_s,
-    };
-    let alone: Vec<RunSummary> = chains
-        .iter()
-        .map(|c| simulate(c, excitation, &settings, &mut ()).unwrap())
-        .collect();
-    let jobs: Vec<Job> = chains
-        .iter()
-        .map(|chain| Job {
-            chain,
-            excitation,
-            settings: &settings,
-        })
-        .collect();
+    let chains = random_chains(7, 27, &[3, 8, 20]);
+    let settings = peaks_only(method, duration_s);
+    let alone = alone(&chains, excitation, &settings);
+    let jobs = jobs(&chains, excitation, &settings);
     for width in LaneWidth::ALL {
         let together = simulate_many(&jobs, width);
         for (i, (t, a)) in together.iter().zip(&alone).enumerate() {

@@ -11,33 +11,11 @@
 //! Tolerance: none; anything but equality is a bug (and would make a GA's results depend on the
 //! watch).
 
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
+use crate::lanes_common::{alone, jobs, peaks_only, random_chains};
 use woodpile::{
-    simulate, simulate_many_watching, BlastProfile, CellModel, Chain, ChainBuilder, Excitation,
-    Job, LaneWidth, Method, PeakWatch, RunSettings, RunSummary, Striker, TABLE1_LENGTHS_MM,
+    simulate, simulate_many_watching, BlastProfile, CellModel, ChainBuilder, Excitation, Job,
+    LaneWidth, Method, PeakWatch, RunSettings, RunSummary, Striker,
 };
-
-fn chains() -> Vec<Chain> {
-    let mut rng = ChaCha8Rng::seed_from_u64(11);
-    (0..12)
-        .map(|i| {
-            let n = [1, 3, 8, 20][i % 4];
-            let rods: Vec<u32> = (0..n)
-                .map(|_| TABLE1_LENGTHS_MM[rng.random_range(0..TABLE1_LENGTHS_MM.len())])
-                .collect();
-            let model = if i % 5 == 4 {
-                CellModel::Rigid
-            } else {
-                CellModel::Resonant
-            };
-            ChainBuilder::table1_rods(&rods, model)
-                .unwrap()
-                .build()
-                .unwrap()
-        })
-        .collect()
-}
 
 /// The figures of merit agree bit for bit; the untracked peaks are NaN.
 fn assert_same_figures(light: &RunSummary, full: &RunSummary, what: &str) {
@@ -79,24 +57,10 @@ fn assert_same_figures(light: &RunSummary, full: &RunSummary, what: &str) {
 }
 
 fn check(excitation: &Excitation, method: Method, duration_s: f64) {
-    let chains = chains();
-    let settings = RunSettings {
-        duration_s,
-        method,
-        sample_interval_s: duration_s,
-    };
-    let full: Vec<RunSummary> = chains
-        .iter()
-        .map(|c| simulate(c, excitation, &settings, &mut ()).unwrap())
-        .collect();
-    let jobs: Vec<Job> = chains
-        .iter()
-        .map(|chain| Job {
-            chain,
-            excitation,
-            settings: &settings,
-        })
-        .collect();
+    let chains = random_chains(11, 12, &[1, 3, 8, 20]);
+    let settings = peaks_only(method, duration_s);
+    let full = alone(&chains, excitation, &settings);
+    let jobs = jobs(&chains, excitation, &settings);
     for width in LaneWidth::ALL {
         let light = simulate_many_watching(&jobs, width, PeakWatch::FiguresOfMerit);
         for (i, (l, f)) in light.iter().zip(&full).enumerate() {

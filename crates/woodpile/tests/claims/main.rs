@@ -31,6 +31,7 @@ mod event_stepping_accuracy;
 mod fe_rod_frequencies;
 mod lab_energy_balance;
 mod lanes_bit_identical;
+mod lanes_common;
 mod lanes_figures_of_merit;
 mod nesterenko_solitary_wave;
 mod no_tension;

@@ -1,0 +1,65 @@
+//! What the lane claims share: random chains of Table 1 rods, and a problem's runs one by one
+//! beside the same runs as lane jobs. Not a claim.
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use woodpile::{
+    simulate, CellModel, Chain, ChainBuilder, Excitation, Job, RunSettings, RunSummary,
+    TABLE1_LENGTHS_MM,
+};
+
+/// `count` chains of random Table 1 rods (seeded), chain i of `lengths[i % lengths.len()]` rods,
+/// every fifth rigid, the others resonant (1 or 2 resonators per cell: lanes carry padding).
+pub fn random_chains(seed: u64, count: usize, lengths: &[usize]) -> Vec<Chain> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    (0..count)
+        .map(|i| {
+            let n = lengths[i % lengths.len()];
+            let rods: Vec<u32> = (0..n)
+                .map(|_| TABLE1_LENGTHS_MM[rng.random_range(0..TABLE1_LENGTHS_MM.len())])
+                .collect();
+            let model = if i % 5 == 4 {
+                CellModel::Rigid
+            } else {
+                CellModel::Resonant
+            };
+            ChainBuilder::table1_rods(&rods, model)
+                .unwrap()
+                .build()
+                .unwrap()
+        })
+        .collect()
+}
+
+/// Peaks-only settings of `duration_s`.
+pub fn peaks_only(method: woodpile::Method, duration_s: f64) -> RunSettings {
+    RunSettings {
+        duration_s,
+        method,
+        sample_interval_s: duration_s,
+    }
+}
+
+/// Each chain run alone with `simulate`.
+pub fn alone(chains: &[Chain], excitation: &Excitation, settings: &RunSettings) -> Vec<RunSummary> {
+    chains
+        .iter()
+        .map(|c| simulate(c, excitation, settings, &mut ()).unwrap())
+        .collect()
+}
+
+/// The same runs as lane jobs.
+pub fn jobs<'a>(
+    chains: &'a [Chain],
+    excitation: &'a Excitation,
+    settings: &'a RunSettings,
+) -> Vec<Job<'a>> {
+    chains
+        .iter()
+        .map(|chain| Job {
+            chain,
+            excitation,
+            settings,
+        })
+        .collect()
+}
