@@ -183,13 +183,19 @@ pub struct RunSummary {
 }
 
 /// Tracks the peak of each contact force over every step, refining a maximum that falls between
-/// two steps with the cubic Hermite interpolant of F and dF/dt at the step ends (error O(h⁴)).
+/// two steps with the quintic Hermite interpolant of F and dF/dt at the last three step ends
+/// (error O(h⁶)) when the contact was closed at all three, and with the cubic of the last two
+/// (error O(h⁴)) otherwise.
 #[derive(Debug, Clone)]
 pub(crate) struct PeakTracker {
     pub(crate) peak: Vec<f64>,
     pub(crate) time: Vec<f64>,
     prev_force: Vec<f64>,
     prev_rate: Vec<f64>,
+    /// F, dF/dt and the time one step further back (time NaN: none yet).
+    prev2_force: Vec<f64>,
+    prev2_rate: Vec<f64>,
+    prev2_time: Vec<f64>,
     /// dF/dt at the end of the current step, filled by the caller before `update`.
     pub(crate) rate: Vec<f64>,
 }
@@ -201,6 +207,9 @@ impl PeakTracker {
             time: vec![0.0; n],
             prev_force: vec![0.0; n],
             prev_rate: vec![0.0; n],
+            prev2_force: vec![0.0; n],
+            prev2_rate: vec![0.0; n],
+            prev2_time: vec![f64::NAN; n],
             rate: vec![0.0; n],
         }
     }
@@ -230,13 +239,34 @@ impl PeakTracker {
             self.time[c] = t1;
         }
         if d0 > 0.0 && d1 <= 0.0 {
-            if let Some((theta, f)) = hermite_max(f0, d0 * h, f1, d1 * h) {
+            let cubic = hermite_max(f0, d0 * h, f1, d1 * h);
+            // Three step ends inside one contact (closed at all three: no kink between them).
+            let t_back = self.prev2_time[c];
+            let quintic = (self.prev2_force[c] > 0.0 && t_back < t0)
+                .then(|| {
+                    let back = [
+                        (t_back - t0) / h,
+                        self.prev2_force[c],
+                        self.prev2_rate[c] * h,
+                    ];
+                    hermite3_max(
+                        back,
+                        [f0, d0 * h],
+                        [f1, d1 * h],
+                        cubic.map(|(theta, _)| theta),
+                    )
+                })
+                .flatten();
+            if let Some((theta, f)) = quintic.or(cubic) {
                 if f > self.peak[c] {
                     self.peak[c] = f;
                     self.time[c] = t0 + theta * h;
                 }
             }
         }
+        self.prev2_force[c] = f0;
+        self.prev2_rate[c] = d0;
+        self.prev2_time[c] = t0;
         self.prev_force[c] = f1;
         self.prev_rate[c] = d1;
     }
@@ -307,6 +337,66 @@ fn hermite_max(f0: f64, s0: f64, f1: f64, s1: f64) -> Option<(f64, f64)> {
         }
     }
     best
+}
+
+/// The maximum inside (0, 1) of the quintic p(s) that matches value and slope at s = a < 0
+/// (`back` = [a, p(a), p'(a)]), at s = 0 (`start` = [p, p']) and at s = 1 (`end`): Newton's method
+/// on p' from `guess` (the cubic's maximum) or 1/2. None when it does not converge to a maximum
+/// inside the step (the caller keeps the cubic's).
+fn hermite3_max(
+    back: [f64; 3],
+    start: [f64; 2],
+    end: [f64; 2],
+    guess: Option<f64>,
+) -> Option<(f64, f64)> {
+    let [a, fa, ga] = back;
+    let z = [a, a, 0.0, 0.0, 1.0, 1.0];
+    let (f, g) = ([fa, start[0], end[0]], [ga, start[1], end[1]]);
+    // Divided differences on the doubled nodes: coef[k] = [z0..zk].
+    let mut table = [0.0; 6];
+    for (i, t) in table.iter_mut().enumerate() {
+        *t = f[i / 2];
+    }
+    let mut coef = [0.0; 6];
+    coef[0] = table[0];
+    for order in 1..6 {
+        for i in (order..6).rev() {
+            table[i] = if z[i] == z[i - order] {
+                g[i / 2]
+            } else {
+                (table[i] - table[i - 1]) / (z[i] - z[i - order])
+            };
+        }
+        coef[order] = table[order];
+    }
+    // p, p', p'' at s (Horner on the Newton form).
+    let eval = |s: f64| {
+        let (mut p, mut d1, mut d2) = (coef[5], 0.0, 0.0);
+        for k in (0..5).rev() {
+            let w = s - z[k];
+            d2 = d2 * w + 2.0 * d1;
+            d1 = d1 * w + p;
+            p = p * w + coef[k];
+        }
+        (p, d1, d2)
+    };
+    let mut s = guess.unwrap_or(0.5);
+    for _ in 0..20 {
+        let (_, d1, d2) = eval(s);
+        if d2 >= 0.0 {
+            return None;
+        }
+        let step = d1 / d2;
+        s -= step;
+        if !(0.0..=1.0).contains(&s) {
+            return None;
+        }
+        if step.abs() <= 1e-14 {
+            let (p, _, _) = eval(s);
+            return (s > 0.0 && s < 1.0).then_some((s, p));
+        }
+    }
+    None
 }
 
 /// Buffers for observing a state at a sample time.
