@@ -8,21 +8,13 @@
 //! woodpile used before, by 8.9e-6, and the claim fails. Tolerance 1e-7: 50 times the measured
 //! error, 90 times below the cubic's (bench/README.md 2026-11-25, peak refinement).
 
-use woodpile::{
-    simulate, CellModel, ChainBuilder, Element, Excitation, Method, RunSettings, Striker, Wall,
-};
+use crate::two_body_hertz_impact::striker_on_free_rod;
+use woodpile::{simulate, Excitation, Method, RunSettings};
 
 #[test]
 fn peak_between_steps_matches_the_closed_form_hertz_peak() {
-    let rod = Element::table1_rod(20, CellModel::Rigid).unwrap();
-    let m_r = rod.cell.total_mass_kg();
-    let chain = ChainBuilder::new(vec![rod])
-        .wall(Wall::Free)
-        .build()
-        .unwrap();
-    let striker = Striker::paper();
+    let (chain, striker, beta, m_r) = striker_on_free_rod();
     let (m_s, v0) = (striker.mass_kg(), striker.velocity_m_s);
-    let beta = striker.contact_beta(&chain).unwrap();
     let mu = m_s * m_r / (m_s + m_r);
     let f_max = beta * (5.0 * mu * v0 * v0 / (4.0 * beta)).powf(0.6);
     let settings = RunSettings {

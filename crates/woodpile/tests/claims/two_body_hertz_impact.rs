@@ -16,12 +16,12 @@
 //! numbers for the 20 mm rod (15.8 µm, 162 N, 23.5 µs) are checked to their printed precision.
 
 use woodpile::{
-    simulate, CellModel, ChainBuilder, Element, Excitation, Method, RunSettings, Striker,
+    simulate, CellModel, Chain, ChainBuilder, Element, Excitation, Method, RunSettings, Striker,
     Trajectory, Wall,
 };
 
-#[test]
-fn striker_on_free_rigid_rod_matches_hertz_closed_form() {
+/// The striker and one free rigid 20 mm rod: (chain, striker, β, the rod's mass [kg]).
+pub(crate) fn striker_on_free_rod() -> (Chain, Striker, f64, f64) {
     let rod = Element::table1_rod(20, CellModel::Rigid).unwrap();
     let m_r = rod.cell.total_mass_kg();
     let chain = ChainBuilder::new(vec![rod])
@@ -29,8 +29,14 @@ fn striker_on_free_rigid_rod_matches_hertz_closed_form() {
         .build()
         .unwrap();
     let striker = Striker::paper();
-    let (m_s, v0) = (striker.mass_kg(), striker.velocity_m_s);
     let beta = striker.contact_beta(&chain).unwrap();
+    (chain, striker, beta, m_r)
+}
+
+#[test]
+fn striker_on_free_rigid_rod_matches_hertz_closed_form() {
+    let (chain, striker, beta, m_r) = striker_on_free_rod();
+    let (m_s, v0) = (striker.mass_kg(), striker.velocity_m_s);
     let settings = RunSettings {
         duration_s: 30e-6,
         method: Method::Rk4 { time_step_s: 1e-9 },
