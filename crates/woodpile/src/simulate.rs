@@ -242,7 +242,7 @@ impl PeakTracker {
             let cubic = hermite_max(f0, d0 * h, f1, d1 * h);
             // Three step ends inside one contact (closed at all three: no kink between them).
             let t_back = self.prev2_time[c];
-            let quintic = (self.prev2_force[c] > 0.0 && t_back < t0)
+            let quintic = (self.prev2_force[c] > 0.0 && f1 > 0.0 && t_back < t0)
                 .then(|| {
                     let back = [
                         (t_back - t0) / h,
