@@ -99,9 +99,7 @@ fn bad_run_directories_are_clear_errors() {
     let other = json.replacen("\"woodpile-run/1\"", "\"woodpile-run/0\"", 1);
     assert_ne!(other, json, "run.json carries its format");
     std::fs::write(run.join("run.json"), &other).unwrap();
-    let o = woodpile(&["plot", run.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("woodpile-run/0"), "{}", stderr(&o));
+    refused(&["plot", run.to_str().unwrap()], &["woodpile-run/0"]);
     // A run.json without a format tag (older files) is judged by its version.
     let old = json
         .replacen("\"format\": \"woodpile-run/1\",", "", 1)
@@ -111,32 +109,34 @@ fn bad_run_directories_are_clear_errors() {
             1,
         );
     std::fs::write(run.join("run.json"), &old).unwrap();
-    let o = woodpile(&["plot", run.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("0.0.1"), "{}", stderr(&o));
+    refused(&["plot", run.to_str().unwrap()], &["0.0.1"]);
 
     std::fs::write(run.join("run.json"), &json).unwrap();
     std::fs::remove_file(run.join("forces_n.npy")).unwrap();
     std::fs::remove_file(run.join("forces.csv")).unwrap();
-    let o = woodpile(&["plot", run.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("forces.csv"), "{}", stderr(&o));
-
-    let o = woodpile(&["plot", run.to_str().unwrap(), "--signal", "contact_99"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains("contact_99") && stderr(&o).contains("wall"),
-        "names the signal and the valid ones: {}",
-        stderr(&o)
+    let run = run.to_str().unwrap();
+    refused(&["plot", run], &["forces.csv"]);
+    // Names the signal and the valid ones.
+    refused(
+        &["plot", run, "--signal", "contact_99"],
+        &["contact_99", "wall"],
     );
+    // Lists the valid windows.
+    refused(&["plot", run, "--window", "kaiser"], &["hann"]);
+}
 
-    let o = woodpile(&["plot", run.to_str().unwrap(), "--window", "kaiser"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains("hann"),
-        "lists the valid windows: {}",
-        stderr(&o)
-    );
+/// Asserts that `woodpile args` exits with code 2 and that its standard error contains every
+/// one of `expected`.
+fn refused(args: &[&str], expected: &[&str]) {
+    let o = woodpile(args);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+    for e in expected {
+        assert!(
+            stderr(&o).contains(e),
+            "{args:?}: `{e}` missing from {}",
+            stderr(&o)
+        );
+    }
 }
 
 #[test]
@@ -318,15 +318,7 @@ fn bad_plot_flags_exit_2_naming_the_flag() {
     ] {
         let mut all = vec!["plot", dir, "-q"];
         all.extend_from_slice(args);
-        let o = woodpile(&all);
-        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
-        for e in expected {
-            assert!(
-                stderr(&o).contains(e),
-                "{args:?}: `{e}` missing from {}",
-                stderr(&o)
-            );
-        }
+        refused(&all, expected);
     }
 }
 
