@@ -465,8 +465,11 @@ class BreederGA:
 
     For a seed the generations are identical to the command line's, whoever evaluates the
     designs: the draws depend only on the seed and the generation. ``ask`` returns only the
-    designs the fitness cache does not hold yet. Picklable (the state travels as the command
-    line's checkpoint JSON).
+    designs the fitness cache does not hold yet. With ``ga.screen_peak_tolerance`` in the
+    problem, ``evaluate`` (and a worker's evaluation) gives screened values, and ``tell``
+    simulates here, at the run's settings, the few designs whose rank needs it: the choices are
+    those of the unscreened GA (docs/physics.md §11). Picklable (the state travels as the
+    command line's checkpoint JSON).
     """
 
     def __init__(self, problem: Any, *, seed: int | None = None, threads: int = 0):
@@ -493,7 +496,8 @@ class BreederGA:
         self._asked_at = None
 
     def evaluate(self, designs: Sequence[Sequence[int]]) -> list[float]:
-        """Objective values of designs, simulated in this process (all cores, GIL released)."""
+        """The values ``tell`` expects for designs (screened ones with screening), simulated in
+        this process (all cores, GIL released)."""
         return list(self._session.evaluate([list(d) for d in designs]))
 
     @property
@@ -527,10 +531,11 @@ class BreederGA:
         return Scenario(self._session.scenario_toml(self.best["design"]), name="best")
 
     def history(self):
-        """One row per generation: best, mean, worst, evaluations, cache_hits, elapsed_s."""
+        """One row per generation: best, mean, worst, evaluations (at the run's settings),
+        screenings, cache_hits, elapsed_s."""
         import pandas as pd
 
-        cols = ["generation", "best", "mean", "worst", "evaluations", "cache_hits", "elapsed_s"]
+        cols = ["generation", "best", "mean", "worst", "evaluations", "screenings", "cache_hits", "elapsed_s"]
         return pd.DataFrame(self._session.history(), columns=cols).set_index("generation")
 
     def save(self, path: str | os.PathLike) -> None:

@@ -33,7 +33,7 @@ fn evaluations(c: &mut Criterion) {
         )
         .unwrap();
         group.bench_function(format!("{threads}-threads"), |b| {
-            b.iter(|| ga.initialize().unwrap().evaluations)
+            b.iter(|| ga.initialize().unwrap().ledger.evaluations)
         });
     }
     group.finish();

@@ -121,7 +121,8 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let unit = problem.objective.unit().to_string();
     let mut write_error: Option<CliError> = None;
     let mut last_elapsed = initial.as_ref().map_or(0.0, |s| s.elapsed_s);
-    let mut last_evals = initial.as_ref().map_or(0, |s| s.evaluations);
+    let simulations = |s: &GaState| s.ledger.evaluations + s.ledger.screenings;
+    let mut last_evals = initial.as_ref().map_or(0, simulations);
     let mut observer = |s: &GaState| {
         let written = write_generation(out, &problem.config, s);
         if let Err(e) = written {
@@ -130,18 +131,19 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         }
         let dt = s.elapsed_s - last_elapsed;
         let rate = if dt > 0.0 {
-            (s.evaluations - last_evals) as f64 / dt
+            (simulations(s) - last_evals) as f64 / dt
         } else {
             0.0
         };
-        (last_elapsed, last_evals) = (s.elapsed_s, s.evaluations);
+        (last_elapsed, last_evals) = (s.elapsed_s, simulations(s));
         bar.set_position(s.generation as u64);
         bar.detail(format!(
-            "generation {}: best {:.6e} {unit} | {rate:.0} eval/s | {} evaluations, {} cache hits",
+            "generation {}: best {:.6e} {unit} | {rate:.0} sim/s | {} evaluations, {}{} cache hits",
             s.generation,
             s.best().objective,
-            s.evaluations,
-            s.cache_hits
+            s.ledger.evaluations,
+            screened_text(s.ledger.screenings),
+            s.ledger.cache_hits
         ));
         ControlFlow::Continue(())
     };
@@ -187,7 +189,7 @@ fn terminal_summary(
         .map_or("none".to_string(), |r| format!("{r:.4}"));
     format!(
         "problem      {name} ({} positions, {} catalogue entries, seed {})\n\
-         stopped      {} after generation {}: {} evaluations, {} cache hits, {:.1} s\n\
+         stopped      {} after generation {}: {} evaluations, {}{} cache hits, {:.1} s\n\
          best         {}\n\
          objective    {} = {:.6e} {}\n\
          forces       incident {:.4} N, transmitted {:.4} N, ratio {ratio}\n\
@@ -197,8 +199,9 @@ fn terminal_summary(
         problem.settings.seed,
         stop_text(outcome.reason),
         state.generation,
-        state.evaluations,
-        state.cache_hits,
+        state.ledger.evaluations,
+        screened_text(state.ledger.screenings),
+        state.ledger.cache_hits,
         state.elapsed_s,
         problem.space.labels(&best.genome).join(" "),
         problem.objective.as_str(),
@@ -208,4 +211,13 @@ fn terminal_summary(
         figures.transmitted_peak_force_n,
         out.display()
     )
+}
+
+/// "N screenings, " when screening ran, nothing otherwise.
+fn screened_text(screenings: u64) -> String {
+    if screenings == 0 {
+        String::new()
+    } else {
+        format!("{screenings} screenings, ")
+    }
 }

@@ -40,8 +40,8 @@ use std::collections::HashMap;
 use std::fs;
 use std::path::{Path, PathBuf};
 use woodpile::optimize::{
-    Constraints, DesignSpace, GaSettings, GaState, GenerationStats, Individual, OptimizeError,
-    StandardObjective, StopReason,
+    Constraints, DesignSpace, GaSettings, GaState, GenerationStats, Individual, Ledger,
+    OptimizeError, StandardObjective, StopReason,
 };
 use woodpile::optimize::{Objective, Outcome};
 use woodpile::{simulate, TABLE1_LENGTHS_MM};
@@ -273,6 +273,11 @@ pub struct GaSpec {
     /// Fitness cache on (default true); off changes only the run time.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cache: Option<bool>,
+    /// Screening: each new design is simulated first with every contact peak within this
+    /// relative tolerance, and again at the run's settings only where its rank could decide a
+    /// selection (default: off). Needs `run.peak_tolerance` and a force objective.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub screen_peak_tolerance: Option<f64>,
 }
 
 impl OptimizeConfig {
@@ -590,6 +595,7 @@ impl Problem {
             mutation_range: g.mutation_range,
             threads,
             cache: g.cache.unwrap_or(true),
+            screen_peak_tolerance: g.screen_peak_tolerance,
         };
         settings.validate()?;
         woodpile::optimize::FeasibleSet::new(&space).map_err(optimize_error)?;
@@ -687,8 +693,11 @@ pub struct Checkpoint {
     pub generation: usize,
     /// Generations since the best improved.
     pub stalled: usize,
-    /// Simulations so far.
+    /// Simulations at the run's settings so far.
     pub evaluations: u64,
+    /// Screening simulations so far (absent when 0).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub screenings: u64,
     /// Cache hits so far.
     pub cache_hits: u64,
     /// Wall-clock seconds so far.
@@ -699,20 +708,32 @@ pub struct Checkpoint {
     pub history: Vec<GenerationStats>,
     /// Fitness cache, sorted by genome.
     pub cache: Vec<Individual>,
+    /// Screened values, sorted by genome (absent when empty).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub screened: Vec<Individual>,
+}
+
+fn is_zero(n: &u64) -> bool {
+    *n == 0
+}
+
+/// A value map as a list sorted by genome (the checkpoint's form).
+fn sorted_values(map: &HashMap<Vec<u8>, f64>) -> Vec<Individual> {
+    let mut list: Vec<Individual> = map
+        .iter()
+        .map(|(g, &objective)| Individual {
+            genome: g.clone(),
+            objective,
+            bound: 0.0,
+        })
+        .collect();
+    list.sort_by(|a, b| a.genome.cmp(&b.genome));
+    list
 }
 
 impl Checkpoint {
     /// The checkpoint of a GA state for `config`, its checksum computed.
     pub fn new(config: &OptimizeConfig, s: &GaState) -> Self {
-        let mut cache: Vec<Individual> = s
-            .cache
-            .iter()
-            .map(|(g, &objective)| Individual {
-                genome: g.clone(),
-                objective,
-            })
-            .collect();
-        cache.sort_by(|a, b| a.genome.cmp(&b.genome));
         let mut cp = Checkpoint {
             format: CHECKPOINT_FORMAT.to_string(),
             tool_version: env!("CARGO_PKG_VERSION").to_string(),
@@ -720,12 +741,14 @@ impl Checkpoint {
             config: config.clone(),
             generation: s.generation,
             stalled: s.stalled,
-            evaluations: s.evaluations,
-            cache_hits: s.cache_hits,
+            evaluations: s.ledger.evaluations,
+            screenings: s.ledger.screenings,
+            cache_hits: s.ledger.cache_hits,
             elapsed_s: s.elapsed_s,
             population: s.population.clone(),
             history: s.history.clone(),
-            cache,
+            cache: sorted_values(&s.ledger.cache),
+            screened: sorted_values(&s.ledger.screened),
         };
         cp.checksum = cp.content_checksum();
         cp
@@ -747,40 +770,54 @@ impl Checkpoint {
             generation: self.generation,
             population: self.population,
             history: self.history,
-            cache: self
-                .cache
-                .into_iter()
-                .map(|i| (i.genome, i.objective))
-                .collect::<HashMap<_, _>>(),
-            evaluations: self.evaluations,
-            cache_hits: self.cache_hits,
+            ledger: Ledger {
+                cache: values_map(self.cache),
+                screened: values_map(self.screened),
+                evaluations: self.evaluations,
+                screenings: self.screenings,
+                cache_hits: self.cache_hits,
+            },
             stalled: self.stalled,
             elapsed_s: self.elapsed_s,
         }
     }
 }
 
+fn values_map(list: Vec<Individual>) -> HashMap<Vec<u8>, f64> {
+    list.into_iter().map(|i| (i.genome, i.objective)).collect()
+}
+
 /// Writes `history.csv`: one line per generation.
 pub fn history_csv(history: &[GenerationStats]) -> String {
-    let mut s = String::from("generation,best,mean,worst,evaluations,cache_hits,elapsed_s\n");
+    let mut s =
+        String::from("generation,best,mean,worst,evaluations,screenings,cache_hits,elapsed_s\n");
     for h in history {
         s.push_str(&format!(
-            "{},{},{},{},{},{},{:.3}\n",
-            h.generation, h.best, h.mean, h.worst, h.evaluations, h.cache_hits, h.elapsed_s
+            "{},{},{},{},{},{},{},{:.3}\n",
+            h.generation,
+            h.best,
+            h.mean,
+            h.worst,
+            h.evaluations,
+            h.screenings,
+            h.cache_hits,
+            h.elapsed_s
         ));
     }
     s
 }
 
-/// Writes `population.csv`: the final population, best first, one column per layer.
+/// Writes `population.csv`: the final population, best first, one column per layer;
+/// `objective_bound` is 0 where the objective was simulated at the run's settings, and the
+/// half-width of the interval that holds it where it is a screened value.
 pub fn population_csv(space: &DesignSpace, population: &[Individual]) -> String {
-    let mut s = String::from("rank,objective");
+    let mut s = String::from("rank,objective,objective_bound");
     for l in 1..=space.positions {
         s.push_str(&format!(",layer_{l}"));
     }
     s.push('\n');
     for (r, i) in population.iter().enumerate() {
-        s.push_str(&format!("{},{}", r + 1, i.objective));
+        s.push_str(&format!("{},{},{}", r + 1, i.objective, i.bound));
         for l in space.labels(&i.genome) {
             s.push(',');
             s.push_str(&l);
@@ -830,13 +867,16 @@ pub struct OptimizeSummary {
     pub seed: u64,
     /// Generations completed.
     pub generations_completed: usize,
-    /// Simulations run.
+    /// Simulations run at the run's settings.
     pub evaluations: u64,
+    /// Screening simulations run (0 without screening).
+    #[serde(default)]
+    pub screenings: u64,
     /// Designs found in the cache.
     pub cache_hits: u64,
     /// Wall-clock time \[s\].
     pub elapsed_s: f64,
-    /// Simulations per second.
+    /// Simulations (screening ones included) per second.
     pub evaluations_per_s: f64,
     /// The completed config.
     pub config: OptimizeConfig,
@@ -1085,11 +1125,12 @@ pub fn write_final_outputs(
         restitution_coefficient: figures.restitution_coefficient(),
         seed: problem.settings.seed,
         generations_completed: state.generation,
-        evaluations: state.evaluations,
-        cache_hits: state.cache_hits,
+        evaluations: state.ledger.evaluations,
+        screenings: state.ledger.screenings,
+        cache_hits: state.ledger.cache_hits,
         elapsed_s: state.elapsed_s,
         evaluations_per_s: if state.elapsed_s > 0.0 {
-            state.evaluations as f64 / state.elapsed_s
+            (state.ledger.evaluations + state.ledger.screenings) as f64 / state.elapsed_s
         } else {
             0.0
         },

@@ -431,8 +431,8 @@ pub fn cached_ga(
         best_objective: s.best().objective,
         history: s.history.clone(),
         generations: s.generation,
-        evaluations: s.evaluations,
-        cache_hits: s.cache_hits,
+        evaluations: s.ledger.evaluations,
+        cache_hits: s.ledger.cache_hits,
         elapsed_s: s.elapsed_s,
         stop_reason: format!("{:?}", outcome.reason),
     };

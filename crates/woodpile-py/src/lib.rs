@@ -492,7 +492,7 @@ fn spectrum<'py>(
 // The breeder GA as ask/tell, so that Python can evaluate designs anywhere (an executor, Dask).
 
 use std::collections::HashMap;
-use woodpile::optimize::{BreederGa, GaState};
+use woodpile::optimize::{BreederGa, GaState, Ledger};
 use woodpile_io::optimize::{optimize_error, Checkpoint, OptimizeConfig, Problem};
 
 fn ga_err(e: woodpile::optimize::OptimizeError) -> PyErr {
@@ -576,27 +576,32 @@ impl GaSession {
         serde_json::to_string(&self.config).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     }
 
-    /// Ask: the distinct designs of the next generation that are not in the fitness cache, in
-    /// order of first appearance (catalogue indices, top to bottom).
+    /// Ask: the designs of the next generation to simulate first (with the cache, the
+    /// distinct ones it holds no value for, in order of first appearance; catalogue indices,
+    /// top to bottom).
     fn ask(&mut self) -> Vec<Vec<u8>> {
         let designs = match &self.state {
             None => self.ga.initial_designs(),
             Some(s) => self.ga.offspring(s),
         };
-        let cached = |g: &Vec<u8>| self.state.as_ref().is_some_and(|s| s.cache.contains_key(g));
-        let mut seen = std::collections::HashSet::new();
-        let new: Vec<Vec<u8>> = designs
-            .iter()
-            .filter(|g| !cached(g) && seen.insert((*g).clone()))
+        let fresh = Ledger::default();
+        let ledger = self.state.as_ref().map_or(&fresh, |s| &s.ledger);
+        let new = self
+            .ga
+            .new_designs(&designs, ledger)
+            .into_iter()
             .cloned()
             .collect();
         self.pending = Some(designs);
         new
     }
 
-    /// Tell: the objective values of the designs `ask` returned; completes the generation.
+    /// Tell: the values `evaluate` gives the designs `ask` returned; completes the generation
+    /// (with screening, first simulating here, GIL released, the designs whose rank needs a
+    /// value at the run's settings).
     fn tell(
         &mut self,
+        py: Python<'_>,
         designs: Vec<Vec<u8>>,
         objectives: Vec<f64>,
         elapsed_s: f64,
@@ -605,60 +610,61 @@ impl GaSession {
             .pending
             .take()
             .ok_or_else(|| PyRuntimeError::new_err("tell() without a pending ask()"))?;
+        let refuse = |pending, message: String, session: &mut Self| {
+            session.pending = Some(pending);
+            Err(PyValueError::new_err(message))
+        };
         if designs.len() != objectives.len() {
-            self.pending = Some(pending);
-            return Err(PyValueError::new_err(format!(
+            let message = format!(
                 "{} designs but {} objectives",
                 designs.len(),
                 objectives.len()
-            )));
+            );
+            return refuse(pending, message, self);
         }
-        let mut cache = self
+        if let Some((g, _)) = designs.iter().zip(&objectives).find(|(_, v)| v.is_nan()) {
+            return refuse(pending, format!("objective of design {g:?} is NaN"), self);
+        }
+        let mut ledger = self
             .state
             .as_ref()
-            .map(|s| s.cache.clone())
+            .map(|s| s.ledger.clone())
             .unwrap_or_default();
-        for (g, &v) in designs.iter().zip(&objectives) {
-            if v.is_nan() {
-                self.pending = Some(pending);
-                return Err(PyValueError::new_err(format!(
-                    "objective of design {g:?} is NaN"
-                )));
-            }
-            cache.insert(g.clone(), v);
-        }
-        let values = pending
-            .iter()
-            .map(|g| cache.get(g).copied())
-            .collect::<Option<Vec<f64>>>();
-        let Some(values) = values else {
-            let missing = pending.iter().find(|g| !cache.contains_key(*g));
-            let message = format!("design {missing:?} of the last ask() was not told");
-            self.pending = Some(pending);
-            return Err(PyValueError::new_err(message));
+        let told: std::collections::HashSet<&Vec<u8>> = designs.iter().collect();
+        let known = |g: &Vec<u8>| {
+            told.contains(g) || ledger.cache.contains_key(g) || ledger.screened.contains_key(g)
         };
-        let evaluated = designs.len() as u64;
-        let hits = pending.len() as u64 - evaluated.min(pending.len() as u64);
+        if let Some(missing) = pending.iter().find(|g| !known(g)) {
+            let message = format!("design {missing:?} of the last ask() was not told");
+            return refuse(pending, message, self);
+        }
+        self.ga
+            .record_new(pending.len(), &designs, &objectives, &mut ledger);
+        let carried = self
+            .state
+            .as_ref()
+            .map(|s| self.ga.elites(s).to_vec())
+            .unwrap_or_default();
+        let ga = &self.ga;
+        let settled = py.detach(|| ga.settle(&carried, &pending, &mut ledger));
+        let individuals = match settled {
+            Ok(individuals) => individuals,
+            Err(e) => {
+                self.pending = Some(pending);
+                return Err(ga_err(e));
+            }
+        };
         match self.state.as_mut() {
-            None => {
-                self.state = Some(
-                    self.ga
-                        .start(pending, values, cache, evaluated, hits, elapsed_s),
-                );
-            }
-            Some(state) => {
-                state.cache = cache;
-                state.evaluations += evaluated;
-                state.cache_hits += hits;
-                self.ga.advance(state, pending, values, elapsed_s);
-            }
+            None => self.state = Some(self.ga.start(individuals, ledger, elapsed_s)),
+            Some(state) => self.ga.advance(state, individuals, ledger, elapsed_s),
         }
         Ok(())
     }
 
-    /// Objective values of designs, simulated here in parallel (GIL released).
+    /// First values of designs, simulated here in parallel (GIL released): screened with
+    /// `ga.screen_peak_tolerance`, at the run's settings otherwise.
     fn evaluate(&self, py: Python<'_>, designs: Vec<Vec<u8>>) -> PyResult<Vec<f64>> {
-        py.detach(|| self.ga.evaluate_designs(&designs).map_err(ga_err))
+        py.detach(|| self.ga.evaluate_new(&designs).map_err(ga_err))
     }
 
     /// Why the GA stops now ("generation-limit" or "stalled"), or None to go on.
@@ -686,9 +692,10 @@ impl GaSession {
         ))
     }
 
-    /// The history: (generation, best, mean, worst, evaluations, cache_hits, elapsed_s) rows.
+    /// The history: (generation, best, mean, worst, evaluations, screenings, cache_hits,
+    /// elapsed_s) rows.
     #[allow(clippy::type_complexity)]
-    fn history(&self) -> PyResult<Vec<(usize, f64, f64, f64, u64, u64, f64)>> {
+    fn history(&self) -> PyResult<Vec<(usize, f64, f64, f64, u64, u64, u64, f64)>> {
         Ok(self
             .state()?
             .history
@@ -700,6 +707,7 @@ impl GaSession {
                     h.mean,
                     h.worst,
                     h.evaluations,
+                    h.screenings,
                     h.cache_hits,
                     h.elapsed_s,
                 )

@@ -234,6 +234,18 @@ impl Method {
         })
     }
 
+    /// The relative accuracy of every contact peak this method is calibrated to meet: the
+    /// inverse of [`Method::for_peak_tolerance`] for [`Method::Dopri5Events`]; None for the
+    /// other methods, whose peak error has no calibrated bound (docs/physics.md §8).
+    pub fn peak_tolerance(&self) -> Option<f64> {
+        match *self {
+            Method::Dopri5Events { rtol, .. } => {
+                Some(PEAK_SAFETY_FACTOR * PEAK_ERROR_PREFACTOR * rtol.powf(PEAK_ERROR_EXPONENT))
+            }
+            Method::Rk4 { .. } | Method::Dopri5 { .. } => None,
+        }
+    }
+
     /// The tableau this method runs.
     pub fn tableau(&self) -> Tableau {
         match self {

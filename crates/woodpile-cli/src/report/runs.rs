@@ -177,7 +177,7 @@ fn run_ga(
                 "{label} GA: generation {}/{total}, best {:.3}, {} evaluations",
                 s.generation,
                 s.best().objective,
-                s.evaluations
+                s.ledger.evaluations
             ))
         },
     )

@@ -6,8 +6,10 @@ use super::operators::{breed, truncation_pool};
 use super::space::{DesignSpace, FeasibleSet, Genome};
 use super::OptimizeError;
 use crate::error::Error;
+use crate::integrate::Method;
 use crate::lanes::LaneWidth;
 use crate::model::Chain;
+use crate::simulate::RunSettings;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -35,8 +37,13 @@ pub struct GaSettings {
     pub mutation_range: Option<f64>,
     /// Worker threads for fitness evaluation (0 = one per core). Does not change results.
     pub threads: usize,
-    /// Keep a fitness cache so a design is never simulated twice. Does not change results.
+    /// Keep a fitness cache so a design is never simulated twice. Does not change results
+    /// (with screening, it can only change which values outside the breeding pool are exact).
     pub cache: bool,
+    /// Screening (docs/physics.md §11): simulate each new design first with every contact peak
+    /// within this relative tolerance, and again at the run's settings only where its rank
+    /// could decide a selection. None = every design at the run's settings.
+    pub screen_peak_tolerance: Option<f64>,
 }
 
 impl Default for GaSettings {
@@ -53,6 +60,7 @@ impl Default for GaSettings {
             mutation_range: None,
             threads: 0,
             cache: true,
+            screen_peak_tolerance: None,
         }
     }
 }
@@ -81,6 +89,15 @@ impl GaSettings {
                 format!("must be in 1..={}", self.population - 1),
             ));
         }
+        if let Some(t) = self.screen_peak_tolerance {
+            if !(t.is_finite() && t > 0.0 && t < 0.1) {
+                return Err(Error::invalid(
+                    "ga.screen_peak_tolerance",
+                    t,
+                    "is a relative error: give a value in (0, 0.1), e.g. 1e-3",
+                ));
+            }
+        }
         if let Some(r) = self.mutation_range {
             if !(r.is_finite() && r > 0.0) {
                 return Err(Error::invalid(
@@ -102,6 +119,15 @@ pub struct Individual {
     pub genome: Genome,
     /// Objective value (smaller is better).
     pub objective: f64,
+    /// Half-width of the interval known to hold the value at the run's settings: 0 when the
+    /// design was simulated at them, > 0 when `objective` is its screened value.
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "is_exact"))]
+    pub bound: f64,
+}
+
+#[cfg(feature = "serde")]
+fn is_exact(bound: &f64) -> bool {
+    *bound == 0.0
 }
 
 /// One line of the history.
@@ -116,8 +142,11 @@ pub struct GenerationStats {
     pub mean: f64,
     /// Worst objective.
     pub worst: f64,
-    /// Simulations run so far.
+    /// Simulations at the run's settings so far.
     pub evaluations: u64,
+    /// Screening simulations so far (0 without screening).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub screenings: u64,
     /// Cache hits so far.
     pub cache_hits: u64,
     /// Wall-clock seconds so far (not reproducible; excluded from comparisons of runs).
@@ -148,12 +177,8 @@ pub struct GaState {
     pub population: Vec<Individual>,
     /// One line per generation 0..=generation.
     pub history: Vec<GenerationStats>,
-    /// Fitness cache: every design simulated so far (empty when the cache is off).
-    pub cache: HashMap<Genome, f64>,
-    /// Simulations run so far.
-    pub evaluations: u64,
-    /// Cache hits so far.
-    pub cache_hits: u64,
+    /// What has been simulated: the caches and the counts.
+    pub ledger: Ledger,
     /// Generations since the best last improved.
     pub stalled: usize,
     /// Wall-clock seconds spent so far.
@@ -165,6 +190,25 @@ impl GaState {
     pub fn best(&self) -> &Individual {
         &self.population[0]
     }
+}
+
+/// What a GA run has simulated: the values it keeps and the counts. A generation's evaluation
+/// reads it and adds to it ([`BreederGa::new_designs`], [`BreederGa::record_new`],
+/// [`BreederGa::settle`]).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Ledger {
+    /// Fitness cache: every design simulated at the run's settings so far (empty between
+    /// generations when the cache is off).
+    pub cache: HashMap<Genome, f64>,
+    /// Screened values of the designs screened so far (empty without screening, and between
+    /// generations when the cache is off).
+    pub screened: HashMap<Genome, f64>,
+    /// Simulations at the run's settings so far.
+    pub evaluations: u64,
+    /// Screening simulations so far.
+    pub screenings: u64,
+    /// Cache hits so far.
+    pub cache_hits: u64,
 }
 
 /// Why [`BreederGa::run`] returned.
@@ -212,6 +256,69 @@ pub struct BreederGa {
     settings: GaSettings,
     pool: rayon::ThreadPool,
     lanes: LaneWidth,
+    screen: Option<Screen>,
+}
+
+/// Screening's cheaper settings and how far a screened value can lie from the value at the
+/// run's settings.
+#[derive(Debug, Clone, Copy)]
+struct Screen {
+    settings: RunSettings,
+    /// |screened − run value| ≤ half_width · |screened|.
+    half_width: f64,
+}
+
+impl Screen {
+    /// Screening at `peak_tolerance` for a GA whose runs use `run` and whose objective is
+    /// `objective`; an error names what is missing for a bound.
+    fn new(
+        peak_tolerance: f64,
+        run: &RunSettings,
+        objective: &dyn Objective,
+    ) -> Result<Self, OptimizeError> {
+        let field = "ga.screen_peak_tolerance";
+        let run_tolerance = run.method.peak_tolerance().ok_or_else(|| {
+            Error::invalid(
+                field,
+                peak_tolerance,
+                "needs the run's accuracy stated: set run.peak_tolerance (or the dopri5-events \
+                 method) instead of a fixed-step or plain dopri5 integrator",
+            )
+        })?;
+        if peak_tolerance <= run_tolerance {
+            return Err(Error::invalid(
+                field,
+                peak_tolerance,
+                format!(
+                    "must be looser than the run's peak tolerance {run_tolerance:.3e} (e.g. 1e-3)"
+                ),
+            )
+            .into());
+        }
+        let (Some(screened), Some(exact)) = (
+            objective.relative_error(peak_tolerance),
+            objective.relative_error(run_tolerance),
+        ) else {
+            return Err(Error::invalid(
+                field,
+                peak_tolerance,
+                format!(
+                    "objective `{}` has no error bound from contact peaks: screening works \
+                     with transmitted-force and transmission-ratio",
+                    objective.name()
+                ),
+            )
+            .into());
+        };
+        Ok(Screen {
+            settings: RunSettings {
+                method: Method::for_peak_tolerance(peak_tolerance)?,
+                ..*run
+            },
+            // |s − v| ≤ |s − c| + |v − c| ≤ (e_s + e_v)|c|, and |c| ≤ |s| / (1 − e_s).
+            half_width: (screened + exact) / (1.0 - screened),
+        })
+    }
 }
 
 impl std::fmt::Debug for BreederGa {
@@ -240,6 +347,10 @@ impl BreederGa {
                 threads: settings.threads,
                 reason: e.to_string(),
             })?;
+        let screen = settings
+            .screen_peak_tolerance
+            .map(|t| Screen::new(t, &space.settings, objective.as_ref()))
+            .transpose()?;
         Ok(BreederGa {
             space,
             set,
@@ -247,6 +358,7 @@ impl BreederGa {
             settings,
             pool,
             lanes: LaneWidth::detect(),
+            screen,
         })
     }
 
@@ -290,16 +402,20 @@ impl BreederGa {
             .unwrap_or(((self.set.catalogue_len() - 1) as f64).max(1.0))
     }
 
-    /// Simulates one design (no cache).
+    /// Simulates one design at the run's settings (no cache).
     pub fn evaluate(&self, genome: &[u8]) -> Result<f64, OptimizeError> {
-        self.evaluate_batch(&[genome])
+        self.evaluate_batch(&[genome], &self.space.settings)
             .pop()
             .expect("one value per design")
     }
 
-    /// Simulates designs together ([`Objective::evaluate_many`]: in SIMD lanes for the force
-    /// objectives); one value per design, in order.
-    fn evaluate_batch(&self, genomes: &[&[u8]]) -> Vec<Result<f64, OptimizeError>> {
+    /// Simulates designs together under `settings` ([`Objective::evaluate_many`]: in SIMD lanes
+    /// for the force objectives); one value per design, in order.
+    fn evaluate_batch(
+        &self,
+        genomes: &[&[u8]],
+        settings: &RunSettings,
+    ) -> Vec<Result<f64, OptimizeError>> {
         let design = |genome: &[u8]| self.space.labels(genome).join(" ");
         // The designs that build go to the objective together; the others keep their error.
         let mut built: Vec<Chain> = Vec::with_capacity(genomes.len());
@@ -318,12 +434,7 @@ impl BreederGa {
             .collect();
         let mut values = self
             .objective
-            .evaluate_many(
-                &built,
-                &self.space.excitation,
-                &self.space.settings,
-                self.lanes,
-            )
+            .evaluate_many(&built, &self.space.excitation, settings, self.lanes)
             .into_iter();
         unbuilt
             .into_iter()
@@ -350,70 +461,181 @@ impl BreederGa {
             .collect()
     }
 
-    /// Objective values of designs in order, simulated on the GA's threads in batches of SIMD
-    /// lanes (no cache); the first failure is the error. The values do not depend on the thread
-    /// count, the lane width or the batching (claim `optimize_thread_determinism`).
+    /// Objective values of designs in order, simulated at the run's settings on the GA's
+    /// threads in batches of SIMD lanes (no cache); the first failure is the error. The values
+    /// do not depend on the thread count, the lane width or the batching (claim
+    /// `optimize_thread_determinism`).
     pub fn evaluate_designs<G: AsRef<[u8]> + Sync>(
         &self,
         genomes: &[G],
     ) -> Result<Vec<f64>, OptimizeError> {
+        self.evaluate_designs_at(genomes, &self.space.settings)
+            .into_iter()
+            .collect()
+    }
+
+    /// [`BreederGa::evaluate_designs`] under `settings`, one result per design.
+    fn evaluate_designs_at<G: AsRef<[u8]> + Sync>(
+        &self,
+        genomes: &[G],
+        settings: &RunSettings,
+    ) -> Vec<Result<f64, OptimizeError>> {
         // Several batches per thread keep every thread busy; each batch fills its lanes.
         let threads = self.pool.current_num_threads().max(1);
         let batch = genomes.len().div_ceil(4 * threads).max(self.lanes.lanes());
-        let values: Vec<Result<f64, OptimizeError>> = self.pool.install(|| {
+        self.pool.install(|| {
             genomes
                 .par_chunks(batch)
                 .flat_map_iter(|chunk| {
                     let genomes: Vec<&[u8]> = chunk.iter().map(|g| g.as_ref()).collect();
-                    self.evaluate_batch(&genomes)
+                    self.evaluate_batch(&genomes, settings)
                 })
                 .collect()
-        });
-        values.into_iter().collect()
+        })
     }
 
-    /// Objective values of `genomes` in order: cached ones looked up, the others simulated in
-    /// parallel (each distinct design once) and written back by index.
-    fn evaluate_all(
-        &self,
-        genomes: &[Genome],
-        cache: &mut HashMap<Genome, f64>,
-        evaluations: &mut u64,
-        cache_hits: &mut u64,
-    ) -> Result<Vec<f64>, OptimizeError> {
-        let use_cache = self.settings.cache;
-        let mut todo: Vec<&Genome> = Vec::new();
-        let mut slot: Vec<usize> = Vec::with_capacity(genomes.len());
-        let mut pending: HashMap<&Genome, usize> = HashMap::new();
-        for g in genomes {
-            if use_cache {
-                if cache.contains_key(g) {
-                    *cache_hits += 1;
-                    slot.push(usize::MAX);
-                    continue;
-                }
-                if let Some(&k) = pending.get(g) {
-                    *cache_hits += 1;
-                    slot.push(k);
-                    continue;
-                }
-                pending.insert(g, todo.len());
-            }
-            slot.push(todo.len());
-            todo.push(g);
+    /// Whether new designs are screened first (`ga.screen_peak_tolerance`).
+    pub fn screens(&self) -> bool {
+        self.screen.is_some()
+    }
+
+    /// Ask, part 2: the designs of `genomes` (a generation's, from
+    /// [`BreederGa::initial_designs`] or [`BreederGa::offspring`]) to simulate first: with the
+    /// cache, the distinct ones the ledger holds no value for, in order of first appearance;
+    /// without it, all of them.
+    pub fn new_designs<'g>(&self, genomes: &'g [Genome], ledger: &Ledger) -> Vec<&'g Genome> {
+        if !self.settings.cache {
+            return genomes.iter().collect();
         }
-        let values = self.evaluate_designs(&todo)?;
-        *evaluations += values.len() as u64;
-        if use_cache {
-            for (g, &v) in todo.iter().zip(&values) {
-                cache.insert((*g).clone(), v);
-            }
-        }
-        Ok(genomes
+        let mut seen = std::collections::HashSet::new();
+        genomes
             .iter()
-            .zip(&slot)
-            .map(|(g, &k)| if k == usize::MAX { cache[g] } else { values[k] })
-            .collect())
+            .filter(|g| {
+                !ledger.cache.contains_key(*g)
+                    && !ledger.screened.contains_key(*g)
+                    && seen.insert(*g)
+            })
+            .collect()
+    }
+
+    /// The first simulation of new designs, in order: the screening run with screening (a
+    /// design whose screening run fails is simulated at the run's settings instead, and its
+    /// value is then treated as screened), the run's settings otherwise.
+    pub fn evaluate_new<G: AsRef<[u8]> + Sync>(
+        &self,
+        genomes: &[G],
+    ) -> Result<Vec<f64>, OptimizeError> {
+        let Some(screen) = &self.screen else {
+            return self.evaluate_designs(genomes);
+        };
+        self.evaluate_designs_at(genomes, &screen.settings)
+            .into_iter()
+            .zip(genomes)
+            .map(|(value, g)| value.or_else(|_| self.evaluate(g.as_ref())))
+            .collect()
+    }
+
+    /// Tell, part 1: enters the first values of the `new` designs of a generation of
+    /// `generation_size` designs into the ledger (screened or exact) and counts them.
+    pub fn record_new<G: AsRef<[u8]>>(
+        &self,
+        generation_size: usize,
+        new: &[G],
+        values: &[f64],
+        ledger: &mut Ledger,
+    ) {
+        if self.settings.cache {
+            ledger.cache_hits += generation_size.saturating_sub(new.len()) as u64;
+        }
+        let map = if self.screen.is_some() {
+            ledger.screenings += new.len() as u64;
+            &mut ledger.screened
+        } else {
+            ledger.evaluations += new.len() as u64;
+            &mut ledger.cache
+        };
+        for (g, &v) in new.iter().zip(values) {
+            map.insert(g.as_ref().to_vec(), v);
+        }
+    }
+
+    /// Tell, part 2: the individuals of `genomes` from the ledger's values, after simulating at
+    /// the run's settings every screened design whose rank could decide a selection
+    /// (`carried`: the elites that join them, simulated at the run's settings).
+    ///
+    /// A screened value s stands for an interval s ± half_width·|s| that holds the value at the
+    /// run's settings (docs/physics.md §11). A design is confirmed when it could be among the
+    /// best max(⌈Tμ⌉, elites) and its interval meets another design's, or when it ranks among
+    /// the elites; this repeats until no such design is left. The breeding pool, its order and
+    /// the elites are then those that values at the run's settings give: screening changes the
+    /// cost of a run, not its choices (claim `optimize_screening`).
+    pub fn settle(
+        &self,
+        carried: &[Individual],
+        genomes: &[Genome],
+        ledger: &mut Ledger,
+    ) -> Result<Vec<Individual>, OptimizeError> {
+        let half_width = self.screen.map_or(0.0, |s| s.half_width);
+        let lookup = |g: &Genome, ledger: &Ledger| {
+            if let Some(&objective) = ledger.cache.get(g) {
+                return Some(Individual {
+                    genome: g.clone(),
+                    objective,
+                    bound: 0.0,
+                });
+            }
+            ledger.screened.get(g).map(|&objective| Individual {
+                genome: g.clone(),
+                objective,
+                bound: half_width * objective.abs(),
+            })
+        };
+        let mut all: Vec<Individual> = carried.to_vec();
+        for g in genomes {
+            all.push(
+                lookup(g, ledger).ok_or_else(|| OptimizeError::StateMismatch {
+                    reason: format!(
+                        "design {:?} of this generation has no value",
+                        self.space.labels(g)
+                    ),
+                })?,
+            );
+        }
+        let keep = truncation_pool(self.settings.population, self.settings.truncation)
+            .max(self.settings.elites)
+            .min(all.len());
+        loop {
+            let confirm = contested(&all, keep, self.settings.elites);
+            if confirm.is_empty() {
+                break;
+            }
+            let values = self.evaluate_designs(&confirm)?;
+            ledger.evaluations += confirm.len() as u64;
+            for (g, v) in confirm.into_iter().zip(values) {
+                ledger.cache.insert(g, v);
+            }
+            for ind in all.iter_mut().filter(|i| i.bound > 0.0) {
+                if let Some(&v) = ledger.cache.get(&ind.genome) {
+                    ind.objective = v;
+                    ind.bound = 0.0;
+                }
+            }
+        }
+        Ok(all.split_off(carried.len()))
+    }
+
+    /// The generation's individuals: new designs simulated (in parallel, each distinct design
+    /// once with the cache), then settled.
+    fn evaluate_generation(
+        &self,
+        carried: &[Individual],
+        genomes: &[Genome],
+        ledger: &mut Ledger,
+    ) -> Result<Vec<Individual>, OptimizeError> {
+        let new = self.new_designs(genomes, ledger);
+        let values = self.evaluate_new(&new)?;
+        self.record_new(genomes.len(), &new, &values, ledger);
+        self.settle(carried, genomes, ledger)
     }
 
     fn stats(&self, state: &GaState) -> GenerationStats {
@@ -423,10 +645,20 @@ impl BreederGa {
             best: state.population[0].objective,
             mean: objectives.clone().sum::<f64>() / state.population.len() as f64,
             worst: objectives.fold(f64::NEG_INFINITY, f64::max),
-            evaluations: state.evaluations,
-            cache_hits: state.cache_hits,
+            evaluations: state.ledger.evaluations,
+            screenings: state.ledger.screenings,
+            cache_hits: state.ledger.cache_hits,
             elapsed_s: state.elapsed_s,
         }
+    }
+
+    /// The ledger to carry into the next generation: without the cache, only the counts.
+    fn carried_ledger(&self, mut ledger: Ledger) -> Ledger {
+        if !self.settings.cache {
+            ledger.cache.clear();
+            ledger.screened.clear();
+        }
+        ledger
     }
 
     /// Ask, generation 0: a random feasible population drawn from the seed (stream 0).
@@ -450,24 +682,16 @@ impl BreederGa {
             .collect()
     }
 
-    /// Tell, generation 0: the state from the initial designs and their objective values (the
-    /// caller's `cache`, evaluation count and cache hits are kept in it).
-    pub fn start(
-        &self,
-        genomes: Vec<Genome>,
-        values: Vec<f64>,
-        cache: HashMap<Genome, f64>,
-        evaluations: u64,
-        cache_hits: u64,
-        elapsed_s: f64,
-    ) -> GaState {
+    /// Tell, generation 0: the state from the initial designs' individuals (from
+    /// [`BreederGa::settle`]) and the ledger they were evaluated into.
+    pub fn start(&self, individuals: Vec<Individual>, ledger: Ledger, elapsed_s: f64) -> GaState {
+        let mut population = individuals;
+        sort(&mut population);
         let mut state = GaState {
             generation: 0,
-            population: sorted(genomes, values),
+            population,
             history: Vec::new(),
-            cache,
-            evaluations,
-            cache_hits,
+            ledger: self.carried_ledger(ledger),
             stalled: 0,
             elapsed_s,
         };
@@ -475,27 +699,23 @@ impl BreederGa {
         state
     }
 
-    /// Tell, generation g + 1: the elites and the evaluated `children` (from
-    /// [`BreederGa::offspring`]) become the sorted population; the caller has already updated
-    /// the state's cache and counters.
+    /// Tell, generation g + 1: the elites and the `children`'s individuals (from
+    /// [`BreederGa::offspring`], then [`BreederGa::settle`] with the elites carried) become the
+    /// sorted population; `ledger` is the state's, with this generation's simulations added.
     pub fn advance(
         &self,
         state: &mut GaState,
-        children: Vec<Genome>,
-        values: Vec<f64>,
+        children: Vec<Individual>,
+        ledger: Ledger,
         elapsed_s: f64,
     ) {
         let previous_best = state.population[0].objective;
-        let mut population: Vec<Individual> = state.population[..self.settings.elites].to_vec();
-        population.extend(
-            children
-                .into_iter()
-                .zip(values)
-                .map(|(genome, objective)| Individual { genome, objective }),
-        );
+        let mut population: Vec<Individual> = self.elites(state).to_vec();
+        population.extend(children);
         sort(&mut population);
         state.generation += 1;
         state.population = population;
+        state.ledger = self.carried_ledger(ledger);
         state.stalled = if state.population[0].objective < previous_best {
             0
         } else {
@@ -503,6 +723,11 @@ impl BreederGa {
         };
         state.elapsed_s += elapsed_s;
         state.history.push(self.stats(state));
+    }
+
+    /// The individuals of `state` that join the next generation unchanged.
+    pub fn elites<'s>(&self, state: &'s GaState) -> &'s [Individual] {
+        &state.population[..self.settings.elites]
     }
 
     /// Why a run stops at `state` (the generation or the stall limit), or None to go on.
@@ -524,24 +749,18 @@ impl BreederGa {
     pub fn initialize(&self) -> Result<GaState, OptimizeError> {
         let started = Instant::now();
         let genomes = self.initial_designs();
-        let (mut cache, mut evaluations, mut cache_hits) = (HashMap::new(), 0, 0);
-        let values = self.evaluate_all(&genomes, &mut cache, &mut evaluations, &mut cache_hits)?;
-        let elapsed = started.elapsed().as_secs_f64();
-        Ok(self.start(genomes, values, cache, evaluations, cache_hits, elapsed))
+        let mut ledger = Ledger::default();
+        let individuals = self.evaluate_generation(&[], &genomes, &mut ledger)?;
+        Ok(self.start(individuals, ledger, started.elapsed().as_secs_f64()))
     }
 
     /// Breeds, evaluates and sorts the next generation. On error `state` is unchanged.
     pub fn next_generation(&self, state: &mut GaState) -> Result<(), OptimizeError> {
         let started = Instant::now();
         let children = self.offspring(state);
-        let mut cache = std::mem::take(&mut state.cache);
-        let (mut evaluations, mut cache_hits) = (state.evaluations, state.cache_hits);
-        let values = self.evaluate_all(&children, &mut cache, &mut evaluations, &mut cache_hits);
-        state.cache = cache;
-        let values = values?;
-        state.evaluations = evaluations;
-        state.cache_hits = cache_hits;
-        self.advance(state, children, values, started.elapsed().as_secs_f64());
+        let mut ledger = state.ledger.clone();
+        let individuals = self.evaluate_generation(self.elites(state), &children, &mut ledger)?;
+        self.advance(state, individuals, ledger, started.elapsed().as_secs_f64());
         Ok(())
     }
 
@@ -573,6 +792,9 @@ impl BreederGa {
             if ind.objective.is_nan() {
                 return mismatch(format!("individual {k} has a NaN objective"));
             }
+            if !(ind.bound >= 0.0 && ind.bound.is_finite()) {
+                return mismatch(format!("individual {k} has a bound of {}", ind.bound));
+            }
         }
         if state
             .population
@@ -581,7 +803,10 @@ impl BreederGa {
         {
             return mismatch("population is not sorted best first".to_string());
         }
-        if let Some(g) = state.cache.keys().find(|g| g.len() != self.space.positions) {
+        if let Some(g) = (state.ledger.cache.keys())
+            .chain(state.ledger.screened.keys())
+            .find(|g| g.len() != self.space.positions)
+        {
             return mismatch(format!("cache holds a genome of length {}", g.len()));
         }
         Ok(())
@@ -642,12 +867,31 @@ fn sort(population: &mut [Individual]) {
     population.sort_by(order);
 }
 
-fn sorted(genomes: Vec<Genome>, values: Vec<f64>) -> Vec<Individual> {
-    let mut p: Vec<Individual> = genomes
-        .into_iter()
-        .zip(values)
-        .map(|(genome, objective)| Individual { genome, objective })
+/// The individuals whose screened values must be confirmed at the run's settings (see
+/// [`BreederGa::settle`]): those that could rank among the best `keep` and whose interval meets
+/// another design's, and those that rank among the `elites`; distinct, sorted.
+fn contested(all: &[Individual], keep: usize, elites: usize) -> Vec<Genome> {
+    let mut highs: Vec<f64> = all.iter().map(|i| i.objective + i.bound).collect();
+    highs.sort_by(f64::total_cmp);
+    let threshold = highs[keep - 1];
+    let low = |i: &Individual| i.objective - i.bound;
+    let high = |i: &Individual| i.objective + i.bound;
+    let mut ranked: Vec<&Individual> = all.iter().collect();
+    ranked.sort_by(|a, b| order(a, b));
+    let mut confirm: Vec<Genome> = ranked
+        .iter()
+        .enumerate()
+        .filter(|&(rank, a)| {
+            a.bound > 0.0
+                && low(a) <= threshold
+                && (rank < elites
+                    || all
+                        .iter()
+                        .any(|b| b.genome != a.genome && low(a) <= high(b) && low(b) <= high(a)))
+        })
+        .map(|(_, a)| a.genome.clone())
         .collect();
-    sort(&mut p);
-    p
+    confirm.sort();
+    confirm.dedup();
+    confirm
 }

@@ -40,7 +40,9 @@ mod objective;
 pub mod operators;
 mod space;
 
-pub use ga::{BreederGa, GaSettings, GaState, GenerationStats, Individual, Outcome, StopReason};
+pub use ga::{
+    BreederGa, GaSettings, GaState, GenerationStats, Individual, Ledger, Outcome, StopReason,
+};
 pub use objective::{ContactImpulse, LayerEnergyPeak, Objective, StandardObjective};
 pub use space::{Constraints, DesignSpace, FeasibleSet, Genome, MAX_CATALOGUE_LEN};
 

@@ -40,6 +40,14 @@ pub trait Objective: Send + Sync {
         let _ = lanes;
         one_by_one(self, chains, excitation, settings)
     }
+
+    /// A bound on the relative error of the value when every contact peak is within
+    /// `peak_tolerance` relative of its converged value, or None when the value is not a
+    /// function of contact peaks. Screening ([`crate::optimize::GaSettings`]) needs it.
+    fn relative_error(&self, peak_tolerance: f64) -> Option<f64> {
+        let _ = peak_tolerance;
+        None
+    }
 }
 
 /// [`Objective::evaluate`] of each chain, in order.
@@ -176,6 +184,18 @@ impl Objective for StandardObjective {
             .into_iter()
             .map(|summary| self.force_value(summary?, settings))
             .collect()
+    }
+
+    /// The transmitted peak is a contact peak (e); the ratio of two is within
+    /// (1 + e)/(1 − e) − 1 = 2e/(1 − e). The energy and the impulse are read on the sample grid
+    /// and have no such bound.
+    fn relative_error(&self, peak_tolerance: f64) -> Option<f64> {
+        let e = peak_tolerance;
+        match self {
+            StandardObjective::TransmittedForce => Some(e),
+            StandardObjective::TransmissionRatio => Some(2.0 * e / (1.0 - e)),
+            StandardObjective::TransmittedEnergy | StandardObjective::TransmittedImpulse => None,
+        }
     }
 }
 

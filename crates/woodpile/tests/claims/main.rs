@@ -39,6 +39,7 @@ mod optimize_cache_transparent;
 mod optimize_exhaustive_tiny;
 mod optimize_operators_feasible;
 mod optimize_resume;
+mod optimize_screening;
 mod optimize_thread_determinism;
 mod peak_refinement;
 mod peak_tolerance_bound;

@@ -55,13 +55,13 @@ fn cache_on_and_off_give_the_same_run() {
         );
     }
     assert_eq!(on.population, off.population);
-    assert!(on.cache_hits > 0, "this run revisits designs");
-    assert_eq!(off.cache_hits, 0);
-    assert!(off.cache.is_empty());
-    assert_eq!(on.cache.len() as u64, on.evaluations);
-    assert!(on.evaluations < off.evaluations);
+    assert!(on.ledger.cache_hits > 0, "this run revisits designs");
+    assert_eq!(off.ledger.cache_hits, 0);
+    assert!(off.ledger.cache.is_empty());
+    assert_eq!(on.ledger.cache.len() as u64, on.ledger.evaluations);
+    assert!(on.ledger.evaluations < off.ledger.evaluations);
     // Every child joins the next population, so the designs simulated are exactly the
     // distinct designs seen.
-    assert_eq!(on.evaluations as usize, seen_on.len());
-    assert!(seen_on.iter().all(|g| on.cache.contains_key(g)));
+    assert_eq!(on.ledger.evaluations as usize, seen_on.len());
+    assert!(seen_on.iter().all(|g| on.ledger.cache.contains_key(g)));
 }

@@ -76,13 +76,13 @@ fn ga_finds_the_exhaustive_optimum_of_81_designs() {
         );
         assert_eq!(found.genome, best_genome);
         assert!(
-            out.state.evaluations <= 81,
+            out.state.ledger.evaluations <= 81,
             "the cache simulates each design once"
         );
         let at = out.state.history.iter().position(|h| h.best == best);
         eprintln!(
             "seed {seed}: optimum from generation {at:?}, {} evaluations, {} generations",
-            out.state.evaluations, out.state.generation
+            out.state.ledger.evaluations, out.state.generation
         );
     }
 }

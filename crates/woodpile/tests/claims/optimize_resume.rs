@@ -70,10 +70,10 @@ fn resumed_run_equals_uninterrupted_run() {
         assert!(x.same_result(y), "{x:?} != {y:?}");
     }
     assert_eq!(a.population, b.population);
-    assert_eq!(a.cache, b.cache);
+    assert_eq!(a.ledger.cache, b.ledger.cache);
     assert_eq!(
-        (a.evaluations, a.cache_hits, a.stalled),
-        (b.evaluations, b.cache_hits, b.stalled)
+        (a.ledger.evaluations, a.ledger.cache_hits, a.stalled),
+        (b.ledger.evaluations, b.ledger.cache_hits, b.stalled)
     );
 }
 

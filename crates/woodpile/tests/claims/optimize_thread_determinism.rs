@@ -57,7 +57,10 @@ fn thread_counts_and_lane_widths_give_the_same_run() {
             );
         }
         assert_eq!(a.population, b.population);
-        assert_eq!(a.cache, b.cache);
-        assert_eq!((a.evaluations, a.cache_hits), (b.evaluations, b.cache_hits));
+        assert_eq!(a.ledger.cache, b.ledger.cache);
+        assert_eq!(
+            (a.ledger.evaluations, a.ledger.cache_hits),
+            (b.ledger.evaluations, b.ledger.cache_hits)
+        );
     }
 }
