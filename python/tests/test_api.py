@@ -218,6 +218,31 @@ def test_ask_tell_reproduces_the_command_lines_ga():
     assert local.scenario.to_dict()["chain"]["rods_mm"] == [int(l.rstrip("m")) for l in local.best["labels"]]
 
 
+SCREENED_GA = {
+    "design": {"positions": 5, "catalogue_mm": [20, 40, 60, 80]},
+    "run": {"duration_s": 3e-4, "peak_tolerance": 1e-4},
+    "ga": {"population": 8, "generations": 3, "seed": 7, "screen_peak_tolerance": 1e-2},
+}
+
+
+def test_screened_ask_tell_reproduces_the_command_line_and_the_unscreened_choices():
+    """With screening, workers return screened values and tell() simulates the contested
+    designs here: the history is BreederGa::run's, bit for bit, and the best design and its
+    value are those of the unscreened GA."""
+    reference = woodpile.BreederGA(SCREENED_GA)
+    reference.run_to_end()
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        threaded = woodpile.optimize(SCREENED_GA, executor=pool)
+    assert threaded.best == reference.best
+    assert _history_without_time(threaded.history).equals(_history_without_time(reference.history()))
+    assert threaded.history["screenings"].iloc[-1] > 0
+    unscreened = {**SCREENED_GA, "ga": {k: v for k, v in SCREENED_GA["ga"].items() if k != "screen_peak_tolerance"}}
+    plain = woodpile.optimize(unscreened)
+    assert threaded.best == plain.best
+    assert threaded.history["best"].equals(plain.history["best"])
+    assert threaded.history["evaluations"].iloc[-1] < plain.history["evaluations"].iloc[-1]
+
+
 def test_checkpoint_resume_and_pickle_are_exact(tmp_path):
     import pickle
 

@@ -3,9 +3,12 @@
 //! second, at each accuracy setting, one design at a time (`simulate` per design, as the GA did
 //! before lanes) and in SIMD lanes (`BreederGa::evaluate_designs`), on 1 and 2 threads; the
 //! worst relative error of the objective (transmitted peak) over a sample of the designs against
-//! a converged run; and the cost per element of long chains. Medians of `--runs` repetitions.
+//! a converged run; the paper's whole GA with and without screening (wall time, simulations,
+//! whether its choices are unchanged); and the cost per element of long chains. Medians of
+//! `--runs` repetitions.
 //!
 //! Run: `cargo run --release -p woodpile --example throughput [-- --designs 400 --runs 3]`
+//! (`-- --screening-only`: only the GA with and without screening)
 //! (bench/throughput.sh runs it beside the peers.)
 
 use rayon::prelude::*;
@@ -28,9 +31,104 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// The paper's whole impact GA (μ = 100, its operators, stopping after 30 generations without
+/// improvement), every contact peak within 1e-5, with and without screening: wall time, the
+/// simulations at each accuracy, and whether every generation's breeding pool (genomes, in
+/// order) and best value equal the unscreened run's.
+fn screened_ga(runs: usize) -> woodpile::Result<()> {
+    let ga = |screen: Option<f64>| {
+        let mut space = DesignSpace::paper_impact(CellModel::Resonant);
+        space.settings.method = Method::for_peak_tolerance(1e-5)?;
+        let settings = GaSettings {
+            threads: 2,
+            screen_peak_tolerance: screen,
+            ..GaSettings::default()
+        };
+        Ok::<_, woodpile::Error>(
+            BreederGa::new(
+                space,
+                Box::new(StandardObjective::TransmittedForce),
+                settings,
+            )
+            .expect("the paper's problem"),
+        )
+    };
+    let pool =
+        woodpile::optimize::operators::truncation_pool(100, GaSettings::default().truncation);
+    println!("\npaper impact GA (population 100, peak_tolerance 1e-5, 2 threads), with screening:");
+    println!(
+        "{:<16} {:>8} {:>8} {:>12} {:>12} {:>12} {:>10} {:>15}",
+        "screen",
+        "gens",
+        "wall_s",
+        "designs",
+        "exact_runs",
+        "screenings",
+        "designs/s",
+        "same_choices"
+    );
+    let mut reference: Option<(Vec<Vec<Vec<u8>>>, Vec<f64>, f64)> = None;
+    for screen in [None, Some(1e-3), Some(3e-3), Some(1e-2)] {
+        let ga = ga(screen)?;
+        let mut walls = Vec::new();
+        let mut last = None;
+        for _ in 0..runs {
+            let mut pools: Vec<Vec<Vec<u8>>> = Vec::new();
+            let t = Instant::now();
+            let outcome = ga
+                .run(None, &Default::default(), &mut |s| {
+                    pools.push(
+                        s.population[..pool]
+                            .iter()
+                            .map(|i| i.genome.clone())
+                            .collect(),
+                    );
+                    std::ops::ControlFlow::Continue(())
+                })
+                .expect("the paper's GA runs");
+            walls.push(t.elapsed().as_secs_f64());
+            last = Some((pools, outcome.state));
+        }
+        let (pools, state) = last.expect("at least one run");
+        let bests: Vec<f64> = state.history.iter().map(|h| h.best).collect();
+        let wall = median(walls);
+        // Designs the GA obtained a value for: the distinct designs it met (cache size of the
+        // unscreened run; exact + screened values otherwise).
+        let designs = state.ledger.cache.len()
+            + state
+                .ledger
+                .screened
+                .keys()
+                .filter(|g| !state.ledger.cache.contains_key(*g))
+                .count();
+        let same = match &reference {
+            None => {
+                reference = Some((pools.clone(), bests.clone(), wall));
+                "(reference)".to_string()
+            }
+            Some((p, b, _)) => (p == &pools && b == &bests).to_string(),
+        };
+        println!(
+            "{:<16} {:>8} {:>8.2} {:>12} {:>12} {:>12} {:>10.1} {:>15}",
+            screen.map_or("none".to_string(), |t| format!("{t:e}")),
+            state.generation,
+            wall,
+            designs,
+            state.ledger.evaluations,
+            state.ledger.screenings,
+            designs as f64 / wall,
+            same
+        );
+    }
+    Ok(())
+}
+
 fn main() -> woodpile::Result<()> {
     let n_designs = arg("--designs", 400);
     let runs = arg("--runs", 3);
+    if std::env::args().any(|a| a == "--screening-only") {
+        return screened_ga(runs);
+    }
     let objective = StandardObjective::TransmittedForce;
     let settings_for = |method: Method| RunSettings {
         method,
@@ -182,6 +280,8 @@ fn main() -> woodpile::Result<()> {
             );
         }
     }
+
+    screened_ga(runs)?;
 
     // Cost per element of long chains: 40 mm rods, RK4 at 0.1 µs, 50 µs of simulated time.
     println!("\nlong chains (40 mm rods, rk4 0.1 us, 50 us simulated, one thread):");
