@@ -12,6 +12,9 @@
 //! - [`BreederGa`]: one generation at a time ([`BreederGa::next_generation`]) on a detachable
 //!   [`GaState`], and the driver [`BreederGa::run`] with a stop flag and an observer for
 //!   progress and checkpoints. Results are bit-identical for a seed whatever the thread count.
+//!   With [`GaSettings::screen_peak_tolerance`] new designs are simulated first at a looser
+//!   accuracy, and again at the run's only where their rank could decide a selection
+//!   ([`BreederGa::settle`]): the same choices for less work.
 //!
 //! ```
 //! use std::sync::atomic::AtomicBool;
