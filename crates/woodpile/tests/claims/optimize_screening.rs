@@ -2,7 +2,8 @@
 //! `screen_peak_tolerance` a run breeds from the same pool, in the same order, and reports the
 //! same best in every generation as the run that simulates every design at the run's settings;
 //! and each screened value it keeps (where the order of the intervals alone settles the ranks)
-//! lies within its stated bound of the value at the run's settings.
+//! lies within its stated bound of the value at the run's settings. A screened run, too, is the
+//! same on 1 or 2 threads and in 1 or 4 lanes.
 //!
 //! Tolerance: none for the choices (bit-identical: a value that decides a selection is
 //! simulated at the run's settings). The bound is the calibrated peak-tolerance envelope of
@@ -15,7 +16,7 @@ use woodpile::optimize::{
     BreederGa, DesignSpace, GaSettings, GaState, Individual, Objective, OptimizeError,
     StandardObjective,
 };
-use woodpile::{CellModel, Method, RunSettings};
+use woodpile::{CellModel, LaneWidth, Method, RunSettings};
 
 /// 8 Table 1 rods under the paper's striker for 0.6 ms, every contact peak within 1e-4.
 fn space(method: Method) -> DesignSpace {
@@ -30,17 +31,28 @@ fn space(method: Method) -> DesignSpace {
 }
 
 fn ga(screen: Option<f64>, objective: StandardObjective) -> BreederGa {
+    ga_on(screen, objective, 2, LaneWidth::detect())
+}
+
+fn ga_on(
+    screen: Option<f64>,
+    objective: StandardObjective,
+    threads: usize,
+    lanes: LaneWidth,
+) -> BreederGa {
     let settings = GaSettings {
         population: 24,
         generations: 12,
         stall_generations: None,
         seed: 5,
-        threads: 2,
+        threads,
         screen_peak_tolerance: screen,
         ..GaSettings::default()
     };
     let method = Method::for_peak_tolerance(1e-4).unwrap();
-    BreederGa::new(space(method), Box::new(objective), settings).unwrap()
+    BreederGa::new(space(method), Box::new(objective), settings)
+        .unwrap()
+        .with_lanes(lanes)
 }
 
 /// Every generation's breeding pool (the best ⌈0.3 · 24⌉ = 8) and the final state.
@@ -119,6 +131,18 @@ fn screening_keeps_every_choice_of_the_unscreened_run() {
                 i.bound
             );
         }
+    }
+}
+
+#[test]
+fn a_screened_run_does_not_depend_on_threads_or_lanes() {
+    let force = StandardObjective::TransmittedForce;
+    let (_, reference) = run(&ga(Some(1e-2), force));
+    let (_, other) = run(&ga_on(Some(1e-2), force, 1, LaneWidth::One));
+    assert_eq!(other.population, reference.population);
+    assert_eq!(other.ledger, reference.ledger);
+    for (a, b) in other.history.iter().zip(&reference.history) {
+        assert!(a.same_result(b), "generation {}", a.generation);
     }
 }
 
