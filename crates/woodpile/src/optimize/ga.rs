@@ -281,8 +281,8 @@ impl Screen {
             Error::invalid(
                 field,
                 peak_tolerance,
-                "needs the run's accuracy stated: set run.peak_tolerance (or the dopri5-events \
-                 method) instead of a fixed-step or plain dopri5 integrator",
+                "needs the run's accuracy stated: set run.peak_tolerance (the peak error of a \
+                 fixed-step or plain dopri5 integrator has no calibrated bound)",
             )
         })?;
         if peak_tolerance <= run_tolerance {
