@@ -130,6 +130,11 @@ fn is_exact(bound: &f64) -> bool {
     *bound == 0.0
 }
 
+#[cfg(feature = "serde")]
+fn is_none_run(count: &u64) -> bool {
+    *count == 0
+}
+
 /// One line of the history.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -144,8 +149,9 @@ pub struct GenerationStats {
     pub worst: f64,
     /// Simulations at the run's settings so far.
     pub evaluations: u64,
-    /// Screening simulations so far (0 without screening).
-    #[cfg_attr(feature = "serde", serde(default))]
+    /// Screening simulations so far (0 without screening; then absent from the serialised
+    /// form, which stays that of a run before screening existed).
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "is_none_run"))]
     pub screenings: u64,
     /// Cache hits so far.
     pub cache_hits: u64,
