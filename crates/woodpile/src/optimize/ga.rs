@@ -610,7 +610,8 @@ impl BreederGa {
         let keep = truncation_pool(self.settings.population, self.settings.truncation)
             .max(self.settings.elites)
             .min(all.len());
-        loop {
+        // Without screening every value is at the run's settings: nothing to confirm.
+        while self.screen.is_some() {
             let confirm = contested(&all, keep, self.settings.elites);
             if confirm.is_empty() {
                 break;
