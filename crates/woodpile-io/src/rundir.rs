@@ -72,7 +72,8 @@ pub struct EnergyJson {
 /// Integrator work in `summary.json` / `run.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct IntegratorJson {
-    /// `rk4` or `dopri5`.
+    /// `rk4`, `dopri5`, `dopri5-events` (`run.peak_tolerance`, blast or lab physics) or `rkn64`
+    /// (`run.peak_tolerance`, an impact of the paper's physics).
     pub method: String,
     /// Accepted steps.
     pub steps: u64,
@@ -134,11 +135,18 @@ pub struct SummaryJson {
     pub wall_time_s: f64,
 }
 
-fn method_name(m: &Method) -> &'static str {
-    match m {
+/// The name of the method the run stepped with (a stated peak tolerance resolved for its system).
+fn method_name(r: &Resolved) -> &'static str {
+    let settings = &r.settings;
+    let method = settings
+        .method_for(&r.chain, &r.excitation)
+        .unwrap_or(settings.method);
+    match method {
         Method::Rk4 { .. } => "rk4",
         Method::Dopri5 { .. } => "dopri5",
         Method::Dopri5Events { .. } => "dopri5-events",
+        Method::Rkn64 { .. } => "rkn64",
+        Method::PeakTolerance { .. } => "peak-tolerance",
     }
 }
 
@@ -192,7 +200,7 @@ impl SummaryJson {
                 max_relative_error: s.energy.max_relative_error,
             },
             integrator: IntegratorJson {
-                method: method_name(&r.resolved.settings.method).to_string(),
+                method: method_name(r.resolved).to_string(),
                 steps: s.stats.steps,
                 rhs_evaluations: s.stats.rhs_evaluations,
                 rejected_steps: s.stats.rejected_steps,
@@ -353,7 +361,7 @@ pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), Error> {
             })
             .collect(),
         integrator: IntegratorJson {
-            method: method_name(&r.resolved.settings.method).to_string(),
+            method: method_name(r.resolved).to_string(),
             steps: s.stats.steps,
             rhs_evaluations: s.stats.rhs_evaluations,
             rejected_steps: s.stats.rejected_steps,

@@ -7,7 +7,10 @@
 //! - J. R. Dormand, P. J. Prince, "A family of embedded Runge–Kutta formulae", J. Comput. Appl.
 //!   Math. 6 (1980) 19–26 (DOPRI5).
 //! - E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential Equations I*, 2nd ed.,
-//!   Springer 1993, §II.4 (step-size control, initial step) and §II.6 (dense output of DOPRI5).
+//!   Springer 1993, §II.4 (step-size control, initial step), §II.6 (dense output of DOPRI5) and
+//!   §II.14 (Runge–Kutta–Nyström methods).
+//! - J. R. Dormand, M. E. A. El-Mikkawy, P. J. Prince, "Families of Runge–Kutta–Nyström
+//!   formulae", IMA J. Numer. Anal. 7 (1987) 235–250 (RKN6(4)6FM, [`Tableau::rkn64`]).
 
 use crate::error::{require_positive, Error, Result};
 
@@ -35,6 +38,13 @@ pub trait OdeSystem {
     /// They must be linear and homogeneous in y (for the chain: the contacts' overlaps, differences
     /// of positions), so that `switches(f)` with f = dy/dt writes their rates dg_j/dt.
     fn switches(&self, _y: &[f64], _out: &mut [f64]) {}
+
+    /// Some(n) when the state is y = [x | v] with n positions, x' = v, and v' = a(t, x) does not
+    /// depend on v: the systems a Runge–Kutta–Nyström method ([`Method::Rkn64`]) can advance.
+    /// None (the default): a general first-order system.
+    fn second_order(&self) -> Option<usize> {
+        None
+    }
 }
 
 /// Continuous extension of a tableau for samples between steps.
@@ -46,12 +56,27 @@ pub enum DenseOutput {
     Dopri5([f64; 7]),
 }
 
-/// An explicit Runge–Kutta method as data (Butcher tableau).
+/// The velocity weights of a Runge–Kutta–Nyström method for y = [x | v], x'' = a(t, x). With
+/// them a [`Tableau`]'s `a`, `b` and `error` act on the stage accelerations A_j = a(t + c_j h, X_j)
+/// with a factor h²: X_i = x + c_i h v + h² Σ_j a_ij A_j, the new positions x + h v + h² Σ_j b_j A_j
+/// and their error estimate h² Σ_j error_j A_j; the velocities take these weights with a factor h.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NystromWeights {
+    /// Velocity weights b'_j: v_new = v + h Σ_j b'_j A_j.
+    pub b: Vec<f64>,
+    /// Velocity error weights b'_j − b̂'_j of the embedded method.
+    pub error: Vec<f64>,
+}
+
+/// An explicit Runge–Kutta method as data (Butcher tableau), or a Runge–Kutta–Nyström method
+/// when `nystrom` holds its velocity weights.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tableau {
     /// Name, for reports.
     pub name: &'static str,
-    /// Order of the solution.
+    /// The order that sets the step control (h ∝ err^{−1/order}) and the starting step: the
+    /// solution's for RK4 and DOPRI5; for RKN 6(4), whose solution is of order 6, that of the
+    /// leading term of its fourth-order embedded estimate, 5.
     pub order: u32,
     /// Nodes c_i.
     pub c: Vec<f64>,
@@ -65,6 +90,8 @@ pub struct Tableau {
     pub fsal: bool,
     /// How to sample between steps.
     pub dense: DenseOutput,
+    /// Some: a Runge–Kutta–Nyström method ([`NystromWeights`]).
+    pub nystrom: Option<NystromWeights>,
 }
 
 impl Tableau {
@@ -79,6 +106,7 @@ impl Tableau {
             error: None,
             fsal: false,
             dense: DenseOutput::Hermite,
+            nystrom: None,
         }
     }
 
@@ -143,6 +171,74 @@ impl Tableau {
                 -1453857185.0 / 822651844.0,
                 69997945.0 / 29380423.0,
             ]),
+            nystrom: None,
+        }
+    }
+
+    /// The Runge–Kutta–Nyström pair RKN6(4)6FM of Dormand, El-Mikkawy & Prince (1987) for
+    /// x'' = a(t, x): six stages, the last at the new positions (first same as last), so five
+    /// evaluations per step; positions and velocities of order 6, an embedded estimate of order 4.
+    /// Samples between steps: cubic Hermite from (x, v) and (v, a) at both ends.
+    pub fn rkn64() -> Self {
+        // Positions: b_j, and the embedded b̂_j; velocities: b'_j and b̂'_j (Dormand, El-Mikkawy
+        // & Prince 1987, Table 3). The last row of `a` is b (the FSAL stage is the new point).
+        let b = [
+            151.0 / 2142.0,
+            5.0 / 116.0,
+            385.0 / 1368.0,
+            55.0 / 168.0,
+            -6250.0 / 28101.0,
+            0.0,
+        ];
+        let b_hat = [
+            1349.0 / 157500.0,
+            7873.0 / 50000.0,
+            192199.0 / 900000.0,
+            521683.0 / 2100000.0,
+            -16.0 / 125.0,
+            0.0,
+        ];
+        let bv = [
+            151.0 / 2142.0,
+            25.0 / 522.0,
+            275.0 / 684.0,
+            275.0 / 252.0,
+            -78125.0 / 112404.0,
+            1.0 / 12.0,
+        ];
+        let bv_hat = [
+            1349.0 / 157500.0,
+            7873.0 / 45000.0,
+            27457.0 / 90000.0,
+            521683.0 / 630000.0,
+            -2.0 / 5.0,
+            1.0 / 12.0,
+        ];
+        Tableau {
+            name: "rkn64",
+            order: 5,
+            c: vec![0.0, 1.0 / 10.0, 3.0 / 10.0, 7.0 / 10.0, 17.0 / 25.0, 1.0],
+            a: vec![
+                vec![],
+                vec![1.0 / 200.0],
+                vec![-1.0 / 2200.0, 1.0 / 22.0],
+                vec![637.0 / 6600.0, -7.0 / 110.0, 7.0 / 33.0],
+                vec![
+                    225437.0 / 1968750.0,
+                    -30073.0 / 281250.0,
+                    65569.0 / 281250.0,
+                    -9367.0 / 984375.0,
+                ],
+                b[..5].to_vec(),
+            ],
+            b: b.to_vec(),
+            error: Some(b.iter().zip(&b_hat).map(|(x, y)| x - y).collect()),
+            fsal: true,
+            dense: DenseOutput::Hermite,
+            nystrom: Some(NystromWeights {
+                b: bv.to_vec(),
+                error: bv.iter().zip(&bv_hat).map(|(x, y)| x - y).collect(),
+            }),
         }
     }
 
@@ -162,6 +258,14 @@ const PEAK_ERROR_PREFACTOR: f64 = 4.0;
 const PEAK_ERROR_EXPONENT: f64 = 0.75;
 /// How far below a stated peak tolerance [`Method::for_peak_tolerance`] puts the envelope.
 const PEAK_SAFETY_FACTOR: f64 = 3.0;
+/// Envelope prefactor of [`Method::Rkn64`], e ≤ NYSTROM_PEAK_ERROR_PREFACTOR · rtol^0.75
+/// (docs/physics.md §8; measured at most 1.26 rtol^0.75 over every contact of six impact runs,
+/// resonant and rigid, at three striker speeds, and 0.56 rtol^0.75 on the figures of merit of 194
+/// impact runs of the paper's GA designs, rtol 1e-5 … 3e-11).
+const NYSTROM_PEAK_ERROR_PREFACTOR: f64 = 1.5;
+/// A crossing [`Method::Rkn64`] lands on may lie up to this fraction of the step (its error
+/// estimate does not see the last stage, so a kink late in a step goes unnoticed; bench/README.md).
+pub(crate) const NYSTROM_LANDING_END: f64 = 0.999;
 
 /// [`Method::Dopri5Events`] shortens a step to a predicted crossing only when it lies at least
 /// this fraction of the step from either end: a kink that close to a step's end costs little
@@ -198,6 +302,27 @@ pub enum Method {
         /// Absolute tolerance [m for displacements].
         atol: f64,
     },
+    /// The Runge–Kutta–Nyström pair RKN6(4) ([`Tableau::rkn64`]) for systems x'' = a(t, x)
+    /// ([`OdeSystem::second_order`]: the paper's impact runs), event-aware as
+    /// [`Method::Dopri5Events`], with two differences (docs/physics.md §8): a predicted crossing
+    /// is landed on up to 0.999 of the step, past those within 0.1 of its start, and after an
+    /// accepted step a crossing the prediction missed inside (0.1 h, 0.999 h) makes the step be
+    /// retaken to end there. Its error estimate does not use the last stage, so without these a
+    /// contact closing late in a step would go unnoticed.
+    Rkn64 {
+        /// Relative tolerance.
+        rtol: f64,
+        /// Absolute tolerance [m for displacements].
+        atol: f64,
+    },
+    /// A stated relative accuracy of every contact peak; woodpile chooses the method for the
+    /// system ([`Method::resolve`]): [`Method::Rkn64`] where the acceleration does not depend on
+    /// the velocity, [`Method::Dopri5Events`] otherwise, each at the rtol its calibrated
+    /// envelope gives (docs/physics.md §8).
+    PeakTolerance {
+        /// Relative accuracy of every contact peak.
+        peak_tolerance: f64,
+    },
 }
 
 impl Method {
@@ -209,49 +334,83 @@ impl Method {
     }
 
     /// The integrator woodpile chooses for a stated accuracy of every contact peak: relative
-    /// error at most `peak_tolerance` (docs/physics.md §8, "Accuracy instead of an integrator").
+    /// error at most `peak_tolerance` (docs/physics.md §8, "Accuracy instead of an integrator"),
+    /// resolved for each system by [`Method::resolve`].
     pub fn for_peak_tolerance(peak_tolerance: f64) -> Result<Self> {
-        require_positive("run.peak_tolerance", peak_tolerance)?;
-        if peak_tolerance >= 0.1 {
-            return Err(Error::invalid(
-                "run.peak_tolerance",
-                peak_tolerance,
-                "is a relative error: give a value below 0.1 (e.g. 1e-5)",
-            ));
-        }
-        // Calibrated (examples/peak_tolerance.rs, docs/physics.md §8): on the paper's impact and
-        // blast runs, resonant and rigid, the worst error of any contact peak with event-aware
-        // stepping at rtol from 1e-5 to 3e-11 stays below PEAK_ERROR_PREFACTOR · rtol^0.75 (it
-        // falls slower than rtol: a step landing near a contact's opening or closing still meets
-        // its kink; an error test on the overlaps did not change that, bench/README.md).
-        // rtol is chosen so that this envelope is PEAK_SAFETY_FACTOR times below the tolerance.
-        let rtol = (peak_tolerance / (PEAK_SAFETY_FACTOR * PEAK_ERROR_PREFACTOR))
-            .powf(1.0 / PEAK_ERROR_EXPONENT)
-            .max(1e-13);
-        Ok(Method::Dopri5Events {
-            rtol,
-            atol: rtol * 1e-6,
-        })
+        check_peak_tolerance(peak_tolerance)?;
+        Ok(Method::PeakTolerance { peak_tolerance })
     }
 
-    /// The relative accuracy of every contact peak this method is calibrated to meet: the
-    /// inverse of [`Method::for_peak_tolerance`] for [`Method::Dopri5Events`]; None for the
-    /// other methods, whose peak error has no calibrated bound (docs/physics.md §8).
+    /// The concrete method for a system: [`Method::PeakTolerance`] becomes [`Method::Rkn64`]
+    /// when `second_order` (x'' = a(t, x), [`OdeSystem::second_order`]) and
+    /// [`Method::Dopri5Events`] otherwise, at the rtol of their calibrated envelopes (atol =
+    /// rtol · 1e-6); the other methods stay as they are.
+    pub fn resolve(self, second_order: bool) -> Self {
+        let Method::PeakTolerance { peak_tolerance } = self else {
+            return self;
+        };
+        let prefactor = if second_order {
+            NYSTROM_PEAK_ERROR_PREFACTOR
+        } else {
+            PEAK_ERROR_PREFACTOR
+        };
+        // Calibrated (examples/peak_tolerance.rs, docs/physics.md §8): the worst error of any
+        // contact peak stays below prefactor · rtol^0.75 from rtol 1e-5 to 3e-11 (it falls slower
+        // than rtol: a step landing near a contact's opening or closing still meets its kink; an
+        // error test on the overlaps did not change that, bench/README.md). rtol is chosen so
+        // that this envelope is PEAK_SAFETY_FACTOR times below the tolerance.
+        let rtol = (peak_tolerance / (PEAK_SAFETY_FACTOR * prefactor))
+            .powf(1.0 / PEAK_ERROR_EXPONENT)
+            .max(1e-13);
+        let atol = rtol * 1e-6;
+        if second_order {
+            Method::Rkn64 { rtol, atol }
+        } else {
+            Method::Dopri5Events { rtol, atol }
+        }
+    }
+
+    /// Whether the method needs x'' = a(t, x) ([`OdeSystem::second_order`]).
+    pub fn needs_second_order(&self) -> bool {
+        matches!(self, Method::Rkn64 { .. })
+    }
+
+    /// The relative accuracy of every contact peak this method is calibrated to meet: the stated
+    /// one for [`Method::PeakTolerance`], the inverse of [`Method::resolve`]'s rule for
+    /// [`Method::Dopri5Events`] and [`Method::Rkn64`]; None for the other methods, whose peak
+    /// error has no calibrated bound (docs/physics.md §8).
     pub fn peak_tolerance(&self) -> Option<f64> {
+        let envelope = |prefactor: f64, rtol: f64| {
+            PEAK_SAFETY_FACTOR * prefactor * rtol.powf(PEAK_ERROR_EXPONENT)
+        };
         match *self {
-            Method::Dopri5Events { rtol, .. } => {
-                Some(PEAK_SAFETY_FACTOR * PEAK_ERROR_PREFACTOR * rtol.powf(PEAK_ERROR_EXPONENT))
-            }
+            Method::PeakTolerance { peak_tolerance } => Some(peak_tolerance),
+            Method::Dopri5Events { rtol, .. } => Some(envelope(PEAK_ERROR_PREFACTOR, rtol)),
+            Method::Rkn64 { rtol, .. } => Some(envelope(NYSTROM_PEAK_ERROR_PREFACTOR, rtol)),
             Method::Rk4 { .. } | Method::Dopri5 { .. } => None,
         }
     }
 
-    /// The tableau this method runs.
+    /// The tableau this method runs ([`Method::PeakTolerance`]: that of its choice for a
+    /// first-order system; [`Method::resolve`] first).
     pub fn tableau(&self) -> Tableau {
         match self {
             Method::Rk4 { .. } => Tableau::rk4(),
-            Method::Dopri5 { .. } | Method::Dopri5Events { .. } => Tableau::dopri5(),
+            Method::Dopri5 { .. } | Method::Dopri5Events { .. } | Method::PeakTolerance { .. } => {
+                Tableau::dopri5()
+            }
+            Method::Rkn64 { .. } => Tableau::rkn64(),
         }
+    }
+
+    /// Whether the method steps with event landing ([`Method::Dopri5Events`], [`Method::Rkn64`]).
+    pub fn event_aware(&self) -> bool {
+        matches!(self, Method::Dopri5Events { .. } | Method::Rkn64 { .. })
+    }
+
+    /// Whether the method controls its step by an error estimate.
+    pub fn adaptive(&self) -> bool {
+        !matches!(self, Method::Rk4 { .. })
     }
 
     /// Validates the parameters against the run duration \[s\].
@@ -267,7 +426,10 @@ impl Method {
                     ));
                 }
             }
-            Method::Dopri5 { rtol, atol } | Method::Dopri5Events { rtol, atol } => {
+            Method::PeakTolerance { peak_tolerance } => check_peak_tolerance(peak_tolerance)?,
+            Method::Dopri5 { rtol, atol }
+            | Method::Dopri5Events { rtol, atol }
+            | Method::Rkn64 { rtol, atol } => {
                 require_positive("run.rtol", rtol)?;
                 require_positive("run.atol", atol)?;
                 if rtol < 1e-14 {
@@ -281,6 +443,19 @@ impl Method {
         }
         Ok(())
     }
+}
+
+/// A peak tolerance must be a relative error in (0, 0.1).
+fn check_peak_tolerance(peak_tolerance: f64) -> Result<()> {
+    require_positive("run.peak_tolerance", peak_tolerance)?;
+    if peak_tolerance >= 0.1 {
+        return Err(Error::invalid(
+            "run.peak_tolerance",
+            peak_tolerance,
+            "is a relative error: give a value below 0.1 (e.g. 1e-5)",
+        ));
+    }
+    Ok(())
 }
 
 /// Counters of the work an integration did.
@@ -345,10 +520,18 @@ struct Events {
     rate: Vec<f64>,
     /// dg/dt at the start of the last step.
     rate_prev: Vec<f64>,
+    /// g and dg/dt at the end of an attempted step ([`Method::Rkn64`]'s check for crossings).
+    g_end: Vec<f64>,
+    rate_end: Vec<f64>,
 }
 
 impl Integrator {
     /// Starts at (t0, y0). For an adaptive method, `tolerance_units` scales atol per component.
+    /// [`Method::PeakTolerance`] is resolved for the system ([`Method::resolve`]).
+    ///
+    /// # Panics
+    /// For [`Method::Rkn64`] on a system that is not [`OdeSystem::second_order`] (the runners
+    /// check this first and report it as an error).
     pub fn new<S: OdeSystem>(
         method: Method,
         system: &mut S,
@@ -357,12 +540,20 @@ impl Integrator {
         tolerance_units: &[f64],
         max_step_s: f64,
     ) -> Self {
+        let method = method.resolve(system.second_order().is_some());
+        assert!(
+            !method.needs_second_order() || system.second_order().is_some(),
+            "{method:?} needs a system x'' = a(t, x)"
+        );
         let tableau = method.tableau();
         let mut f_now = vec![0.0; y0.len()];
         system.rhs(t0, &y0, &mut f_now);
         let control = match method {
             Method::Rk4 { time_step_s } => Control::Fixed { h: time_step_s },
-            Method::Dopri5 { rtol, atol } | Method::Dopri5Events { rtol, atol } => {
+            Method::PeakTolerance { .. } => unreachable!("resolved above"),
+            Method::Dopri5 { rtol, atol }
+            | Method::Dopri5Events { rtol, atol }
+            | Method::Rkn64 { rtol, atol } => {
                 let atol: Vec<f64> = tolerance_units.iter().map(|u| atol * u).collect();
                 let h = initial_step(
                     system,
@@ -390,11 +581,13 @@ impl Integrator {
         };
         let mut integrator = Self::assemble(tableau, control, t0, y0, f_now, evals);
         let m = system.switch_count();
-        if matches!(method, Method::Dopri5Events { .. }) && m > 0 {
+        if method.event_aware() && m > 0 {
             integrator.events = Some(Events {
                 g: vec![0.0; m],
                 rate: vec![0.0; m],
                 rate_prev: vec![0.0; m],
+                g_end: vec![0.0; m],
+                rate_end: vec![0.0; m],
             });
         }
         integrator
@@ -479,6 +672,10 @@ impl Integrator {
     /// `self.stage`; the new point's derivative is left in `self.k[last]` for FSAL tableaux.
     #[inline(always)]
     fn attempt<S: OdeSystem>(&mut self, system: &mut S, h: f64) {
+        if self.tableau.nystrom.is_some() {
+            self.attempt_nystrom(system, h);
+            return;
+        }
         let tab = &self.tableau;
         let s = tab.stages();
         let y = &self.y;
@@ -494,6 +691,32 @@ impl Integrator {
         // For FSAL tableaux the last stage already is the new solution: `stage` holds it.
     }
 
+    /// A step of a Runge–Kutta–Nyström tableau from (t, y = [x | v]): the stage accelerations in
+    /// the second halves of `k`, the new state in `stage`, f there in `k[last]` (its first half the
+    /// new velocities), and the error estimate already in `error`.
+    #[inline(always)]
+    fn attempt_nystrom<S: OdeSystem>(&mut self, system: &mut S, h: f64) {
+        let nd = self.y.len() / 2;
+        std::mem::swap(&mut self.k[0], &mut self.f_now);
+        let s = self.tableau.stages();
+        for i in 1..s {
+            let (done, rest) = self.k.split_at_mut(i);
+            nystrom_positions(
+                &mut self.stage[..nd],
+                &self.y,
+                done,
+                &self.tableau.a[i],
+                self.tableau.c[i],
+                h,
+                |w| w,
+            );
+            system.rhs(self.t + self.tableau.c[i] * h, &self.stage, &mut rest[0]);
+        }
+        self.stats.rhs_evaluations += (s - 1) as u64;
+        let (stage, error) = (&mut self.stage, &mut self.error);
+        nystrom_finish(stage, error, &self.y, &mut self.k, &self.tableau, h, |w| w);
+    }
+
     /// Weighted RMS norm of the embedded error estimate (Hairer's sc_i = atol_i + rtol·max|y|).
     #[inline(always)]
     fn error_norm(&mut self, h: f64, rtol: f64, atol: &[f64]) -> f64 {
@@ -503,7 +726,9 @@ impl Integrator {
             .as_ref()
             .expect("adaptive tableau has error weights");
         let err = &mut self.error;
-        stage_sum(err, None, e, &self.k, |ej| h * ej);
+        if self.tableau.nystrom.is_none() {
+            stage_sum(err, None, e, &self.k, |ej| h * ej);
+        }
         // Four partial sums so that the reduction vectorises (a single running sum is a
         // latency-bound chain of dependent additions).
         const LANES: usize = 4;
@@ -612,7 +837,10 @@ impl Integrator {
         err_prev: &mut f64,
     ) -> Result<f64> {
         let order = f64::from(self.tableau.order);
+        let check_crossings = self.tableau.nystrom.is_some();
         let mut rejected_before = false;
+        // A step to retake so that it ends on a crossing the last attempt missed.
+        let mut retake: Option<f64> = None;
         loop {
             let remaining = t_end - self.t;
             let mut h_try = h.min(remaining);
@@ -623,7 +851,10 @@ impl Integrator {
                 });
             }
             let mut landing = false;
-            if !rejected_before {
+            if let Some(tau) = retake.take() {
+                h_try = tau;
+                landing = true;
+            } else if !rejected_before {
                 if let Some(tau) = self.predict_crossing(system, h_try) {
                     h_try = tau;
                     landing = true;
@@ -631,6 +862,15 @@ impl Integrator {
             }
             self.attempt(system, h_try);
             let err = self.error_norm(h_try, rtol, atol);
+            if err <= 1.0 && check_crossings && !landing {
+                if let Some(tau) = self.missed_crossing(system, h_try) {
+                    // Retaken to end on the crossing; counted as a rejected step.
+                    std::mem::swap(&mut self.k[0], &mut self.f_now);
+                    self.stats.rejected_steps += 1;
+                    retake = Some(tau);
+                    continue;
+                }
+            }
             if err <= 1.0 {
                 self.accept(system, h_try);
                 if landing {
@@ -672,6 +912,25 @@ impl Integrator {
                 .zip(&ev.rate_prev)
                 .map(|((&g, &d), &d_prev)| (g, d, d_prev)),
             dt,
+            h,
+            LandingRule::of(&self.tableau),
+        )
+    }
+
+    /// [`Method::Rkn64`]'s check after an attempted step of size h (new state in `stage`, f there
+    /// in k\[last\]): the first crossing inside it that no landing caught ([`missed_crossing`]).
+    fn missed_crossing<S: OdeSystem>(&mut self, system: &mut S, h: f64) -> Option<f64> {
+        let ev = self.events.as_mut()?;
+        let last = self.k.len() - 1;
+        system.switches(&self.y, &mut ev.g);
+        system.switches(&self.k[0], &mut ev.rate);
+        system.switches(&self.stage, &mut ev.g_end);
+        system.switches(&self.k[last], &mut ev.rate_end);
+        missed_crossing(
+            ev.g.iter()
+                .zip(&ev.rate)
+                .zip(ev.g_end.iter().zip(&ev.rate_end))
+                .map(|((&g0, &d0), (&g1, &d1))| (g0, d0, g1, d1)),
             h,
         )
     }
@@ -762,6 +1021,7 @@ pub(crate) fn first_crossing(
     switches: impl Iterator<Item = (f64, f64, f64)>,
     dt: f64,
     h: f64,
+    rule: LandingRule,
 ) -> Option<f64> {
     if dt <= 0.0 {
         return None;
@@ -771,12 +1031,90 @@ pub(crate) fn first_crossing(
         let (c, gh) = crossing_quadratic(g, d, d_prev, dt, h, 0.5);
         if (g > 0.0) != (gh > 0.0) {
             let tau = crossing_root(g, d, c, gh, h);
-            if first.is_none_or(|f| tau < f) {
+            if rule.counts(tau, h) && first.is_none_or(|f| tau < f) {
                 first = Some(tau);
             }
         }
     }
-    landing_window(first, h)
+    rule.window(first, h)
+}
+
+/// Which predicted crossings a step lands on: DOPRI5's rule, or the wider one of a Nyström
+/// tableau (whose error estimate does not see its last stage).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct LandingRule {
+    /// Whether crossings within [`EVENT_LANDING_FRACTION`] of the start are passed over (the
+    /// one just landed on, whose overlap is about zero), so that a later one still counts.
+    skip_near_start: bool,
+    /// The latest fraction of the step a landing may end at.
+    end: f64,
+}
+
+impl LandingRule {
+    /// The rule of a tableau: [`Method::Rkn64`]'s for a Nyström tableau, else DOPRI5's.
+    pub(crate) fn of(tableau: &Tableau) -> Self {
+        if tableau.nystrom.is_some() {
+            LandingRule {
+                skip_near_start: true,
+                end: NYSTROM_LANDING_END,
+            }
+        } else {
+            LandingRule {
+                skip_near_start: false,
+                end: 1.0 - EVENT_LANDING_FRACTION,
+            }
+        }
+    }
+
+    /// Whether a predicted crossing at τ competes to be the first.
+    #[inline(always)]
+    pub(crate) fn counts(self, tau: f64, h: f64) -> bool {
+        !self.skip_near_start || tau > EVENT_LANDING_FRACTION * h
+    }
+
+    /// The first predicted crossing τ if the step should be shortened to it: when it lies at
+    /// least [`EVENT_LANDING_FRACTION`] h after the start and before `end` · h.
+    #[inline(always)]
+    pub(crate) fn window(self, first: Option<f64>, h: f64) -> Option<f64> {
+        let tau = first?;
+        (tau > EVENT_LANDING_FRACTION * h && tau < self.end * h).then_some(tau)
+    }
+}
+
+/// The first crossing of a switching function inside a step of size h that lies in
+/// (0.1 h, 0.999 h), from each function's value and rate at both ends (g0, d0, g1, d1): where g
+/// changes sign, the zero of its cubic Hermite interpolant, by bisection to 2⁻⁴⁰ h. None when no
+/// switching function changed sign there.
+pub(crate) fn missed_crossing(
+    switches: impl Iterator<Item = (f64, f64, f64, f64)>,
+    h: f64,
+) -> Option<f64> {
+    let mut first: Option<f64> = None;
+    for (g0, d0, g1, d1) in switches {
+        if (g0 > 0.0) == (g1 > 0.0) {
+            continue;
+        }
+        let cubic = |th: f64| {
+            let (u, w) = (1.0 - th, th);
+            (1.0 + 2.0 * w) * u * u * g0 + h * w * u * u * d0 + w * w * (3.0 - 2.0 * w) * g1
+                - h * w * w * u * d1
+        };
+        let (mut a, mut b) = (0.0_f64, 1.0_f64);
+        for _ in 0..40 {
+            let mid = 0.5 * (a + b);
+            if (cubic(mid) > 0.0) == (g0 > 0.0) {
+                a = mid;
+            } else {
+                b = mid;
+            }
+        }
+        let tau = 0.5 * (a + b) * h;
+        let inside = tau > EVENT_LANDING_FRACTION * h && tau < NYSTROM_LANDING_END * h;
+        if inside && first.is_none_or(|f| tau < f) {
+            first = Some(tau);
+        }
+    }
+    first
 }
 
 /// The curvature c = (g' − g'_prev) / (2 dt) of the extrapolating quadratic and its value
@@ -828,14 +1166,6 @@ pub(crate) fn crossing_root(g: f64, d: f64, c: f64, gh: f64, h: f64) -> f64 {
     0.5 * (a + b)
 }
 
-/// The first predicted crossing τ if the step should be shortened to it: when it lies at least
-/// [`EVENT_LANDING_FRACTION`] h from both ends of the step.
-#[inline(always)]
-pub(crate) fn landing_window(first: Option<f64>, h: f64) -> Option<f64> {
-    let tau = first?;
-    (tau > EVENT_LANDING_FRACTION * h && tau < (1.0 - EVENT_LANDING_FRACTION) * h).then_some(tau)
-}
-
 /// The step to retry with after `h_try` was rejected with error norm `err` (> 1).
 pub(crate) fn next_step_after_reject(h_try: f64, err: f64, order: f64) -> f64 {
     let mut factor = 0.9 * err.powf(-1.0 / order);
@@ -885,7 +1215,8 @@ pub(crate) fn stage_sum<T>(
     T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
 {
     const MAX_TERMS: usize = 16;
-    let mut factors = [None; MAX_TERMS];
+    let zero = hw(0.0);
+    let mut factors = [zero; MAX_TERMS];
     let mut ks: [&[T]; MAX_TERMS] = [&[]; MAX_TERMS];
     let mut terms = 0;
     for (&w, kj) in weights.iter().zip(k) {
@@ -894,19 +1225,30 @@ pub(crate) fn stage_sum<T>(
                 terms < MAX_TERMS,
                 "a tableau has at most {MAX_TERMS} stages"
             );
-            factors[terms] = Some(hw(w));
+            factors[terms] = hw(w);
             ks[terms] = kj;
             terms += 1;
         }
     }
+    sum_terms(out, base, &factors[..terms], &ks[..terms], zero);
+}
+
+/// out = base + Σ_j factors_j ks_j (out = Σ_j factors_j ks_j without a base; `zero` fills `out`
+/// when there are no terms and no base): the terms in groups of up to four per pass over the
+/// state, added left to right ([`stage_sum`]).
+#[inline(always)]
+pub(crate) fn sum_terms<T>(out: &mut [T], base: Option<&[T]>, factors: &[T], ks: &[&[T]], zero: T)
+where
+    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
+{
+    let terms = factors.len();
     if terms == 0 {
         match base {
             Some(y) => out.copy_from_slice(y),
-            None => out.fill(hw(0.0)),
+            None => out.fill(zero),
         }
         return;
     }
-    let factors = factors.map(|f| f.unwrap_or_else(|| hw(0.0)));
     let mut done = 0;
     while done < terms {
         let group = (terms - done).min(4);
@@ -924,6 +1266,90 @@ pub(crate) fn stage_sum<T>(
         }
         done += group;
     }
+}
+
+/// The stage positions of a Runge–Kutta–Nyström step, X = x + (c h) v + Σ_j (h² a_j) A_j over the
+/// non-zero a_j (A_j: the second halves of k_j), from y = [x | v]; for f64 states and SIMD lanes
+/// alike (`splat` makes a coefficient a T), so both add in the same order.
+#[inline(always)]
+pub(crate) fn nystrom_positions<T>(
+    out: &mut [T],
+    y: &[T],
+    k: &[Vec<T>],
+    a_row: &[f64],
+    c: f64,
+    h: T,
+    splat: impl Fn(f64) -> T,
+) where
+    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
+{
+    const MAX_TERMS: usize = 16;
+    let nd = out.len();
+    let (x, v) = (&y[..nd], &y[nd..2 * nd]);
+    let h2 = h * h;
+    let zero = splat(0.0);
+    let mut factors = [zero; MAX_TERMS];
+    let mut ks: [&[T]; MAX_TERMS] = [&[]; MAX_TERMS];
+    factors[0] = splat(c) * h;
+    ks[0] = v;
+    let mut terms = 1;
+    for (&w, kj) in a_row.iter().zip(k) {
+        if w != 0.0 {
+            factors[terms] = h2 * splat(w);
+            ks[terms] = &kj[nd..2 * nd];
+            terms += 1;
+        }
+    }
+    sum_terms(out, Some(x), &factors[..terms], &ks[..terms], zero);
+}
+
+/// The end of a Runge–Kutta–Nyström step whose stages are in k (the last at the new positions,
+/// already in `stage`'s first half): the new velocities v + Σ_j (h b'_j) A_j into `stage`'s
+/// second half and into k\[last\]'s first half (so that k\[last\] is f at the new point), and the
+/// error estimates Σ_j (h² e_j) A_j of the positions and Σ_j (h e'_j) A_j of the velocities.
+#[inline(always)]
+pub(crate) fn nystrom_finish<T>(
+    stage: &mut [T],
+    error: &mut [T],
+    y: &[T],
+    k: &mut [Vec<T>],
+    tableau: &Tableau,
+    h: T,
+    splat: impl Fn(f64) -> T,
+) where
+    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
+{
+    const MAX_TERMS: usize = 16;
+    let nd = y.len() / 2;
+    let weights = tableau.nystrom.as_ref().expect("a Nyström tableau");
+    let position_error = tableau.error.as_ref().expect("an embedded estimate");
+    let h2 = h * h;
+    let zero = splat(0.0);
+    let sum = |out: &mut [T], base: Option<&[T]>, w: &[f64], factor: T, k: &[Vec<T>]| {
+        let mut factors = [zero; MAX_TERMS];
+        let mut ks: [&[T]; MAX_TERMS] = [&[]; MAX_TERMS];
+        let mut terms = 0;
+        for (&wj, kj) in w.iter().zip(k) {
+            if wj != 0.0 {
+                factors[terms] = factor * splat(wj);
+                ks[terms] = &kj[nd..2 * nd];
+                terms += 1;
+            }
+        }
+        sum_terms(out, base, &factors[..terms], &ks[..terms], zero);
+    };
+    sum(
+        &mut stage[nd..2 * nd],
+        Some(&y[nd..2 * nd]),
+        &weights.b,
+        h,
+        k,
+    );
+    let (ex, ev) = error[..2 * nd].split_at_mut(nd);
+    sum(ex, None, position_error, h2, k);
+    sum(ev, None, &weights.error, h, k);
+    let last = k.len() - 1;
+    k[last][..nd].copy_from_slice(&stage[nd..2 * nd]);
 }
 
 /// What a pass of [`add_terms`] adds its terms to.

@@ -34,9 +34,9 @@ use std::collections::BTreeMap;
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::integrate::{
-    crossing_quadratic, crossing_root, fixed_step_end, landing_window, min_step_s,
-    next_step_after_accept, next_step_after_reject, Integrator, IntegratorStats, Method, OdeSystem,
-    Tableau,
+    crossing_quadratic, crossing_root, fixed_step_end, min_step_s, missed_crossing,
+    next_step_after_accept, next_step_after_reject, nystrom_finish, nystrom_positions, Integrator,
+    IntegratorStats, LandingRule, Method, OdeSystem, Tableau,
 };
 use crate::model::Chain;
 use crate::ode::ChainOde;
@@ -166,8 +166,10 @@ struct GroupKey {
     shift: usize,
     blast: bool,
     adaptive: bool,
-    /// Event-aware stepping ([`Method::Dopri5Events`]).
+    /// Event-aware stepping ([`Method::Dopri5Events`], [`Method::Rkn64`]).
     events: bool,
+    /// A Runge–Kutta–Nyström method ([`Method::Rkn64`]).
+    nystrom: bool,
 }
 
 /// Checks a job as [`simulate`](crate::simulate()) does (same errors, same order) and compiles it; `None` when it
@@ -179,15 +181,14 @@ fn lane_ready(job: &Job<'_>) -> Result<Option<(GroupKey, ChainOde)>> {
     if ode.has_lab_physics() || job.settings.sample_interval_s != job.settings.duration_s {
         return Ok(None);
     }
+    let method = job.settings.method.resolve(ode.second_order().is_some());
     let key = GroupKey {
         n_primary: ode.n_primary,
         shift: ode.shift,
         blast: ode.is_blast(),
-        adaptive: matches!(
-            job.settings.method,
-            Method::Dopri5 { .. } | Method::Dopri5Events { .. }
-        ),
-        events: matches!(job.settings.method, Method::Dopri5Events { .. }),
+        adaptive: method.adaptive(),
+        events: method.event_aware(),
+        nystrom: matches!(method, Method::Rkn64 { .. }),
     };
     Ok(Some((key, ode)))
 }
@@ -322,6 +323,8 @@ struct LaneRun<'a> {
     rejected_before: bool,
     /// Whether this iteration's step was shortened to land on a predicted crossing.
     landing: bool,
+    /// A step to retake so that it ends on a crossing the last attempt missed ([`Method::Rkn64`]).
+    retake: Option<f64>,
     rtol: f64,
     stats: IntegratorStats,
     /// The run's own state vector (its layout, not the lanes'): filled where needed.
@@ -337,6 +340,8 @@ struct Lanes<'a, const L: usize> {
     tableau: Tableau,
     adaptive: bool,
     events: bool,
+    nystrom: bool,
+    landing_rule: LandingRule,
     order: f64,
     p: usize,
     nd: usize,
@@ -400,17 +405,22 @@ impl<'a, const L: usize> Lanes<'a, L> {
         let r = res_owner.len();
         let nd = p + r;
         let dim = 2 * nd + usize::from(key.blast);
-        let method = jobs[members[0].0].settings.method;
-        let tableau = method.tableau();
+        let tableau = if key.nystrom {
+            Tableau::rkn64()
+        } else {
+            jobs[members[0].0].settings.method.resolve(false).tableau()
+        };
         let zeros = |n: usize| vec![Lane::<L>::ZERO; n];
         Lanes {
             jobs,
             peak_watch,
             order: f64::from(tableau.order),
             k: (0..tableau.stages()).map(|_| zeros(dim)).collect(),
+            landing_rule: LandingRule::of(&tableau),
             tableau,
             adaptive: key.adaptive,
             events: key.events,
+            nystrom: key.nystrom,
             p,
             nd,
             dim,
@@ -481,12 +491,15 @@ impl<'a, const L: usize> Lanes<'a, L> {
             started,
             self.peak_watch,
         );
-        let (h, err_prev, rtol, atol) = match settings.method {
-            Method::Dopri5 { rtol, atol } | Method::Dopri5Events { rtol, atol } => {
+        let (h, err_prev, rtol, atol) = match settings.method.resolve(self.nystrom) {
+            Method::Dopri5 { rtol, atol }
+            | Method::Dopri5Events { rtol, atol }
+            | Method::Rkn64 { rtol, atol } => {
                 let (h, err_prev) = integrator.adaptive_control().expect("adaptive");
                 (h, err_prev, rtol, atol)
             }
             Method::Rk4 { time_step_s } => (time_step_s, 0.0, 0.0, 0.0),
+            Method::PeakTolerance { .. } => unreachable!("resolved"),
         };
         // Where each of the run's components sits in the lanes.
         let (p, nd) = (self.p, self.nd);
@@ -546,6 +559,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
             err_prev,
             rejected_before: false,
             landing: false,
+            retake: None,
             rtol,
             stats,
         });
@@ -560,6 +574,8 @@ impl<'a, const L: usize> Lanes<'a, L> {
         let mut t_fixed = [0.0; L];
         // Lanes whose step event-aware stepping may shorten.
         let mut want = [false; L];
+        // Lanes retaking a step to end on a crossing their last attempt missed.
+        let mut retake = [None; L];
         for l in 0..L {
             let Some(run) = &self.runs[l] else { continue };
             let t_end = run.settings.duration_s;
@@ -572,16 +588,23 @@ impl<'a, const L: usize> Lanes<'a, L> {
                     continue;
                 }
                 h[l] = h_try;
-                want[l] = self.events && !run.rejected_before && run.stats.steps > 0;
+                retake[l] = run.retake;
+                want[l] = self.events
+                    && retake[l].is_none()
+                    && !run.rejected_before
+                    && run.stats.steps > 0;
             } else {
                 t_fixed[l] = fixed_step_end(0.0, run.stats.steps, run.h, t_end);
                 h[l] = t_fixed[l] - run.t;
             }
         }
         if self.events {
-            let landing = self.predict_crossings(&h, want);
+            let mut landing = self.predict_crossings(&h, want);
             for l in 0..L {
                 if let Some(run) = self.runs[l].as_mut() {
+                    if let Some(tau) = run.retake.take() {
+                        landing[l] = Some(tau);
+                    }
                     run.landing = landing[l].is_some();
                     if let Some(tau) = landing[l] {
                         h[l] = tau;
@@ -595,12 +618,23 @@ impl<'a, const L: usize> Lanes<'a, L> {
             self.error_norms(&h, &mut err);
         }
         let stages = self.tableau.stages();
+        let missed = if self.nystrom {
+            self.missed_crossings(&h, &err)
+        } else {
+            [None; L]
+        };
         let mut accepted = [false; L];
         for l in 0..L {
             let Some(run) = &mut self.runs[l] else {
                 continue;
             };
             run.stats.rhs_evaluations += (stages - 1) as u64;
+            if let Some(tau) = missed[l] {
+                // Retaken to end on the crossing; counted as a rejected step (as the integrator).
+                run.stats.rejected_steps += 1;
+                run.retake = Some(tau);
+                continue;
+            }
             if !self.adaptive || err[l] <= 1.0 {
                 accepted[l] = true;
                 continue;
@@ -691,16 +725,50 @@ impl<'a, const L: usize> Lanes<'a, L> {
             for l in 0..L {
                 if want[l] && self.beta[s].0[l] != 0.0 && (g.0[l] > 0.0) != (gh.0[l] > 0.0) {
                     let tau = crossing_root(g.0[l], d.0[l], c.0[l], gh.0[l], h[l]);
-                    if first[l].is_none_or(|f: f64| tau < f) {
+                    let rule = self.landing_rule;
+                    if rule.counts(tau, h[l]) && first[l].is_none_or(|f: f64| tau < f) {
                         first[l] = Some(tau);
                     }
                 }
             }
         }
         for l in 0..L {
-            first[l] = landing_window(first[l], h[l]);
+            first[l] = self.landing_rule.window(first[l], h[l]);
         }
         first
+    }
+
+    /// [`Method::Rkn64`]'s check in every lane whose attempt passed its error test without a
+    /// landing: the first crossing inside the step that no landing caught, as the integrator
+    /// finds it ([`missed_crossing`]: the same switching functions, the same arithmetic).
+    fn missed_crossings(&self, h: &[f64; L], err: &[f64; L]) -> [Option<f64>; L] {
+        let mut out = [None; L];
+        let (p, last) = (self.p, self.k.len() - 1);
+        let (y, f0, y1, f1) = (&self.y, &self.k[0], &self.stage, &self.k[last]);
+        let overlap = |v: &[Lane<L>], s: usize, l: usize| {
+            if s == p {
+                v[p - 1].0[l]
+            } else {
+                v[s - 1].0[l] - v[s].0[l]
+            }
+        };
+        for l in 0..L {
+            let Some(run) = &self.runs[l] else { continue };
+            if run.landing || err[l] > 1.0 {
+                continue;
+            }
+            // ChainOde::switches: contact slots 1..=P; a free end (β = 0) is constant.
+            let switches = (1..=p).filter(|&s| self.beta[s].0[l] != 0.0).map(|s| {
+                (
+                    overlap(y, s, l),
+                    overlap(f0, s, l),
+                    overlap(y1, s, l),
+                    overlap(f1, s, l),
+                )
+            });
+            out[l] = missed_crossing(switches, h[l]);
+        }
+        out
     }
 
     /// [`ChainOde::check_contacts`] of the force cache in every lane at once: whether it would
@@ -853,8 +921,22 @@ impl<'a, const L: usize> Lanes<'a, L> {
         std::mem::swap(&mut self.k[0], &mut self.f_now);
         let stages = self.tableau.stages();
         let mut stage = std::mem::take(&mut self.stage);
+        let nd = self.nd;
         for i in 1..stages {
-            combine(&mut stage, &self.y, h, &self.tableau.a[i], &self.k);
+            if self.nystrom {
+                let (a, c) = (&self.tableau.a[i], self.tableau.c[i]);
+                nystrom_positions(
+                    &mut stage[..nd],
+                    &self.y,
+                    &self.k,
+                    a,
+                    c,
+                    Lane(*h),
+                    Lane::splat,
+                );
+            } else {
+                combine(&mut stage, &self.y, h, &self.tableau.a[i], &self.k);
+            }
             let mut ts = [0.0; L];
             for l in 0..L {
                 ts[l] = t[l] + self.tableau.c[i] * h[l];
@@ -866,6 +948,18 @@ impl<'a, const L: usize> Lanes<'a, L> {
         }
         if !self.tableau.fsal {
             combine(&mut stage, &self.y, h, &self.tableau.b, &self.k);
+        }
+        if self.nystrom {
+            let (y, tableau) = (&self.y, &self.tableau);
+            nystrom_finish(
+                &mut stage,
+                &mut self.err,
+                y,
+                &mut self.k,
+                tableau,
+                Lane(*h),
+                Lane::splat,
+            );
         }
         self.stage = stage;
     }
@@ -922,9 +1016,11 @@ impl<'a, const L: usize> Lanes<'a, L> {
             .error
             .as_ref()
             .expect("adaptive tableau has error weights");
-        crate::integrate::stage_sum(&mut self.err, None, e, &self.k, |ej| {
-            Lane(*h) * Lane::splat(ej)
-        });
+        if !self.nystrom {
+            crate::integrate::stage_sum(&mut self.err, None, e, &self.k, |ej| {
+                Lane(*h) * Lane::splat(ej)
+            });
+        }
         let mut rtol = [0.0; L];
         for (l, r) in rtol.iter_mut().enumerate() {
             *r = self.runs[l].as_ref().map_or(0.0, |run| run.rtol);

@@ -729,6 +729,12 @@ impl OdeSystem for ChainOde {
         self.n_primary
     }
 
+    fn second_order(&self) -> Option<usize> {
+        // A blast's state ends in its work W, whose rate F(t) u̇_1 needs the velocity; the lab
+        // physics damps with velocities.
+        (self.lab.is_none() && !self.is_blast()).then_some(self.n_dof)
+    }
+
     fn switches(&self, y: &[f64], out: &mut [f64]) {
         // Contact slots 1..=P: their overlaps, linear in the positions; a free end (β = 0) never
         // closes: constant 1.

@@ -21,6 +21,14 @@ pub struct RunSettings {
 }
 
 impl RunSettings {
+    /// The method a run of `chain` under `excitation` steps with: `method` resolved for its
+    /// system ([`Method::resolve`]; a stated peak tolerance becomes RKN 6(4) or event-aware
+    /// DOPRI5).
+    pub fn method_for(&self, chain: &Chain, excitation: &Excitation) -> Result<Method> {
+        let ode = ChainOde::new(chain, excitation)?;
+        Ok(self.method.resolve(ode.second_order().is_some()))
+    }
+
     /// docs/physics.md §8 for an impact: 2 ms, RK4 at 0.1 µs, samples every 1 µs.
     pub fn paper_impact() -> Self {
         RunSettings {
@@ -92,7 +100,10 @@ impl RunSettings {
                 };
                 Some(n.max(1.0) as u64)
             }
-            Method::Dopri5 { .. } | Method::Dopri5Events { .. } => None,
+            Method::Dopri5 { .. }
+            | Method::Dopri5Events { .. }
+            | Method::Rkn64 { .. }
+            | Method::PeakTolerance { .. } => None,
         }
     }
 
@@ -949,6 +960,14 @@ fn observe(
 /// linear, so such a run would blow up for certain (docs/physics.md §12). Cells with many stiff
 /// modes (the finite-element rod of §13) need a smaller step than the paper's.
 pub(crate) fn check_resonator_stability(ode: &ChainOde, method: Method) -> Result<()> {
+    if method.needs_second_order() && ode.second_order().is_none() {
+        return Err(Error::invalid(
+            "run.method",
+            "rkn64",
+            "advances only x'' = a(x): an impact without damping, static load or drive; use \
+             dopri5, or run.peak_tolerance (which chooses the method for the run)",
+        ));
+    }
     let Method::Rk4 { time_step_s } = method else {
         return Ok(());
     };

@@ -1,6 +1,7 @@
 //! Claim: the integrators converge at their design order on a problem with a known solution —
-//! RK4 at order 4, Dormand–Prince at order 5 (its solution weights) — and their dense outputs
-//! are at least 4th-order accurate between steps.
+//! RK4 at order 4, Dormand–Prince at order 5 (its solution weights), the Runge–Kutta–Nyström
+//! pair RKN6(4) at order 6 in positions and velocities — and their dense outputs are at least
+//! 4th-order accurate between steps.
 //!
 //! Problem: the harmonic oscillator x'' = −ω² x, x(0) = 1, x'(0) = 0, exact x = cos ωt, over 2
 //! periods. The observed order log2(e(h)/e(h/2)) is measured between steps large enough that
@@ -73,6 +74,42 @@ fn dopri5_is_fifth_order() {
 }
 
 #[test]
+fn rkn64_is_sixth_order() {
+    // A typo in one of its coefficients (published as fractions) drops the observed order to 4 or
+    // less: each of the order conditions up to 6 uses them.
+    let (order, dense) = observed_order(Tableau::rkn64, 100);
+    assert!(
+        (order - 6.0).abs() < 0.2,
+        "observed RKN6(4) order {order:.3}"
+    );
+    assert!(
+        dense > 3.8,
+        "observed order of the RKN Hermite dense output {dense:.3}"
+    );
+}
+
+#[test]
+fn rkn64_velocities_are_sixth_order() {
+    let velocity_error = |steps: usize| {
+        let mut sys = Oscillator { omega: OMEGA };
+        let h = T_END / steps as f64;
+        let mut integ = Integrator::fixed_step(Tableau::rkn64(), h, &mut sys, 0.0, vec![1.0, 0.0]);
+        let mut worst = 0.0_f64;
+        while integ.t() < T_END * (1.0 - 1e-12) {
+            integ.step(&mut sys, T_END).unwrap();
+            let exact = -OMEGA * (OMEGA * integ.t()).sin();
+            worst = worst.max((integ.y()[1] - exact).abs());
+        }
+        worst
+    };
+    let order = (velocity_error(100) / velocity_error(200)).log2();
+    assert!(
+        (order - 6.0).abs() < 0.2,
+        "observed RKN6(4) velocity order {order:.3}"
+    );
+}
+
+#[test]
 fn tableaux_are_consistent() {
     // Row sums of A equal c (the stage times), and the weights sum to 1: necessary for any order.
     for tab in [Tableau::rk4(), Tableau::dopri5()] {
@@ -86,4 +123,21 @@ fn tableaux_are_consistent() {
             tab.name
         );
     }
+    // A Nyström tableau: row sums of A equal c²/2, position weights sum to 1/2, velocity
+    // weights to 1, and both embedded estimates' weights to 0 (the two formulas agree on a
+    // constant acceleration).
+    let rkn = Tableau::rkn64();
+    for (i, row) in rkn.a.iter().enumerate() {
+        let sum: f64 = row.iter().sum();
+        assert!(
+            (sum - 0.5 * rkn.c[i] * rkn.c[i]).abs() < 1e-14,
+            "rkn64 row {i}"
+        );
+    }
+    let velocity = rkn.nystrom.as_ref().unwrap();
+    let total = |w: &[f64]| w.iter().sum::<f64>();
+    assert!((total(&rkn.b) - 0.5).abs() < 1e-14);
+    assert!((total(&velocity.b) - 1.0).abs() < 1e-14);
+    assert!(total(rkn.error.as_ref().unwrap()).abs() < 1e-14);
+    assert!(total(&velocity.error).abs() < 1e-14);
 }

@@ -3,8 +3,8 @@
 //! restitution, the integrator's step counts. Checked on 27 random chains of Table 1 rods (1 or 2
 //! resonators per cell, so lanes carry padding; 3, 8 and 20 rods, so runs fall into several
 //! groups; resonant and rigid), under the paper's impact and blast, with Dormand–Prince (with
-//! and without event-aware stepping, which must land on the same steps in the lanes) and RK4, at
-//! every lane width. Tolerance: none. The lanes perform the scalar path's operations in
+//! and without event-aware stepping, which must land on the same steps in the lanes), RKN 6(4)
+//! (impact), a stated peak tolerance and RK4, at every lane width. Tolerance: none. The lanes perform the scalar path's operations in
 //! its order, so anything but equality is a bug (and would make GA results depend on the lane
 //! width and the grouping of designs).
 
@@ -81,6 +81,24 @@ fn blast_dopri5_events() {
         rtol: 1e-7,
         atol: 1e-13,
     };
+    check(&Excitation::Blast(BlastProfile::paper()), method, 6e-4);
+}
+
+#[test]
+fn impact_rkn64() {
+    // RKN 6(4): its own landing rule and its retaken steps must happen on the same steps.
+    let method = Method::Rkn64 {
+        rtol: 1e-7,
+        atol: 1e-13,
+    };
+    check(&Excitation::Impact(Striker::paper()), method, 6e-4);
+}
+
+#[test]
+fn peak_tolerance_resolved_per_group() {
+    // A stated peak tolerance: RKN 6(4) for the impacts, event-aware DOPRI5 for the blasts.
+    let method = Method::for_peak_tolerance(1e-4).unwrap();
+    check(&Excitation::Impact(Striker::paper()), method, 6e-4);
     check(&Excitation::Blast(BlastProfile::paper()), method, 6e-4);
 }
 
