@@ -36,11 +36,16 @@ fn median(mut v: Vec<f64>) -> f64 {
 /// The paper's whole impact GA (μ = 100, its operators, stopping after 30 generations without
 /// improvement), every contact peak within 1e-5, with and without screening: wall time, the
 /// simulations at each accuracy, and whether every generation's breeding pool (genomes, in
-/// order) and best value equal the unscreened run's.
+/// order) and best value equal the unscreened run's; first with the method `peak_tolerance =
+/// 1e-5` chose before RKN 6(4) (event-aware DOPRI5 at rtol 7.84e-9), for comparison.
 fn screened_ga(runs: usize) -> woodpile::Result<()> {
-    let ga = |screen: Option<f64>| {
+    let previous = Method::Dopri5Events {
+        rtol: 7.84e-9,
+        atol: 7.84e-15,
+    };
+    let ga = |method: Method, screen: Option<f64>| {
         let mut space = DesignSpace::paper_impact(CellModel::Resonant);
-        space.settings.method = Method::for_peak_tolerance(1e-5)?;
+        space.settings.method = method;
         let settings = GaSettings {
             threads: 2,
             screen_peak_tolerance: screen,
@@ -59,21 +64,29 @@ fn screened_ga(runs: usize) -> woodpile::Result<()> {
         woodpile::optimize::operators::truncation_pool(100, GaSettings::default().truncation);
     println!("\npaper impact GA (population 100, peak_tolerance 1e-5, 2 threads), with screening:");
     println!(
-        "{:<16} {:>8} {:>8} {:>12} {:>12} {:>12} {:>10} {:>15}",
-        "screen",
+        "{:<22} {:>8} {:>8} {:>12} {:>12} {:>12} {:>10} {:>15} {:>10}",
+        "method, screen",
         "gens",
         "wall_s",
         "designs",
         "exact_runs",
         "screenings",
         "designs/s",
-        "same_choices"
+        "same_choices",
+        "best_N"
     );
     // Each generation's breeding pool, and the best values: the run's choices.
     type Choices = (Vec<Vec<Genome>>, Vec<f64>);
     let mut reference: Option<Choices> = None;
-    for screen in [None, Some(1e-3), Some(3e-3), Some(1e-2)] {
-        let ga = ga(screen)?;
+    let tolerance = Method::for_peak_tolerance(1e-5)?;
+    for (method, screen) in [
+        (previous, None),
+        (tolerance, None),
+        (tolerance, Some(1e-3)),
+        (tolerance, Some(3e-3)),
+        (tolerance, Some(1e-2)),
+    ] {
+        let ga = ga(method, screen)?;
         let mut walls = Vec::new();
         let mut last = None;
         for _ in 0..runs {
@@ -105,23 +118,33 @@ fn screened_ga(runs: usize) -> woodpile::Result<()> {
                 .keys()
                 .filter(|g| !state.ledger.cache.contains_key(*g))
                 .count();
-        let same = match &reference {
-            None => {
+        let same = match (&reference, method == previous) {
+            (_, true) => "(previous)".to_string(),
+            (None, false) => {
                 reference = Some((pools.clone(), bests.clone()));
                 "(reference)".to_string()
             }
-            Some((p, b)) => (p == &pools && b == &bests).to_string(),
+            (Some((p, b)), false) => (p == &pools && b == &bests).to_string(),
+        };
+        let name = if method == previous {
+            "dopri5-events 7.84e-9"
+        } else {
+            "tolerance 1e-5"
         };
         println!(
-            "{:<16} {:>8} {:>8.2} {:>12} {:>12} {:>12} {:>10.1} {:>15}",
-            screen.map_or("none".to_string(), |t| format!("{t:e}")),
+            "{:<22} {:>8} {:>8.2} {:>12} {:>12} {:>12} {:>10.1} {:>15} {:>10.4}",
+            format!(
+                "{name}, {}",
+                screen.map_or("none".to_string(), |t| format!("{t:e}"))
+            ),
             state.generation,
             wall,
             designs,
             state.ledger.evaluations,
             state.ledger.screenings,
             designs as f64 / wall,
-            same
+            same,
+            bests.last().copied().unwrap_or(f64::NAN)
         );
     }
     Ok(())
@@ -178,18 +201,26 @@ fn main() -> woodpile::Result<()> {
         ("rk4 0.1us (paper)", Method::paper()),
         ("peak_tolerance 1e-5", Method::for_peak_tolerance(1e-5)?),
         ("peak_tolerance 1e-4", Method::for_peak_tolerance(1e-4)?),
+        ("peak_tolerance 1e-3", Method::for_peak_tolerance(1e-3)?),
         (
-            "old rule 1e-5 (dopri5)",
-            Method::Dopri5 {
-                rtol: 1.2e-9,
-                atol: 1.2e-15,
+            "events 7.84e-9 (was 1e-5)",
+            Method::Dopri5Events {
+                rtol: 7.84e-9,
+                atol: 7.84e-15,
             },
         ),
         (
-            "old rule 1e-4 (dopri5)",
-            Method::Dopri5 {
-                rtol: 5.58e-8,
-                atol: 5.58e-14,
+            "rkn64 rtol 1e-6",
+            Method::Rkn64 {
+                rtol: 1e-6,
+                atol: 1e-12,
+            },
+        ),
+        (
+            "rkn64 rtol 3e-7",
+            Method::Rkn64 {
+                rtol: 3e-7,
+                atol: 3e-13,
             },
         ),
         (
@@ -211,20 +242,6 @@ fn main() -> woodpile::Result<()> {
             Method::Dopri5 {
                 rtol: 1e-8,
                 atol: 1e-14,
-            },
-        ),
-        (
-            "dopri5 rtol 1e-7",
-            Method::Dopri5 {
-                rtol: 1e-7,
-                atol: 1e-13,
-            },
-        ),
-        (
-            "dopri5 rtol 1e-6",
-            Method::Dopri5 {
-                rtol: 1e-6,
-                atol: 1e-12,
             },
         ),
     ];

@@ -1083,7 +1083,7 @@ impl LandingRule {
 
 /// The first crossing of a switching function inside a step of size h that lies in
 /// (0.1 h, 0.999 h), from each function's value and rate at both ends (g0, d0, g1, d1): where g
-/// changes sign, the zero of its cubic Hermite interpolant, by bisection to 2⁻⁴⁰ h. None when no
+/// changes sign, the zero of its cubic Hermite interpolant ([`crossing_inside`]). None when no
 /// switching function changed sign there.
 pub(crate) fn missed_crossing(
     switches: impl Iterator<Item = (f64, f64, f64, f64)>,
@@ -1094,27 +1094,52 @@ pub(crate) fn missed_crossing(
         if (g0 > 0.0) == (g1 > 0.0) {
             continue;
         }
-        let cubic = |th: f64| {
-            let (u, w) = (1.0 - th, th);
-            (1.0 + 2.0 * w) * u * u * g0 + h * w * u * u * d0 + w * w * (3.0 - 2.0 * w) * g1
-                - h * w * w * u * d1
-        };
-        let (mut a, mut b) = (0.0_f64, 1.0_f64);
-        for _ in 0..40 {
-            let mid = 0.5 * (a + b);
-            if (cubic(mid) > 0.0) == (g0 > 0.0) {
-                a = mid;
-            } else {
-                b = mid;
+        if let Some(tau) = crossing_inside(g0, d0, g1, d1, h) {
+            if first.is_none_or(|f| tau < f) {
+                first = Some(tau);
             }
-        }
-        let tau = 0.5 * (a + b) * h;
-        let inside = tau > EVENT_LANDING_FRACTION * h && tau < NYSTROM_LANDING_END * h;
-        if inside && first.is_none_or(|f| tau < f) {
-            first = Some(tau);
         }
     }
     first
+}
+
+/// For a switching function that changed sign over a step of size h: the zero of its cubic
+/// Hermite interpolant if it lies in (0.1 h, 0.999 h) ([`missed_crossing`]).
+#[inline(never)]
+pub(crate) fn crossing_inside(g0: f64, d0: f64, g1: f64, d1: f64, h: f64) -> Option<f64> {
+    let cubic = |th: f64| {
+        let (u, w) = (1.0 - th, th);
+        (1.0 + 2.0 * w) * u * u * g0 + h * w * u * u * d0 + w * w * (3.0 - 2.0 * w) * g1
+            - h * w * w * u * d1
+    };
+    // Bracketed regula falsi (Illinois) on θ ∈ [0, 1], to 1e-6.
+    let (mut a, mut b, mut qa, mut qb) = (0.0_f64, 1.0_f64, g0, g1);
+    let mut side = 0;
+    for _ in 0..100 {
+        if b - a <= 1e-6 {
+            break;
+        }
+        let mut th = (a * qb - b * qa) / (qb - qa);
+        if !(th > a && th < b) {
+            th = 0.5 * (a + b);
+        }
+        let q = cubic(th);
+        if (q > 0.0) == (qa > 0.0) {
+            (a, qa) = (th, q);
+            if side == -1 {
+                qb *= 0.5;
+            }
+            side = -1;
+        } else {
+            (b, qb) = (th, q);
+            if side == 1 {
+                qa *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    let tau = 0.5 * (a + b) * h;
+    (tau > EVENT_LANDING_FRACTION * h && tau < NYSTROM_LANDING_END * h).then_some(tau)
 }
 
 /// The curvature c = (g' − g'_prev) / (2 dt) of the extrapolating quadratic and its value
@@ -1319,37 +1344,46 @@ pub(crate) fn nystrom_finish<T>(
 ) where
     T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
 {
-    const MAX_TERMS: usize = 16;
     let nd = y.len() / 2;
     let weights = tableau.nystrom.as_ref().expect("a Nyström tableau");
     let position_error = tableau.error.as_ref().expect("an embedded estimate");
     let h2 = h * h;
-    let zero = splat(0.0);
-    let sum = |out: &mut [T], base: Option<&[T]>, w: &[f64], factor: T, k: &[Vec<T>]| {
-        let mut factors = [zero; MAX_TERMS];
-        let mut ks: [&[T]; MAX_TERMS] = [&[]; MAX_TERMS];
-        let mut terms = 0;
-        for (&wj, kj) in w.iter().zip(k) {
-            if wj != 0.0 {
-                factors[terms] = factor * splat(wj);
-                ks[terms] = &kj[nd..2 * nd];
-                terms += 1;
-            }
-        }
-        sum_terms(out, base, &factors[..terms], &ks[..terms], zero);
-    };
-    sum(
-        &mut stage[nd..2 * nd],
-        Some(&y[nd..2 * nd]),
-        &weights.b,
-        h,
-        k,
-    );
+    let (v, v_new) = (&y[nd..2 * nd], &mut stage[nd..2 * nd]);
+    acceleration_sum(v_new, Some(v), &weights.b, h, k, &splat);
     let (ex, ev) = error[..2 * nd].split_at_mut(nd);
-    sum(ex, None, position_error, h2, k);
-    sum(ev, None, &weights.error, h, k);
+    acceleration_sum(ex, None, position_error, h2, k, &splat);
+    acceleration_sum(ev, None, &weights.error, h, k, &splat);
     let last = k.len() - 1;
     k[last][..nd].copy_from_slice(&stage[nd..2 * nd]);
+}
+
+/// out = base + Σ_j (factor w_j) A_j over the non-zero w_j, A_j the second half of k_j (of
+/// length 2 · out.len()). A function, not a closure, so that it is inlined into the SIMD build.
+#[inline(always)]
+fn acceleration_sum<T>(
+    out: &mut [T],
+    base: Option<&[T]>,
+    w: &[f64],
+    factor: T,
+    k: &[Vec<T>],
+    splat: &impl Fn(f64) -> T,
+) where
+    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
+{
+    const MAX_TERMS: usize = 16;
+    let nd = out.len();
+    let zero = splat(0.0);
+    let mut factors = [zero; MAX_TERMS];
+    let mut ks: [&[T]; MAX_TERMS] = [&[]; MAX_TERMS];
+    let mut terms = 0;
+    for (&wj, kj) in w.iter().zip(k) {
+        if wj != 0.0 {
+            factors[terms] = factor * splat(wj);
+            ks[terms] = &kj[nd..2 * nd];
+            terms += 1;
+        }
+    }
+    sum_terms(out, base, &factors[..terms], &ks[..terms], zero);
 }
 
 /// What a pass of [`add_terms`] adds its terms to.

@@ -34,7 +34,7 @@ use std::collections::BTreeMap;
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::integrate::{
-    crossing_quadratic, crossing_root, fixed_step_end, min_step_s, missed_crossing,
+    crossing_inside, crossing_quadratic, crossing_root, fixed_step_end, min_step_s,
     next_step_after_accept, next_step_after_reject, nystrom_finish, nystrom_positions, Integrator,
     IntegratorStats, LandingRule, Method, OdeSystem, Tableau,
 };
@@ -742,33 +742,42 @@ impl<'a, const L: usize> Lanes<'a, L> {
     /// landing: the first crossing inside the step that no landing caught, as the integrator
     /// finds it ([`missed_crossing`]: the same switching functions, the same arithmetic).
     fn missed_crossings(&self, h: &[f64; L], err: &[f64; L]) -> [Option<f64>; L] {
-        let mut out = [None; L];
+        let mut first = [None; L];
+        let mut check = [false; L];
+        for l in 0..L {
+            check[l] = self.runs[l]
+                .as_ref()
+                .is_some_and(|run| !run.landing && err[l] <= 1.0);
+        }
+        if !check.iter().any(|&c| c) {
+            return first;
+        }
         let (p, last) = (self.p, self.k.len() - 1);
         let (y, f0, y1, f1) = (&self.y, &self.k[0], &self.stage, &self.k[last]);
-        let overlap = |v: &[Lane<L>], s: usize, l: usize| {
+        let overlap = |v: &[Lane<L>], s: usize| {
             if s == p {
-                v[p - 1].0[l]
+                v[p - 1]
             } else {
-                v[s - 1].0[l] - v[s].0[l]
+                v[s - 1] - v[s]
             }
         };
-        for l in 0..L {
-            let Some(run) = &self.runs[l] else { continue };
-            if run.landing || err[l] > 1.0 {
-                continue;
+        // ChainOde::switches: contact slots 1..=P in order; a free end (β = 0) is constant. The
+        // sign test for every lane at once; the crossing only where a sign changed.
+        for s in 1..=p {
+            let (g0, g1) = (overlap(y, s), overlap(y1, s));
+            for l in 0..L {
+                if !check[l] || self.beta[s].0[l] == 0.0 || (g0.0[l] > 0.0) == (g1.0[l] > 0.0) {
+                    continue;
+                }
+                let (d0, d1) = (overlap(f0, s).0[l], overlap(f1, s).0[l]);
+                if let Some(tau) = crossing_inside(g0.0[l], d0, g1.0[l], d1, h[l]) {
+                    if first[l].is_none_or(|f: f64| tau < f) {
+                        first[l] = Some(tau);
+                    }
+                }
             }
-            // ChainOde::switches: contact slots 1..=P; a free end (β = 0) is constant.
-            let switches = (1..=p).filter(|&s| self.beta[s].0[l] != 0.0).map(|s| {
-                (
-                    overlap(y, s, l),
-                    overlap(f0, s, l),
-                    overlap(y1, s, l),
-                    overlap(f1, s, l),
-                )
-            });
-            out[l] = missed_crossing(switches, h[l]);
         }
-        out
+        first
     }
 
     /// [`ChainOde::check_contacts`] of the force cache in every lane at once: whether it would
