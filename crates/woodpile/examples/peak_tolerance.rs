@@ -6,7 +6,8 @@
 //! evaluations summed. The settings: `peak_tolerance` 1e-3 … 1e-6 (family `tolerance`: RKN 6(4)
 //! for the impacts, event-aware DOPRI5 for the blasts), plain (`dopri5`) and event-aware
 //! (`events`) DOPRI5 and RKN 6(4) (`rkn64`, impacts only: a blast's work integral needs the
-//! velocity) at rtol 1e-5 … 3e-11. This is the measurement behind `Method::resolve`'s rules
+//! velocity) at rtol 1e-5 … 3e-11; `previous`: event-aware DOPRI5 at the rule of `peak_tolerance`
+//! for every run, as before RKN 6(4). This is the measurement behind `Method::resolve`'s rules
 //! (docs/physics.md §8).
 //!
 //! Run: `cargo run --release -p woodpile --example peak_tolerance [-- --families tolerance,rkn64]`
@@ -33,6 +34,13 @@ fn main() -> woodpile::Result<()> {
                 format!("tolerance {tol:e}"),
                 Method::for_peak_tolerance(tol)?,
             ));
+        }
+    }
+    if want("previous") {
+        // What `peak_tolerance` chose for every run before RKN 6(4): event-aware DOPRI5.
+        for tol in [1e-3, 1e-4, 1e-5, 1e-6] {
+            let method = Method::for_peak_tolerance(tol)?.resolve(false);
+            methods.push((format!("previous {tol:e}"), method));
         }
     }
     for rtol in [

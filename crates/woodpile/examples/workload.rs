@@ -8,7 +8,7 @@
 //!   4 or 8; default 4).
 //!
 //! The method: `--rk4 DT` (fixed step \[s\]), `--rtol R` (DOPRI5, atol = R·1e-6; with `--events`
-//! event-aware, `Method::Dopri5Events`) or `--tol T`
+//! event-aware, `Method::Dopri5Events`; with `--rkn` RKN 6(4), `Method::Rkn64`) or `--tol T`
 //! (`Method::for_peak_tolerance`); default `--tol 1e-4`. Prints the objective values' sum and the
 //! RHS evaluations so that two builds can be checked to do the same work.
 //!
@@ -33,7 +33,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let method = if let Some(dt) = arg::<f64>("--rk4") {
         Method::Rk4 { time_step_s: dt }
     } else if let Some(rtol) = arg::<f64>("--rtol") {
-        if std::env::args().any(|a| a == "--events") {
+        if std::env::args().any(|a| a == "--rkn") {
+            Method::Rkn64 {
+                rtol,
+                atol: rtol * 1e-6,
+            }
+        } else if std::env::args().any(|a| a == "--events") {
             Method::Dopri5Events {
                 rtol,
                 atol: rtol * 1e-6,

@@ -923,8 +923,12 @@ impl Integrator {
         let ev = self.events.as_mut()?;
         let last = self.k.len() - 1;
         system.switches(&self.y, &mut ev.g);
-        system.switches(&self.k[0], &mut ev.rate);
         system.switches(&self.stage, &mut ev.g_end);
+        let changed = |(g0, g1): (&f64, &f64)| (*g0 > 0.0) != (*g1 > 0.0);
+        if !ev.g.iter().zip(&ev.g_end).any(changed) {
+            return None;
+        }
+        system.switches(&self.k[0], &mut ev.rate);
         system.switches(&self.k[last], &mut ev.rate_end);
         missed_crossing(
             ev.g.iter()
