@@ -1116,33 +1116,7 @@ pub(crate) fn crossing_inside(g0: f64, d0: f64, g1: f64, d1: f64, h: f64) -> Opt
         (1.0 + 2.0 * w) * u * u * g0 + h * w * u * u * d0 + w * w * (3.0 - 2.0 * w) * g1
             - h * w * w * u * d1
     };
-    // Bracketed regula falsi (Illinois) on θ ∈ [0, 1], to 1e-6.
-    let (mut a, mut b, mut qa, mut qb) = (0.0_f64, 1.0_f64, g0, g1);
-    let mut side = 0;
-    for _ in 0..100 {
-        if b - a <= 1e-6 {
-            break;
-        }
-        let mut th = (a * qb - b * qa) / (qb - qa);
-        if !(th > a && th < b) {
-            th = 0.5 * (a + b);
-        }
-        let q = cubic(th);
-        if (q > 0.0) == (qa > 0.0) {
-            (a, qa) = (th, q);
-            if side == -1 {
-                qb *= 0.5;
-            }
-            side = -1;
-        } else {
-            (b, qb) = (th, q);
-            if side == 1 {
-                qa *= 0.5;
-            }
-            side = 1;
-        }
-    }
-    let tau = 0.5 * (a + b) * h;
+    let tau = illinois(cubic, 1.0, g0, g1, 1e-6) * h;
     (tau > EVENT_LANDING_FRACTION * h && tau < NYSTROM_LANDING_END * h).then_some(tau)
 }
 
@@ -1166,26 +1140,32 @@ where
 /// bracketed regula falsi (Illinois), to 1e-6 h.
 #[inline(never)]
 pub(crate) fn crossing_root(g: f64, d: f64, c: f64, gh: f64, h: f64) -> f64 {
-    let q = |tau: f64| g + tau * (d + c * tau);
-    let (mut a, mut b, mut qa, mut qb) = (0.0_f64, h, g, gh);
+    illinois(|tau| g + tau * (d + c * tau), h, g, gh, 1e-6 * h)
+}
+
+/// Bracketed regula falsi (Illinois) for the zero of q in \[0, b\], given q(0) = qa and q(b) = qb
+/// of opposite signs: the midpoint of the bracket once it is at most `tol` wide.
+#[inline(always)]
+fn illinois(q: impl Fn(f64) -> f64, b: f64, qa: f64, qb: f64, tol: f64) -> f64 {
+    let (mut a, mut b, mut qa, mut qb) = (0.0_f64, b, qa, qb);
     let mut side = 0;
     for _ in 0..100 {
-        if b - a <= 1e-6 * h {
+        if b - a <= tol {
             break;
         }
-        let mut tau = (a * qb - b * qa) / (qb - qa);
-        if !(tau > a && tau < b) {
-            tau = 0.5 * (a + b);
+        let mut x = (a * qb - b * qa) / (qb - qa);
+        if !(x > a && x < b) {
+            x = 0.5 * (a + b);
         }
-        let qt = q(tau);
-        if (qt > 0.0) == (qa > 0.0) {
-            (a, qa) = (tau, qt);
+        let qx = q(x);
+        if (qx > 0.0) == (qa > 0.0) {
+            (a, qa) = (x, qx);
             if side == -1 {
                 qb *= 0.5;
             }
             side = -1;
         } else {
-            (b, qb) = (tau, qt);
+            (b, qb) = (x, qx);
             if side == 1 {
                 qa *= 0.5;
             }
