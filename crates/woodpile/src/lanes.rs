@@ -41,8 +41,7 @@ use crate::integrate::{
 use crate::model::Chain;
 use crate::ode::ChainOde;
 use crate::simulate::{
-    check_resonator_stability, simulate_watching, too_many_steps, PeakWatch, RunSettings,
-    RunSummary, Watch,
+    check_method_fits, simulate_watching, too_many_steps, PeakWatch, RunSettings, RunSummary, Watch,
 };
 
 /// How many runs advance together.
@@ -177,7 +176,7 @@ struct GroupKey {
 fn lane_ready(job: &Job<'_>) -> Result<Option<(GroupKey, ChainOde)>> {
     job.settings.validate()?;
     let ode = ChainOde::new(job.chain, job.excitation)?;
-    check_resonator_stability(&ode, job.settings.method)?;
+    check_method_fits(&ode, job.settings.method)?;
     if ode.has_lab_physics() || job.settings.sample_interval_s != job.settings.duration_s {
         return Ok(None);
     }

@@ -646,7 +646,7 @@ pub(crate) fn simulate_watching(
     settings.validate()?;
     let started = std::time::Instant::now();
     let mut ode = ChainOde::new(chain, excitation)?;
-    check_resonator_stability(&ode, settings.method)?;
+    check_method_fits(&ode, settings.method)?;
     let y0 = ode.initial_state();
     let dim = ode.dimension();
     let units = ode.tolerance_units();
@@ -956,10 +956,12 @@ fn observe(
     }
 }
 
-/// Refuses a fixed step beyond RK4's stability limit on the stiffest resonator: resonators are
-/// linear, so such a run would blow up for certain (docs/physics.md §12). Cells with many stiff
-/// modes (the finite-element rod of §13) need a smaller step than the paper's.
-pub(crate) fn check_resonator_stability(ode: &ChainOde, method: Method) -> Result<()> {
+/// Refuses a method that cannot run this system: a Runge–Kutta–Nyström method where the
+/// acceleration depends on the velocity, and a fixed step beyond RK4's stability limit on the
+/// stiffest resonator (resonators are linear, so such a run would blow up for certain,
+/// docs/physics.md §12; cells with many stiff modes, the finite-element rod of §13, need a
+/// smaller step than the paper's).
+pub(crate) fn check_method_fits(ode: &ChainOde, method: Method) -> Result<()> {
     if method.needs_second_order() && ode.second_order().is_none() {
         return Err(Error::invalid(
             "run.method",
