@@ -1018,8 +1018,9 @@ pub(crate) fn next_step_after_accept(
 /// Where the next step of size h should end to land on the first predicted sign change of a
 /// switching function, from each function's (value g, rate g', rate at the start of the last
 /// step of size dt): the quadratic g + g' τ + c τ² ([`crossing_quadratic`]) is followed over
-/// (0, h]; its first zero τ ([`crossing_root`]) is returned when it lies in the landing window
-/// ([`landing_window`]). The lanes of `crate::lanes` do the same arithmetic, vectorised.
+/// (0, h]; its first zero τ ([`crossing_root`]) that the rule counts is returned when it lies in
+/// the rule's landing window ([`LandingRule`]). The lanes of `crate::lanes` do the same
+/// arithmetic, vectorised.
 #[inline]
 pub(crate) fn first_crossing(
     switches: impl Iterator<Item = (f64, f64, f64)>,

@@ -573,8 +573,6 @@ impl<'a, const L: usize> Lanes<'a, L> {
         let mut t_fixed = [0.0; L];
         // Lanes whose step event-aware stepping may shorten.
         let mut want = [false; L];
-        // Lanes retaking a step to end on a crossing their last attempt missed.
-        let mut retake = [None; L];
         for l in 0..L {
             let Some(run) = &self.runs[l] else { continue };
             let t_end = run.settings.duration_s;
@@ -587,9 +585,9 @@ impl<'a, const L: usize> Lanes<'a, L> {
                     continue;
                 }
                 h[l] = h_try;
-                retake[l] = run.retake;
+                // A lane retaking a step to end on a missed crossing predicts nothing.
                 want[l] = self.events
-                    && retake[l].is_none()
+                    && run.retake.is_none()
                     && !run.rejected_before
                     && run.stats.steps > 0;
             } else {
