@@ -278,6 +278,11 @@ pub struct GaSpec {
     /// selection (default: off). Needs `run.peak_tolerance` and a force objective.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub screen_peak_tolerance: Option<f64>,
+    /// Early stopping: a new design's run stops once its transmitted peak exceeds the previous
+    /// generation's breeding cutoff (2 % above it), its value then only known to be larger;
+    /// the choices stay those of a run without it (default: off). Needs `transmitted-force`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stop_early: Option<bool>,
 }
 
 impl OptimizeConfig {
@@ -596,6 +601,7 @@ impl Problem {
             threads,
             cache: g.cache.unwrap_or(true),
             screen_peak_tolerance: g.screen_peak_tolerance,
+            stop_early: g.stop_early.unwrap_or(false),
         };
         settings.validate()?;
         woodpile::optimize::FeasibleSet::new(&space).map_err(optimize_error)?;
@@ -711,6 +717,10 @@ pub struct Checkpoint {
     /// Screened values, sorted by genome (absent when empty).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub screened: Vec<Individual>,
+    /// Lower bounds of the designs whose run stopped early, sorted by genome (absent when
+    /// empty).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stopped: Vec<Individual>,
 }
 
 fn is_zero(n: &u64) -> bool {
@@ -725,6 +735,7 @@ fn sorted_values(map: &HashMap<Vec<u8>, f64>) -> Vec<Individual> {
             genome: g.clone(),
             objective,
             bound: 0.0,
+            stopped: false,
         })
         .collect();
     list.sort_by(|a, b| a.genome.cmp(&b.genome));
@@ -749,6 +760,7 @@ impl Checkpoint {
             history: s.history.clone(),
             cache: sorted_values(&s.ledger.cache),
             screened: sorted_values(&s.ledger.screened),
+            stopped: sorted_values(&s.ledger.stopped),
         };
         cp.checksum = cp.content_checksum();
         cp
@@ -773,6 +785,7 @@ impl Checkpoint {
             ledger: Ledger {
                 cache: values_map(self.cache),
                 screened: values_map(self.screened),
+                stopped: values_map(self.stopped),
                 evaluations: self.evaluations,
                 screenings: self.screenings,
                 cache_hits: self.cache_hits,
@@ -809,15 +822,22 @@ pub fn history_csv(history: &[GenerationStats]) -> String {
 
 /// Writes `population.csv`: the final population, best first, one column per layer;
 /// `objective_bound` is 0 where the objective was simulated at the run's settings, and the
-/// half-width of the interval that holds it where it is a screened value.
+/// half-width of the interval that holds it where it is a screened value; `stopped` is 1 where
+/// the design's run stopped early and the objective is a lower bound of its value (0 otherwise).
 pub fn population_csv(space: &DesignSpace, population: &[Individual]) -> String {
-    let mut s = String::from("rank,objective,objective_bound");
+    let mut s = String::from("rank,objective,objective_bound,stopped");
     for l in 1..=space.positions {
         s.push_str(&format!(",layer_{l}"));
     }
     s.push('\n');
     for (r, i) in population.iter().enumerate() {
-        s.push_str(&format!("{},{},{}", r + 1, i.objective, i.bound));
+        s.push_str(&format!(
+            "{},{},{},{}",
+            r + 1,
+            i.objective,
+            i.bound,
+            u8::from(i.stopped)
+        ));
         for l in space.labels(&i.genome) {
             s.push(',');
             s.push_str(&l);

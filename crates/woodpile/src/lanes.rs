@@ -124,6 +124,20 @@ pub fn simulate_many_watching(
     width: LaneWidth,
     peak_watch: PeakWatch,
 ) -> Vec<Result<RunSummary>> {
+    simulate_many_stopping(jobs, width, peak_watch, f64::INFINITY)
+}
+
+/// [`simulate_many_watching`], each run stopped at the end of the first step whose transmitted
+/// peak exceeds `stop_above_n` \[N\] (a design study's cutoff: the transmitted peak is a running
+/// maximum, so a run stopped there ends above the cutoff whatever follows). A stopped run's
+/// summary has `stopped_at_s` set and the peaks of the steps up to then; it is bit for bit that
+/// of the same run on the scalar path, stopped at the same step.
+pub fn simulate_many_stopping(
+    jobs: &[Job<'_>],
+    width: LaneWidth,
+    peak_watch: PeakWatch,
+    stop_above_n: f64,
+) -> Vec<Result<RunSummary>> {
     let mut results: Vec<Option<Result<RunSummary>>> = (0..jobs.len()).map(|_| None).collect();
     let mut groups: BTreeMap<GroupKey, Vec<(usize, ChainOde)>> = BTreeMap::new();
     for (index, job) in jobs.iter().enumerate() {
@@ -136,6 +150,7 @@ pub fn simulate_many_watching(
                     job.settings,
                     &mut (),
                     peak_watch,
+                    stop_above_n,
                 ))
             }
             Err(e) => results[index] = Some(Err(e)),
@@ -143,10 +158,10 @@ pub fn simulate_many_watching(
     }
     for (key, members) in groups {
         let done = match width {
-            LaneWidth::One => run_group::<1>(jobs, &key, members, peak_watch),
-            LaneWidth::Two => run_group::<2>(jobs, &key, members, peak_watch),
-            LaneWidth::Four => run_group::<4>(jobs, &key, members, peak_watch),
-            LaneWidth::Eight => run_group::<8>(jobs, &key, members, peak_watch),
+            LaneWidth::One => run_group::<1>(jobs, &key, members, peak_watch, stop_above_n),
+            LaneWidth::Two => run_group::<2>(jobs, &key, members, peak_watch, stop_above_n),
+            LaneWidth::Four => run_group::<4>(jobs, &key, members, peak_watch, stop_above_n),
+            LaneWidth::Eight => run_group::<8>(jobs, &key, members, peak_watch, stop_above_n),
         };
         for (index, result) in done {
             results[index] = Some(result);
@@ -199,15 +214,16 @@ fn run_group<const L: usize>(
     key: &GroupKey,
     members: Vec<(usize, ChainOde)>,
     peak_watch: PeakWatch,
+    stop_above_n: f64,
 ) -> Vec<(usize, Result<RunSummary>)> {
     #[cfg(target_arch = "x86_64")]
     {
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU supports AVX2 (checked on the line above).
-            return unsafe { run_group_avx2::<L>(jobs, key, members, peak_watch) };
+            return unsafe { run_group_avx2::<L>(jobs, key, members, peak_watch, stop_above_n) };
         }
     }
-    Lanes::<L>::new(jobs, key, members, peak_watch).run()
+    Lanes::<L>::new(jobs, key, members, peak_watch, stop_above_n).run()
 }
 
 /// [`run_group`] compiled for AVX2 (no FMA: the results stay those of the portable build).
@@ -219,8 +235,9 @@ unsafe fn run_group_avx2<const L: usize>(
     key: &GroupKey,
     members: Vec<(usize, ChainOde)>,
     peak_watch: PeakWatch,
+    stop_above_n: f64,
 ) -> Vec<(usize, Result<RunSummary>)> {
-    Lanes::<L>::new(jobs, key, members, peak_watch).run()
+    Lanes::<L>::new(jobs, key, members, peak_watch, stop_above_n).run()
 }
 
 /// One value per lane, with IEEE arithmetic lane by lane. Operations take and return values, so
@@ -336,6 +353,8 @@ struct LaneRun<'a> {
 struct Lanes<'a, const L: usize> {
     jobs: &'a [Job<'a>],
     peak_watch: PeakWatch,
+    /// Runs stop at the end of the first step whose transmitted peak exceeds this \[N\].
+    stop_above_n: f64,
     tableau: Tableau,
     adaptive: bool,
     events: bool,
@@ -375,6 +394,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
         key: &GroupKey,
         members: Vec<(usize, ChainOde)>,
         peak_watch: PeakWatch,
+        stop_above_n: f64,
     ) -> Self {
         let p = key.n_primary;
         // The most resonators any run of the group has on each primary.
@@ -413,6 +433,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
         Lanes {
             jobs,
             peak_watch,
+            stop_above_n,
             order: f64::from(tableau.order),
             k: (0..tableau.stages()).map(|_| zeros(dim)).collect(),
             landing_rule: LandingRule::of(&tableau),
@@ -489,7 +510,8 @@ impl<'a, const L: usize> Lanes<'a, L> {
             &mut (),
             started,
             self.peak_watch,
-        );
+        )
+        .stop_above(self.stop_above_n);
         let (h, err_prev, rtol, atol) = match settings.method.resolve(self.nystrom) {
             Method::Dopri5 { rtol, atol }
             | Method::Dopri5Events { rtol, atol }
@@ -854,7 +876,15 @@ impl<'a, const L: usize> Lanes<'a, L> {
             return;
         }
         run.watch.after_step(&run.ode, t0, t1, &run.y);
-        if sample.is_none() && !finished {
+        let stopped = !finished && run.watch.stop_due();
+        if stopped {
+            // The summary reads the whole force cache and the primaries' velocities.
+            for s in 0..=p {
+                run.ode.force_n[s] = self.force[s].0[l];
+                run.ode.overlap_m[s] = self.overlap[s].0[l];
+            }
+        }
+        if sample.is_none() && !finished && !stopped {
             return;
         }
         for (i, &c) in run.place.iter().enumerate() {
@@ -873,9 +903,10 @@ impl<'a, const L: usize> Lanes<'a, L> {
                 return;
             }
         }
-        if finished {
+        if finished || stopped {
             let run = self.vacate(l);
-            let summary = run.watch.finish(&run.ode, &run.y, run.stats);
+            let mut summary = run.watch.finish(&run.ode, &run.y, run.stats);
+            summary.stopped_at_s = stopped.then_some(t1);
             self.done.push((run.job, Ok(summary)));
         }
     }
@@ -901,6 +932,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
                 job.settings,
                 &mut (),
                 self.peak_watch,
+                self.stop_above_n,
             ),
         ));
     }

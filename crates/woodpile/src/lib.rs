@@ -67,7 +67,7 @@ pub use excitation::{
     Sweep,
 };
 pub use integrate::{Integrator, IntegratorStats, Method, OdeSystem, Tableau};
-pub use lanes::{simulate_many, simulate_many_watching, Job, LaneWidth};
+pub use lanes::{simulate_many, simulate_many_stopping, simulate_many_watching, Job, LaneWidth};
 pub use model::{
     BeamTheory, Body, CellModel, Chain, ChainBuilder, ContactDamping, Damping, Element, Material,
     Preload, Reduction, Resonator, ResonatorDamping, Rod, Surface, UnitCell, Wall,

@@ -191,6 +191,15 @@ pub struct RunSummary {
     pub n_samples: usize,
     /// Wall-clock time of the run \[s\].
     pub wall_time_s: f64,
+    /// The time \[s\] at which the run was stopped early, at the end of the first step whose
+    /// transmitted peak exceeded a design study's cutoff (`ga.stop_early`, docs/physics.md §11);
+    /// None for a run over the whole `duration_s`. The peaks of a stopped run are those of
+    /// [0, stopped_at_s], lower bounds of the whole run's.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub stopped_at_s: Option<f64>,
 }
 
 /// Tracks the peak of each contact force over every step, refining a maximum that falls between
@@ -438,6 +447,9 @@ pub(crate) struct Watch<'a> {
     load_table: Option<(&'a [f64], &'a [f64])>,
     next_breakpoint: usize,
     started: std::time::Instant,
+    /// The run stops at the end of the first step whose transmitted peak exceeds this \[N\]
+    /// (infinite: never).
+    stop_above_n: f64,
 }
 
 impl<'a> Watch<'a> {
@@ -488,7 +500,20 @@ impl<'a> Watch<'a> {
             load_table,
             next_breakpoint: 0,
             started,
+            stop_above_n: f64::INFINITY,
         }
+    }
+
+    /// Stops the run at the end of the first step whose transmitted peak exceeds `force_n`.
+    pub(crate) fn stop_above(mut self, force_n: f64) -> Self {
+        self.stop_above_n = force_n;
+        self
+    }
+
+    /// Whether the run stops after this step: its transmitted peak (a running maximum, which
+    /// the rest of the run can only raise) exceeds the stopping force.
+    pub(crate) fn stop_due(&self) -> bool {
+        self.peaks.peak[self.peaks.peak.len() - 1] > self.stop_above_n
     }
 
     /// The contacts tracked over every step; None = all.
@@ -617,6 +642,7 @@ impl<'a> Watch<'a> {
             stats,
             n_samples: self.next_sample,
             wall_time_s: self.started.elapsed().as_secs_f64(),
+            stopped_at_s: None,
         }
     }
 }
@@ -632,16 +658,25 @@ pub fn simulate(
     settings: &RunSettings,
     recorder: &mut dyn Recorder,
 ) -> Result<RunSummary> {
-    simulate_watching(chain, excitation, settings, recorder, PeakWatch::Every)
+    simulate_watching(
+        chain,
+        excitation,
+        settings,
+        recorder,
+        PeakWatch::Every,
+        f64::INFINITY,
+    )
 }
 
-/// [`simulate`], tracking the contact peaks that `peak_watch` names.
+/// [`simulate`], tracking the contact peaks that `peak_watch` names, and stopped at the end of
+/// the first step whose transmitted peak exceeds `stop_above_n` (infinite: never).
 pub(crate) fn simulate_watching(
     chain: &Chain,
     excitation: &Excitation,
     settings: &RunSettings,
     recorder: &mut dyn Recorder,
     peak_watch: PeakWatch,
+    stop_above_n: f64,
 ) -> Result<RunSummary> {
     settings.validate()?;
     let started = std::time::Instant::now();
@@ -672,7 +707,8 @@ pub(crate) fn simulate_watching(
         recorder,
         started,
         peak_watch,
-    );
+    )
+    .stop_above(stop_above_n);
     let mut y_sample = vec![0.0; dim];
     let t_end = settings.duration_s;
     let mut recent = RecentStates::new(dim);
@@ -698,6 +734,11 @@ pub(crate) fn simulate_watching(
                 &y_sample
             };
             watch.record(&mut ode, ts, y, at_step, recorder)?;
+        }
+        if watch.stop_due() && t1 < t_end * (1.0 - 1e-14) {
+            let mut summary = watch.finish(&ode, integrator.y(), integrator.stats());
+            summary.stopped_at_s = Some(t1);
+            return Ok(summary);
         }
         // Dense output is done with this step: keep its start state without a copy.
         recent.keep(t0, &mut integrator);

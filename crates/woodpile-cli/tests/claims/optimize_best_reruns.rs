@@ -74,7 +74,7 @@ fn check(config: &str, screened: bool) {
     let rows: Vec<&str> = population.lines().collect();
     assert_eq!(
         rows[0],
-        "rank,objective,objective_bound,layer_1,layer_2,layer_3,layer_4"
+        "rank,objective,objective_bound,stopped,layer_1,layer_2,layer_3,layer_4"
     );
     assert_eq!(rows.len(), 1 + 8);
     assert!(rows[1].starts_with(&format!("1,{best},0,")));

@@ -1,7 +1,8 @@
 //! Claim: a screened GA run's checkpoint holds everything the run needs: written after
 //! generation 2 and read back, it is the state that was saved (population with each screened
 //! value's bound, both value caches, every counter), and the run resumed from it ends where the
-//! uninterrupted run ends.
+//! uninterrupted run ends. The same holds with early stopping (`ga.stop_early`), whose lower
+//! bounds of stopped designs the checkpoint keeps too.
 //!
 //! Tolerance: none (JSON keeps f64 bit for bit), except the wall-clock times.
 
@@ -23,7 +24,23 @@ fn without_times(mut s: GaState) -> GaState {
 
 #[test]
 fn screened_run_resumes_from_its_checkpoint_exactly() {
-    let config = OptimizeConfig::parse(CONFIG, "c.toml").unwrap();
+    resumes_exactly(CONFIG, |saved| {
+        assert!(saved.ledger.screenings > 0 && !saved.ledger.screened.is_empty());
+        assert!(saved.population.iter().any(|i| i.bound > 0.0));
+    });
+}
+
+#[test]
+fn a_run_that_stops_early_resumes_from_its_checkpoint_exactly() {
+    let config = format!("{CONFIG}stop_early = true\n");
+    resumes_exactly(&config, |saved| {
+        assert!(!saved.ledger.stopped.is_empty());
+        assert!(saved.population.iter().any(|i| i.stopped));
+    });
+}
+
+fn resumes_exactly(text: &str, check_saved: impl Fn(&GaState)) {
+    let config = OptimizeConfig::parse(text, "c.toml").unwrap();
     let problem = Problem::new(&config, Path::new("."), 2).unwrap();
     let ga = BreederGa::new(
         problem.space.clone(),
@@ -49,8 +66,7 @@ fn screened_run_resumes_from_its_checkpoint_exactly() {
     })
     .unwrap();
     let saved = saved.unwrap();
-    assert!(saved.ledger.screenings > 0 && !saved.ledger.screened.is_empty());
-    assert!(saved.population.iter().any(|i| i.bound > 0.0));
+    check_saved(&saved);
 
     let back = read_checkpoint(dir.path(), &problem.config).unwrap();
     assert_eq!(back, saved);

@@ -1,7 +1,7 @@
 //! The breeder GA: settings, the detachable state, one generation (`next_generation`) and the
 //! driver loop (`run`) that owns stopping, observers and checkpoints.
 
-use super::objective::Objective;
+use super::objective::{Objective, Valued};
 use super::operators::{breed, truncation_pool};
 use super::space::{DesignSpace, FeasibleSet, Genome};
 use super::OptimizeError;
@@ -44,7 +44,18 @@ pub struct GaSettings {
     /// within this relative tolerance, and again at the run's settings only where its rank
     /// could decide a selection. None = every design at the run's settings.
     pub screen_peak_tolerance: Option<f64>,
+    /// Early stopping (docs/physics.md §11): a new design's run stops at the first step whose
+    /// transmitted peak exceeds the previous generation's breeding cutoff by
+    /// [`STOP_EARLY_MARGIN`], its value then known only to be larger; a stopped design that could
+    /// still breed is simulated whole. The choices stay those of a run without it. Needs the
+    /// `transmitted-force` objective.
+    pub stop_early: bool,
 }
+
+/// How far above the previous generation's breeding cutoff (relative) a run of
+/// [`GaSettings::stop_early`] stops. Any margin keeps the choices; a larger one stops fewer runs,
+/// a smaller one simulates more stopped designs whole when a generation's cutoff rises.
+pub const STOP_EARLY_MARGIN: f64 = 0.02;
 
 impl Default for GaSettings {
     /// μ = 100, T = 0.3 (the middle of the 10–50 % Mühlenbein recommends), one elite,
@@ -61,6 +72,7 @@ impl Default for GaSettings {
             threads: 0,
             cache: true,
             screen_peak_tolerance: None,
+            stop_early: false,
         }
     }
 }
@@ -123,6 +135,40 @@ pub struct Individual {
     /// design was simulated at them, > 0 when `objective` is its screened value.
     #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "is_exact"))]
     pub bound: f64,
+    /// The design's run stopped early ([`GaSettings::stop_early`]): its value at the run's
+    /// settings is at least `objective` (and `bound` is 0).
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "is_false"))]
+    pub stopped: bool,
+}
+
+#[cfg(feature = "serde")]
+fn is_false(b: &bool) -> bool {
+    !*b
+}
+
+impl Individual {
+    /// The smallest value the design can have at the run's settings.
+    fn low(&self) -> f64 {
+        if self.stopped {
+            self.objective
+        } else {
+            self.objective - self.bound
+        }
+    }
+
+    /// The largest value the design can have at the run's settings (infinite when stopped).
+    fn high(&self) -> f64 {
+        if self.stopped {
+            f64::INFINITY
+        } else {
+            self.objective + self.bound
+        }
+    }
+
+    /// Whether the value is not yet known at the run's settings (screened or stopped).
+    fn uncertain(&self) -> bool {
+        self.bound > 0.0 || self.stopped
+    }
 }
 
 #[cfg(feature = "serde")]
@@ -209,6 +255,10 @@ pub struct Ledger {
     /// Screened values of the designs screened so far (empty without screening, and between
     /// generations when the cache is off).
     pub screened: HashMap<Genome, f64>,
+    /// Lower bounds of the values at the run's settings of the designs whose run stopped early
+    /// ([`GaSettings::stop_early`]; empty without it, and between generations when the cache is
+    /// off).
+    pub stopped: HashMap<Genome, f64>,
     /// Simulations at the run's settings so far.
     pub evaluations: u64,
     /// Screening simulations so far.
@@ -357,6 +407,18 @@ impl BreederGa {
             .screen_peak_tolerance
             .map(|t| Screen::new(t, &space.settings, objective.as_ref()))
             .transpose()?;
+        if settings.stop_early && !objective.is_transmitted_peak() {
+            return Err(Error::invalid(
+                "ga.stop_early",
+                true,
+                format!(
+                    "objective `{}` is not the transmitted peak, which a run can only raise: \
+                     early stopping works with transmitted-force (or set ga.stop_early = false)",
+                    objective.name()
+                ),
+            )
+            .into());
+        }
         Ok(BreederGa {
             space,
             set,
@@ -410,9 +472,10 @@ impl BreederGa {
 
     /// Simulates one design at the run's settings (no cache).
     pub fn evaluate(&self, genome: &[u8]) -> Result<f64, OptimizeError> {
-        self.evaluate_batch(&[genome], &self.space.settings)
+        self.evaluate_batch(&[genome], &self.space.settings, f64::INFINITY)
             .pop()
             .expect("one value per design")
+            .map(|(Valued::Exact(x) | Valued::AtLeast(x))| x)
     }
 
     /// Simulates designs together under `settings` ([`Objective::evaluate_many`]: in SIMD lanes
@@ -421,7 +484,8 @@ impl BreederGa {
         &self,
         genomes: &[&[u8]],
         settings: &RunSettings,
-    ) -> Vec<Result<f64, OptimizeError>> {
+        stop_above_n: f64,
+    ) -> Vec<Result<Valued, OptimizeError>> {
         let design = |genome: &[u8]| self.space.labels(genome).join(" ");
         // The designs that build go to the objective together; the others keep their error.
         let mut built: Vec<Chain> = Vec::with_capacity(genomes.len());
@@ -440,7 +504,13 @@ impl BreederGa {
             .collect();
         let mut values = self
             .objective
-            .evaluate_many(&built, &self.space.excitation, settings, self.lanes)
+            .evaluate_many_stopping(
+                &built,
+                &self.space.excitation,
+                settings,
+                self.lanes,
+                stop_above_n,
+            )
             .into_iter();
         unbuilt
             .into_iter()
@@ -456,7 +526,8 @@ impl BreederGa {
                         design: design(g),
                         source,
                     })?;
-                if value.is_nan() {
+                let (Valued::Exact(x) | Valued::AtLeast(x)) = value;
+                if x.is_nan() {
                     return Err(OptimizeError::NotANumber {
                         objective: self.objective.name().to_string(),
                         design: design(g),
@@ -486,6 +557,20 @@ impl BreederGa {
         genomes: &[G],
         settings: &RunSettings,
     ) -> Vec<Result<f64, OptimizeError>> {
+        self.evaluate_designs_stopping(genomes, settings, f64::INFINITY)
+            .into_iter()
+            .map(|v| v.map(|(Valued::Exact(x) | Valued::AtLeast(x))| x))
+            .collect()
+    }
+
+    /// [`BreederGa::evaluate_designs_at`], each run stopped once its transmitted peak exceeds
+    /// `stop_above_n` ([`Objective::evaluate_many_stopping`]; infinite: never).
+    fn evaluate_designs_stopping<G: AsRef<[u8]> + Sync>(
+        &self,
+        genomes: &[G],
+        settings: &RunSettings,
+        stop_above_n: f64,
+    ) -> Vec<Result<Valued, OptimizeError>> {
         // Several batches per thread keep every thread busy; each batch fills its lanes.
         let threads = self.pool.current_num_threads().max(1);
         let batch = genomes.len().div_ceil(4 * threads).max(self.lanes.lanes());
@@ -494,7 +579,7 @@ impl BreederGa {
                 .par_chunks(batch)
                 .flat_map_iter(|chunk| {
                     let genomes: Vec<&[u8]> = chunk.iter().map(|g| g.as_ref()).collect();
-                    self.evaluate_batch(&genomes, settings)
+                    self.evaluate_batch(&genomes, settings, stop_above_n)
                 })
                 .collect()
         })
@@ -519,6 +604,7 @@ impl BreederGa {
             .filter(|g| {
                 !ledger.cache.contains_key(*g)
                     && !ledger.screened.contains_key(*g)
+                    && !ledger.stopped.contains_key(*g)
                     && seen.insert(*g)
             })
             .collect()
@@ -550,19 +636,61 @@ impl BreederGa {
         values: &[f64],
         ledger: &mut Ledger,
     ) {
+        let values: Vec<Valued> = values.iter().map(|&v| Valued::Exact(v)).collect();
+        self.record_valued(generation_size, new, &values, ledger);
+    }
+
+    /// [`BreederGa::record_new`] with stopped runs: a run stopped at a peak p bounds the
+    /// design's value at the run's settings from below by p (1 − w), w the screening half-width
+    /// (0 without screening): the whole run's value is at least p, and with screening the value
+    /// at the run's settings is at least (1 − w) times the screened one.
+    fn record_valued<G: AsRef<[u8]>>(
+        &self,
+        generation_size: usize,
+        new: &[G],
+        values: &[Valued],
+        ledger: &mut Ledger,
+    ) {
         if self.settings.cache {
             ledger.cache_hits += generation_size.saturating_sub(new.len()) as u64;
         }
-        let map = if self.screen.is_some() {
+        let half_width = self.screen.map_or(0.0, |s| s.half_width);
+        if self.screen.is_some() {
             ledger.screenings += new.len() as u64;
-            &mut ledger.screened
         } else {
             ledger.evaluations += new.len() as u64;
-            &mut ledger.cache
-        };
-        for (g, &v) in new.iter().zip(values) {
-            map.insert(g.as_ref().to_vec(), v);
         }
+        for (g, &v) in new.iter().zip(values) {
+            let g = g.as_ref().to_vec();
+            match v {
+                Valued::Exact(x) if self.screen.is_some() => ledger.screened.insert(g, x),
+                Valued::Exact(x) => ledger.cache.insert(g, x),
+                Valued::AtLeast(p) => ledger.stopped.insert(g, p * (1.0 - half_width)),
+            };
+        }
+    }
+
+    /// The first simulation of new designs with early stopping: [`BreederGa::evaluate_new`],
+    /// each run stopped once its value surely exceeds `cutoff` (see
+    /// [`BreederGa::record_valued`] for the bound).
+    fn evaluate_new_stopping(
+        &self,
+        genomes: &[&Genome],
+        cutoff: f64,
+    ) -> Result<Vec<Valued>, OptimizeError> {
+        let (settings, half_width) = match &self.screen {
+            Some(screen) => (&screen.settings, screen.half_width),
+            None => (&self.space.settings, 0.0),
+        };
+        self.evaluate_designs_stopping(genomes, settings, cutoff / (1.0 - half_width))
+            .into_iter()
+            .zip(genomes)
+            .map(|(value, g)| match value {
+                // As evaluate_new: a failed screening run is simulated at the run's settings.
+                Err(_) if self.screen.is_some() => self.evaluate(g).map(Valued::Exact),
+                other => other,
+            })
+            .collect()
     }
 
     /// Tell, part 2: the individuals of `genomes` from the ledger's values, after simulating at
@@ -588,12 +716,22 @@ impl BreederGa {
                     genome: g.clone(),
                     objective,
                     bound: 0.0,
+                    stopped: false,
                 });
             }
-            ledger.screened.get(g).map(|&objective| Individual {
+            if let Some(&objective) = ledger.screened.get(g) {
+                return Some(Individual {
+                    genome: g.clone(),
+                    objective,
+                    bound: half_width * objective.abs(),
+                    stopped: false,
+                });
+            }
+            ledger.stopped.get(g).map(|&objective| Individual {
                 genome: g.clone(),
                 objective,
-                bound: half_width * objective.abs(),
+                bound: 0.0,
+                stopped: true,
             })
         };
         let mut all: Vec<Individual> = carried.to_vec();
@@ -610,8 +748,8 @@ impl BreederGa {
         let keep = truncation_pool(self.settings.population, self.settings.truncation)
             .max(self.settings.elites)
             .min(all.len());
-        // Without screening every value is at the run's settings: nothing to confirm.
-        while self.screen.is_some() {
+        // Without screening or stopping every value is at the run's settings: nothing to confirm.
+        while self.screen.is_some() || self.settings.stop_early {
             let confirm = contested(&all, keep, self.settings.elites);
             if confirm.is_empty() {
                 break;
@@ -621,10 +759,11 @@ impl BreederGa {
             for (g, v) in confirm.into_iter().zip(values) {
                 ledger.cache.insert(g, v);
             }
-            for ind in all.iter_mut().filter(|i| i.bound > 0.0) {
+            for ind in all.iter_mut().filter(|i| i.uncertain()) {
                 if let Some(&v) = ledger.cache.get(&ind.genome) {
                     ind.objective = v;
                     ind.bound = 0.0;
+                    ind.stopped = false;
                 }
             }
         }
@@ -638,11 +777,34 @@ impl BreederGa {
         carried: &[Individual],
         genomes: &[Genome],
         ledger: &mut Ledger,
+        cutoff: f64,
     ) -> Result<Vec<Individual>, OptimizeError> {
         let new = self.new_designs(genomes, ledger);
-        let values = self.evaluate_new(&new)?;
-        self.record_new(genomes.len(), &new, &values, ledger);
+        if cutoff.is_finite() {
+            let values = self.evaluate_new_stopping(&new, cutoff)?;
+            self.record_valued(genomes.len(), &new, &values, ledger);
+        } else {
+            let values = self.evaluate_new(&new)?;
+            self.record_new(genomes.len(), &new, &values, ledger);
+        }
         self.settle(carried, genomes, ledger)
+    }
+
+    /// With [`GaSettings::stop_early`], the value above which a design of the generation after
+    /// `state` cannot breed in all likelihood: the largest value the best max(⌈Tμ⌉, elites) of
+    /// `state` can have, raised by [`STOP_EARLY_MARGIN`]. Infinite without early stopping. Only
+    /// the cost depends on it: [`BreederGa::settle`] simulates whole every stopped design that
+    /// could still breed.
+    fn stop_cutoff(&self, state: &GaState) -> f64 {
+        if !self.settings.stop_early {
+            return f64::INFINITY;
+        }
+        let keep = truncation_pool(self.settings.population, self.settings.truncation)
+            .max(self.settings.elites)
+            .min(state.population.len());
+        let mut highs: Vec<f64> = state.population.iter().map(Individual::high).collect();
+        highs.sort_by(f64::total_cmp);
+        highs[keep - 1] * (1.0 + STOP_EARLY_MARGIN)
     }
 
     fn stats(&self, state: &GaState) -> GenerationStats {
@@ -664,6 +826,7 @@ impl BreederGa {
         if !self.settings.cache {
             ledger.cache.clear();
             ledger.screened.clear();
+            ledger.stopped.clear();
         }
         ledger
     }
@@ -757,7 +920,7 @@ impl BreederGa {
         let started = Instant::now();
         let genomes = self.initial_designs();
         let mut ledger = Ledger::default();
-        let individuals = self.evaluate_generation(&[], &genomes, &mut ledger)?;
+        let individuals = self.evaluate_generation(&[], &genomes, &mut ledger, f64::INFINITY)?;
         Ok(self.start(individuals, ledger, started.elapsed().as_secs_f64()))
     }
 
@@ -766,7 +929,9 @@ impl BreederGa {
         let started = Instant::now();
         let children = self.offspring(state);
         let mut ledger = state.ledger.clone();
-        let individuals = self.evaluate_generation(self.elites(state), &children, &mut ledger)?;
+        let cutoff = self.stop_cutoff(state);
+        let individuals =
+            self.evaluate_generation(self.elites(state), &children, &mut ledger, cutoff)?;
         self.advance(state, individuals, ledger, started.elapsed().as_secs_f64());
         Ok(())
     }
@@ -812,6 +977,7 @@ impl BreederGa {
         }
         if let Some(g) = (state.ledger.cache.keys())
             .chain(state.ledger.screened.keys())
+            .chain(state.ledger.stopped.keys())
             .find(|g| g.len() != self.space.positions)
         {
             return mismatch(format!("cache holds a genome of length {}", g.len()));
@@ -878,18 +1044,18 @@ fn sort(population: &mut [Individual]) {
 /// [`BreederGa::settle`]): those that could rank among the best `keep` and whose interval meets
 /// another design's, and those that rank among the `elites`; distinct, sorted.
 fn contested(all: &[Individual], keep: usize, elites: usize) -> Vec<Genome> {
-    let mut highs: Vec<f64> = all.iter().map(|i| i.objective + i.bound).collect();
+    let mut highs: Vec<f64> = all.iter().map(Individual::high).collect();
     highs.sort_by(f64::total_cmp);
     let threshold = highs[keep - 1];
-    let low = |i: &Individual| i.objective - i.bound;
-    let high = |i: &Individual| i.objective + i.bound;
+    let low = Individual::low;
+    let high = Individual::high;
     let mut ranked: Vec<&Individual> = all.iter().collect();
     ranked.sort_by(|a, b| order(a, b));
     let mut confirm: Vec<Genome> = ranked
         .iter()
         .enumerate()
         .filter(|&(rank, a)| {
-            a.bound > 0.0
+            a.uncertain()
                 && low(a) <= threshold
                 && (rank < elites
                     || all

@@ -46,7 +46,7 @@ mod space;
 pub use ga::{
     BreederGa, GaSettings, GaState, GenerationStats, Individual, Ledger, Outcome, StopReason,
 };
-pub use objective::{ContactImpulse, LayerEnergyPeak, Objective, StandardObjective};
+pub use objective::{ContactImpulse, LayerEnergyPeak, Objective, StandardObjective, Valued};
 pub use space::{Constraints, DesignSpace, FeasibleSet, Genome, MAX_CATALOGUE_LEN};
 
 /// What can go wrong in an optimisation.

@@ -1,11 +1,13 @@
 //! What is minimised: a figure of merit of one full run of a candidate chain.
 //!
-//! Every objective runs the whole window `settings.duration_s`: no simulation is stopped early,
-//! because no cheap bound proves that a later peak cannot exceed the current one.
+//! An objective's value is that of the whole window `settings.duration_s`: no cheap bound
+//! proves that a later peak cannot exceed the current one. A design study may still stop a run
+//! whose transmitted peak, a running maximum, already exceeds what could matter to it
+//! ([`Objective::evaluate_many_stopping`]): its value is then only known to be larger.
 
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
-use crate::lanes::{simulate_many_watching, Job, LaneWidth};
+use crate::lanes::{simulate_many_stopping, Job, LaneWidth};
 use crate::model::Chain;
 use crate::record::{Layout, Recorder, Sample};
 use crate::simulate::{simulate, simulate_watching, PeakWatch, RunSettings, RunSummary};
@@ -48,6 +50,41 @@ pub trait Objective: Send + Sync {
         let _ = peak_tolerance;
         None
     }
+
+    /// Whether the value is the transmitted peak, a running maximum that the rest of a run can
+    /// only raise, so that a run may stop once it exceeds a cutoff (`ga.stop_early`).
+    fn is_transmitted_peak(&self) -> bool {
+        false
+    }
+
+    /// [`Objective::evaluate_many`], each run of an objective with
+    /// [`Objective::is_transmitted_peak`] stopped at the end of the first step whose transmitted
+    /// peak exceeds `stop_above_n` \[N\]: its value is then [`Valued::AtLeast`] that peak. The
+    /// default runs every design whole.
+    fn evaluate_many_stopping(
+        &self,
+        chains: &[Chain],
+        excitation: &Excitation,
+        settings: &RunSettings,
+        lanes: LaneWidth,
+        stop_above_n: f64,
+    ) -> Vec<Result<Valued>> {
+        let _ = stop_above_n;
+        self.evaluate_many(chains, excitation, settings, lanes)
+            .into_iter()
+            .map(|r| r.map(Valued::Exact))
+            .collect()
+    }
+}
+
+/// An objective value, or a lower bound of it from a run stopped early.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Valued {
+    /// The value of the whole run.
+    Exact(f64),
+    /// The run stopped once its transmitted peak exceeded a cutoff: the whole run's value is at
+    /// least this.
+    AtLeast(f64),
 }
 
 /// [`Objective::evaluate`] of each chain, in order.
@@ -139,6 +176,7 @@ impl Objective for StandardObjective {
                     &peaks_only(settings),
                     &mut (),
                     PeakWatch::FiguresOfMerit,
+                    f64::INFINITY,
                 )?;
                 self.force_value(summary, settings)
             }
@@ -171,19 +209,36 @@ impl Objective for StandardObjective {
         ) {
             return one_by_one(self, chains, excitation, settings);
         }
-        let peaks_only = peaks_only(settings);
-        let jobs: Vec<Job<'_>> = chains
-            .iter()
-            .map(|chain| Job {
-                chain,
-                excitation,
-                settings: &peaks_only,
-            })
-            .collect();
-        simulate_many_watching(&jobs, lanes, PeakWatch::FiguresOfMerit)
+        self.force_values(chains, excitation, settings, lanes, f64::INFINITY)
             .into_iter()
-            .map(|summary| self.force_value(summary?, settings))
+            .map(|v| {
+                v.map(|v| match v {
+                    Valued::Exact(x) | Valued::AtLeast(x) => x,
+                })
+            })
             .collect()
+    }
+
+    fn is_transmitted_peak(&self) -> bool {
+        matches!(self, StandardObjective::TransmittedForce)
+    }
+
+    fn evaluate_many_stopping(
+        &self,
+        chains: &[Chain],
+        excitation: &Excitation,
+        settings: &RunSettings,
+        lanes: LaneWidth,
+        stop_above_n: f64,
+    ) -> Vec<Result<Valued>> {
+        if !self.is_transmitted_peak() {
+            return self
+                .evaluate_many(chains, excitation, settings, lanes)
+                .into_iter()
+                .map(|r| r.map(Valued::Exact))
+                .collect();
+        }
+        self.force_values(chains, excitation, settings, lanes, stop_above_n)
     }
 
     /// The transmitted peak is a contact peak (e); the ratio of two is within
@@ -200,6 +255,38 @@ impl Objective for StandardObjective {
 }
 
 impl StandardObjective {
+    /// A force objective's values in SIMD lanes, runs stopped above `stop_above_n` (infinite:
+    /// never; only the transmitted peak stops, see [`Objective::evaluate_many_stopping`]).
+    fn force_values(
+        self,
+        chains: &[Chain],
+        excitation: &Excitation,
+        settings: &RunSettings,
+        lanes: LaneWidth,
+        stop_above_n: f64,
+    ) -> Vec<Result<Valued>> {
+        let peaks_only = peaks_only(settings);
+        let jobs: Vec<Job<'_>> = chains
+            .iter()
+            .map(|chain| Job {
+                chain,
+                excitation,
+                settings: &peaks_only,
+            })
+            .collect();
+        simulate_many_stopping(&jobs, lanes, PeakWatch::FiguresOfMerit, stop_above_n)
+            .into_iter()
+            .map(|summary| {
+                let summary = summary?;
+                if summary.stopped_at_s.is_some() {
+                    // Stopped above the cutoff: the wave has arrived, and the peak can only grow.
+                    return Ok(Valued::AtLeast(summary.transmitted_peak_force_n));
+                }
+                self.force_value(summary, settings).map(Valued::Exact)
+            })
+            .collect()
+    }
+
     /// The value of a force objective from a run's summary.
     fn force_value(self, summary: RunSummary, settings: &RunSettings) -> Result<f64> {
         let s = arrived(summary, settings)?;

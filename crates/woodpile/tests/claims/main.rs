@@ -40,6 +40,7 @@ mod optimize_exhaustive_tiny;
 mod optimize_operators_feasible;
 mod optimize_resume;
 mod optimize_screening;
+mod optimize_stop_early;
 mod optimize_thread_determinism;
 mod peak_refinement;
 mod peak_tolerance_bound;
