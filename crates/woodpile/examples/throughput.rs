@@ -3,12 +3,12 @@
 //! second, at each accuracy setting, one design at a time (`simulate` per design, as the GA did
 //! before lanes) and in SIMD lanes (`BreederGa::evaluate_designs`), on 1 and 2 threads; the
 //! worst relative error of the objective (transmitted peak) over a sample of the designs against
-//! a converged run; the paper's whole GA with and without screening (wall time, simulations,
-//! whether its choices are unchanged); and the cost per element of long chains. Medians of
+//! a converged run; the paper's whole GA with and without screening and early stopping (wall time,
+//! simulations, whether its choices are unchanged); and the cost per element of long chains. Medians of
 //! `--runs` repetitions.
 //!
 //! Run: `cargo run --release -p woodpile --example throughput [-- --designs 400 --runs 3]`
-//! (`-- --screening-only`: only the GA with and without screening)
+//! (`-- --screening-only`: only the GA with and without screening and early stopping)
 //! (bench/throughput.sh runs it beside the peers.)
 
 use rayon::prelude::*;
@@ -43,12 +43,13 @@ fn screened_ga(runs: usize) -> woodpile::Result<()> {
         rtol: 7.84e-9,
         atol: 7.84e-15,
     };
-    let ga = |method: Method, screen: Option<f64>| {
+    let ga = |method: Method, screen: Option<f64>, stop_early: bool| {
         let mut space = DesignSpace::paper_impact(CellModel::Resonant);
         space.settings.method = method;
         let settings = GaSettings {
             threads: 2,
             screen_peak_tolerance: screen,
+            stop_early,
             ..GaSettings::default()
         };
         Ok::<_, woodpile::Error>(
@@ -62,15 +63,19 @@ fn screened_ga(runs: usize) -> woodpile::Result<()> {
     };
     let pool =
         woodpile::optimize::operators::truncation_pool(100, GaSettings::default().truncation);
-    println!("\npaper impact GA (population 100, peak_tolerance 1e-5, 2 threads), with screening:");
     println!(
-        "{:<22} {:>8} {:>8} {:>12} {:>12} {:>12} {:>10} {:>15} {:>10}",
-        "method, screen",
+        "\npaper impact GA (population 100, peak_tolerance 1e-5, 2 threads), with screening \
+         and early stopping:"
+    );
+    println!(
+        "{:<32} {:>6} {:>8} {:>8} {:>10} {:>10} {:>8} {:>10} {:>13} {:>9}",
+        "method, screen, stop",
         "gens",
         "wall_s",
         "designs",
         "exact_runs",
         "screenings",
+        "stopped",
         "designs/s",
         "same_choices",
         "best_N"
@@ -79,14 +84,17 @@ fn screened_ga(runs: usize) -> woodpile::Result<()> {
     type Choices = (Vec<Vec<Genome>>, Vec<f64>);
     let mut reference: Option<Choices> = None;
     let tolerance = Method::for_peak_tolerance(1e-5)?;
-    for (method, screen) in [
-        (previous, None),
-        (tolerance, None),
-        (tolerance, Some(1e-3)),
-        (tolerance, Some(3e-3)),
-        (tolerance, Some(1e-2)),
+    for (method, screen, stop_early) in [
+        (previous, None, false),
+        (tolerance, None, false),
+        (tolerance, Some(1e-3), false),
+        (tolerance, Some(3e-3), false),
+        (tolerance, None, true),
+        (tolerance, Some(1e-3), true),
+        (tolerance, Some(3e-4), true),
+        (tolerance, Some(1e-4), true),
     ] {
-        let ga = ga(method, screen)?;
+        let ga = ga(method, screen, stop_early)?;
         let mut walls = Vec::new();
         let mut last = None;
         for _ in 0..runs {
@@ -109,15 +117,14 @@ fn screened_ga(runs: usize) -> woodpile::Result<()> {
         let (pools, state) = last.expect("at least one run");
         let bests: Vec<f64> = state.history.iter().map(|h| h.best).collect();
         let wall = median(walls);
-        // Designs the GA obtained a value for: the distinct designs it met (cache size of the
-        // unscreened run; exact + screened values otherwise).
-        let designs = state.ledger.cache.len()
-            + state
-                .ledger
-                .screened
-                .keys()
-                .filter(|g| !state.ledger.cache.contains_key(*g))
-                .count();
+        // Designs the GA obtained a value for: the distinct designs it met (exact, screened or
+        // stopped).
+        let ledger = &state.ledger;
+        let designs = (ledger.cache.keys())
+            .chain(ledger.screened.keys())
+            .chain(ledger.stopped.keys())
+            .collect::<std::collections::HashSet<_>>()
+            .len();
         let same = match (&reference, method == previous) {
             (_, true) => "(previous)".to_string(),
             (None, false) => {
@@ -132,16 +139,18 @@ fn screened_ga(runs: usize) -> woodpile::Result<()> {
             "tolerance 1e-5"
         };
         println!(
-            "{:<22} {:>8} {:>8.2} {:>12} {:>12} {:>12} {:>10.1} {:>15} {:>10.4}",
+            "{:<32} {:>6} {:>8.2} {:>8} {:>10} {:>10} {:>8} {:>10.1} {:>13} {:>9.4}",
             format!(
-                "{name}, {}",
-                screen.map_or("none".to_string(), |t| format!("{t:e}"))
+                "{name}, {}, {}",
+                screen.map_or("none".to_string(), |t| format!("{t:e}")),
+                if stop_early { "stop" } else { "whole" }
             ),
             state.generation,
             wall,
             designs,
             state.ledger.evaluations,
             state.ledger.screenings,
+            state.ledger.stopped.len(),
             designs as f64 / wall,
             same,
             bests.last().copied().unwrap_or(f64::NAN)

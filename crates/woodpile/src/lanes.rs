@@ -324,6 +324,17 @@ impl<const L: usize> std::ops::Neg for Lane<L> {
     }
 }
 
+/// Whether the sign (> 0 or not) of a differs from that of b in any lane: one vector compare
+/// over the lanes, so that the lane-by-lane work runs only where a contact may cross.
+#[inline(always)]
+fn sign_changed<const L: usize>(a: Lane<L>, b: Lane<L>) -> bool {
+    let mut changed = false;
+    for l in 0..L {
+        changed |= (a.0[l] > 0.0) != (b.0[l] > 0.0);
+    }
+    changed
+}
+
 /// The scalar run that occupies a lane: its compiled chain (for the per-step work and the
 /// summary), its watch and its step control.
 struct LaneRun<'a> {
@@ -741,6 +752,9 @@ impl<'a, const L: usize> Lanes<'a, L> {
                 (y[s - 1] - y[s], f[s - 1] - f[s], k0[s - 1] - k0[s])
             };
             let (c, gh) = crossing_quadratic(g, d, d_prev, dtv, hv, half);
+            if !sign_changed(g, gh) {
+                continue;
+            }
             for l in 0..L {
                 if want[l] && self.beta[s].0[l] != 0.0 && (g.0[l] > 0.0) != (gh.0[l] > 0.0) {
                     let tau = crossing_root(g.0[l], d.0[l], c.0[l], gh.0[l], h[l]);
@@ -784,6 +798,9 @@ impl<'a, const L: usize> Lanes<'a, L> {
         // sign test for every lane at once; the crossing only where a sign changed.
         for s in 1..=p {
             let (g0, g1) = (overlap(y, s), overlap(y1, s));
+            if !sign_changed(g0, g1) {
+                continue;
+            }
             for l in 0..L {
                 if !check[l] || self.beta[s].0[l] == 0.0 || (g0.0[l] > 0.0) == (g1.0[l] > 0.0) {
                     continue;
@@ -1010,7 +1027,11 @@ impl<'a, const L: usize> Lanes<'a, L> {
         let (x, v) = (&y[..nd], &y[nd..2 * nd]);
         let (dx, rest) = dydt.split_at_mut(nd);
         let dv = &mut rest[..nd];
-        dx.copy_from_slice(v);
+        // A Nyström stage reads only accelerations; its step's end writes the new velocities
+        // into the last stage (`nystrom_finish`), the only one whose dx/dt is read.
+        if !self.nystrom {
+            dx.copy_from_slice(v);
+        }
         let force = &mut self.force[..=p];
         let overlap = &mut self.overlap[..=p];
         let beta = &self.beta[..=p];
