@@ -45,6 +45,7 @@ mod space;
 
 pub use ga::{
     BreederGa, GaSettings, GaState, GenerationStats, Individual, Ledger, Outcome, StopReason,
+    STOP_EARLY_MARGIN,
 };
 pub use objective::{ContactImpulse, LayerEnergyPeak, Objective, StandardObjective, Valued};
 pub use space::{Constraints, DesignSpace, FeasibleSet, Genome, MAX_CATALOGUE_LEN};
