@@ -475,7 +475,7 @@ impl BreederGa {
         self.evaluate_batch(&[genome], &self.space.settings, f64::INFINITY)
             .pop()
             .expect("one value per design")
-            .map(|(Valued::Exact(x) | Valued::AtLeast(x))| x)
+            .map(Valued::value_or_bound)
     }
 
     /// Simulates designs together under `settings` ([`Objective::evaluate_many`]: in SIMD lanes
@@ -526,8 +526,7 @@ impl BreederGa {
                         design: design(g),
                         source,
                     })?;
-                let (Valued::Exact(x) | Valued::AtLeast(x)) = value;
-                if x.is_nan() {
+                if value.value_or_bound().is_nan() {
                     return Err(OptimizeError::NotANumber {
                         objective: self.objective.name().to_string(),
                         design: design(g),
@@ -559,7 +558,7 @@ impl BreederGa {
     ) -> Vec<Result<f64, OptimizeError>> {
         self.evaluate_designs_stopping(genomes, settings, f64::INFINITY)
             .into_iter()
-            .map(|v| v.map(|(Valued::Exact(x) | Valued::AtLeast(x))| x))
+            .map(|v| v.map(Valued::value_or_bound))
             .collect()
     }
 

@@ -70,11 +70,23 @@ pub trait Objective: Send + Sync {
         stop_above_n: f64,
     ) -> Vec<Result<Valued>> {
         let _ = stop_above_n;
-        self.evaluate_many(chains, excitation, settings, lanes)
-            .into_iter()
-            .map(|r| r.map(Valued::Exact))
-            .collect()
+        whole_runs(self, chains, excitation, settings, lanes)
     }
+}
+
+/// [`Objective::evaluate_many`], every value exact.
+fn whole_runs(
+    objective: &(impl Objective + ?Sized),
+    chains: &[Chain],
+    excitation: &Excitation,
+    settings: &RunSettings,
+    lanes: LaneWidth,
+) -> Vec<Result<Valued>> {
+    objective
+        .evaluate_many(chains, excitation, settings, lanes)
+        .into_iter()
+        .map(|r| r.map(Valued::Exact))
+        .collect()
 }
 
 /// An objective value, or a lower bound of it from a run stopped early.
@@ -85,6 +97,15 @@ pub enum Valued {
     /// The run stopped once its transmitted peak exceeded a cutoff: the whole run's value is at
     /// least this.
     AtLeast(f64),
+}
+
+impl Valued {
+    /// The number: the value, or the lower bound.
+    pub fn value_or_bound(self) -> f64 {
+        match self {
+            Valued::Exact(x) | Valued::AtLeast(x) => x,
+        }
+    }
 }
 
 /// [`Objective::evaluate`] of each chain, in order.
@@ -211,11 +232,7 @@ impl Objective for StandardObjective {
         }
         self.force_values(chains, excitation, settings, lanes, f64::INFINITY)
             .into_iter()
-            .map(|v| {
-                v.map(|v| match v {
-                    Valued::Exact(x) | Valued::AtLeast(x) => x,
-                })
-            })
+            .map(|v| v.map(Valued::value_or_bound))
             .collect()
     }
 
@@ -232,11 +249,7 @@ impl Objective for StandardObjective {
         stop_above_n: f64,
     ) -> Vec<Result<Valued>> {
         if !self.is_transmitted_peak() {
-            return self
-                .evaluate_many(chains, excitation, settings, lanes)
-                .into_iter()
-                .map(|r| r.map(Valued::Exact))
-                .collect();
+            return whole_runs(self, chains, excitation, settings, lanes);
         }
         self.force_values(chains, excitation, settings, lanes, stop_above_n)
     }
