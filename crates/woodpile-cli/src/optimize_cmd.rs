@@ -142,7 +142,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
             s.generation,
             s.best().objective,
             s.ledger.evaluations,
-            screened_text(s.ledger.screenings),
+            screened_text(&s.ledger),
             s.ledger.cache_hits
         ));
         ControlFlow::Continue(())
@@ -200,7 +200,7 @@ fn terminal_summary(
         stop_text(outcome.reason),
         state.generation,
         state.ledger.evaluations,
-        screened_text(state.ledger.screenings),
+        screened_text(&state.ledger),
         state.ledger.cache_hits,
         state.elapsed_s,
         problem.space.labels(&best.genome).join(" "),
@@ -214,10 +214,14 @@ fn terminal_summary(
 }
 
 /// "N screenings, " when screening ran, nothing otherwise.
-fn screened_text(screenings: u64) -> String {
-    if screenings == 0 {
-        String::new()
-    } else {
-        format!("{screenings} screenings, ")
+/// The screening runs and the designs whose run stopped early, where there are any.
+fn screened_text(ledger: &woodpile::optimize::Ledger) -> String {
+    let mut text = String::new();
+    if ledger.screenings > 0 {
+        text.push_str(&format!("{} screenings, ", ledger.screenings));
     }
+    if !ledger.stopped.is_empty() {
+        text.push_str(&format!("{} stopped early, ", ledger.stopped.len()));
+    }
+    text
 }
