@@ -335,6 +335,19 @@ fn sign_changed<const L: usize>(a: Lane<L>, b: Lane<L>) -> bool {
     changed
 }
 
+/// Lane l's contact forces and overlaps into its run's force cache.
+fn contacts_into<const L: usize>(
+    ode: &mut ChainOde,
+    force: &[Lane<L>],
+    overlap: &[Lane<L>],
+    l: usize,
+) {
+    for (s, (f, d)) in force.iter().zip(overlap).enumerate() {
+        ode.force_n[s] = f.0[l];
+        ode.overlap_m[s] = d.0[l];
+    }
+}
+
 /// The scalar run that occupies a lane: its compiled chain (for the per-step work and the
 /// summary), its watch and its step control.
 struct LaneRun<'a> {
@@ -876,10 +889,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
                 }
             }
             _ => {
-                for s in 0..=p {
-                    run.ode.force_n[s] = self.force[s].0[l];
-                    run.ode.overlap_m[s] = self.overlap[s].0[l];
-                }
+                contacts_into(&mut run.ode, &self.force, &self.overlap, l);
                 for i in 0..p {
                     run.y[n_dof + i] = self.y[nd + i].0[l];
                 }
@@ -895,11 +905,8 @@ impl<'a, const L: usize> Lanes<'a, L> {
         run.watch.after_step(&run.ode, t0, t1, &run.y);
         let stopped = !finished && run.watch.stop_due();
         if stopped {
-            // The summary reads the whole force cache and the primaries' velocities.
-            for s in 0..=p {
-                run.ode.force_n[s] = self.force[s].0[l];
-                run.ode.overlap_m[s] = self.overlap[s].0[l];
-            }
+            // The summary reads the whole force cache (and the state, copied below).
+            contacts_into(&mut run.ode, &self.force, &self.overlap, l);
         }
         if sample.is_none() && !finished && !stopped {
             return;

@@ -616,14 +616,11 @@ impl BreederGa {
         &self,
         genomes: &[G],
     ) -> Result<Vec<f64>, OptimizeError> {
-        let Some(screen) = &self.screen else {
-            return self.evaluate_designs(genomes);
-        };
-        self.evaluate_designs_at(genomes, &screen.settings)
+        Ok(self
+            .evaluate_new_stopping(genomes, f64::INFINITY)?
             .into_iter()
-            .zip(genomes)
-            .map(|(value, g)| value.or_else(|_| self.evaluate(g.as_ref())))
-            .collect()
+            .map(Valued::value_or_bound)
+            .collect())
     }
 
     /// Tell, part 1: enters the first values of the `new` designs of a generation of
@@ -669,12 +666,11 @@ impl BreederGa {
         }
     }
 
-    /// The first simulation of new designs with early stopping: [`BreederGa::evaluate_new`],
-    /// each run stopped once its value surely exceeds `cutoff` (see
-    /// [`BreederGa::record_valued`] for the bound).
-    fn evaluate_new_stopping(
+    /// [`BreederGa::evaluate_new`], each run stopped once its value surely exceeds `cutoff`
+    /// (see [`BreederGa::record_valued`] for the bound; infinite: never).
+    fn evaluate_new_stopping<G: AsRef<[u8]> + Sync>(
         &self,
-        genomes: &[&Genome],
+        genomes: &[G],
         cutoff: f64,
     ) -> Result<Vec<Valued>, OptimizeError> {
         let (settings, half_width) = match &self.screen {
@@ -685,8 +681,8 @@ impl BreederGa {
             .into_iter()
             .zip(genomes)
             .map(|(value, g)| match value {
-                // As evaluate_new: a failed screening run is simulated at the run's settings.
-                Err(_) if self.screen.is_some() => self.evaluate(g).map(Valued::Exact),
+                // A failed screening run is simulated at the run's settings.
+                Err(_) if self.screen.is_some() => self.evaluate(g.as_ref()).map(Valued::Exact),
                 other => other,
             })
             .collect()
@@ -744,9 +740,7 @@ impl BreederGa {
                 })?,
             );
         }
-        let keep = truncation_pool(self.settings.population, self.settings.truncation)
-            .max(self.settings.elites)
-            .min(all.len());
+        let keep = self.deciding(all.len());
         // Without screening or stopping every value is at the run's settings: nothing to confirm.
         while self.screen.is_some() || self.settings.stop_early {
             let confirm = contested(&all, keep, self.settings.elites);
@@ -779,13 +773,8 @@ impl BreederGa {
         cutoff: f64,
     ) -> Result<Vec<Individual>, OptimizeError> {
         let new = self.new_designs(genomes, ledger);
-        if cutoff.is_finite() {
-            let values = self.evaluate_new_stopping(&new, cutoff)?;
-            self.record_valued(genomes.len(), &new, &values, ledger);
-        } else {
-            let values = self.evaluate_new(&new)?;
-            self.record_new(genomes.len(), &new, &values, ledger);
-        }
+        let values = self.evaluate_new_stopping(&new, cutoff)?;
+        self.record_valued(genomes.len(), &new, &values, ledger);
         self.settle(carried, genomes, ledger)
     }
 
@@ -798,12 +787,15 @@ impl BreederGa {
         if !self.settings.stop_early {
             return f64::INFINITY;
         }
-        let keep = truncation_pool(self.settings.population, self.settings.truncation)
+        let keep = self.deciding(state.population.len());
+        largest_of_best(&state.population, keep) * (1.0 + STOP_EARLY_MARGIN)
+    }
+
+    /// How many of `n` individuals decide a generation's choices: max(⌈Tμ⌉, elites), at most n.
+    fn deciding(&self, n: usize) -> usize {
+        truncation_pool(self.settings.population, self.settings.truncation)
             .max(self.settings.elites)
-            .min(state.population.len());
-        let mut highs: Vec<f64> = state.population.iter().map(Individual::high).collect();
-        highs.sort_by(f64::total_cmp);
-        highs[keep - 1] * (1.0 + STOP_EARLY_MARGIN)
+            .min(n)
     }
 
     fn stats(&self, state: &GaState) -> GenerationStats {
@@ -1039,13 +1031,19 @@ fn sort(population: &mut [Individual]) {
     population.sort_by(order);
 }
 
+/// The largest value the best `keep` of `all` can have: the keep-th smallest upper end of their
+/// intervals.
+fn largest_of_best(all: &[Individual], keep: usize) -> f64 {
+    let mut highs: Vec<f64> = all.iter().map(Individual::high).collect();
+    highs.sort_by(f64::total_cmp);
+    highs[keep - 1]
+}
+
 /// The individuals whose screened values must be confirmed at the run's settings (see
 /// [`BreederGa::settle`]): those that could rank among the best `keep` and whose interval meets
 /// another design's, and those that rank among the `elites`; distinct, sorted.
 fn contested(all: &[Individual], keep: usize, elites: usize) -> Vec<Genome> {
-    let mut highs: Vec<f64> = all.iter().map(Individual::high).collect();
-    highs.sort_by(f64::total_cmp);
-    let threshold = highs[keep - 1];
+    let threshold = largest_of_best(all, keep);
     let low = Individual::low;
     let high = Individual::high;
     let mut ranked: Vec<&Individual> = all.iter().collect();
