@@ -304,38 +304,28 @@ fn evaluate(
                 .par_iter()
                 .map(|t| Scenario::parse(t).and_then(|s| resolve(&s, &base_dir)))
                 .collect();
-            let lanes = woodpile::LaneWidth::detect();
-            let batch = resolved
-                .len()
-                .div_ceil(4 * rayon::current_num_threads().max(1))
-                .max(lanes.lanes());
+            // One call: the lanes of every thread share one queue of runs.
+            let jobs: Vec<woodpile::Job<'_>> = resolved
+                .iter()
+                .filter_map(|r| r.as_ref().ok())
+                .map(|r| woodpile::Job {
+                    chain: &r.chain,
+                    excitation: &r.excitation,
+                    settings: &r.settings,
+                })
+                .collect();
+            let mut runs =
+                woodpile::simulate_many(&jobs, woodpile::LaneWidth::detect()).into_iter();
             resolved
-                .par_chunks(batch)
-                .flat_map_iter(|chunk| {
-                    let jobs: Vec<woodpile::Job<'_>> = chunk
-                        .iter()
-                        .filter_map(|r| r.as_ref().ok())
-                        .map(|r| woodpile::Job {
-                            chain: &r.chain,
-                            excitation: &r.excitation,
-                            settings: &r.settings,
-                        })
-                        .collect();
-                    let mut runs = woodpile::simulate_many(&jobs, lanes).into_iter();
-                    chunk
-                        .iter()
-                        .map(|r| match r {
-                            Err(e) => format!("error: {e}"),
-                            Ok(_) => match runs.next().expect("one result per job") {
-                                Ok(summary) => {
-                                    serde_json::to_string(&summary).unwrap_or_else(|e| {
-                                        format!("error: cannot serialise the summary: {e}")
-                                    })
-                                }
-                                Err(e) => format!("error: {}", woodpile_io::Error::from(e)),
-                            },
-                        })
-                        .collect::<Vec<String>>()
+                .iter()
+                .map(|r| match r {
+                    Err(e) => format!("error: {e}"),
+                    Ok(_) => match runs.next().expect("one result per job") {
+                        Ok(summary) => serde_json::to_string(&summary).unwrap_or_else(|e| {
+                            format!("error: cannot serialise the summary: {e}")
+                        }),
+                        Err(e) => format!("error: {}", woodpile_io::Error::from(e)),
+                    },
                 })
                 .collect()
         }))

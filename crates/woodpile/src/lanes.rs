@@ -9,7 +9,9 @@
 //! (LLVM vectorised the loops over state components with gathers; bench/README.md).
 //!
 //! Each lane keeps its own time, step size and step-size controller, so lanes never wait for
-//! each other: a lane whose run has ended takes the next run of the queue. Runs of one lane group
+//! each other: a lane whose run has ended takes the next run of the queue. The work spreads over
+//! the threads of the current rayon pool: each thread advances its own lanes, and all of them
+//! take runs from one queue per group, so lanes idle only while the last runs finish. Runs of one lane group
 //! share the number of bodies and the kind of load; chains whose cells carry different numbers
 //! of resonators are padded with massless-in-effect resonators (k = 0: they exert exactly zero
 //! force) and the error norm skips the padding.
@@ -30,6 +32,9 @@
 #![allow(clippy::needless_range_loop)]
 
 use std::collections::BTreeMap;
+use std::sync::Mutex;
+
+use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
@@ -109,8 +114,9 @@ pub struct Job<'a> {
 }
 
 /// Runs every job, in lanes where it can (see the module documentation) and on [`simulate`](crate::simulate())
-/// otherwise, with no recorder. The results are in the order of `jobs` and equal, bit for bit
-/// except `wall_time_s`, to `simulate(chain, excitation, settings, &mut ())` of each job.
+/// otherwise, with no recorder, on the threads of the current rayon pool (the global one, or
+/// the pool whose `install` calls it). The results are in the order of `jobs` and equal, bit
+/// for bit except `wall_time_s`, to `simulate(chain, excitation, settings, &mut ())` of each job.
 pub fn simulate_many(jobs: &[Job<'_>], width: LaneWidth) -> Vec<Result<RunSummary>> {
     simulate_many_watching(jobs, width, PeakWatch::Every)
 }
@@ -138,34 +144,54 @@ pub fn simulate_many_stopping(
     peak_watch: PeakWatch,
     stop_above_n: f64,
 ) -> Vec<Result<RunSummary>> {
+    let ready: Vec<Result<Option<(GroupKey, ChainOde)>>> =
+        jobs.par_iter().map(lane_ready).collect();
     let mut results: Vec<Option<Result<RunSummary>>> = (0..jobs.len()).map(|_| None).collect();
+    let mut scalar = Vec::new();
     let mut groups: BTreeMap<GroupKey, Vec<(usize, ChainOde)>> = BTreeMap::new();
-    for (index, job) in jobs.iter().enumerate() {
-        match lane_ready(job) {
+    for (index, ready) in ready.into_iter().enumerate() {
+        match ready {
             Ok(Some((key, ode))) => groups.entry(key).or_default().push((index, ode)),
-            Ok(None) => {
-                results[index] = Some(simulate_watching(
-                    job.chain,
-                    job.excitation,
-                    job.settings,
-                    &mut (),
-                    peak_watch,
-                    stop_above_n,
-                ))
-            }
+            Ok(None) => scalar.push(index),
             Err(e) => results[index] = Some(Err(e)),
         }
     }
-    for (key, members) in groups {
-        let done = match width {
-            LaneWidth::One => run_group::<1>(jobs, &key, members, peak_watch, stop_above_n),
-            LaneWidth::Two => run_group::<2>(jobs, &key, members, peak_watch, stop_above_n),
-            LaneWidth::Four => run_group::<4>(jobs, &key, members, peak_watch, stop_above_n),
-            LaneWidth::Eight => run_group::<8>(jobs, &key, members, peak_watch, stop_above_n),
-        };
-        for (index, result) in done {
-            results[index] = Some(result);
-        }
+    let threads = rayon::current_num_threads().max(1);
+    let groups: Vec<Group> = groups
+        .into_iter()
+        .map(|(key, members)| Group::new(key, members, width, threads))
+        .collect();
+    let tasks: Vec<Task<'_>> = scalar
+        .into_iter()
+        .map(Task::Scalar)
+        .chain(
+            groups
+                .iter()
+                .flat_map(|g| std::iter::repeat_n(Task::Lanes(g), g.workers)),
+        )
+        .collect();
+    let done: Vec<(usize, Result<RunSummary>)> = tasks
+        .into_par_iter()
+        .flat_map_iter(|task| match task {
+            Task::Scalar(index) => {
+                let job = jobs[index];
+                vec![(
+                    index,
+                    simulate_watching(
+                        job.chain,
+                        job.excitation,
+                        job.settings,
+                        &mut (),
+                        peak_watch,
+                        stop_above_n,
+                    ),
+                )]
+            }
+            Task::Lanes(group) => group.run_worker(jobs, peak_watch, stop_above_n),
+        })
+        .collect();
+    for (index, result) in done {
+        results[index] = Some(result);
     }
     results
         .into_iter()
@@ -207,12 +233,95 @@ fn lane_ready(job: &Job<'_>) -> Result<Option<(GroupKey, ChainOde)>> {
     Ok(Some((key, ode)))
 }
 
-/// Runs one group, choosing the instruction set at run time.
+/// A unit of [`simulate_many_stopping`]'s parallel work: a run for the scalar path, or one
+/// worker's lanes of a group.
+#[derive(Clone, Copy)]
+enum Task<'g> {
+    Scalar(usize),
+    Lanes(&'g Group),
+}
+
+/// The runs of one group key, waiting in one queue for the lanes of its workers.
+///
+/// Each worker (one per thread) advances its own lanes and refills a lane from the shared queue
+/// as soon as the lane's run ends, so lanes idle only while the last runs finish. A group with
+/// at most half as many runs per worker as lanes runs one lane wide: a lane group costs the
+/// same per step however many of its lanes are busy, and on the development machine a step of
+/// four lanes costs 2.7 times a step of one (bench/README.md).
+struct Group {
+    key: GroupKey,
+    /// The job whose method gives the tableau (every run of a group has the same method kind).
+    first_job: usize,
+    /// The most resonators any run of the group has on each primary: the lanes' slots.
+    slots_per_element: Vec<usize>,
+    width: LaneWidth,
+    workers: usize,
+    queue: Mutex<std::vec::IntoIter<(usize, ChainOde)>>,
+}
+
+impl Group {
+    fn new(
+        key: GroupKey,
+        members: Vec<(usize, ChainOde)>,
+        width: LaneWidth,
+        threads: usize,
+    ) -> Self {
+        let p = key.n_primary;
+        let mut slots_per_element = vec![0usize; p];
+        for (_, ode) in &members {
+            let mut count = vec![0usize; p];
+            for &o in &ode.res_owner {
+                count[o] += 1;
+            }
+            for (s, c) in slots_per_element.iter_mut().zip(count) {
+                *s = (*s).max(c);
+            }
+        }
+        let runs = members.len();
+        let per_worker = runs.div_ceil(threads.min(runs).max(1));
+        let width = if 2 * per_worker <= width.lanes() {
+            LaneWidth::One
+        } else {
+            width
+        };
+        Group {
+            key,
+            first_job: members[0].0,
+            slots_per_element,
+            width,
+            workers: threads.min(runs.div_ceil(width.lanes())).max(1),
+            queue: Mutex::new(members.into_iter()),
+        }
+    }
+
+    /// The next run waiting for a lane, if any.
+    fn next_run(&self) -> Option<(usize, ChainOde)> {
+        // A worker that panicked left the queue intact: its lock is still good to take.
+        let mut queue = self.queue.lock().unwrap_or_else(|e| e.into_inner());
+        queue.next()
+    }
+
+    /// One worker: its lanes take runs from the queue until it is empty and every lane is done.
+    fn run_worker(
+        &self,
+        jobs: &[Job<'_>],
+        peak_watch: PeakWatch,
+        stop_above_n: f64,
+    ) -> Vec<(usize, Result<RunSummary>)> {
+        match self.width {
+            LaneWidth::One => run_lanes::<1>(jobs, self, peak_watch, stop_above_n),
+            LaneWidth::Two => run_lanes::<2>(jobs, self, peak_watch, stop_above_n),
+            LaneWidth::Four => run_lanes::<4>(jobs, self, peak_watch, stop_above_n),
+            LaneWidth::Eight => run_lanes::<8>(jobs, self, peak_watch, stop_above_n),
+        }
+    }
+}
+
+/// One worker's lanes of a group, choosing the instruction set at run time.
 #[allow(unsafe_code)]
-fn run_group<const L: usize>(
+fn run_lanes<const L: usize>(
     jobs: &[Job<'_>],
-    key: &GroupKey,
-    members: Vec<(usize, ChainOde)>,
+    group: &Group,
     peak_watch: PeakWatch,
     stop_above_n: f64,
 ) -> Vec<(usize, Result<RunSummary>)> {
@@ -220,24 +329,23 @@ fn run_group<const L: usize>(
     {
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU supports AVX2 (checked on the line above).
-            return unsafe { run_group_avx2::<L>(jobs, key, members, peak_watch, stop_above_n) };
+            return unsafe { run_lanes_avx2::<L>(jobs, group, peak_watch, stop_above_n) };
         }
     }
-    Lanes::<L>::new(jobs, key, members, peak_watch, stop_above_n).run()
+    Lanes::<L>::new(jobs, group, peak_watch, stop_above_n).run()
 }
 
-/// [`run_group`] compiled for AVX2 (no FMA: the results stay those of the portable build).
+/// [`run_lanes`] compiled for AVX2 (no FMA: the results stay those of the portable build).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[allow(unsafe_code)]
-unsafe fn run_group_avx2<const L: usize>(
+unsafe fn run_lanes_avx2<const L: usize>(
     jobs: &[Job<'_>],
-    key: &GroupKey,
-    members: Vec<(usize, ChainOde)>,
+    group: &Group,
     peak_watch: PeakWatch,
     stop_above_n: f64,
 ) -> Vec<(usize, Result<RunSummary>)> {
-    Lanes::<L>::new(jobs, key, members, peak_watch, stop_above_n).run()
+    Lanes::<L>::new(jobs, group, peak_watch, stop_above_n).run()
 }
 
 /// One value per lane, with IEEE arithmetic lane by lane. Operations take and return values, so
@@ -393,6 +501,8 @@ struct Lanes<'a, const L: usize> {
     /// most resonators any run of the group has on it).
     slot_start: Vec<usize>,
     res_owner: Vec<usize>,
+    /// The number of slots of every primary, when they all have the same.
+    slots_each: Option<usize>,
     inv_mass: Vec<Lane<L>>,
     beta: Vec<Lane<L>>,
     res_omega2: Vec<Lane<L>>,
@@ -408,30 +518,22 @@ struct Lanes<'a, const L: usize> {
     /// Overlap limit per slot (infinite where there is none, and in empty lanes).
     limit: Vec<Lane<L>>,
     runs: Vec<Option<LaneRun<'a>>>,
-    queue: std::vec::IntoIter<(usize, ChainOde)>,
+    group: &'a Group,
+    /// Whether the group's queue was found empty (lanes then stop asking).
+    drained: bool,
     done: Vec<(usize, Result<RunSummary>)>,
 }
 
 impl<'a, const L: usize> Lanes<'a, L> {
     fn new(
         jobs: &'a [Job<'a>],
-        key: &GroupKey,
-        members: Vec<(usize, ChainOde)>,
+        group: &'a Group,
         peak_watch: PeakWatch,
         stop_above_n: f64,
     ) -> Self {
+        let key = &group.key;
         let p = key.n_primary;
-        // The most resonators any run of the group has on each primary.
-        let mut slots_per_element = vec![0usize; p];
-        for (_, ode) in &members {
-            let mut count = vec![0usize; p];
-            for &o in &ode.res_owner {
-                count[o] += 1;
-            }
-            for (s, c) in slots_per_element.iter_mut().zip(count) {
-                *s = (*s).max(c);
-            }
-        }
+        let slots_per_element = &group.slots_per_element;
         let res_owner: Vec<usize> = slots_per_element
             .iter()
             .enumerate()
@@ -451,7 +553,11 @@ impl<'a, const L: usize> Lanes<'a, L> {
         let tableau = if key.nystrom {
             Tableau::rkn64()
         } else {
-            jobs[members[0].0].settings.method.resolve(false).tableau()
+            jobs[group.first_job]
+                .settings
+                .method
+                .resolve(false)
+                .tableau()
         };
         let zeros = |n: usize| vec![Lane::<L>::ZERO; n];
         Lanes {
@@ -471,6 +577,10 @@ impl<'a, const L: usize> Lanes<'a, L> {
             blast: key.blast,
             slot_start,
             res_owner,
+            slots_each: slots_per_element
+                .first()
+                .copied()
+                .filter(|&k| slots_per_element.iter().all(|&n| n == k)),
             inv_mass: vec![Lane::splat(1.0); p],
             beta: zeros(p + 1),
             res_omega2: zeros(r),
@@ -484,7 +594,8 @@ impl<'a, const L: usize> Lanes<'a, L> {
             overlap: zeros(p + 1),
             limit: vec![Lane::splat(f64::INFINITY); p + 1],
             runs: (0..L).map(|_| None).collect(),
-            queue: members.into_iter(),
+            group,
+            drained: false,
             done: Vec::new(),
         }
     }
@@ -506,7 +617,11 @@ impl<'a, const L: usize> Lanes<'a, L> {
 
     /// Starts the next queued run in lane l, as [`simulate`](crate::simulate()) starts it.
     fn fill(&mut self, l: usize) {
-        let Some((job, mut ode)) = self.queue.next() else {
+        if self.drained {
+            return;
+        }
+        let Some((job, mut ode)) = self.group.next_run() else {
+            self.drained = true;
             return;
         };
         let jobs = self.jobs;
@@ -1061,11 +1176,31 @@ impl<'a, const L: usize> Lanes<'a, L> {
         let r = self.res_owner.len();
         let xr = &x[p..p + r];
         let (dvp, dvr) = dv.split_at_mut(p);
-        for j in 0..r {
-            let o = self.res_owner[j];
-            let ext = xr[j] - x[o];
-            dvr[j] = -self.res_omega2[j] * ext;
-            dvp[o] = dvp[o] + self.res_coupling[j] * ext;
+        let (omega2, coupling) = (&self.res_omega2[..r], &self.res_coupling[..r]);
+        if let Some(k) = self.slots_each.filter(|&k| k > 0) {
+            // Every primary has k slots: its pulls summed in a register, in slot order (the
+            // order of the loop below), with no index to look up or check.
+            for ((xo, dvo), (((xs, accel), w2s), cpls)) in x[..p].iter().zip(dvp.iter_mut()).zip(
+                xr.chunks_exact(k)
+                    .zip(dvr.chunks_exact_mut(k))
+                    .zip(omega2.chunks_exact(k))
+                    .zip(coupling.chunks_exact(k)),
+            ) {
+                let mut pull = *dvo;
+                for (((&xj, a), &w2), &cpl) in xs.iter().zip(accel).zip(w2s).zip(cpls) {
+                    let ext = xj - *xo;
+                    *a = -w2 * ext;
+                    pull = pull + cpl * ext;
+                }
+                *dvo = pull;
+            }
+        } else {
+            for j in 0..r {
+                let o = self.res_owner[j];
+                let ext = xr[j] - x[o];
+                dvr[j] = -omega2[j] * ext;
+                dvp[o] = dvp[o] + coupling[j] * ext;
+            }
         }
         if self.blast {
             rest[nd] = force[0] * v[0];

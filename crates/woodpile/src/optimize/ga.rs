@@ -472,7 +472,7 @@ impl BreederGa {
 
     /// Simulates one design at the run's settings (no cache).
     pub fn evaluate(&self, genome: &[u8]) -> Result<f64, OptimizeError> {
-        self.evaluate_batch(&[genome], &self.space.settings, f64::INFINITY)
+        self.evaluate_designs_stopping(&[genome], &self.space.settings, f64::INFINITY)
             .pop()
             .expect("one value per design")
             .map(Valued::value_or_bound)
@@ -488,10 +488,13 @@ impl BreederGa {
     ) -> Vec<Result<Valued, OptimizeError>> {
         let design = |genome: &[u8]| self.space.labels(genome).join(" ");
         // The designs that build go to the objective together; the others keep their error.
+        let chains: Vec<crate::Result<Chain>> =
+            genomes.par_iter().map(|g| self.space.chain(g)).collect();
         let mut built: Vec<Chain> = Vec::with_capacity(genomes.len());
-        let unbuilt: Vec<Option<OptimizeError>> = genomes
-            .iter()
-            .map(|g| match self.space.chain(g) {
+        let unbuilt: Vec<Option<OptimizeError>> = chains
+            .into_iter()
+            .zip(genomes)
+            .map(|(chain, g)| match chain {
                 Ok(chain) => {
                     built.push(chain);
                     None
@@ -570,18 +573,10 @@ impl BreederGa {
         settings: &RunSettings,
         stop_above_n: f64,
     ) -> Vec<Result<Valued, OptimizeError>> {
-        // Several batches per thread keep every thread busy; each batch fills its lanes.
-        let threads = self.pool.current_num_threads().max(1);
-        let batch = genomes.len().div_ceil(4 * threads).max(self.lanes.lanes());
-        self.pool.install(|| {
-            genomes
-                .par_chunks(batch)
-                .flat_map_iter(|chunk| {
-                    let genomes: Vec<&[u8]> = chunk.iter().map(|g| g.as_ref()).collect();
-                    self.evaluate_batch(&genomes, settings, stop_above_n)
-                })
-                .collect()
-        })
+        // One batch: the lanes share one queue of runs per group over every thread.
+        let genomes: Vec<&[u8]> = genomes.iter().map(|g| g.as_ref()).collect();
+        self.pool
+            .install(|| self.evaluate_batch(&genomes, settings, stop_above_n))
     }
 
     /// Whether new designs are screened first (`ga.screen_peak_tolerance`).

@@ -5,6 +5,8 @@
 //! whose transmitted peak, a running maximum, already exceeds what could matter to it
 //! ([`Objective::evaluate_many_stopping`]): its value is then only known to be larger.
 
+use rayon::prelude::*;
+
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::lanes::{simulate_many_stopping, Job, LaneWidth};
@@ -29,9 +31,10 @@ pub trait Objective: Send + Sync {
         settings: &RunSettings,
     ) -> Result<f64>;
 
-    /// Values for many chains under one excitation, in order. The default evaluates them one
-    /// by one; the standard force objectives advance them together in SIMD lanes `lanes` wide
-    /// ([`crate::lanes`]), with the same values bit for bit.
+    /// Values for many chains under one excitation, in order, on the threads of the current
+    /// rayon pool. The default evaluates them one by one; the standard force objectives advance
+    /// them together in SIMD lanes `lanes` wide ([`crate::lanes`]), with the same values bit
+    /// for bit.
     fn evaluate_many(
         &self,
         chains: &[Chain],
@@ -108,7 +111,7 @@ impl Valued {
     }
 }
 
-/// [`Objective::evaluate`] of each chain, in order.
+/// [`Objective::evaluate`] of each chain, in order, in parallel on the current rayon pool.
 fn one_by_one(
     objective: &(impl Objective + ?Sized),
     chains: &[Chain],
@@ -116,7 +119,7 @@ fn one_by_one(
     settings: &RunSettings,
 ) -> Vec<Result<f64>> {
     chains
-        .iter()
+        .par_iter()
         .map(|c| objective.evaluate(c, excitation, settings))
         .collect()
 }
