@@ -501,8 +501,6 @@ struct Lanes<'a, const L: usize> {
     /// most resonators any run of the group has on it).
     slot_start: Vec<usize>,
     res_owner: Vec<usize>,
-    /// The number of slots of every primary, when they all have the same.
-    slots_each: Option<usize>,
     inv_mass: Vec<Lane<L>>,
     beta: Vec<Lane<L>>,
     res_omega2: Vec<Lane<L>>,
@@ -577,10 +575,6 @@ impl<'a, const L: usize> Lanes<'a, L> {
             blast: key.blast,
             slot_start,
             res_owner,
-            slots_each: slots_per_element
-                .first()
-                .copied()
-                .filter(|&k| slots_per_element.iter().all(|&n| n == k)),
             inv_mass: vec![Lane::splat(1.0); p],
             beta: zeros(p + 1),
             res_omega2: zeros(r),
@@ -1177,30 +1171,11 @@ impl<'a, const L: usize> Lanes<'a, L> {
         let xr = &x[p..p + r];
         let (dvp, dvr) = dv.split_at_mut(p);
         let (omega2, coupling) = (&self.res_omega2[..r], &self.res_coupling[..r]);
-        if let Some(k) = self.slots_each.filter(|&k| k > 0) {
-            // Every primary has k slots: its pulls summed in a register, in slot order (the
-            // order of the loop below), with no index to look up or check.
-            for ((xo, dvo), (((xs, accel), w2s), cpls)) in x[..p].iter().zip(dvp.iter_mut()).zip(
-                xr.chunks_exact(k)
-                    .zip(dvr.chunks_exact_mut(k))
-                    .zip(omega2.chunks_exact(k))
-                    .zip(coupling.chunks_exact(k)),
-            ) {
-                let mut pull = *dvo;
-                for (((&xj, a), &w2), &cpl) in xs.iter().zip(accel).zip(w2s).zip(cpls) {
-                    let ext = xj - *xo;
-                    *a = -w2 * ext;
-                    pull = pull + cpl * ext;
-                }
-                *dvo = pull;
-            }
-        } else {
-            for j in 0..r {
-                let o = self.res_owner[j];
-                let ext = xr[j] - x[o];
-                dvr[j] = -omega2[j] * ext;
-                dvp[o] = dvp[o] + coupling[j] * ext;
-            }
+        for j in 0..r {
+            let o = self.res_owner[j];
+            let ext = xr[j] - x[o];
+            dvr[j] = -omega2[j] * ext;
+            dvp[o] = dvp[o] + coupling[j] * ext;
         }
         if self.blast {
             rest[nd] = force[0] * v[0];

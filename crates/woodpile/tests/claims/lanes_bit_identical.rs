@@ -4,9 +4,11 @@
 //! resonators per cell, so lanes carry padding; 3, 8 and 20 rods, so runs fall into several
 //! groups; resonant and rigid), under the paper's impact and blast, with Dormand–Prince (with
 //! and without event-aware stepping, which must land on the same steps in the lanes), RKN 6(4)
-//! (impact), a stated peak tolerance and RK4, at every lane width. Tolerance: none. The lanes perform the scalar path's operations in
+//! (impact), a stated peak tolerance and RK4, at every lane width, on one thread and on three
+//! (each group's nine runs then shared by three threads' lanes through one queue, and at width
+//! eight run one lane wide). Tolerance: none. The lanes perform the scalar path's operations in
 //! its order, so anything but equality is a bug (and would make GA results depend on the lane
-//! width and the grouping of designs).
+//! width, the thread count and the grouping of designs).
 
 use crate::lanes_common::{alone, jobs, peaks_only, random_chains};
 use woodpile::{simulate_many, BlastProfile, Excitation, LaneWidth, Method, RunSummary, Striker};
@@ -34,16 +36,22 @@ fn check(excitation: &Excitation, method: Method, duration_s: f64) {
     let settings = peaks_only(method, duration_s);
     let alone = alone(&chains, excitation, &settings);
     let jobs = jobs(&chains, excitation, &settings);
-    for width in LaneWidth::ALL {
-        let together = simulate_many(&jobs, width);
-        for (i, (t, a)) in together.iter().zip(&alone).enumerate() {
-            let t = t.as_ref().unwrap();
-            assert!(
-                same(t, a),
-                "chain {i}, {width:?}: lanes {:?} vs alone {:?}",
-                t.contact_peak_forces_n,
-                a.contact_peak_forces_n
-            );
+    for threads in [1, 3] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        for width in LaneWidth::ALL {
+            let together = pool.install(|| simulate_many(&jobs, width));
+            for (i, (t, a)) in together.iter().zip(&alone).enumerate() {
+                let t = t.as_ref().unwrap();
+                assert!(
+                    same(t, a),
+                    "chain {i}, {width:?}, {threads} threads: lanes {:?} vs alone {:?}",
+                    t.contact_peak_forces_n,
+                    a.contact_peak_forces_n
+                );
+            }
         }
     }
 }
