@@ -247,7 +247,7 @@ enum Task<'g> {
 /// as soon as the lane's run ends, so lanes idle only while the last runs finish. A group with
 /// at most half as many runs per worker as lanes runs one lane wide: a lane group costs the
 /// same per step however many of its lanes are busy, and on the development machine a step of
-/// four lanes costs 2.7 times a step of one (bench/README.md).
+/// four lanes costs about three times a step of one (bench/README.md).
 struct Group {
     key: GroupKey,
     /// The job whose method gives the tableau (every run of a group has the same method kind).
