@@ -173,20 +173,10 @@ pub fn simulate_many_stopping(
     let done: Vec<(usize, Result<RunSummary>)> = tasks
         .into_par_iter()
         .flat_map_iter(|task| match task {
-            Task::Scalar(index) => {
-                let job = jobs[index];
-                vec![(
-                    index,
-                    simulate_watching(
-                        job.chain,
-                        job.excitation,
-                        job.settings,
-                        &mut (),
-                        peak_watch,
-                        stop_above_n,
-                    ),
-                )]
-            }
+            Task::Scalar(index) => vec![(
+                index,
+                on_scalar_path(&jobs[index], peak_watch, stop_above_n),
+            )],
             Task::Lanes(group) => group.run_worker(jobs, peak_watch, stop_above_n),
         })
         .collect();
@@ -197,6 +187,18 @@ pub fn simulate_many_stopping(
         .into_iter()
         .map(|r| r.expect("every job has a result"))
         .collect()
+}
+
+/// A job run by [`simulate`](crate::simulate()) itself, watching and stopping as the lanes do.
+fn on_scalar_path(job: &Job<'_>, peak_watch: PeakWatch, stop_above_n: f64) -> Result<RunSummary> {
+    simulate_watching(
+        job.chain,
+        job.excitation,
+        job.settings,
+        &mut (),
+        peak_watch,
+        stop_above_n,
+    )
 }
 
 /// What the runs of one lane group share.
@@ -1056,18 +1058,8 @@ impl<'a, const L: usize> Lanes<'a, L> {
     /// Gives lane l's run to the scalar path (which reproduces and diagnoses its failure).
     fn rerun(&mut self, l: usize) {
         let run = self.vacate(l);
-        let job = self.jobs[run.job];
-        self.done.push((
-            run.job,
-            simulate_watching(
-                job.chain,
-                job.excitation,
-                job.settings,
-                &mut (),
-                self.peak_watch,
-                self.stop_above_n,
-            ),
-        ));
+        let result = on_scalar_path(&self.jobs[run.job], self.peak_watch, self.stop_above_n);
+        self.done.push((run.job, result));
     }
 
     /// The load on the top element of every lane at times t (zero for an impact or an empty lane).
