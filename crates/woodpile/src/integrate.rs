@@ -263,10 +263,6 @@ const PEAK_SAFETY_FACTOR: f64 = 3.0;
 /// resonant and rigid, at three striker speeds, and 0.56 rtol^0.75 on the figures of merit of 194
 /// impact runs of the paper's GA designs, rtol 1e-5 … 3e-11).
 const NYSTROM_PEAK_ERROR_PREFACTOR: f64 = 1.5;
-/// Envelope prefactor of [`Method::Rkn64`] on the figures of merit alone (the incident and the
-/// transmitted peak), e ≤ NYSTROM_FIGURES_OF_MERIT_PREFACTOR · rtol^0.75 (docs/physics.md §8;
-/// measured at most 0.68 over 194 impact runs): the rule of runs that report only those peaks.
-const NYSTROM_FIGURES_OF_MERIT_PREFACTOR: f64 = 0.8;
 /// A crossing [`Method::Rkn64`] lands on may lie up to this fraction of the step (its error
 /// estimate does not see the last stage, so a kink late in a step goes unnoticed; bench/README.md).
 pub(crate) const NYSTROM_LANDING_END: f64 = 0.999;
@@ -350,40 +346,22 @@ impl Method {
     /// [`Method::Dopri5Events`] otherwise, at the rtol of their calibrated envelopes (atol =
     /// rtol · 1e-6); the other methods stay as they are.
     pub fn resolve(self, second_order: bool) -> Self {
-        self.resolve_for(second_order, false)
-    }
-
-    /// [`Method::resolve`] for a run that reports, with `figures_of_merit_only`, no contact peaks
-    /// but the figures of merit (the incident and the transmitted peak;
-    /// [`crate::PeakWatch::FiguresOfMerit`], a design study's runs): the stated tolerance then
-    /// bounds those two, and for [`Method::Rkn64`] their envelope (0.8 rtol^0.75 against 1.5 for
-    /// every contact, docs/physics.md §8) allows an rtol 2.3× looser. Event-aware DOPRI5 keeps
-    /// its rule (its figures of merit were measured nearly as far off as its worst contact).
-    pub fn resolve_for(self, second_order: bool, figures_of_merit_only: bool) -> Self {
         let Method::PeakTolerance { peak_tolerance } = self else {
             return self;
         };
-        let prefactor = match (second_order, figures_of_merit_only) {
-            (true, true) => NYSTROM_FIGURES_OF_MERIT_PREFACTOR,
-            (true, false) => NYSTROM_PEAK_ERROR_PREFACTOR,
-            (false, _) => PEAK_ERROR_PREFACTOR,
+        let prefactor = if second_order {
+            NYSTROM_PEAK_ERROR_PREFACTOR
+        } else {
+            PEAK_ERROR_PREFACTOR
         };
         // Calibrated (examples/peak_tolerance.rs, docs/physics.md §8): the worst error of any
         // contact peak stays below prefactor · rtol^0.75 from rtol 1e-5 to 3e-11 (it falls slower
         // than rtol: a step landing near a contact's opening or closing still meets its kink; an
         // error test on the overlaps did not change that, bench/README.md). rtol is chosen so
         // that this envelope is PEAK_SAFETY_FACTOR times below the tolerance.
-        let rule = |prefactor: f64| {
-            (peak_tolerance / (PEAK_SAFETY_FACTOR * prefactor))
-                .powf(1.0 / PEAK_ERROR_EXPONENT)
-                .max(1e-13)
-        };
-        let mut rtol = rule(prefactor);
-        if prefactor == NYSTROM_FIGURES_OF_MERIT_PREFACTOR {
-            // Not beyond the calibrated range (rtol ≤ 1e-5), nor tighter than the rule for
-            // every contact.
-            rtol = rtol.min(rule(NYSTROM_PEAK_ERROR_PREFACTOR).max(1e-5));
-        }
+        let rtol = (peak_tolerance / (PEAK_SAFETY_FACTOR * prefactor))
+            .powf(1.0 / PEAK_ERROR_EXPONENT)
+            .max(1e-13);
         let atol = rtol * 1e-6;
         if second_order {
             Method::Rkn64 { rtol, atol }

@@ -124,8 +124,7 @@ pub fn simulate_many(jobs: &[Job<'_>], width: LaneWidth) -> Vec<Result<RunSummar
 /// [`simulate_many`], tracking over every step only the contact peaks that `peak_watch` names
 /// (the force objectives of a design study need two of them: [`PeakWatch::FiguresOfMerit`]).
 /// Each result equals, bit for bit except `wall_time_s`, what [`simulate`](crate::simulate()) gives the job, except
-/// the peaks not tracked, which are NaN, and, for a stated peak tolerance, the method: it bounds
-/// only the tracked peaks and may resolve to a looser rtol ([`PeakWatch::FiguresOfMerit`]).
+/// the peaks not tracked, which are NaN.
 pub fn simulate_many_watching(
     jobs: &[Job<'_>],
     width: LaneWidth,
@@ -145,10 +144,8 @@ pub fn simulate_many_stopping(
     peak_watch: PeakWatch,
     stop_above_n: f64,
 ) -> Vec<Result<RunSummary>> {
-    let ready: Vec<Result<Option<(GroupKey, ChainOde)>>> = jobs
-        .par_iter()
-        .map(|job| lane_ready(job, peak_watch))
-        .collect();
+    let ready: Vec<Result<Option<(GroupKey, ChainOde)>>> =
+        jobs.par_iter().map(lane_ready).collect();
     let mut results: Vec<Option<Result<RunSummary>>> = (0..jobs.len()).map(|_| None).collect();
     let mut scalar = Vec::new();
     let mut groups: BTreeMap<GroupKey, Vec<(usize, ChainOde)>> = BTreeMap::new();
@@ -219,14 +216,14 @@ struct GroupKey {
 
 /// Checks a job as [`simulate`](crate::simulate()) does (same errors, same order) and compiles it; `None` when it
 /// is not for the lanes.
-fn lane_ready(job: &Job<'_>, peak_watch: PeakWatch) -> Result<Option<(GroupKey, ChainOde)>> {
+fn lane_ready(job: &Job<'_>) -> Result<Option<(GroupKey, ChainOde)>> {
     job.settings.validate()?;
     let ode = ChainOde::new(job.chain, job.excitation)?;
     check_method_fits(&ode, job.settings.method)?;
     if ode.has_lab_physics() || job.settings.sample_interval_s != job.settings.duration_s {
         return Ok(None);
     }
-    let method = peak_watch.method(job.settings.method, &ode);
+    let method = job.settings.method.resolve(ode.second_order().is_some());
     let key = GroupKey {
         n_primary: ode.n_primary,
         shift: ode.shift,
@@ -630,11 +627,10 @@ impl<'a, const L: usize> Lanes<'a, L> {
             ..
         } = jobs[job];
         let started = std::time::Instant::now();
-        let method = self.peak_watch.method(settings.method, &ode);
         let y0 = ode.initial_state();
         let units = ode.tolerance_units();
         let integrator = Integrator::new(
-            method,
+            settings.method,
             &mut ode,
             0.0,
             y0,
@@ -651,7 +647,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
             self.peak_watch,
         )
         .stop_above(self.stop_above_n);
-        let (h, err_prev, rtol, atol) = match method {
+        let (h, err_prev, rtol, atol) = match settings.method.resolve(self.nystrom) {
             Method::Dopri5 { rtol, atol }
             | Method::Dopri5Events { rtol, atol }
             | Method::Rkn64 { rtol, atol } => {

@@ -301,23 +301,12 @@ pub enum PeakWatch {
     /// Only the contacts of the figures of merit, the incident (contact 1) and the transmitted
     /// (contact N) peak: a design study's objectives, for a fraction of the per-step work. Those
     /// two peaks, the ratio, `wave_arrived`, the restitution and the energy balance are bit for bit
-    /// those of [`PeakWatch::Every`] with the same concrete method; the other entries of
-    /// `contact_peak_forces_n` and `contact_peak_times_s` are NaN (not tracked). A stated
-    /// [`Method::PeakTolerance`] then bounds only the two peaks reported, and for an impact
-    /// resolves to a looser rtol ([`Method::resolve_for`], docs/physics.md §8).
+    /// those of [`PeakWatch::Every`]; the other entries of `contact_peak_forces_n` and
+    /// `contact_peak_times_s` are NaN (not tracked).
     FiguresOfMerit,
 }
 
 impl PeakWatch {
-    /// The method a run watching these peaks steps with: `method` resolved for the system and,
-    /// for [`PeakWatch::FiguresOfMerit`], for the two peaks it reports ([`Method::resolve_for`]).
-    pub(crate) fn method(self, method: Method, ode: &ChainOde) -> Method {
-        method.resolve_for(
-            ode.second_order().is_some(),
-            self == PeakWatch::FiguresOfMerit,
-        )
-    }
-
     /// The contacts tracked in a chain of `n_layers` layers (contacts 0..n_layers); None = all.
     pub(crate) fn contacts(self, n_layers: usize) -> Option<Vec<usize>> {
         match self {
@@ -693,12 +682,11 @@ pub(crate) fn simulate_watching(
     let started = std::time::Instant::now();
     let mut ode = ChainOde::new(chain, excitation)?;
     check_method_fits(&ode, settings.method)?;
-    let method = peak_watch.method(settings.method, &ode);
     let y0 = ode.initial_state();
     let dim = ode.dimension();
     let units = ode.tolerance_units();
     let mut integrator = Integrator::new(
-        method,
+        settings.method,
         &mut ode,
         0.0,
         y0,

@@ -317,9 +317,7 @@ impl StandardObjective {
 /// objectives observe only the start and the end (no per-sample energies): the same peaks (bit
 /// for bit with fixed steps), less work per evaluation, and runs that fit SIMD lanes. They track
 /// only the incident and transmitted peaks ([`PeakWatch::FiguresOfMerit`]), bit for bit those
-/// of a run with the same concrete method that tracks every contact; a stated peak tolerance
-/// bounds those two peaks, at the looser rtol of their own envelope for an impact
-/// ([`crate::Method::resolve_for`]).
+/// of a run that tracks every contact.
 fn peaks_only(settings: &RunSettings) -> RunSettings {
     RunSettings {
         sample_interval_s: settings.duration_s,
