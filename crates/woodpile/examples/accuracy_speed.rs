@@ -1,7 +1,8 @@
 //! Accuracy against cost for the benchmark problem: the docs/physics.md §9 chain (20 rods, resonant)
-//! under the default impact, 2 ms. Prints, for RK4 at several steps and DOPRI5 at several
-//! tolerances, the median wall time of several runs and the relative error of the transmitted
-//! peak (and the worst contact peak) against a converged reference (DOPRI5, rtol = 1e-12).
+//! under the default impact, 2 ms. Prints, for RK4 at several steps, DOPRI5 and RKN 6(4) at
+//! several tolerances, and the settings `peak_tolerance` chooses (docs/physics.md §8), the median
+//! wall time of several runs and the relative error of the transmitted peak (and the worst
+//! contact peak) against a converged reference (DOPRI5, rtol = 1e-12).
 //!
 //! Run: `cargo run --release -p woodpile --example accuracy_speed [-- --runs 9]`
 
@@ -68,6 +69,21 @@ fn main() -> woodpile::Result<()> {
                 rtol,
                 atol: rtol * 1e-6,
             },
+        ));
+    }
+    for rtol in [1e-5, 3e-6, 1e-6, 1e-7, 1e-8] {
+        methods.push((
+            format!("rkn64 rtol={rtol:e}"),
+            Method::Rkn64 {
+                rtol,
+                atol: rtol * 1e-6,
+            },
+        ));
+    }
+    for tolerance in [1e-3, 1e-4, 1e-5] {
+        methods.push((
+            format!("peak_tolerance {tolerance:e}"),
+            Method::for_peak_tolerance(tolerance)?,
         ));
     }
     for (name, method) in methods {
