@@ -11,6 +11,9 @@ use woodpile::{
     PAPER_OPTIMIZED_CHAIN_MM,
 };
 
+/// An adaptive method's row label, its constructor from (rtol, atol) and its tolerances.
+type AdaptiveFamily = (&'static str, fn(f64, f64) -> Method, [f64; 5]);
+
 fn main() -> woodpile::Result<()> {
     let runs: usize = std::env::args()
         .skip_while(|a| a != "--runs")
@@ -62,23 +65,23 @@ fn main() -> woodpile::Result<()> {
             )
         })
         .collect();
-    for rtol in [1e-5, 1e-6, 1e-7, 1e-8, 1e-9] {
-        methods.push((
-            format!("dopri5 rtol={rtol:e}"),
-            Method::Dopri5 {
-                rtol,
-                atol: rtol * 1e-6,
-            },
-        ));
-    }
-    for rtol in [1e-5, 3e-6, 1e-6, 1e-7, 1e-8] {
-        methods.push((
-            format!("rkn64 rtol={rtol:e}"),
-            Method::Rkn64 {
-                rtol,
-                atol: rtol * 1e-6,
-            },
-        ));
+    // The adaptive methods, each at its tolerances (atol = rtol · 1e-6 m).
+    let adaptive: [AdaptiveFamily; 2] = [
+        (
+            "dopri5",
+            |rtol, atol| Method::Dopri5 { rtol, atol },
+            [1e-5, 1e-6, 1e-7, 1e-8, 1e-9],
+        ),
+        (
+            "rkn64",
+            |rtol, atol| Method::Rkn64 { rtol, atol },
+            [1e-5, 3e-6, 1e-6, 1e-7, 1e-8],
+        ),
+    ];
+    for (family, method, rtols) in adaptive {
+        for rtol in rtols {
+            methods.push((format!("{family} rtol={rtol:e}"), method(rtol, rtol * 1e-6)));
+        }
     }
     for tolerance in [1e-3, 1e-4, 1e-5] {
         methods.push((
