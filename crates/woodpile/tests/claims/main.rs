@@ -36,6 +36,7 @@ mod lanes_figures_of_merit;
 mod nesterenko_solitary_wave;
 mod no_tension;
 mod optimize_cache_transparent;
+mod optimize_common;
 mod optimize_exhaustive_tiny;
 mod optimize_operators_feasible;
 mod optimize_resume;

@@ -10,11 +10,9 @@
 //! docs/physics.md §8 (3× below it at both settings), so the check on it can fail if the
 //! calibration does not hold for these designs.
 
-use std::ops::ControlFlow;
-use std::sync::atomic::AtomicBool;
+use crate::optimize_common::pools_and_state as run;
 use woodpile::optimize::{
-    BreederGa, DesignSpace, GaSettings, GaState, Individual, Objective, OptimizeError,
-    StandardObjective,
+    BreederGa, DesignSpace, GaSettings, Individual, Objective, OptimizeError, StandardObjective,
 };
 use woodpile::{CellModel, LaneWidth, Method, RunSettings};
 
@@ -53,18 +51,6 @@ fn ga_on(
     BreederGa::new(space(method), Box::new(objective), settings)
         .unwrap()
         .with_lanes(lanes)
-}
-
-/// Every generation's breeding pool (the best ⌈0.3 · 24⌉ = 8) and the final state.
-fn run(ga: &BreederGa) -> (Vec<Vec<Individual>>, GaState) {
-    let mut pools = Vec::new();
-    let outcome = ga
-        .run(None, &AtomicBool::new(false), &mut |s| {
-            pools.push(s.population[..8].to_vec());
-            ControlFlow::Continue(())
-        })
-        .unwrap();
-    (pools, outcome.state)
 }
 
 #[test]

@@ -9,11 +9,8 @@
 //! whole; the lower bound is exact arithmetic on the same steps, the running maximum of a
 //! prefix of the whole run, times 1 − w with screening).
 
-use std::ops::ControlFlow;
-use std::sync::atomic::AtomicBool;
-use woodpile::optimize::{
-    BreederGa, DesignSpace, GaSettings, GaState, Individual, OptimizeError, StandardObjective,
-};
+use crate::optimize_common::pools_and_state as run;
+use woodpile::optimize::{BreederGa, DesignSpace, GaSettings, OptimizeError, StandardObjective};
 use woodpile::{
     simulate, simulate_many_stopping, CellModel, Job, LaneWidth, Method, PeakWatch, RunSettings,
 };
@@ -48,18 +45,6 @@ fn ga(screen: Option<f64>, stop_early: bool, threads: usize, lanes: LaneWidth) -
     )
     .unwrap()
     .with_lanes(lanes)
-}
-
-/// Every generation's breeding pool (the best ⌈0.3 · 24⌉ = 8) and the final state.
-fn run(ga: &BreederGa) -> (Vec<Vec<Individual>>, GaState) {
-    let mut pools = Vec::new();
-    let outcome = ga
-        .run(None, &AtomicBool::new(false), &mut |s| {
-            pools.push(s.population[..8].to_vec());
-            ControlFlow::Continue(())
-        })
-        .unwrap();
-    (pools, outcome.state)
 }
 
 #[test]
