@@ -1,11 +1,12 @@
 //! Where does an adaptive run spend its steps? Integrates the benchmark chain (docs/physics.md §9
-//! chain under the default impact, 2 ms) with event-aware DOPRI5 (`--plain`: without events) at
-//! the rtol given as the first argument, resonant cells (`--rigid`: rigid ones), and prints the
+//! chain under the default impact, 2 ms) with event-aware DOPRI5 (`--plain`: without events;
+//! `--rkn`: RKN 6(4), which lands on crossings too) at the rtol given as the first argument,
+//! resonant cells (`--rigid`: rigid ones), and prints the
 //! steps, the contact openings and closings, and the mean step grouped by how many steps ago a
 //! contact last opened or closed. If the kinks where contacts open and close set the step size,
 //! steps right after a crossing are shorter than the others.
 //!
-//! Run: `cargo run --release -p woodpile --example step_trace -- 3e-7 [--rigid] [--plain]`
+//! Run: `cargo run --release -p woodpile --example step_trace -- 3e-7 [--rigid] [--plain | --rkn]`
 
 use woodpile::ode::ChainOde;
 use woodpile::{
@@ -36,7 +37,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     let atol = rtol * 1e-6;
-    let method = if events {
+    let method = if flag("--rkn") {
+        Method::Rkn64 { rtol, atol }
+    } else if events {
         Method::Dopri5Events { rtol, atol }
     } else {
         Method::Dopri5 { rtol, atol }
@@ -68,7 +71,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let stats = integrator.stats();
     println!(
-        "rtol {rtol:e}, {cells:?} cells, events {events}: {} steps ({} rejected), {} evaluations, {crossings} contact openings and closings",
+        "rtol {rtol:e}, {cells:?} cells, {method:?}: {} steps ({} rejected), {} evaluations, {crossings} contact openings and closings",
         stats.steps, stats.rejected_steps, stats.rhs_evaluations
     );
     for (b, (count, sum)) in groups.iter().enumerate() {
