@@ -10,47 +10,24 @@
 //! docs/physics.md §8 (3× below it at both settings), so the check on it can fail if the
 //! calibration does not hold for these designs.
 
-use crate::optimize_common::pools_and_state as run;
+use crate::optimize_common::{self as common, pools_and_state as run, space};
 use woodpile::optimize::{
-    BreederGa, DesignSpace, GaSettings, Individual, Objective, OptimizeError, StandardObjective,
+    BreederGa, GaSettings, Individual, Objective, OptimizeError, StandardObjective,
 };
-use woodpile::{CellModel, LaneWidth, Method, RunSettings};
-
-/// 8 Table 1 rods under the paper's striker for 0.6 ms, every contact peak within 1e-4.
-fn space(method: Method) -> DesignSpace {
-    let mut space = DesignSpace::paper_impact(CellModel::Resonant);
-    space.positions = 8;
-    space.settings = RunSettings {
-        duration_s: 6e-4,
-        method,
-        sample_interval_s: 6e-4,
-    };
-    space
-}
+use woodpile::{LaneWidth, Method};
 
 fn ga(screen: Option<f64>, objective: StandardObjective) -> BreederGa {
     ga_on(screen, objective, 2, LaneWidth::detect())
 }
 
+/// The shared GA without early stopping.
 fn ga_on(
     screen: Option<f64>,
     objective: StandardObjective,
     threads: usize,
     lanes: LaneWidth,
 ) -> BreederGa {
-    let settings = GaSettings {
-        population: 24,
-        generations: 12,
-        stall_generations: None,
-        seed: 5,
-        threads,
-        screen_peak_tolerance: screen,
-        ..GaSettings::default()
-    };
-    let method = Method::for_peak_tolerance(1e-4).unwrap();
-    BreederGa::new(space(method), Box::new(objective), settings)
-        .unwrap()
-        .with_lanes(lanes)
+    common::ga(objective, screen, false, threads, lanes)
 }
 
 #[test]

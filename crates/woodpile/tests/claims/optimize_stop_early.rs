@@ -9,42 +9,24 @@
 //! whole; the lower bound is exact arithmetic on the same steps, the running maximum of a
 //! prefix of the whole run, times 1 − w with screening).
 
-use crate::optimize_common::pools_and_state as run;
+use crate::optimize_common::{self as common, pools_and_state as run};
 use woodpile::optimize::{BreederGa, DesignSpace, GaSettings, OptimizeError, StandardObjective};
-use woodpile::{
-    simulate, simulate_many_stopping, CellModel, Job, LaneWidth, Method, PeakWatch, RunSettings,
-};
+use woodpile::{simulate, simulate_many_stopping, Job, LaneWidth, Method, PeakWatch};
 
-/// 8 Table 1 rods under the paper's striker for 0.6 ms, every contact peak within 1e-4.
+/// The shared small problem at `peak_tolerance = 1e-4`.
 fn space() -> DesignSpace {
-    let mut space = DesignSpace::paper_impact(CellModel::Resonant);
-    space.positions = 8;
-    space.settings = RunSettings {
-        duration_s: 6e-4,
-        method: Method::for_peak_tolerance(1e-4).unwrap(),
-        sample_interval_s: 6e-4,
-    };
-    space
+    common::space(Method::for_peak_tolerance(1e-4).unwrap())
 }
 
+/// The shared GA with the transmitted force as its objective.
 fn ga(screen: Option<f64>, stop_early: bool, threads: usize, lanes: LaneWidth) -> BreederGa {
-    let settings = GaSettings {
-        population: 24,
-        generations: 12,
-        stall_generations: None,
-        seed: 5,
-        threads,
-        screen_peak_tolerance: screen,
+    common::ga(
+        StandardObjective::TransmittedForce,
+        screen,
         stop_early,
-        ..GaSettings::default()
-    };
-    BreederGa::new(
-        space(),
-        Box::new(StandardObjective::TransmittedForce),
-        settings,
+        threads,
+        lanes,
     )
-    .unwrap()
-    .with_lanes(lanes)
 }
 
 #[test]
