@@ -24,9 +24,13 @@
 //! `lanes_bit_identical`). A run that fails (blow-up, step too small) is re-run on the scalar
 //! path, which reproduces the failure and diagnoses it.
 //!
-//! Lanes take the runs whose figures of merit need no samples (`sample_interval_s` equal to
-//! `duration_s`, as the GA's force objectives run) and the paper's physics; runs with the lab
-//! physics of docs/physics.md §14, or that record samples, go to [`simulate`](crate::simulate()).
+//! The lanes are a scheduler: the equations of motion (`crate::ode::Equations`), the stage loop,
+//! the error terms and the crossing prediction (`crate::integrate`'s kernels) are the scalar
+//! path's own code, written once over the number type ([`crate::real::Real`]) and run here on one
+//! value per lane. Lanes take the runs whose figures of merit need no samples
+//! (`sample_interval_s` equal to `duration_s`, as the GA's force objectives run), with any physics
+//! a scenario states (damping, preload, gravity, drives: docs/physics.md §14; the runs of a group
+//! share their contact laws); runs that record samples go to [`simulate`](crate::simulate()).
 
 // Lane loops index several arrays by the lane number l: the plain form that LLVM vectorizes.
 #![allow(clippy::needless_range_loop)]
@@ -39,12 +43,12 @@ use rayon::prelude::*;
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::integrate::{
-    crossing_inside, crossing_quadratic, crossing_root, fixed_step_end, min_step_s,
-    next_step_after_accept, next_step_after_reject, nystrom_finish, nystrom_positions, Integrator,
+    self, fixed_step_end, min_step_s, next_step_after_accept, next_step_after_reject, Integrator,
     IntegratorStats, LandingRule, Method, OdeSystem, Tableau,
 };
-use crate::model::Chain;
-use crate::ode::ChainOde;
+use crate::model::{Chain, ContactLaw};
+use crate::ode::{ChainOde, Equations, Load};
+use crate::real::{Lane, Mask, Real, MAX_LANES};
 use crate::simulate::{
     check_method_fits, simulate_watching, too_many_steps, PeakWatch, RunSettings, RunSummary, Watch,
 };
@@ -202,7 +206,7 @@ fn on_scalar_path(job: &Job<'_>, peak_watch: PeakWatch, stop_above_n: f64) -> Re
 }
 
 /// What the runs of one lane group share.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
 struct GroupKey {
     n_primary: usize,
     shift: usize,
@@ -212,6 +216,9 @@ struct GroupKey {
     events: bool,
     /// A Runge–Kutta–Nyström method ([`Method::Rkn64`]).
     nystrom: bool,
+    /// The lab physics' shape: contact law per slot, tension allowed, an actuator (None: the
+    /// paper's model).
+    lab: Option<(Vec<ContactLaw>, bool, bool)>,
 }
 
 /// Checks a job as [`simulate`](crate::simulate()) does (same errors, same order) and compiles it; `None` when it
@@ -220,12 +227,14 @@ fn lane_ready(job: &Job<'_>) -> Result<Option<(GroupKey, ChainOde)>> {
     job.settings.validate()?;
     let ode = ChainOde::new(job.chain, job.excitation)?;
     check_method_fits(&ode, job.settings.method)?;
-    if ode.has_lab_physics() || job.settings.sample_interval_s != job.settings.duration_s {
+    if job.settings.sample_interval_s != job.settings.duration_s {
         return Ok(None);
     }
     let method = job.settings.method.resolve(ode.second_order().is_some());
+    let lab = ode.eq.lab.as_ref();
     let key = GroupKey {
-        n_primary: ode.n_primary,
+        lab: lab.map(|lab| (lab.laws.clone(), lab.allow_pull, lab.actuator)),
+        n_primary: ode.eq.p,
         shift: ode.shift,
         blast: ode.is_blast(),
         adaptive: method.adaptive(),
@@ -256,6 +265,8 @@ struct Group {
     first_job: usize,
     /// The most resonators any run of the group has on each primary: the lanes' slots.
     slots_per_element: Vec<usize>,
+    /// The equations of the group's first run: the shape every run of the group shares.
+    like: Equations<f64>,
     width: LaneWidth,
     workers: usize,
     queue: Mutex<std::vec::IntoIter<(usize, ChainOde)>>,
@@ -272,7 +283,7 @@ impl Group {
         let mut slots_per_element = vec![0usize; p];
         for (_, ode) in &members {
             let mut count = vec![0usize; p];
-            for &o in &ode.res_owner {
+            for &o in &ode.eq.res_owner {
                 count[o] += 1;
             }
             for (s, c) in slots_per_element.iter_mut().zip(count) {
@@ -289,6 +300,7 @@ impl Group {
         Group {
             key,
             first_job: members[0].0,
+            like: members[0].1.eq.clone(),
             slots_per_element,
             width,
             workers: threads.min(runs.div_ceil(width.lanes())).max(1),
@@ -350,101 +362,6 @@ unsafe fn run_lanes_avx2<const L: usize>(
     Lanes::<L>::new(jobs, group, peak_watch, stop_above_n).run()
 }
 
-/// One value per lane, with IEEE arithmetic lane by lane. Operations take and return values, so
-/// that each reads its operands whole before it writes: the form LLVM turns into one vector
-/// instruction per operation (indexing arrays in place left it scalar: stores may alias loads).
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[repr(transparent)]
-struct Lane<const L: usize>([f64; L]);
-
-impl<const L: usize> Lane<L> {
-    const ZERO: Self = Lane([0.0; L]);
-
-    #[inline(always)]
-    fn splat(x: f64) -> Self {
-        Lane([x; L])
-    }
-
-    #[inline(always)]
-    fn map(self, f: impl Fn(f64) -> f64) -> Self {
-        let mut r = [0.0; L];
-        for l in 0..L {
-            r[l] = f(self.0[l]);
-        }
-        Lane(r)
-    }
-
-    #[inline(always)]
-    fn zip(self, o: Self, f: impl Fn(f64, f64) -> f64) -> Self {
-        let mut r = [0.0; L];
-        for l in 0..L {
-            r[l] = f(self.0[l], o.0[l]);
-        }
-        Lane(r)
-    }
-
-    /// `f64::max` lane by lane (the scalar path's `d.max(0.0)`).
-    #[inline(always)]
-    fn max(self, o: Self) -> Self {
-        self.zip(o, f64::max)
-    }
-
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        self.map(f64::sqrt)
-    }
-
-    #[inline(always)]
-    fn abs(self) -> Self {
-        self.map(f64::abs)
-    }
-
-    /// Lane by lane: `yes` where `mask` is set, `no` elsewhere.
-    #[inline(always)]
-    fn select(mask: [bool; L], yes: Self, no: Self) -> Self {
-        let mut r = [0.0; L];
-        for l in 0..L {
-            r[l] = if mask[l] { yes.0[l] } else { no.0[l] };
-        }
-        Lane(r)
-    }
-}
-
-macro_rules! lane_op {
-    ($trait:ident, $method:ident, $op:tt) => {
-        impl<const L: usize> std::ops::$trait for Lane<L> {
-            type Output = Self;
-            #[inline(always)]
-            fn $method(self, o: Self) -> Self {
-                self.zip(o, |a, b| a $op b)
-            }
-        }
-    };
-}
-lane_op!(Add, add, +);
-lane_op!(Sub, sub, -);
-lane_op!(Mul, mul, *);
-lane_op!(Div, div, /);
-
-impl<const L: usize> std::ops::Neg for Lane<L> {
-    type Output = Self;
-    #[inline(always)]
-    fn neg(self) -> Self {
-        self.map(|a| -a)
-    }
-}
-
-/// Whether the sign (> 0 or not) of a differs from that of b in any lane: one vector compare
-/// over the lanes, so that the lane-by-lane work runs only where a contact may cross.
-#[inline(always)]
-fn sign_changed<const L: usize>(a: Lane<L>, b: Lane<L>) -> bool {
-    let mut changed = false;
-    for l in 0..L {
-        changed |= (a.0[l] > 0.0) != (b.0[l] > 0.0);
-    }
-    changed
-}
-
 /// Lane l's contact forces and overlaps into its run's force cache.
 fn contacts_into<const L: usize>(
     ode: &mut ChainOde,
@@ -495,18 +412,14 @@ struct Lanes<'a, const L: usize> {
     nystrom: bool,
     landing_rule: LandingRule,
     order: f64,
-    p: usize,
-    nd: usize,
+    /// Whether slot 0 carries a prescribed load (no striker).
+    loaded: bool,
     dim: usize,
-    blast: bool,
     /// Lane index of each primary's first resonator slot (each primary has as many slots as the
     /// most resonators any run of the group has on it).
     slot_start: Vec<usize>,
-    res_owner: Vec<usize>,
-    inv_mass: Vec<Lane<L>>,
-    beta: Vec<Lane<L>>,
-    res_omega2: Vec<Lane<L>>,
-    res_coupling: Vec<Lane<L>>,
+    /// The equations of motion, one run per lane.
+    eq: Equations<Lane<L>>,
     atol: Vec<Lane<L>>,
     y: Vec<Lane<L>>,
     stage: Vec<Lane<L>>,
@@ -515,6 +428,8 @@ struct Lanes<'a, const L: usize> {
     err: Vec<Lane<L>>,
     force: Vec<Lane<L>>,
     overlap: Vec<Lane<L>>,
+    /// Switching functions and their rates (event-aware stepping).
+    switch: [Vec<Lane<L>>; 4],
     /// Overlap limit per slot (infinite where there is none, and in empty lanes).
     limit: Vec<Lane<L>>,
     runs: Vec<Option<LaneRun<'a>>>,
@@ -547,9 +462,8 @@ impl<'a, const L: usize> Lanes<'a, L> {
                 Some(s)
             })
             .collect();
-        let r = res_owner.len();
-        let nd = p + r;
-        let dim = 2 * nd + usize::from(key.blast);
+        let eq = Equations::empty_like(&group.like, res_owner);
+        let dim = eq.dimension();
         let tableau = if key.nystrom {
             Tableau::rkn64()
         } else {
@@ -571,16 +485,10 @@ impl<'a, const L: usize> Lanes<'a, L> {
             adaptive: key.adaptive,
             events: key.events,
             nystrom: key.nystrom,
-            p,
-            nd,
+            loaded: key.shift == 1,
             dim,
-            blast: key.blast,
             slot_start,
-            res_owner,
-            inv_mass: vec![Lane::splat(1.0); p],
-            beta: zeros(p + 1),
-            res_omega2: zeros(r),
-            res_coupling: zeros(r),
+            eq,
             atol: vec![Lane::splat(1.0); dim],
             y: zeros(dim),
             stage: zeros(dim),
@@ -588,6 +496,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
             err: zeros(dim),
             force: zeros(p + 1),
             overlap: zeros(p + 1),
+            switch: std::array::from_fn(|_| zeros(p)),
             limit: vec![Lane::splat(f64::INFINITY); p + 1],
             runs: (0..L).map(|_| None).collect(),
             group,
@@ -658,11 +567,11 @@ impl<'a, const L: usize> Lanes<'a, L> {
             Method::PeakTolerance { .. } => unreachable!("resolved"),
         };
         // Where each of the run's components sits in the lanes.
-        let (p, nd) = (self.p, self.nd);
+        let (p, nd) = (self.eq.p, self.eq.nd);
         let mut place = Vec::with_capacity(ode.dimension());
-        let mut res_place = Vec::with_capacity(ode.res_owner.len());
+        let mut res_place = Vec::with_capacity(ode.eq.res_owner.len());
         let mut next_slot = vec![0usize; p];
-        for &o in &ode.res_owner {
+        for &o in &ode.eq.res_owner {
             res_place.push(self.slot_start[o] + next_slot[o]);
             next_slot[o] += 1;
         }
@@ -670,9 +579,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
         place.extend(res_place.iter().copied());
         place.extend(nd..nd + p);
         place.extend(res_place.iter().map(|&i| nd + i));
-        if self.blast {
-            place.push(2 * nd);
-        }
+        place.extend(2 * nd..self.dim);
         debug_assert_eq!(place.len(), ode.dimension());
         // Parameters and state into lane l; padding stays inert.
         for c in 0..self.dim {
@@ -680,26 +587,16 @@ impl<'a, const L: usize> Lanes<'a, L> {
             self.f_now[c].0[l] = 0.0;
             self.atol[c].0[l] = 1.0;
         }
-        for j in 0..self.res_owner.len() {
-            self.res_omega2[j].0[l] = 0.0;
-            self.res_coupling[j].0[l] = 0.0;
-        }
         let n = place.len();
         for (i, &c) in place.iter().enumerate() {
             self.y[c].0[l] = integrator.y()[i];
             self.f_now[c].0[l] = integrator.f_now()[i];
             self.atol[c].0[l] = atol * units[i];
         }
-        for i in 0..p {
-            self.inv_mass[i].0[l] = ode.inv_mass[i];
-        }
+        let res_slot: Vec<usize> = res_place.iter().map(|&c| c - p).collect();
+        self.eq.set_lane(l, &ode.eq, &res_slot);
         for s in 0..=p {
-            self.beta[s].0[l] = ode.beta[s];
             self.limit[s].0[l] = ode.overlap_limits_by_slot()[s];
-        }
-        for (j, &c) in res_place.iter().enumerate() {
-            self.res_omega2[c - p].0[l] = ode.res_omega2[j];
-            self.res_coupling[c - p].0[l] = ode.res_coupling[j];
         }
         let stats = integrator.stats();
         self.runs[l] = Some(LaneRun {
@@ -729,7 +626,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
         // Fixed steps: where each lane's step ends, as the fixed-step integrator computes it.
         let mut t_fixed = [0.0; L];
         // Lanes whose step event-aware stepping may shorten.
-        let mut want = [false; L];
+        let mut want = [false; MAX_LANES];
         for l in 0..L {
             let Some(run) = &self.runs[l] else { continue };
             let t_end = run.settings.duration_s;
@@ -775,9 +672,9 @@ impl<'a, const L: usize> Lanes<'a, L> {
         let missed = if self.nystrom {
             self.missed_crossings(&h, &err)
         } else {
-            [None; L]
+            [None; MAX_LANES]
         };
-        let mut accepted = [false; L];
+        let mut accepted = [false; MAX_LANES];
         for l in 0..L {
             let Some(run) = &mut self.runs[l] else {
                 continue;
@@ -827,12 +724,10 @@ impl<'a, const L: usize> Lanes<'a, L> {
             for l in 0..L {
                 t_new[l] = t[l] + h[l];
             }
-            let load = self.load_forces(&t_new);
-            let mut f_now = std::mem::take(&mut self.f_now);
-            let y = std::mem::take(&mut self.y);
-            self.rhs(&load, &y, &mut f_now);
-            self.y = y;
-            self.f_now = f_now;
+            let load = self.loads(&t_new, 0.0, &[0.0; L]);
+            let (force, overlap) = (&mut self.force, &mut self.overlap);
+            self.eq
+                .rhs(load, &self.y, &mut self.f_now, force, overlap, true);
         }
         let blown_up = self.check_contacts();
         for l in 0..L {
@@ -849,10 +744,10 @@ impl<'a, const L: usize> Lanes<'a, L> {
 
     /// Event-aware stepping in every lane at once: for each lane in `want` (adaptive, after an
     /// accepted step), the step that lands on a predicted crossing of a contact's overlap within
-    /// its next step of size h\[l\], as [`Integrator`] predicts it ([`first_crossing`]: the same
-    /// switching functions, the same arithmetic vectorised over lanes, the same bits).
+    /// its next step of size h\[l\], as [`Integrator`] predicts it (the same kernel,
+    /// [`integrate::predict_crossings`], on the same switching functions).
     #[inline(always)]
-    fn predict_crossings(&self, h: &[f64; L], mut want: [bool; L]) -> [Option<f64>; L] {
+    fn predict_crossings(&mut self, h: &[f64; L], mut want: Mask) -> [Option<f64>; MAX_LANES] {
         let mut dt = [1.0; L];
         for l in 0..L {
             if let Some(run) = self.runs[l].as_ref().filter(|_| want[l]) {
@@ -860,84 +755,42 @@ impl<'a, const L: usize> Lanes<'a, L> {
                 want[l] = dt[l] > 0.0;
             }
         }
-        let mut first = [None; L];
         if !want.iter().any(|&w| w) {
-            return first;
+            return [None; MAX_LANES];
         }
-        let p = self.p;
-        let (hv, dtv, half) = (Lane(*h), Lane(dt), Lane::splat(0.5));
-        let (y, f, k0) = (&self.y, &self.f_now, &self.k[0]);
-        // ChainOde::switches: overlaps of contact slots 1..=P from positions, their rates from f
-        // now and f at the start of the last step (k[0]); a free end (β = 0) never crosses.
-        for s in 1..=p {
-            let (g, d, d_prev) = if s == p {
-                (y[p - 1], f[p - 1], k0[p - 1])
-            } else {
-                (y[s - 1] - y[s], f[s - 1] - f[s], k0[s - 1] - k0[s])
-            };
-            let (c, gh) = crossing_quadratic(g, d, d_prev, dtv, hv, half);
-            if !sign_changed(g, gh) {
-                continue;
-            }
-            for l in 0..L {
-                if want[l] && self.beta[s].0[l] != 0.0 && (g.0[l] > 0.0) != (gh.0[l] > 0.0) {
-                    let tau = crossing_root(g.0[l], d.0[l], c.0[l], gh.0[l], h[l]);
-                    let rule = self.landing_rule;
-                    if rule.counts(tau, h[l]) && first[l].is_none_or(|f: f64| tau < f) {
-                        first[l] = Some(tau);
-                    }
-                }
-            }
-        }
-        for l in 0..L {
-            first[l] = self.landing_rule.window(first[l], h[l]);
-        }
-        first
+        // After a step, k[0] holds f at its start and f_now f at its end.
+        let [g, rate, rate_prev, _] = &mut self.switch;
+        self.eq.switches(&self.y, g);
+        self.eq.switches(&self.f_now, rate);
+        self.eq.switches(&self.k[0], rate_prev);
+        let (dt, h) = (Lane(dt), Lane(*h));
+        integrate::predict_crossings(g, rate, rate_prev, dt, h, want, self.landing_rule)
     }
 
     /// [`Method::Rkn64`]'s check in every lane whose attempt passed its error test without a
     /// landing: the first crossing inside the step that no landing caught, as the integrator
-    /// finds it ([`missed_crossing`]: the same switching functions, the same arithmetic).
-    fn missed_crossings(&self, h: &[f64; L], err: &[f64; L]) -> [Option<f64>; L] {
-        let mut first = [None; L];
-        let mut check = [false; L];
+    /// finds it (the same kernel, [`integrate::missed_crossings`]).
+    fn missed_crossings(&mut self, h: &[f64; L], err: &[f64; L]) -> [Option<f64>; MAX_LANES] {
+        let mut check = [false; MAX_LANES];
         for l in 0..L {
             check[l] = self.runs[l]
                 .as_ref()
                 .is_some_and(|run| !run.landing && err[l] <= 1.0);
         }
         if !check.iter().any(|&c| c) {
-            return first;
+            return [None; MAX_LANES];
         }
-        let (p, last) = (self.p, self.k.len() - 1);
-        let (y, f0, y1, f1) = (&self.y, &self.k[0], &self.stage, &self.k[last]);
-        let overlap = |v: &[Lane<L>], s: usize| {
-            if s == p {
-                v[p - 1]
-            } else {
-                v[s - 1] - v[s]
-            }
+        let last = self.k.len() - 1;
+        let [g0, g1, d0, d1] = &mut self.switch;
+        let eq = &self.eq;
+        eq.switches(&self.y, g0);
+        eq.switches(&self.stage, g1);
+        let (f0, f1) = (&self.k[0], &self.k[last]);
+        let rates = |d0: &mut [Lane<L>], d1: &mut [Lane<L>]| {
+            eq.switches(f0, d0);
+            eq.switches(f1, d1);
         };
-        // ChainOde::switches: contact slots 1..=P in order; a free end (β = 0) is constant. The
-        // sign test for every lane at once; the crossing only where a sign changed.
-        for s in 1..=p {
-            let (g0, g1) = (overlap(y, s), overlap(y1, s));
-            if !sign_changed(g0, g1) {
-                continue;
-            }
-            for l in 0..L {
-                if !check[l] || self.beta[s].0[l] == 0.0 || (g0.0[l] > 0.0) == (g1.0[l] > 0.0) {
-                    continue;
-                }
-                let (d0, d1) = (overlap(f0, s).0[l], overlap(f1, s).0[l]);
-                if let Some(tau) = crossing_inside(g0.0[l], d0, g1.0[l], d1, h[l]) {
-                    if first[l].is_none_or(|f: f64| tau < f) {
-                        first[l] = Some(tau);
-                    }
-                }
-            }
-        }
-        first
+        integrate::missed_crossings(g0, g1, (d0, d1), rates, Lane(*h), check)
     }
 
     /// [`ChainOde::check_contacts`] of the force cache in every lane at once: whether it would
@@ -946,8 +799,8 @@ impl<'a, const L: usize> Lanes<'a, L> {
     #[inline(always)]
     fn check_contacts(&self) -> [bool; L] {
         let mut bad = [false; L];
-        let first = usize::from(!self.blast);
-        for s in first..=self.p {
+        let first = usize::from(!self.loaded);
+        for s in first..=self.eq.p {
             let (f, d, limit) = (self.force[s], self.overlap[s], self.limit[s]);
             for l in 0..L {
                 bad[l] |=
@@ -962,7 +815,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
     fn after_accept(&mut self, l: usize, t0: f64, t1: f64, h: f64, err: f64, blown_up: bool) {
         let adaptive = self.adaptive;
         let order = self.order;
-        let (p, nd) = (self.p, self.nd);
+        let (p, nd) = (self.eq.p, self.eq.nd);
         let run = self.runs[l].as_mut().expect("occupied");
         run.stats.steps += 1;
         run.t = t1;
@@ -986,7 +839,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
         let sample = run.watch.sample_due(t1);
         // The lane's contact cache becomes the run's, with the velocities the rates need: every
         // slot, or only those of the watched contacts until a step that samples or ends the run.
-        let n_dof = run.ode.n_dof;
+        let n_dof = run.ode.n_dof();
         match run.watch.watched() {
             Some(watched) if !finished && sample.is_none() => {
                 let first = 1 - run.ode.shift;
@@ -1062,174 +915,80 @@ impl<'a, const L: usize> Lanes<'a, L> {
         self.done.push((run.job, result));
     }
 
-    /// The load on the top element of every lane at times t (zero for an impact or an empty lane).
+    /// The prescribed load of every lane at times t\[l\] + c h\[l\] (none beside a striker or in
+    /// an empty lane), from each run's own [`ChainOde::load_at`].
     #[inline(always)]
-    fn load_forces(&self, t: &[f64; L]) -> [f64; L] {
-        let mut f = [0.0; L];
-        if self.blast {
-            for l in 0..L {
-                if let Some(run) = &self.runs[l] {
-                    f[l] = run.ode.load.as_ref().map_or(0.0, |p| p.force_n(t[l]));
-                }
-            }
-        }
-        f
+    fn loads(&self, t: &[f64; L], c: f64, h: &[f64; L]) -> Load<Lane<L>> {
+        loads(&self.runs, self.loaded, t, c, h)
     }
 
-    /// The stages of a step of size h[l] from (t[l], y) in every lane: k, and the new state in
-    /// `stage` (for FSAL tableaux the last stage is the new state). Moves f at the current point
+    /// The stages of a step of size h[l] from (t[l], y) in every lane ([`integrate::attempt`], the
+    /// scalar path's stage loop): k, and the new state in `stage`. Moves f at the current point
     /// into k[0].
     #[inline(always)]
     fn attempt(&mut self, t: &[f64; L], h: &[f64; L]) {
         std::mem::swap(&mut self.k[0], &mut self.f_now);
-        let stages = self.tableau.stages();
-        let mut stage = std::mem::take(&mut self.stage);
-        let nd = self.nd;
-        for i in 1..stages {
-            if self.nystrom {
-                let (a, c) = (&self.tableau.a[i], self.tableau.c[i]);
-                nystrom_positions(
-                    &mut stage[..nd],
-                    &self.y,
-                    &self.k,
-                    a,
-                    c,
-                    Lane(*h),
-                    Lane::splat,
-                );
-            } else {
-                combine(&mut stage, &self.y, h, &self.tableau.a[i], &self.k);
-            }
-            let mut ts = [0.0; L];
-            for l in 0..L {
-                ts[l] = t[l] + self.tableau.c[i] * h[l];
-            }
-            let load = self.load_forces(&ts);
-            let mut ki = std::mem::take(&mut self.k[i]);
-            self.rhs(&load, &stage, &mut ki);
-            self.k[i] = ki;
-        }
-        if !self.tableau.fsal {
-            combine(&mut stage, &self.y, h, &self.tableau.b, &self.k);
-        }
-        if self.nystrom {
-            let (y, tableau) = (&self.y, &self.tableau);
-            nystrom_finish(
-                &mut stage,
-                &mut self.err,
-                y,
-                &mut self.k,
-                tableau,
-                Lane(*h),
-                Lane::splat,
-            );
-        }
-        self.stage = stage;
-    }
-
-    /// The equations of motion (ode.rs, the paper's path) in every lane, operation for
-    /// operation: contact forces into the cache, accelerations, resonators, the load's power.
-    #[inline(always)]
-    fn rhs(&mut self, load: &[f64; L], y: &[Lane<L>], dydt: &mut [Lane<L>]) {
-        let (p, nd) = (self.p, self.nd);
-        let (x, v) = (&y[..nd], &y[nd..2 * nd]);
-        let (dx, rest) = dydt.split_at_mut(nd);
-        let dv = &mut rest[..nd];
+        let (eq, runs, loaded) = (&self.eq, &self.runs, self.loaded);
+        let (force, overlap) = (&mut self.force, &mut self.overlap);
         // A Nyström stage reads only accelerations; its step's end writes the new velocities
         // into the last stage (`nystrom_finish`), the only one whose dx/dt is read.
-        if !self.nystrom {
-            dx.copy_from_slice(v);
-        }
-        let force = &mut self.force[..=p];
-        let overlap = &mut self.overlap[..=p];
-        let beta = &self.beta[..=p];
-        let zero = Lane::ZERO;
-        force[0] = Lane(*load);
-        for i in 1..p {
-            let d = x[i - 1] - x[i];
-            overlap[i] = d;
-            let dp = d.max(zero);
-            force[i] = beta[i] * dp * dp.sqrt();
-        }
-        let d = x[p - 1];
-        overlap[p] = d;
-        let dp = d.max(zero);
-        force[p] = beta[p] * dp * dp.sqrt();
-        let inv_mass = &self.inv_mass[..p];
-        for i in 0..p {
-            dv[i] = (force[i] - force[i + 1]) * inv_mass[i];
-        }
-        let r = self.res_owner.len();
-        let xr = &x[p..p + r];
-        let (dvp, dvr) = dv.split_at_mut(p);
-        let (omega2, coupling) = (&self.res_omega2[..r], &self.res_coupling[..r]);
-        for j in 0..r {
-            let o = self.res_owner[j];
-            let ext = xr[j] - x[o];
-            dvr[j] = -omega2[j] * ext;
-            dvp[o] = dvp[o] + coupling[j] * ext;
-        }
-        if self.blast {
-            rest[nd] = force[0] * v[0];
-        }
+        let velocities = !self.nystrom;
+        integrate::attempt(
+            &self.tableau,
+            &self.y,
+            &mut self.k,
+            &mut self.stage,
+            &mut self.err,
+            Lane(*h),
+            |c, stage, out| {
+                let load = loads(runs, loaded, t, c, h);
+                eq.rhs(load, stage, out, force, overlap, velocities);
+            },
+        );
     }
 
-    /// Each lane's weighted RMS error norm, summed exactly as the scalar integrator sums it:
-    /// the squared weighted errors of every component at once, then, lane by lane, in the run's
-    /// own component order (`place`): four partial sums by index mod 4, then the trailing ones.
+    /// Each lane's weighted RMS error norm, by the scalar path's kernels: the weighted squares
+    /// of every component at once ([`integrate::weighted_squares`]), then, lane by lane, their
+    /// norm in the run's own component order (`place`, [`integrate::rms`]).
     #[inline(always)]
     fn error_norms(&mut self, h: &[f64; L], out: &mut [f64; L]) {
-        let e = self
-            .tableau
-            .error
-            .as_ref()
-            .expect("adaptive tableau has error weights");
-        if !self.nystrom {
-            crate::integrate::stage_sum(&mut self.err, None, e, &self.k, |ej| {
-                Lane(*h) * Lane::splat(ej)
-            });
-        }
         let mut rtol = [0.0; L];
         for (l, r) in rtol.iter_mut().enumerate() {
             *r = self.runs[l].as_ref().map_or(0.0, |run| run.rtol);
         }
-        let rtol = Lane(rtol);
-        for c in 0..self.dim {
-            let r = self.err[c] / (self.atol[c] + rtol * self.y[c].abs().max(self.stage[c].abs()));
-            self.err[c] = r * r;
-        }
+        let (tableau, k, y, y1) = (&self.tableau, &self.k, &self.y, &self.stage);
+        let (h, rtol) = (Lane(*h), Lane(rtol));
+        integrate::weighted_squares(tableau, &mut self.err, k, h, y, y1, &self.atol, rtol);
         for l in 0..L {
-            let Some(run) = &self.runs[l] else {
-                out[l] = 0.0;
-                continue;
+            out[l] = match &self.runs[l] {
+                Some(run) => integrate::rms(run.place.len(), |i| self.err[run.place[i]].0[l]),
+                None => 0.0,
             };
-            let place = &run.place;
-            let n = place.len();
-            let head = n - n % 4;
-            let mut partial = [0.0; 4];
-            for cs in place[..head].chunks_exact(4) {
-                for (s, &c) in partial.iter_mut().zip(cs) {
-                    *s += self.err[c].0[l];
-                }
-            }
-            let mut sum: f64 = partial.iter().sum();
-            for &c in &place[head..] {
-                sum += self.err[c].0[l];
-            }
-            out[l] = (sum / n as f64).sqrt();
         }
     }
 }
 
-/// out = y + h Σ_j w_j k_j in every lane with its own h: integrate.rs's stage sum, so every lane
-/// adds exactly as a scalar run does.
+/// The prescribed load of every occupied lane at times t\[l\] + c h\[l\] (see
+/// [`Lanes::loads`]); a function of the fields it reads, so that a stage's closure can call it
+/// beside the mutable force cache.
 #[inline(always)]
-fn combine<const L: usize>(
-    out: &mut [Lane<L>],
-    y: &[Lane<L>],
+fn loads<const L: usize>(
+    runs: &[Option<LaneRun<'_>>],
+    loaded: bool,
+    t: &[f64; L],
+    c: f64,
     h: &[f64; L],
-    weights: &[f64],
-    k: &[Vec<Lane<L>>],
-) {
-    crate::integrate::stage_sum(out, Some(y), weights, k, |w| Lane(*h) * Lane::splat(w));
+) -> Load<Lane<L>> {
+    let mut load = Load::<Lane<L>>::NONE;
+    if loaded {
+        for l in 0..L {
+            if let Some(run) = &runs[l] {
+                let one = run.ode.load_at(t[l] + c * h[l]);
+                load.force_n.0[l] = one.force_n;
+                load.tip_m.0[l] = one.tip_m;
+                load.tip_rate_m_s.0[l] = one.tip_rate_m_s;
+            }
+        }
+    }
+    load
 }

@@ -56,6 +56,7 @@ pub mod lanes;
 pub mod model;
 pub mod ode;
 pub mod optimize;
+mod real;
 pub mod record;
 mod root;
 pub mod simulate;

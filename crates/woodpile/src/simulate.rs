@@ -527,7 +527,7 @@ impl<'a> Watch<'a> {
     pub(crate) fn after_step(&mut self, ode: &ChainOde, t0: f64, t1: f64, y1: &[f64]) {
         let peaks = &mut self.peaks;
         if let Some(watched) = &self.watched {
-            let v = &y1[ode.n_dof..2 * ode.n_dof];
+            let v = &y1[ode.n_dof()..2 * ode.n_dof()];
             let forces = ode.contact_forces_n();
             for &c in watched {
                 peaks.rate[c] = ode.contact_force_rate(c, v);

@@ -6,6 +6,7 @@ pub mod chain;
 pub mod contact;
 pub mod fe_beam;
 pub mod lab;
+pub mod law;
 pub mod material;
 
 pub use beam::{BeamTheory, Reduction, Rod};
@@ -15,4 +16,5 @@ pub use contact::{
     complete_elliptic_integrals, hertz_beta, hertz_contact, EllipseSolution, HertzContact, Surface,
 };
 pub use lab::{ContactDamping, Damping, Preload, ResonatorDamping};
+pub use law::ContactLaw;
 pub use material::Material;

@@ -12,7 +12,12 @@
 //! - J. R. Dormand, M. E. A. El-Mikkawy, P. J. Prince, "Families of Runge–Kutta–Nyström
 //!   formulae", IMA J. Numer. Anal. 7 (1987) 235–250 (RKN6(4)6FM, [`Tableau::rkn64`]).
 
+mod kernels;
+
+pub(crate) use kernels::{attempt, missed_crossings, predict_crossings, rms, weighted_squares};
+
 use crate::error::{require_positive, Error, Result};
+use crate::real::MAX_LANES;
 
 /// Largest |h ω| for which the classical RK4 method is stable on an undamped oscillation of
 /// frequency ω: its stability region meets the imaginary axis at ±2√2 (Hairer & Wanner, *Solving
@@ -669,89 +674,40 @@ impl Integrator {
     }
 
     /// Computes the stages of a step of size h from (t, y) into `self.k` and the new state into
-    /// `self.stage`; the new point's derivative is left in `self.k[last]` for FSAL tableaux.
+    /// `self.stage` ([`kernels::attempt`]); the new point's derivative is left in `self.k[last]`
+    /// for FSAL and Nyström tableaux (a Nyström step's error estimate is left in `self.error`).
     #[inline(always)]
     fn attempt<S: OdeSystem>(&mut self, system: &mut S, h: f64) {
-        if self.tableau.nystrom.is_some() {
-            self.attempt_nystrom(system, h);
-            return;
-        }
-        let tab = &self.tableau;
-        let s = tab.stages();
-        let y = &self.y;
         std::mem::swap(&mut self.k[0], &mut self.f_now);
-        for i in 1..s {
-            combine(&mut self.stage, y, h, &tab.a[i], &self.k);
-            system.rhs(self.t + tab.c[i] * h, &self.stage, &mut self.k[i]);
-        }
-        self.stats.rhs_evaluations += (s - 1) as u64;
-        if !tab.fsal {
-            combine(&mut self.stage, y, h, &tab.b, &self.k);
-        }
-        // For FSAL tableaux the last stage already is the new solution: `stage` holds it.
-    }
-
-    /// A step of a Runge–Kutta–Nyström tableau from (t, y = [x | v]): the stage accelerations in
-    /// the second halves of `k`, the new state in `stage`, f there in `k[last]` (its first half the
-    /// new velocities), and the error estimate already in `error`.
-    #[inline(always)]
-    fn attempt_nystrom<S: OdeSystem>(&mut self, system: &mut S, h: f64) {
-        let nd = self.y.len() / 2;
-        std::mem::swap(&mut self.k[0], &mut self.f_now);
-        let s = self.tableau.stages();
-        for i in 1..s {
-            let (done, rest) = self.k.split_at_mut(i);
-            nystrom_positions(
-                &mut self.stage[..nd],
-                &self.y,
-                done,
-                &self.tableau.a[i],
-                self.tableau.c[i],
-                h,
-                |w| w,
-            );
-            system.rhs(self.t + self.tableau.c[i] * h, &self.stage, &mut rest[0]);
-        }
-        self.stats.rhs_evaluations += (s - 1) as u64;
-        let (stage, error) = (&mut self.stage, &mut self.error);
-        nystrom_finish(stage, error, &self.y, &mut self.k, &self.tableau, h, |w| w);
+        let t = self.t;
+        kernels::attempt(
+            &self.tableau,
+            &self.y,
+            &mut self.k,
+            &mut self.stage,
+            &mut self.error,
+            h,
+            |c, stage, out| system.rhs(t + c * h, stage, out),
+        );
+        self.stats.rhs_evaluations += (self.tableau.stages() - 1) as u64;
     }
 
     /// Weighted RMS norm of the embedded error estimate (Hairer's sc_i = atol_i + rtol·max|y|).
     #[inline(always)]
     fn error_norm(&mut self, h: f64, rtol: f64, atol: &[f64]) -> f64 {
-        let e = self
-            .tableau
-            .error
-            .as_ref()
-            .expect("adaptive tableau has error weights");
-        let err = &mut self.error;
-        if self.tableau.nystrom.is_none() {
-            stage_sum(err, None, e, &self.k, |ej| h * ej);
-        }
-        // Four partial sums so that the reduction vectorises (a single running sum is a
-        // latency-bound chain of dependent additions).
-        const LANES: usize = 4;
-        let mut sums = [0.0; LANES];
-        let n = err.len();
-        let head = n - n % LANES;
-        let parts = err[..head]
-            .chunks_exact(LANES)
-            .zip(self.y[..head].chunks_exact(LANES))
-            .zip(self.stage[..head].chunks_exact(LANES))
-            .zip(atol[..head].chunks_exact(LANES));
-        for (((e, y0), y1), a) in parts {
-            for l in 0..LANES {
-                let r = e[l] / (a[l] + rtol * y0[l].abs().max(y1[l].abs()));
-                sums[l] += r * r;
-            }
-        }
-        let mut sum: f64 = sums.iter().sum();
-        for i in head..n {
-            let r = err[i] / (atol[i] + rtol * self.y[i].abs().max(self.stage[i].abs()));
-            sum += r * r;
-        }
-        (sum / n as f64).sqrt()
+        let (tableau, k) = (&self.tableau, &self.k);
+        kernels::weighted_squares(
+            tableau,
+            &mut self.error,
+            k,
+            h,
+            &self.y,
+            &self.stage,
+            atol,
+            rtol,
+        );
+        let error = &self.error;
+        kernels::rms(error.len(), |c| error[c])
     }
 
     /// Accepts the attempted step: the new state becomes current and f at it is evaluated
@@ -894,49 +850,41 @@ impl Integrator {
 
     /// Event-aware stepping: the step to land on the first predicted sign change of a switching
     /// function within the next step of size h, if it lies inside the landing window
-    /// ([`first_crossing`]); None when events are off, before the first step, or when none is
-    /// predicted there.
+    /// ([`kernels::predict_crossings`]); None when events are off, before the first step, or
+    /// when none is predicted there.
     fn predict_crossing<S: OdeSystem>(&mut self, system: &mut S, h: f64) -> Option<f64> {
         let ev = self.events.as_mut()?;
-        if self.stats.steps == 0 {
+        let dt = self.t - self.t_prev;
+        if self.stats.steps == 0 || dt <= 0.0 {
             return None;
         }
-        let dt = self.t - self.t_prev;
         // After a step, k[0] holds f at its start and f_now f at its end.
         system.switches(&self.y, &mut ev.g);
         system.switches(&self.f_now, &mut ev.rate);
         system.switches(&self.k[0], &mut ev.rate_prev);
-        first_crossing(
-            ev.g.iter()
-                .zip(&ev.rate)
-                .zip(&ev.rate_prev)
-                .map(|((&g, &d), &d_prev)| (g, d, d_prev)),
-            dt,
-            h,
-            LandingRule::of(&self.tableau),
-        )
+        let rule = LandingRule::of(&self.tableau);
+        let mut want = [false; MAX_LANES];
+        want[0] = true;
+        kernels::predict_crossings(&ev.g, &ev.rate, &ev.rate_prev, dt, h, want, rule)[0]
     }
 
     /// [`Method::Rkn64`]'s check after an attempted step of size h (new state in `stage`, f there
-    /// in k\[last\]): the first crossing inside it that no landing caught ([`missed_crossing`]).
+    /// in k\[last\]): the first crossing inside it that no landing caught
+    /// ([`kernels::missed_crossings`]).
     fn missed_crossing<S: OdeSystem>(&mut self, system: &mut S, h: f64) -> Option<f64> {
         let ev = self.events.as_mut()?;
         let last = self.k.len() - 1;
         system.switches(&self.y, &mut ev.g);
         system.switches(&self.stage, &mut ev.g_end);
-        let changed = |(g0, g1): (&f64, &f64)| (*g0 > 0.0) != (*g1 > 0.0);
-        if !ev.g.iter().zip(&ev.g_end).any(changed) {
-            return None;
-        }
-        system.switches(&self.k[0], &mut ev.rate);
-        system.switches(&self.k[last], &mut ev.rate_end);
-        missed_crossing(
-            ev.g.iter()
-                .zip(&ev.rate)
-                .zip(ev.g_end.iter().zip(&ev.rate_end))
-                .map(|((&g0, &d0), (&g1, &d1))| (g0, d0, g1, d1)),
-            h,
-        )
+        let (f0, f1) = (&self.k[0], &self.k[last]);
+        let rates = |d0: &mut [f64], d1: &mut [f64]| {
+            system.switches(f0, d0);
+            system.switches(f1, d1);
+        };
+        let mut check = [false; MAX_LANES];
+        check[0] = true;
+        let buffers = (&mut ev.rate[..], &mut ev.rate_end[..]);
+        kernels::missed_crossings(&ev.g, &ev.g_end, buffers, rates, h, check)[0]
     }
 
     /// f(t, y) at the current point.
@@ -1015,35 +963,6 @@ pub(crate) fn next_step_after_accept(
     h.max(h_try) * factor.clamp(0.2, grow)
 }
 
-/// Where the next step of size h should end to land on the first predicted sign change of a
-/// switching function, from each function's (value g, rate g', rate at the start of the last
-/// step of size dt): the quadratic g + g' τ + c τ² ([`crossing_quadratic`]) is followed over
-/// (0, h]; its first zero τ ([`crossing_root`]) that the rule counts is returned when it lies in
-/// the rule's landing window ([`LandingRule`]). The lanes of `crate::lanes` do the same
-/// arithmetic, vectorised.
-#[inline]
-pub(crate) fn first_crossing(
-    switches: impl Iterator<Item = (f64, f64, f64)>,
-    dt: f64,
-    h: f64,
-    rule: LandingRule,
-) -> Option<f64> {
-    if dt <= 0.0 {
-        return None;
-    }
-    let mut first: Option<f64> = None;
-    for (g, d, d_prev) in switches {
-        let (c, gh) = crossing_quadratic(g, d, d_prev, dt, h, 0.5);
-        if (g > 0.0) != (gh > 0.0) {
-            let tau = crossing_root(g, d, c, gh, h);
-            if rule.counts(tau, h) && first.is_none_or(|f| tau < f) {
-                first = Some(tau);
-            }
-        }
-    }
-    rule.window(first, h)
-}
-
 /// Which predicted crossings a step lands on: DOPRI5's rule, or the wider one of a Nyström
 /// tableau (whose error estimate does not see its last stage).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -1086,28 +1005,6 @@ impl LandingRule {
     }
 }
 
-/// The first crossing of a switching function inside a step of size h that lies in
-/// (0.1 h, 0.999 h), from each function's value and rate at both ends (g0, d0, g1, d1): where g
-/// changes sign, the zero of its cubic Hermite interpolant ([`crossing_inside`]). None when no
-/// switching function changed sign there.
-pub(crate) fn missed_crossing(
-    switches: impl Iterator<Item = (f64, f64, f64, f64)>,
-    h: f64,
-) -> Option<f64> {
-    let mut first: Option<f64> = None;
-    for (g0, d0, g1, d1) in switches {
-        if (g0 > 0.0) == (g1 > 0.0) {
-            continue;
-        }
-        if let Some(tau) = crossing_inside(g0, d0, g1, d1, h) {
-            if first.is_none_or(|f| tau < f) {
-                first = Some(tau);
-            }
-        }
-    }
-    first
-}
-
 /// For a switching function that changed sign over a step of size h: the zero of its cubic
 /// Hermite interpolant if it lies in (0.1 h, 0.999 h) ([`missed_crossing`]).
 #[inline(never)]
@@ -1119,22 +1016,6 @@ pub(crate) fn crossing_inside(g0: f64, d0: f64, g1: f64, d1: f64, h: f64) -> Opt
     };
     let tau = illinois(cubic, 1.0, g0, g1, 1e-6) * h;
     (tau > EVENT_LANDING_FRACTION * h && tau < NYSTROM_LANDING_END * h).then_some(tau)
-}
-
-/// The curvature c = (g' − g'_prev) / (2 dt) of the extrapolating quadratic and its value
-/// g + h (g' + c h) at the end of a step of size h, for f64 and for SIMD lanes alike (`half`
-/// is 0.5), so that both compute the same bits.
-#[inline(always)]
-pub(crate) fn crossing_quadratic<T>(g: T, d: T, d_prev: T, dt: T, h: T, half: T) -> (T, T)
-where
-    T: Copy
-        + std::ops::Add<Output = T>
-        + std::ops::Sub<Output = T>
-        + std::ops::Mul<Output = T>
-        + std::ops::Div<Output = T>,
-{
-    let c = half * (d - d_prev) / dt;
-    (c, g + h * (d + c * h))
 }
 
 /// The zero in (0, h) of q(τ) = g + τ (d + c τ), given q(h) = gh of the other sign than g:
@@ -1200,227 +1081,6 @@ pub(crate) fn fixed_step_end(t0: f64, steps_done: u64, h: f64, t_end: f64) -> f6
 /// more than 1/MIN_STEP_FRACTION steps, a stiff system the tolerance cannot follow in time.
 pub(crate) fn min_step_s(t: f64, t_end: f64) -> f64 {
     (1e-14 * t.abs()).max(crate::defaults::MIN_STEP_FRACTION * t_end.abs())
-}
-
-/// out = y + h Σ_j w_j k_j, skipping zero weights, added in stage order: ((y + hw₀k₀) + hw₁k₁) + ….
-#[inline(always)]
-fn combine(out: &mut [f64], y: &[f64], h: f64, weights: &[f64], k: &[Vec<f64>]) {
-    stage_sum(out, Some(y), weights, k, |w| h * w);
-}
-
-/// out = base + Σ_j hw(w_j) k_j over the non-zero weights w_j (out = Σ_j hw(w_j) k_j when `base`
-/// is None: `out` is only written), for f64 states and for SIMD lanes (lanes.rs) alike: the
-/// stages, the new state and the error estimate. The terms go in groups of up to four per pass
-/// over the state (each element's sum in a register), so a DOPRI5 step makes 8 passes instead of
-/// 21; the additions run left to right as with one pass per term, so the bits are those of one
-/// pass per term (without a base, those of 0 + Σ but for the sign of a zero sum). No allocation.
-#[inline(always)]
-pub(crate) fn stage_sum<T>(
-    out: &mut [T],
-    base: Option<&[T]>,
-    weights: &[f64],
-    k: &[Vec<T>],
-    hw: impl Fn(f64) -> T,
-) where
-    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
-{
-    const MAX_TERMS: usize = 16;
-    let zero = hw(0.0);
-    let mut factors = [zero; MAX_TERMS];
-    let mut ks: [&[T]; MAX_TERMS] = [&[]; MAX_TERMS];
-    let mut terms = 0;
-    for (&w, kj) in weights.iter().zip(k) {
-        if w != 0.0 {
-            assert!(
-                terms < MAX_TERMS,
-                "a tableau has at most {MAX_TERMS} stages"
-            );
-            factors[terms] = hw(w);
-            ks[terms] = kj;
-            terms += 1;
-        }
-    }
-    sum_terms(out, base, &factors[..terms], &ks[..terms], zero);
-}
-
-/// out = base + Σ_j factors_j ks_j (out = Σ_j factors_j ks_j without a base; `zero` fills `out`
-/// when there are no terms and no base): the terms in groups of up to four per pass over the
-/// state, added left to right ([`stage_sum`]).
-#[inline(always)]
-pub(crate) fn sum_terms<T>(out: &mut [T], base: Option<&[T]>, factors: &[T], ks: &[&[T]], zero: T)
-where
-    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
-{
-    let terms = factors.len();
-    if terms == 0 {
-        match base {
-            Some(y) => out.copy_from_slice(y),
-            None => out.fill(zero),
-        }
-        return;
-    }
-    let mut done = 0;
-    while done < terms {
-        let group = (terms - done).min(4);
-        let (f, ks) = (&factors[done..done + group], &ks[done..done + group]);
-        let start = match (done, base) {
-            (0, Some(y)) => Start::From(y),
-            (0, None) => Start::Nothing,
-            _ => Start::Out,
-        };
-        match group {
-            1 => add_terms::<T, 1>(out, start, f, ks),
-            2 => add_terms::<T, 2>(out, start, f, ks),
-            3 => add_terms::<T, 3>(out, start, f, ks),
-            _ => add_terms::<T, 4>(out, start, f, ks),
-        }
-        done += group;
-    }
-}
-
-/// The stage positions of a Runge–Kutta–Nyström step, X = x + (c h) v + Σ_j (h² a_j) A_j over the
-/// non-zero a_j (A_j: the second halves of k_j), from y = [x | v]; for f64 states and SIMD lanes
-/// alike (`splat` makes a coefficient a T), so both add in the same order.
-#[inline(always)]
-pub(crate) fn nystrom_positions<T>(
-    out: &mut [T],
-    y: &[T],
-    k: &[Vec<T>],
-    a_row: &[f64],
-    c: f64,
-    h: T,
-    splat: impl Fn(f64) -> T,
-) where
-    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
-{
-    const MAX_TERMS: usize = 16;
-    let nd = out.len();
-    let (x, v) = (&y[..nd], &y[nd..2 * nd]);
-    let h2 = h * h;
-    let zero = splat(0.0);
-    let mut factors = [zero; MAX_TERMS];
-    let mut ks: [&[T]; MAX_TERMS] = [&[]; MAX_TERMS];
-    factors[0] = splat(c) * h;
-    ks[0] = v;
-    let mut terms = 1;
-    for (&w, kj) in a_row.iter().zip(k) {
-        if w != 0.0 {
-            factors[terms] = h2 * splat(w);
-            ks[terms] = &kj[nd..2 * nd];
-            terms += 1;
-        }
-    }
-    sum_terms(out, Some(x), &factors[..terms], &ks[..terms], zero);
-}
-
-/// The end of a Runge–Kutta–Nyström step whose stages are in k (the last at the new positions,
-/// already in `stage`'s first half): the new velocities v + Σ_j (h b'_j) A_j into `stage`'s
-/// second half and into k\[last\]'s first half (so that k\[last\] is f at the new point), and the
-/// error estimates Σ_j (h² e_j) A_j of the positions and Σ_j (h e'_j) A_j of the velocities.
-#[inline(always)]
-pub(crate) fn nystrom_finish<T>(
-    stage: &mut [T],
-    error: &mut [T],
-    y: &[T],
-    k: &mut [Vec<T>],
-    tableau: &Tableau,
-    h: T,
-    splat: impl Fn(f64) -> T,
-) where
-    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
-{
-    let nd = y.len() / 2;
-    let weights = tableau.nystrom.as_ref().expect("a Nyström tableau");
-    let position_error = tableau.error.as_ref().expect("an embedded estimate");
-    let h2 = h * h;
-    let (v, v_new) = (&y[nd..2 * nd], &mut stage[nd..2 * nd]);
-    acceleration_sum(v_new, Some(v), &weights.b, h, k, &splat);
-    let (ex, ev) = error[..2 * nd].split_at_mut(nd);
-    acceleration_sum(ex, None, position_error, h2, k, &splat);
-    acceleration_sum(ev, None, &weights.error, h, k, &splat);
-    let last = k.len() - 1;
-    k[last][..nd].copy_from_slice(&stage[nd..2 * nd]);
-}
-
-/// out = base + Σ_j (factor w_j) A_j over the non-zero w_j, A_j the second half of k_j (of
-/// length 2 · out.len()). A function, not a closure, so that it is inlined into the SIMD build.
-#[inline(always)]
-fn acceleration_sum<T>(
-    out: &mut [T],
-    base: Option<&[T]>,
-    w: &[f64],
-    factor: T,
-    k: &[Vec<T>],
-    splat: &impl Fn(f64) -> T,
-) where
-    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
-{
-    const MAX_TERMS: usize = 16;
-    let nd = out.len();
-    let zero = splat(0.0);
-    let mut factors = [zero; MAX_TERMS];
-    let mut ks: [&[T]; MAX_TERMS] = [&[]; MAX_TERMS];
-    let mut terms = 0;
-    for (&wj, kj) in w.iter().zip(k) {
-        if wj != 0.0 {
-            factors[terms] = factor * splat(wj);
-            ks[terms] = &kj[nd..2 * nd];
-            terms += 1;
-        }
-    }
-    sum_terms(out, base, &factors[..terms], &ks[..terms], zero);
-}
-
-/// What a pass of [`add_terms`] adds its terms to.
-#[derive(Clone, Copy)]
-enum Start<'a, T> {
-    /// A base vector.
-    From(&'a [T]),
-    /// The output's own values.
-    Out,
-    /// Nothing: the first term starts the sum.
-    Nothing,
-}
-
-/// out_i = (base_i, out_i or nothing) + f₀ k₀_i + … + f_{N-1} k_{N-1}_i, left to right.
-#[inline(always)]
-fn add_terms<T, const N: usize>(out: &mut [T], start: Start<'_, T>, f: &[T], ks: &[&[T]])
-where
-    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
-{
-    let n = out.len();
-    let f: [T; N] = std::array::from_fn(|j| f[j]);
-    let ks: [&[T]; N] = std::array::from_fn(|j| &ks[j][..n]);
-    match start {
-        Start::From(y) => {
-            let y = &y[..n];
-            for i in 0..n {
-                let mut acc = y[i];
-                for j in 0..N {
-                    acc = acc + f[j] * ks[j][i];
-                }
-                out[i] = acc;
-            }
-        }
-        Start::Out => {
-            for i in 0..n {
-                let mut acc = out[i];
-                for j in 0..N {
-                    acc = acc + f[j] * ks[j][i];
-                }
-                out[i] = acc;
-            }
-        }
-        Start::Nothing => {
-            for i in 0..n {
-                let mut acc = f[0] * ks[0][i];
-                for j in 1..N {
-                    acc = acc + f[j] * ks[j][i];
-                }
-                out[i] = acc;
-            }
-        }
-    }
 }
 
 /// Hairer's starting step (Solving ODEs I, II.4): h0 from the sizes of y and f, refined by one
