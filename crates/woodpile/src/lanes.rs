@@ -117,6 +117,15 @@ pub struct Job<'a> {
     pub settings: &'a RunSettings,
 }
 
+impl Job<'_> {
+    /// Whether [`simulate_many`] advances this job in SIMD lanes (any physics, when it records no
+    /// samples: `sample_interval_s` equal to `duration_s`), rather than on its own with
+    /// [`simulate`](crate::simulate()). Errors as [`simulate`](crate::simulate()) would.
+    pub fn in_lanes(&self) -> Result<bool> {
+        Ok(lane_ready(self)?.is_some())
+    }
+}
+
 /// Runs every job, in lanes where it can (see the module documentation) and on [`simulate`](crate::simulate())
 /// otherwise, with no recorder, on the threads of the current rayon pool (the global one, or
 /// the pool whose `install` calls it). The results are in the order of `jobs` and equal, bit

@@ -11,6 +11,14 @@ use woodpile::{
 /// `count` chains of random Table 1 rods (seeded), chain i of `lengths[i % lengths.len()]` rods,
 /// every fifth rigid, the others resonant (1 or 2 resonators per cell: lanes carry padding).
 pub fn random_chains(seed: u64, count: usize, lengths: &[usize]) -> Vec<Chain> {
+    random_builders(seed, count, lengths)
+        .into_iter()
+        .map(|b| b.build().unwrap())
+        .collect()
+}
+
+/// The builders of [`random_chains`], for chains with more physics.
+pub fn random_builders(seed: u64, count: usize, lengths: &[usize]) -> Vec<ChainBuilder> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     (0..count)
         .map(|i| {
@@ -23,10 +31,7 @@ pub fn random_chains(seed: u64, count: usize, lengths: &[usize]) -> Vec<Chain> {
             } else {
                 CellModel::Resonant
             };
-            ChainBuilder::table1_rods(&rods, model)
-                .unwrap()
-                .build()
-                .unwrap()
+            ChainBuilder::table1_rods(&rods, model).unwrap()
         })
         .collect()
 }

@@ -33,6 +33,7 @@ mod lab_energy_balance;
 mod lanes_bit_identical;
 mod lanes_common;
 mod lanes_figures_of_merit;
+mod lanes_lab_physics;
 mod nesterenko_solitary_wave;
 mod no_tension;
 mod optimize_cache_transparent;
