@@ -43,8 +43,8 @@ use rayon::prelude::*;
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::integrate::{
-    self, fixed_step_end, min_step_s, next_step_after_accept, next_step_after_reject, Integrator,
-    IntegratorStats, LandingRule, Method, OdeSystem, Tableau,
+    self, fixed_step_end, Integrator, IntegratorStats, LandingRule, Method, OdeSystem, StepControl,
+    Tableau, Verdict,
 };
 use crate::model::{Chain, ContactLaw};
 use crate::ode::{ChainOde, Equations, Load};
@@ -394,13 +394,8 @@ struct LaneRun<'a> {
     t: f64,
     /// Start of the last accepted step (event-aware stepping).
     t_prev: f64,
-    h: f64,
-    err_prev: f64,
-    rejected_before: bool,
-    /// Whether this iteration's step was shortened to land on a predicted crossing.
-    landing: bool,
-    /// A step to retake so that it ends on a crossing the last attempt missed ([`Method::Rkn64`]).
-    retake: Option<f64>,
+    /// Step control (a fixed step's size in `step.h`).
+    step: StepControl,
     rtol: f64,
     stats: IntegratorStats,
     /// The run's own state vector (its layout, not the lanes'): filled where needed.
@@ -565,14 +560,14 @@ impl<'a, const L: usize> Lanes<'a, L> {
             self.peak_watch,
         )
         .stop_above(self.stop_above_n);
-        let (h, err_prev, rtol, atol) = match settings.method.resolve(self.nystrom) {
+        let (step, rtol, atol) = match settings.method.resolve(self.nystrom) {
             Method::Dopri5 { rtol, atol }
             | Method::Dopri5Events { rtol, atol }
             | Method::Rkn64 { rtol, atol } => {
-                let (h, err_prev) = integrator.adaptive_control().expect("adaptive");
-                (h, err_prev, rtol, atol)
+                let step = integrator.adaptive_control().expect("adaptive");
+                (step, rtol, atol)
             }
-            Method::Rk4 { time_step_s } => (time_step_s, 0.0, 0.0, 0.0),
+            Method::Rk4 { time_step_s } => (StepControl::new(time_step_s), 0.0, 0.0),
             Method::PeakTolerance { .. } => unreachable!("resolved"),
         };
         // Where each of the run's components sits in the lanes.
@@ -617,11 +612,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
             watch,
             t: 0.0,
             t_prev: 0.0,
-            h,
-            err_prev,
-            rejected_before: false,
-            landing: false,
-            retake: None,
+            step,
             rtol,
             stats,
         });
@@ -630,87 +621,101 @@ impl<'a, const L: usize> Lanes<'a, L> {
     /// One attempted step in every occupied lane, then each lane's own bookkeeping.
     #[inline(always)]
     fn iterate(&mut self) {
-        let mut h = [0.0; L];
-        let mut t = [0.0; L];
-        // Fixed steps: where each lane's step ends, as the fixed-step integrator computes it.
-        let mut t_fixed = [0.0; L];
+        let (t, h, t_fixed) = self.propose_steps();
+        self.attempt(&t, &h);
+        let mut err = [0.0; L];
+        if self.adaptive {
+            self.error_norms(&h, &mut err);
+        }
+        let missed = if self.nystrom {
+            self.missed_crossings(&h, &err)
+        } else {
+            [None; MAX_LANES]
+        };
+        let accepted = self.judge(&h, &err, &missed);
+        self.commit(accepted, &t, &h);
+        let blown_up = self.check_contacts();
+        for l in 0..L {
+            if accepted[l] && self.runs[l].is_some() {
+                let t1 = if self.adaptive {
+                    t[l] + h[l]
+                } else {
+                    t_fixed[l]
+                };
+                self.after_accept(l, t[l], t1, h[l], err[l], blown_up[l]);
+            }
+        }
+    }
+
+    /// Each occupied lane's time and step to try, as [`Integrator`] chooses it: its controller's
+    /// proposal ([`StepControl`], shortened to land on a predicted crossing), or the fixed step
+    /// (also: where it ends). A lane whose step fell below the smallest allowed goes to the
+    /// scalar path, which reports it.
+    #[allow(clippy::type_complexity)]
+    fn propose_steps(&mut self) -> ([f64; L], [f64; L], [f64; L]) {
+        let (mut t, mut h, mut t_fixed) = ([0.0; L], [0.0; L], [0.0; L]);
         // Lanes whose step event-aware stepping may shorten.
         let mut want = [false; MAX_LANES];
         for l in 0..L {
             let Some(run) = &self.runs[l] else { continue };
             let t_end = run.settings.duration_s;
             t[l] = run.t;
-            if self.adaptive {
-                let remaining = t_end - run.t;
-                let h_try = run.h.min(remaining);
-                if h_try < min_step_s(run.t, t_end) && h_try < remaining {
-                    self.rerun(l);
-                    continue;
-                }
-                h[l] = h_try;
-                // A lane retaking a step to end on a missed crossing predicts nothing.
-                want[l] = self.events
-                    && run.retake.is_none()
-                    && !run.rejected_before
-                    && run.stats.steps > 0;
-            } else {
-                t_fixed[l] = fixed_step_end(0.0, run.stats.steps, run.h, t_end);
+            if !self.adaptive {
+                t_fixed[l] = fixed_step_end(0.0, run.stats.steps, run.step.h, t_end);
                 h[l] = t_fixed[l] - run.t;
+                continue;
+            }
+            want[l] = self.events && run.step.predicts() && run.stats.steps > 0;
+            match run.step.propose(run.t, t_end) {
+                Ok(h_try) => h[l] = h_try,
+                Err(_) => {
+                    want[l] = false;
+                    self.rerun(l);
+                }
             }
         }
-        if self.events {
-            let mut landing = self.predict_crossings(&h, want);
+        if self.adaptive {
+            let predicted = if self.events {
+                self.predict_crossings(&h, want)
+            } else {
+                [None; MAX_LANES]
+            };
             for l in 0..L {
                 if let Some(run) = self.runs[l].as_mut() {
-                    if let Some(tau) = run.retake.take() {
-                        landing[l] = Some(tau);
-                    }
-                    run.landing = landing[l].is_some();
-                    if let Some(tau) = landing[l] {
-                        h[l] = tau;
-                    }
+                    h[l] = run.step.land(h[l], predicted[l]);
                 }
             }
         }
-        self.attempt(&t, &h);
-        let mut err = [0.0; L];
-        if self.adaptive {
-            self.error_norms(&h, &mut err);
-        }
+        (t, h, t_fixed)
+    }
+
+    /// Each lane's verdict on its attempt ([`StepControl::judge`]; fixed steps are accepted).
+    /// Empty lanes count as accepted (their values are never read).
+    fn judge(&mut self, h: &[f64; L], err: &[f64; L], missed: &[Option<f64>]) -> Mask {
         let stages = self.tableau.stages();
-        let missed = if self.nystrom {
-            self.missed_crossings(&h, &err)
-        } else {
-            [None; MAX_LANES]
-        };
-        let mut accepted = [false; MAX_LANES];
+        let mut accepted = [true; MAX_LANES];
         for l in 0..L {
             let Some(run) = &mut self.runs[l] else {
                 continue;
             };
             run.stats.rhs_evaluations += (stages - 1) as u64;
-            if let Some(tau) = missed[l] {
-                // Retaken to end on the crossing; counted as a rejected step (as the integrator).
-                run.stats.rejected_steps += 1;
-                run.retake = Some(tau);
-                continue;
+            if self.adaptive {
+                let verdict = run
+                    .step
+                    .judge(h[l], err[l], missed[l], self.order, &mut run.stats);
+                accepted[l] = verdict == Verdict::Accept;
             }
-            if !self.adaptive || err[l] <= 1.0 {
-                accepted[l] = true;
-                continue;
-            }
-            run.stats.rejected_steps += 1;
-            run.rejected_before = true;
-            run.h = next_step_after_reject(h[l], err[l], self.order);
         }
-        // Commit: accepted lanes take the new state; f at the current point is the FSAL stage
-        // for accepted lanes and the old one (moved to k[0] by `attempt`) for rejected ones.
-        // Empty lanes count as accepted (their values are never read).
-        for l in 0..L {
-            accepted[l] |= self.runs[l].is_none();
-        }
-        let last = stages - 1;
-        if accepted.iter().all(|&a| a) {
+        accepted
+    }
+
+    /// Accepted lanes take the new state; f at the current point is the FSAL stage for accepted
+    /// lanes and the old one (moved to k\[0\] by `attempt`) for rejected ones; a tableau that is
+    /// not FSAL (fixed steps: every lane accepted) evaluates f at the new point, at t + h as the
+    /// integrator does.
+    fn commit(&mut self, accepted: Mask, t: &[f64; L], h: &[f64; L]) {
+        let last = self.tableau.stages() - 1;
+        if accepted[..L].iter().all(|&a| a) {
             std::mem::swap(&mut self.y, &mut self.stage);
             if self.tableau.fsal {
                 std::mem::swap(&mut self.f_now, &mut self.k[last]);
@@ -727,8 +732,6 @@ impl<'a, const L: usize> Lanes<'a, L> {
             }
         }
         if !self.tableau.fsal {
-            // Fixed steps: every occupied lane accepted; f at the new point, at t + h as the
-            // integrator evaluates it.
             let mut t_new = [0.0; L];
             for l in 0..L {
                 t_new[l] = t[l] + h[l];
@@ -737,17 +740,6 @@ impl<'a, const L: usize> Lanes<'a, L> {
             let (force, overlap) = (&mut self.force, &mut self.overlap);
             self.eq
                 .rhs(load, &self.y, &mut self.f_now, force, overlap, true);
-        }
-        let blown_up = self.check_contacts();
-        for l in 0..L {
-            if accepted[l] && self.runs[l].is_some() {
-                let t1 = if self.adaptive {
-                    t[l] + h[l]
-                } else {
-                    t_fixed[l]
-                };
-                self.after_accept(l, t[l], t1, h[l], err[l], blown_up[l]);
-            }
         }
     }
 
@@ -784,7 +776,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
         for l in 0..L {
             check[l] = self.runs[l]
                 .as_ref()
-                .is_some_and(|run| !run.landing && err[l] <= 1.0);
+                .is_some_and(|run| !run.step.landing && err[l] <= 1.0);
         }
         if !check.iter().any(|&c| c) {
             return [None; MAX_LANES];
@@ -829,13 +821,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
         run.stats.steps += 1;
         run.t = t1;
         if adaptive {
-            // A step shortened to land on a crossing keeps the proposal (as the integrator).
-            if !run.landing {
-                run.h =
-                    next_step_after_accept(run.h, h, err, run.err_prev, order, run.rejected_before);
-                run.err_prev = err.max(1e-4);
-            }
-            run.rejected_before = false;
+            run.step.accepted(h, err, order);
             run.t_prev = t0;
         } else {
             run.stats.rhs_evaluations += 1;

@@ -12,7 +12,10 @@
 //! - J. R. Dormand, M. E. A. El-Mikkawy, P. J. Prince, "Families of Runge–Kutta–Nyström
 //!   formulae", IMA J. Numer. Anal. 7 (1987) 235–250 (RKN6(4)6FM, [`Tableau::rkn64`]).
 
+mod control;
 mod kernels;
+
+pub(crate) use control::{StepControl, Verdict};
 
 pub(crate) use kernels::{attempt, missed_crossings, predict_crossings, rms, weighted_squares};
 
@@ -484,9 +487,7 @@ enum Control {
     Adaptive {
         rtol: f64,
         atol: Vec<f64>,
-        h: f64,
-        /// Error norm of the last accepted step (for the PI controller).
-        err_prev: f64,
+        step: StepControl,
     },
 }
 
@@ -575,8 +576,7 @@ impl Integrator {
                 Control::Adaptive {
                     rtol,
                     atol,
-                    h,
-                    err_prev: 1e-4,
+                    step: StepControl::new(h),
                 }
             }
         };
@@ -768,12 +768,9 @@ impl Integrator {
                 // Move the control out (no allocation) so that `self` can be borrowed mutably.
                 let mut control = std::mem::replace(&mut self.control, Control::Fixed { h: 0.0 });
                 let result = match &mut control {
-                    Control::Adaptive {
-                        rtol,
-                        atol,
-                        h,
-                        err_prev,
-                    } => self.adaptive_step(system, t_end, *rtol, atol, h, err_prev),
+                    Control::Adaptive { rtol, atol, step } => {
+                        self.adaptive_step(system, t_end, *rtol, atol, step)
+                    }
                     Control::Fixed { .. } => unreachable!("matched above"),
                 };
                 self.control = control;
@@ -782,6 +779,7 @@ impl Integrator {
         }
     }
 
+    /// Attempts steps from the current point until one is accepted ([`StepControl`] decides).
     #[inline(always)]
     fn adaptive_step<S: OdeSystem>(
         &mut self,
@@ -789,62 +787,36 @@ impl Integrator {
         t_end: f64,
         rtol: f64,
         atol: &[f64],
-        h: &mut f64,
-        err_prev: &mut f64,
+        step: &mut StepControl,
     ) -> Result<f64> {
         let order = f64::from(self.tableau.order);
         let check_crossings = self.tableau.nystrom.is_some();
-        let mut rejected_before = false;
-        // A step to retake so that it ends on a crossing the last attempt missed.
-        let mut retake: Option<f64> = None;
         loop {
-            let remaining = t_end - self.t;
-            let mut h_try = h.min(remaining);
-            if h_try < min_step_s(self.t, t_end) && h_try < remaining {
-                return Err(Error::StepSizeTooSmall {
-                    time_s: self.t,
-                    step_s: h_try,
-                });
-            }
-            let mut landing = false;
-            if let Some(tau) = retake.take() {
-                h_try = tau;
-                landing = true;
-            } else if !rejected_before {
-                if let Some(tau) = self.predict_crossing(system, h_try) {
-                    h_try = tau;
-                    landing = true;
-                }
-            }
+            let h_try = step.propose(self.t, t_end)?;
+            let predicted = if step.predicts() {
+                self.predict_crossing(system, h_try)
+            } else {
+                None
+            };
+            let h_try = step.land(h_try, predicted);
             self.attempt(system, h_try);
             let err = self.error_norm(h_try, rtol, atol);
-            if err <= 1.0 && check_crossings && !landing {
-                if let Some(tau) = self.missed_crossing(system, h_try) {
-                    // Retaken to end on the crossing; counted as a rejected step.
-                    std::mem::swap(&mut self.k[0], &mut self.f_now);
-                    self.stats.rejected_steps += 1;
-                    retake = Some(tau);
-                    continue;
-                }
-            }
-            if err <= 1.0 {
-                self.accept(system, h_try);
-                if landing {
-                    // Shortened to land on a crossing: its error says nothing about the step
-                    // the dynamics allow, so the proposal and the last error norm stay.
+            let missed = if err <= 1.0 && check_crossings && !step.landing {
+                self.missed_crossing(system, h_try)
+            } else {
+                None
+            };
+            match step.judge(h_try, err, missed, order, &mut self.stats) {
+                Verdict::Accept => {
+                    self.accept(system, h_try);
+                    step.accepted(h_try, err, order);
                     return Ok(h_try);
                 }
-                *h = next_step_after_accept(*h, h_try, err, *err_prev, order, rejected_before);
-                *err_prev = err.max(1e-4);
-                return Ok(h_try);
+                // Restore the derivative at the current point and try again. The accepted
+                // attempt's last stage (FSAL) is evaluated at the new point, which restores the
+                // invariant that the last evaluation is at the current state.
+                Verdict::Retry => std::mem::swap(&mut self.k[0], &mut self.f_now),
             }
-            // Rejected: restore the derivative at the current point, shrink and retry. The
-            // accepted attempt's last stage (FSAL) is evaluated at the new point, which restores
-            // the invariant that the last evaluation is at the current state.
-            std::mem::swap(&mut self.k[0], &mut self.f_now);
-            self.stats.rejected_steps += 1;
-            rejected_before = true;
-            *h = next_step_after_reject(h_try, err, order);
         }
     }
 
@@ -892,10 +864,10 @@ impl Integrator {
         &self.f_now
     }
 
-    /// The adaptive controller's next step and last error norm; None for fixed steps.
-    pub(crate) fn adaptive_control(&self) -> Option<(f64, f64)> {
+    /// The adaptive step controller; None for fixed steps.
+    pub(crate) fn adaptive_control(&self) -> Option<StepControl> {
         match self.control {
-            Control::Adaptive { h, err_prev, .. } => Some((h, err_prev)),
+            Control::Adaptive { step, .. } => Some(step),
             Control::Fixed { .. } => None,
         }
     }

@@ -10,9 +10,8 @@
 
 use crate::lanes_common::{alone, jobs, peaks_only, random_builders};
 use woodpile::{
-    simulate_many, BlastProfile, Chain, ContactDamping, Damping, Drive,
-    DriveQuantity, Excitation, LaneWidth, Method, Preload, RunSettings, RunSummary, Signal,
-    Striker, Wall,
+    simulate_many, BlastProfile, Chain, ContactDamping, Damping, Drive, DriveQuantity, Excitation,
+    LaneWidth, Method, Preload, RunSettings, RunSummary, Signal, Striker, Wall,
 };
 
 fn bits(s: &RunSummary) -> String {
@@ -22,7 +21,11 @@ fn bits(s: &RunSummary) -> String {
     };
     // {:?} prints every f64 exactly (shortest round-trip form), so equal text is equal bits
     // but for the sign of zero, which the peaks' bits cover.
-    let peaks: Vec<u64> = s.contact_peak_forces_n.iter().map(|x| x.to_bits()).collect();
+    let peaks: Vec<u64> = s
+        .contact_peak_forces_n
+        .iter()
+        .map(|x| x.to_bits())
+        .collect();
     format!("{s:?} {peaks:?}")
 }
 
@@ -41,14 +44,22 @@ fn damping() -> Damping {
 fn lab_chains(damping: &Damping, preload: &Preload) -> Vec<Chain> {
     random_builders(11, 12, &[3, 8])
         .into_iter()
-        .map(|b| b.damping(damping.clone()).preload(*preload).build().unwrap())
+        .map(|b| {
+            b.damping(damping.clone())
+                .preload(*preload)
+                .build()
+                .unwrap()
+        })
         .collect()
 }
 
 fn check(chains: &[Chain], excitation: &Excitation, settings: &RunSettings) {
     let alone = alone(chains, excitation, settings);
     let jobs = jobs(chains, excitation, settings);
-    assert!(jobs.iter().all(|j| j.in_lanes().unwrap()), "every job runs in lanes");
+    assert!(
+        jobs.iter().all(|j| j.in_lanes().unwrap()),
+        "every job runs in lanes"
+    );
     for threads in [1, 3] {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -90,7 +101,11 @@ fn damped_impact_with_preload_and_gravity() {
 #[test]
 fn damped_blast() {
     let chains = lab_chains(&damping(), &Preload::default());
-    check(&chains, &Excitation::Blast(BlastProfile::paper()), &dopri5());
+    check(
+        &chains,
+        &Excitation::Blast(BlastProfile::paper()),
+        &dopri5(),
+    );
 }
 
 #[test]
