@@ -46,8 +46,8 @@ use crate::integrate::{
     self, fixed_step_end, Integrator, IntegratorStats, LandingRule, Method, OdeSystem, StepControl,
     Tableau, Verdict,
 };
-use crate::model::{Chain, ContactLaw};
-use crate::ode::{ChainOde, Equations, Load};
+use crate::model::Chain;
+use crate::ode::{ChainOde, Equations, LabShape, Load};
 use crate::real::{Lane, Mask, Real, MAX_LANES};
 use crate::simulate::{
     check_method_fits, simulate_watching, too_many_steps, PeakWatch, RunSettings, RunSummary, Watch,
@@ -225,9 +225,8 @@ struct GroupKey {
     events: bool,
     /// A Runge–Kutta–Nyström method ([`Method::Rkn64`]).
     nystrom: bool,
-    /// The lab physics' shape: contact law per slot, tension allowed, an actuator (None: the
-    /// paper's model).
-    lab: Option<(Vec<ContactLaw>, bool, bool)>,
+    /// The lab physics' terms (None: the paper's model).
+    lab: Option<LabShape>,
 }
 
 /// Checks a job as [`simulate`](crate::simulate()) does (same errors, same order) and compiles it; `None` when it
@@ -242,7 +241,7 @@ fn lane_ready(job: &Job<'_>) -> Result<Option<(GroupKey, ChainOde)>> {
     let method = job.settings.method.resolve(ode.second_order().is_some());
     let lab = ode.eq.lab.as_ref();
     let key = GroupKey {
-        lab: lab.map(|lab| (lab.laws.clone(), lab.allow_pull, lab.actuator)),
+        lab: lab.map(|lab| lab.shape.clone()),
         n_primary: ode.eq.p,
         shift: ode.shift,
         blast: ode.is_blast(),

@@ -79,12 +79,14 @@ impl ContactLaw {
         rate_m_s: R,
         allow_pull: bool,
     ) -> (R, R) {
-        let elastic = Self::elastic_force(beta, overlap_m);
+        let dp = overlap_m.max(R::ZERO);
+        let root = dp.sqrt();
+        // β δ₊^{3/2}: the operations of [`ContactLaw::elastic_force`].
+        let elastic = beta * dp * root;
         if self == ContactLaw::Elastic {
             return (elastic, R::ZERO);
         }
         let closed = overlap_m.positive();
-        let root = overlap_m.max(R::ZERO).sqrt();
         let damping = match self {
             ContactLaw::Elastic => R::ZERO,
             ContactLaw::Restitution => coef * root.sqrt() * rate_m_s,

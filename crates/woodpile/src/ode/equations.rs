@@ -31,17 +31,35 @@ pub(crate) struct Equations<R> {
     pub lab: Option<LabEquations<R>>,
 }
 
-/// The terms of docs/physics.md §14; the state then ends in `[W | D]`.
-#[derive(Debug, Clone)]
-pub(crate) struct LabEquations<R> {
-    /// Law per slot 0..=P (slot 0: an actuator's tip) and its coefficient.
+/// Which terms of docs/physics.md §14 a run has: what the runs of one lane group share (the
+/// terms a run lacks are not evaluated at all).
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub(crate) struct LabShape {
+    /// Law per slot 0..=P (slot 0: an actuator's tip).
     pub laws: Vec<ContactLaw>,
-    pub law_coef: Vec<R>,
+    /// Whether a damped contact may pull.
     pub allow_pull: bool,
     /// Whether slot 0 loads the top element (no striker): a force or an actuator.
     pub loaded: bool,
     /// Whether slot 0 is a displacement actuator's tip contact.
     pub actuator: bool,
+    /// Whether a constant external force acts on some primary (gravity, a preload beside a
+    /// striker), and gravity on the resonators.
+    pub external: bool,
+    pub gravity: bool,
+    /// Whether the resonators are damped.
+    pub resonator_damping: bool,
+    /// Whether on-site damping acts.
+    pub on_site: bool,
+}
+
+/// The terms of docs/physics.md §14; the state then ends in `[W | D]`.
+#[derive(Debug, Clone)]
+pub(crate) struct LabEquations<R> {
+    /// Which terms there are.
+    pub shape: LabShape,
+    /// Each slot's law coefficient ([`ContactLaw::compile`]).
+    pub law_coef: Vec<R>,
     /// The tip's rest position (static equilibrium) \[m\].
     pub actuator_rest_m: R,
     /// Primary masses M \[kg\].
@@ -158,7 +176,9 @@ impl<R: Real> Equations<R> {
     }
 
     /// The lab physics: damped contacts, an actuator or a force load with a preload, gravity,
-    /// resonator and on-site damping, and the rates of the work W and the dissipation D.
+    /// resonator and on-site damping, and the rates of the work W and the dissipation D. Terms
+    /// the shape lacks are skipped (their values would be exact zeros); the sums of W and D are
+    /// kept per kind of term, so that they are not one long chain of dependent additions.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn rhs_lab(
@@ -172,31 +192,82 @@ impl<R: Real> Equations<R> {
         overlap: &mut [R],
     ) {
         let (p, nd) = (self.p, self.nd);
+        let shape = &lab.shape;
         let (dv, integrals) = rest.split_at_mut(nd);
-        let mut power_in = R::ZERO;
-        let mut dissipation = R::ZERO;
-        // The load slot: nothing above a striker, an actuator's tip contact, or a force.
-        let (f0, d0) = if !lab.loaded {
-            (R::ZERO, R::ZERO)
-        } else if lab.actuator {
-            let d = lab.actuator_rest_m + load.tip_m - x[0];
-            let law = lab.laws[0];
-            let (f, diss) = law.force(
-                lab.law_coef[0],
-                self.beta[0],
-                d,
-                load.tip_rate_m_s - v[0],
-                lab.allow_pull,
-            );
-            if law.is_damped() {
-                dissipation = dissipation + diss;
+        let (power_load, diss_contacts) = self.lab_contacts(lab, load, x, v, force, overlap);
+        let mut power_bodies = R::ZERO;
+        let mut diss_bodies = R::ZERO;
+        for i in 0..p {
+            let mut a = force[i] - force[i + 1];
+            if shape.external {
+                a = a + lab.external_force_n[i];
+                power_bodies = power_bodies + lab.external_force_n[i] * v[i];
             }
-            power_in = power_in + f * load.tip_rate_m_s;
-            (f, d)
+            dv[i] = a * self.inv_mass[i];
+            if shape.on_site {
+                let on_site = lab.on_site_rate[i];
+                dv[i] = dv[i] - on_site * v[i];
+                diss_bodies = diss_bodies + on_site * lab.mass[i] * v[i] * v[i];
+            }
+        }
+        let mut power_resonators = R::ZERO;
+        let mut diss_resonators = R::ZERO;
+        let (dvp, dvr) = dv.split_at_mut(p);
+        for (j, a) in dvr.iter_mut().enumerate() {
+            let (o, vj) = (self.res_owner[j], v[p + j]);
+            let ext = x[p + j] - x[o];
+            *a = -self.res_omega2[j] * ext;
+            if shape.resonator_damping {
+                let rel = vj - v[o];
+                *a = *a - lab.res_damping_rate[j] * rel;
+                dvp[o] = dvp[o] + (self.res_coupling[j] * ext + lab.res_damping_coupling[j] * rel);
+                diss_resonators = diss_resonators + lab.res_damping[j] * rel * rel;
+            } else {
+                dvp[o] = dvp[o] + self.res_coupling[j] * ext;
+            }
+            if shape.gravity {
+                let g = lab.res_gravity[j];
+                *a = *a + g;
+                power_resonators = power_resonators + lab.res_mass[j] * g * vj;
+            }
+            if shape.on_site {
+                let on_site = lab.on_site_rate[p + j];
+                *a = *a - on_site * vj;
+                diss_resonators = diss_resonators + on_site * lab.res_mass[j] * vj * vj;
+            }
+        }
+        integrals[0] = power_load + power_bodies + power_resonators;
+        integrals[1] = diss_contacts + diss_bodies + diss_resonators;
+    }
+
+    /// The lab physics' contact forces into `force` and `overlap` (slot 0: nothing above a
+    /// striker, an actuator's tip contact, or a prescribed force): (the load's power, the power
+    /// the contacts dissipate).
+    #[inline(always)]
+    fn lab_contacts(
+        &self,
+        lab: &LabEquations<R>,
+        load: Load<R>,
+        x: &[R],
+        v: &[R],
+        force: &mut [R],
+        overlap: &mut [R],
+    ) -> (R, R) {
+        let (p, shape) = (self.p, &lab.shape);
+        let mut dissipation = R::ZERO;
+        let (f0, d0, power) = if !shape.loaded {
+            (R::ZERO, R::ZERO, R::ZERO)
+        } else if shape.actuator {
+            let d = lab.actuator_rest_m + load.tip_m - x[0];
+            let law = shape.laws[0];
+            let rate = load.tip_rate_m_s - v[0];
+            let (f, diss) = law.force(lab.law_coef[0], self.beta[0], d, rate, shape.allow_pull);
+            if law.is_damped() {
+                dissipation = diss;
+            }
+            (f, d, f * load.tip_rate_m_s)
         } else {
-            let f = load.force_n;
-            power_in = power_in + f * v[0];
-            (f, R::ZERO)
+            (load.force_n, R::ZERO, load.force_n * v[0])
         };
         force[0] = f0;
         overlap[0] = d0;
@@ -207,36 +278,20 @@ impl<R: Real> Equations<R> {
                 (x[slot - 1] - x[slot], v[slot - 1] - v[slot])
             };
             overlap[slot] = d;
-            let law = lab.laws[slot];
-            let (f, diss) = law.force(lab.law_coef[slot], self.beta[slot], d, ddot, lab.allow_pull);
+            let law = shape.laws[slot];
+            let (f, diss) = law.force(
+                lab.law_coef[slot],
+                self.beta[slot],
+                d,
+                ddot,
+                shape.allow_pull,
+            );
             force[slot] = f;
             if law.is_damped() {
                 dissipation = dissipation + diss;
             }
         }
-        for i in 0..p {
-            let on_site = lab.on_site_rate[i];
-            dv[i] = (force[i] - force[i + 1] + lab.external_force_n[i]) * self.inv_mass[i]
-                - on_site * v[i];
-            power_in = power_in + lab.external_force_n[i] * v[i];
-            dissipation = dissipation + on_site * lab.mass[i] * v[i] * v[i];
-        }
-        let (dvp, dvr) = dv.split_at_mut(p);
-        for (j, a) in dvr.iter_mut().enumerate() {
-            let o = self.res_owner[j];
-            let ext = x[p + j] - x[o];
-            let rel = v[p + j] - v[o];
-            let on_site = lab.on_site_rate[p + j];
-            let g = lab.res_gravity[j];
-            *a = -self.res_omega2[j] * ext - lab.res_damping_rate[j] * rel + g - on_site * v[p + j];
-            dvp[o] = dvp[o] + (self.res_coupling[j] * ext + lab.res_damping_coupling[j] * rel);
-            let m = lab.res_mass[j];
-            power_in = power_in + m * g * v[p + j];
-            dissipation =
-                dissipation + (lab.res_damping[j] * rel * rel + on_site * m * v[p + j] * v[p + j]);
-        }
-        integrals[0] = power_in;
-        integrals[1] = dissipation;
+        (power, dissipation)
     }
 
     /// The switching functions of event-aware stepping: the overlaps of contact slots 1..=P from
@@ -273,11 +328,8 @@ impl<R: Real> Equations<R> {
             res_omega2: zeros(r),
             res_coupling: zeros(r),
             lab: like.lab.as_ref().map(|lab| LabEquations {
-                laws: lab.laws.clone(),
+                shape: lab.shape.clone(),
                 law_coef: zeros(p + 1),
-                allow_pull: lab.allow_pull,
-                loaded: lab.loaded,
-                actuator: lab.actuator,
                 actuator_rest_m: R::ZERO,
                 mass: zeros(p),
                 on_site_rate: zeros(p + r),
@@ -312,7 +364,7 @@ impl<R: Real> Equations<R> {
         let (Some(lab), Some(src)) = (self.lab.as_mut(), run.lab.as_ref()) else {
             return;
         };
-        debug_assert_eq!(lab.laws, src.laws, "a lane group shares its contact laws");
+        debug_assert_eq!(lab.shape, src.shape, "a lane group shares its terms");
         for s in 0..=p {
             lab.law_coef[s].set_lane(l, src.law_coef[s]);
         }

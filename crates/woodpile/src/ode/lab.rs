@@ -1,7 +1,7 @@
 //! Compiling the lab physics of docs/physics.md §14: the contact laws per slot, resonator and
 //! on-site damping, external forces, the drive, and the static equilibrium a run starts from.
 
-use super::{ChainOde, LabEquations, LabLoad};
+use super::{ChainOde, LabEquations, LabLoad, LabShape};
 use crate::error::{Error, Result};
 use crate::excitation::{DriveQuantity, Excitation};
 use crate::model::{Chain, ContactDamping, ContactLaw, Damping};
@@ -69,11 +69,17 @@ impl ChainOde {
         let (static_state, actuator_rest_m) =
             self.static_state(&static_force_n, g, preload.force_n, actuator_beta);
         let equations = LabEquations {
-            laws,
+            shape: LabShape {
+                laws,
+                allow_pull: damping.allow_pull,
+                loaded: shift == 1,
+                actuator: actuator_beta.is_some(),
+                external: external_force_n.iter().any(|&f| f != 0.0),
+                gravity: g != 0.0,
+                resonator_damping: res_damping.iter().any(|&c| c != 0.0),
+                on_site: on_site_rate.iter().any(|&r| r != 0.0),
+            },
             law_coef,
-            allow_pull: damping.allow_pull,
-            loaded: shift == 1,
-            actuator: actuator_beta.is_some(),
             actuator_rest_m,
             mass: self.mass_kg.clone(),
             on_site_rate,

@@ -23,7 +23,7 @@
 mod equations;
 mod lab;
 
-pub(crate) use equations::{Equations, LabEquations, Load};
+pub(crate) use equations::{Equations, LabEquations, LabShape, Load};
 
 use crate::error::{Error, Result};
 use crate::excitation::{BlastProfile, Drive, Excitation};
@@ -320,7 +320,7 @@ impl ChainOde {
             .eq
             .lab
             .as_ref()
-            .is_some_and(|lab| lab.laws[slot].is_damped());
+            .is_some_and(|lab| lab.shape.laws[slot].is_damped());
         if slot == 0 || damped {
             f64::NAN
         } else {
@@ -361,7 +361,7 @@ impl ChainOde {
     pub fn layer_energies_j(&self, y: &[f64], out: &mut [f64]) -> f64 {
         let (p, nd) = (self.eq.p, self.eq.nd);
         let (x, v) = (&y[..nd], &y[nd..2 * nd]);
-        let actuator = self.eq.lab.as_ref().is_some_and(|l| l.actuator);
+        let actuator = self.eq.lab.as_ref().is_some_and(|l| l.shape.actuator);
         let potential = |slot: usize| {
             let d = if slot == 0 {
                 if !actuator {
@@ -470,7 +470,7 @@ impl ChainOde {
             return Load::NONE;
         }
         match &lab.drive {
-            Some(drive) if self.eq.lab.as_ref().is_some_and(|l| l.actuator) => {
+            Some(drive) if self.eq.lab.as_ref().is_some_and(|l| l.shape.actuator) => {
                 let (s, ds) = drive.value_and_rate(t);
                 Load {
                     tip_m: s,
