@@ -1,5 +1,7 @@
 //! Who watches: recorders receive the state on the uniform sample grid.
 
+use crate::error::{require_positive, Error, Result};
+
 /// What a run is made of, given to a recorder before the first sample.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Layout {
@@ -194,4 +196,28 @@ impl Recorder for Trajectory {
             self.striker_velocity_m_s.push(v);
         }
     }
+}
+
+/// The uniform sample interval Δt of a trajectory \[s\] (checked to be uniform to 1e-6 relative).
+pub fn sample_interval_s(trajectory: &Trajectory) -> Result<f64> {
+    let t = &trajectory.times_s;
+    if t.len() < 2 {
+        return Err(Error::invalid(
+            "trajectory.times_s length",
+            t.len(),
+            "needs at least 2 samples",
+        ));
+    }
+    let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
+    require_positive("trajectory sample interval", dt)?;
+    for (k, w) in t.windows(2).enumerate() {
+        if ((w[1] - w[0]) - dt).abs() > 1e-6 * dt {
+            return Err(Error::invalid(
+                format!("trajectory.times_s[{}]", k + 1),
+                w[1],
+                format!("samples must be uniformly spaced (Δt = {dt:e} s)"),
+            ));
+        }
+    }
+    Ok(dt)
 }

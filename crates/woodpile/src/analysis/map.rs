@@ -1,9 +1,8 @@
 //! Spatio-temporal maps: a value over (contact or layer) × (time or frequency), as in the paper's
 //! Figs. 5, 6, 7 a and 9.
 
-use super::spectrum::sample_interval_s;
 use crate::error::{Error, Result};
-use crate::record::Trajectory;
+use crate::record::{sample_interval_s, Trajectory};
 
 /// One axis of a map: a name, a unit and the coordinate of every row or column.
 #[derive(Debug, Clone, PartialEq)]

@@ -42,6 +42,7 @@ pub mod pulses;
 pub mod spectrum;
 pub mod transmission;
 
+pub use crate::record::sample_interval_s;
 pub use bands::{
     chain_bands_hz, contact_stiffness_n_per_m, linspace, BandStructure, EffectiveMassCurve,
 };
@@ -49,8 +50,7 @@ pub use map::{energy_map, force_map, injected_energy_j, Axis, Map2};
 pub use protocol::{layer_by_layer, sub_chain, LayerByLayer};
 pub use pulses::{arrival_s, band_contrast, peak_layer_energy, separated_peaks, FirstTransit};
 pub use spectrum::{
-    contact_spectrum_map, sample_interval_s, Padding, Scaling, Spectrum, SpectrumPlan,
-    SpectrumSettings, Window,
+    contact_spectrum_map, Padding, Scaling, Spectrum, SpectrumPlan, SpectrumSettings, Window,
 };
 pub use transmission::{
     homogeneous_prediction, transmission, EdgeComparison, TransmissionSettings,

@@ -20,7 +20,7 @@
 
 use super::map::{Axis, Map2};
 use crate::error::{require_positive, Error, Result};
-use crate::record::Trajectory;
+use crate::record::{sample_interval_s, Trajectory};
 use rustfft::num_complex::Complex64;
 use rustfft::{Fft, FftPlanner};
 use std::f64::consts::PI;
@@ -391,28 +391,4 @@ pub fn contact_spectrum_map(trajectory: &Trajectory, settings: &SpectrumSettings
         settings.scaling.label("N").1,
         data,
     )
-}
-
-/// The uniform sample interval Δt of a trajectory \[s\] (checked to be uniform to 1e-6 relative).
-pub fn sample_interval_s(trajectory: &Trajectory) -> Result<f64> {
-    let t = &trajectory.times_s;
-    if t.len() < 2 {
-        return Err(Error::invalid(
-            "trajectory.times_s length",
-            t.len(),
-            "needs at least 2 samples",
-        ));
-    }
-    let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
-    require_positive("trajectory sample interval", dt)?;
-    for (k, w) in t.windows(2).enumerate() {
-        if ((w[1] - w[0]) - dt).abs() > 1e-6 * dt {
-            return Err(Error::invalid(
-                format!("trajectory.times_s[{}]", k + 1),
-                w[1],
-                format!("samples must be uniformly spaced (Δt = {dt:e} s)"),
-            ));
-        }
-    }
-    Ok(dt)
 }

@@ -257,99 +257,11 @@ impl ChainBuilder {
 
     /// Validates and computes the contact coefficients.
     pub fn build(self) -> Result<Chain> {
-        let n = self.elements.len();
-        if n == 0 {
-            return Err(Error::invalid(
-                "chain.elements",
-                "[]",
-                "a chain needs at least one element",
-            ));
-        }
-        for (i, e) in self.elements.iter().enumerate() {
-            e.validate(i)?;
-        }
-        self.damping.validate(&resonator_counts(&self.elements))?;
-        self.preload.validate()?;
-        if !self.preload.is_none() && matches!(self.wall, Wall::Free) {
-            return Err(Error::invalid(
-                "preload",
-                format!(
-                    "force_n = {}, gravity_m_s2 = {}",
-                    self.preload.force_n, self.preload.gravity_m_s2
-                ),
-                "a column with a free end has no static equilibrium: give it a wall, or no preload",
-            ));
-        }
-        let angle = self.crossing_angle_rad;
-        if !angle.is_finite() {
-            return Err(Error::invalid(
-                "chain.crossing_angle_deg",
-                angle.to_degrees(),
-                "must be finite",
-            ));
-        }
-        for (k, &(c, beta)) in self.beta_overrides.iter().enumerate() {
-            let field = format!("chain.contact_beta[{k}]");
-            if c == 0 {
-                return Err(Error::invalid(
-                    format!("{field}.contact"),
-                    c,
-                    "contact 0 is the striker or the load: set the striker's beta instead (excitation.beta)",
-                ));
-            }
-            if c > n {
-                return Err(Error::invalid(
-                    format!("{field}.contact"),
-                    c,
-                    format!("contacts are numbered 1..={n} (1 = elements 1-2, {n} = the wall)"),
-                ));
-            }
-            if c == n && matches!(self.wall, Wall::Free) {
-                return Err(Error::invalid(
-                    format!("{field}.contact"),
-                    c,
-                    "contact N is the wall, but the chain has a free end (wall.kind = \"free\")",
-                ));
-            }
-            require_positive(&format!("{field}.beta"), beta)?;
-            if let Some(j) = self.beta_overrides[..k].iter().position(|o| o.0 == c) {
-                return Err(Error::invalid(
-                    format!("{field}.contact"),
-                    c,
-                    format!(
-                        "contact {c} is already set by chain.contact_beta[{j}] (beta = {:e}); give each contact once",
-                        self.beta_overrides[j].1
-                    ),
-                ));
-            }
-        }
-        for &(i, a) in &self.angle_overrides {
-            let field = format!("chain.elements[{i}].crossing_angle_deg");
-            if i == 0 || i >= n {
-                return Err(Error::invalid(
-                    field,
-                    a.to_degrees(),
-                    format!(
-                        "elements 1..={} have an element above them; element 0 is the top",
-                        n.saturating_sub(1)
-                    ),
-                ));
-            }
-            if !a.is_finite() {
-                return Err(Error::invalid(field, a.to_degrees(), "must be finite"));
-            }
-        }
-        // Each rod's axis from the top: element i is turned from element i − 1 by its own angle
-        // or the chain's. Written as angle · i plus the overrides' departures, so that a chain
-        // without overrides gets exactly the axes (and contact coefficients) it always had.
-        let mut axis_rad: Vec<f64> = (0..n).map(|i| angle * i as f64).collect();
-        let mut departure = 0.0;
-        for (i, axis) in axis_rad.iter_mut().enumerate().skip(1) {
-            if let Some(o) = self.angle_overrides.iter().rev().find(|o| o.0 == i) {
-                departure += o.1 - angle;
-            }
-            *axis += departure;
-        }
+        self.validate()?;
+        self.validate_beta_overrides()?;
+        self.validate_angle_overrides()?;
+        let (n, angle) = (self.elements.len(), self.crossing_angle_rad);
+        let axis_rad = self.axes_rad();
         let overridden = |c: usize| self.beta_overrides.iter().find(|o| o.0 == c).map(|o| o.1);
         let surface = |i: usize| self.elements[i].surface(axis_rad[i]);
         let mut inner_betas = Vec::with_capacity(n.saturating_sub(1));
@@ -395,6 +307,122 @@ impl ChainBuilder {
             damping: self.damping,
             preload: self.preload,
         })
+    }
+
+    /// The elements, damping, preload and crossing angle, each on its own.
+    fn validate(&self) -> Result<()> {
+        let n = self.elements.len();
+        if n == 0 {
+            return Err(Error::invalid(
+                "chain.elements",
+                "[]",
+                "a chain needs at least one element",
+            ));
+        }
+        for (i, e) in self.elements.iter().enumerate() {
+            e.validate(i)?;
+        }
+        self.damping.validate(&resonator_counts(&self.elements))?;
+        self.preload.validate()?;
+        if !self.preload.is_none() && matches!(self.wall, Wall::Free) {
+            return Err(Error::invalid(
+                "preload",
+                format!(
+                    "force_n = {}, gravity_m_s2 = {}",
+                    self.preload.force_n, self.preload.gravity_m_s2
+                ),
+                "a column with a free end has no static equilibrium: give it a wall, or no preload",
+            ));
+        }
+        let angle = self.crossing_angle_rad;
+        if !angle.is_finite() {
+            return Err(Error::invalid(
+                "chain.crossing_angle_deg",
+                angle.to_degrees(),
+                "must be finite",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Each contact-coefficient override: an existing contact (not the load, not a free end),
+    /// β > 0, each contact once.
+    fn validate_beta_overrides(&self) -> Result<()> {
+        let n = self.elements.len();
+        for (k, &(c, beta)) in self.beta_overrides.iter().enumerate() {
+            let field = format!("chain.contact_beta[{k}]");
+            if c == 0 {
+                return Err(Error::invalid(
+                    format!("{field}.contact"),
+                    c,
+                    "contact 0 is the striker or the load: set the striker's beta instead (excitation.beta)",
+                ));
+            }
+            if c > n {
+                return Err(Error::invalid(
+                    format!("{field}.contact"),
+                    c,
+                    format!("contacts are numbered 1..={n} (1 = elements 1-2, {n} = the wall)"),
+                ));
+            }
+            if c == n && matches!(self.wall, Wall::Free) {
+                return Err(Error::invalid(
+                    format!("{field}.contact"),
+                    c,
+                    "contact N is the wall, but the chain has a free end (wall.kind = \"free\")",
+                ));
+            }
+            require_positive(&format!("{field}.beta"), beta)?;
+            if let Some(j) = self.beta_overrides[..k].iter().position(|o| o.0 == c) {
+                return Err(Error::invalid(
+                    format!("{field}.contact"),
+                    c,
+                    format!(
+                        "contact {c} is already set by chain.contact_beta[{j}] (beta = {:e}); give each contact once",
+                        self.beta_overrides[j].1
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Each crossing-angle override: an element below another, a finite angle.
+    fn validate_angle_overrides(&self) -> Result<()> {
+        let n = self.elements.len();
+        for &(i, a) in &self.angle_overrides {
+            let field = format!("chain.elements[{i}].crossing_angle_deg");
+            if i == 0 || i >= n {
+                return Err(Error::invalid(
+                    field,
+                    a.to_degrees(),
+                    format!(
+                        "elements 1..={} have an element above them; element 0 is the top",
+                        n.saturating_sub(1)
+                    ),
+                ));
+            }
+            if !a.is_finite() {
+                return Err(Error::invalid(field, a.to_degrees(), "must be finite"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Each rod's axis from the top [rad]: element i is turned from element i − 1 by its own angle
+    /// or the chain's. Written as angle · i plus the overrides' departures, so that a chain
+    /// without overrides gets exactly the axes (and contact coefficients) it always had.
+    fn axes_rad(&self) -> Vec<f64> {
+        let (n, angle) = (self.elements.len(), self.crossing_angle_rad);
+        let mut axis_rad: Vec<f64> = (0..n).map(|i| angle * i as f64).collect();
+        let mut departure = 0.0;
+        for (i, axis) in axis_rad.iter_mut().enumerate().skip(1) {
+            if let Some(o) = self.angle_overrides.iter().rev().find(|o| o.0 == i) {
+                departure += o.1 - angle;
+            }
+            *axis += departure;
+        }
+        axis_rad
     }
 }
 

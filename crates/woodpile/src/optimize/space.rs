@@ -145,6 +145,56 @@ impl FeasibleSet {
     /// Errors: an invalid field ([`OptimizeError::Model`]) or constraints no design meets
     /// ([`OptimizeError::Infeasible`], naming the conflicting numbers).
     pub fn new(space: &DesignSpace) -> std::result::Result<Self, OptimizeError> {
+        Self::validate_space(space)?;
+        let fixed = Self::fixed_positions(space)?;
+        let caps = Self::count_caps(space)?;
+        let max_mass_kg = match space.constraints.max_total_mass_kg {
+            Some(m) if !(m.is_finite() && m > 0.0) => {
+                return Err(Error::invalid(
+                    "design.constraints.max_total_mass_kg",
+                    m,
+                    "must be a finite number > 0",
+                )
+                .into())
+            }
+            other => other,
+        };
+        let masses_kg: Vec<f64> = space
+            .catalogue
+            .iter()
+            .map(|e| e.cell.total_mass_kg())
+            .collect();
+        let free: Vec<usize> = (0..space.positions)
+            .filter(|&p| fixed[p].is_none())
+            .collect();
+        let room = Self::room_left(space, &fixed, &caps, free.len())?;
+        let lightest = Self::lightest_design(&masses_kg, &fixed, &free, room);
+        if let Some(max) = max_mass_kg {
+            let min = space.mass_kg(&lightest);
+            if min > max * (1.0 + MASS_SLACK) {
+                return Err(OptimizeError::Infeasible {
+                    reason: format!(
+                        "design.constraints.max_total_mass_kg = {max} kg, but the lightest design \
+                         meeting the other constraints weighs {min} kg ({})",
+                        space.labels(&lightest).join(" ")
+                    ),
+                });
+            }
+        }
+        Ok(FeasibleSet {
+            positions: space.positions,
+            masses_kg,
+            caps,
+            fixed,
+            free,
+            max_mass_kg,
+            lightest,
+        })
+    }
+
+    /// The design space's own fields: positions, the catalogue (each entry on the wall), the
+    /// excitation and the run settings, and one full chain.
+    fn validate_space(space: &DesignSpace) -> std::result::Result<(), OptimizeError> {
         let n_cat = space.catalogue.len();
         if space.positions == 0 {
             return Err(Error::invalid("design.positions", 0, "must be at least 1").into());
@@ -185,7 +235,13 @@ impl FeasibleSet {
         // One full chain of the first entry checks the wall, angle and excitation together.
         space.chain(&vec![0; space.positions])?;
 
-        let c = &space.constraints;
+        Ok(())
+    }
+
+    /// The fixed element of each position (None: free), checked against the positions and the
+    /// catalogue; a position fixed twice to different elements is infeasible.
+    fn fixed_positions(space: &DesignSpace) -> std::result::Result<Vec<Option<u8>>, OptimizeError> {
+        let (c, n_cat) = (&space.constraints, space.catalogue.len());
         let mut fixed = vec![None; space.positions];
         for (k, &(pos, idx)) in c.fixed.iter().enumerate() {
             let field = format!("design.constraints.fixed[{k}]");
@@ -218,6 +274,12 @@ impl FeasibleSet {
                 _ => fixed[pos] = Some(idx as u8),
             }
         }
+        Ok(fixed)
+    }
+
+    /// The most copies of each catalogue entry a design may hold (usize::MAX: no limit).
+    fn count_caps(space: &DesignSpace) -> std::result::Result<Vec<usize>, OptimizeError> {
+        let (c, n_cat) = (&space.constraints, space.catalogue.len());
         let mut caps = vec![usize::MAX; n_cat];
         for (k, &(idx, count)) in c.max_count.iter().enumerate() {
             if idx >= n_cat {
@@ -230,27 +292,19 @@ impl FeasibleSet {
             }
             caps[idx] = caps[idx].min(count);
         }
-        let max_mass_kg = match c.max_total_mass_kg {
-            Some(m) if !(m.is_finite() && m > 0.0) => {
-                return Err(Error::invalid(
-                    "design.constraints.max_total_mass_kg",
-                    m,
-                    "must be a finite number > 0",
-                )
-                .into())
-            }
-            other => other,
-        };
-        let masses_kg: Vec<f64> = space
-            .catalogue
-            .iter()
-            .map(|e| e.cell.total_mass_kg())
-            .collect();
-        let free: Vec<usize> = (0..space.positions)
-            .filter(|&p| fixed[p].is_none())
-            .collect();
+        Ok(caps)
+    }
+
+    /// The copies of each entry the free positions may still take once the fixed ones are
+    /// placed; infeasible when the fixed copies exceed a cap or the room cannot fill `n_free`.
+    fn room_left(
+        space: &DesignSpace,
+        fixed: &[Option<u8>],
+        caps: &[usize],
+        n_free: usize,
+    ) -> std::result::Result<Vec<usize>, OptimizeError> {
         // Counts: the fixed copies must fit under the caps, and the room left must fill the rest.
-        let mut room = caps.clone();
+        let mut room = caps.to_vec();
         for f in fixed.iter().flatten() {
             let e = usize::from(*f);
             if room[e] == 0 {
@@ -267,22 +321,32 @@ impl FeasibleSet {
             }
         }
         let total_room = room.iter().fold(0usize, |a, &r| a.saturating_add(r));
-        if total_room < free.len() {
+        if total_room < n_free {
             return Err(OptimizeError::Infeasible {
                 reason: format!(
                     "the count limits leave room for {total_room} elements but {} positions are free",
-                    free.len()
+                    n_free
                 ),
             });
         }
-        // The lightest design: fill the free positions with the lightest entries that have room.
+        Ok(room)
+    }
+
+    /// The lightest design: the free positions filled with the lightest entries that have room.
+    fn lightest_design(
+        masses_kg: &[f64],
+        fixed: &[Option<u8>],
+        free: &[usize],
+        room: Vec<usize>,
+    ) -> Genome {
+        let n_cat = masses_kg.len();
         let mut by_mass: Vec<usize> = (0..n_cat).collect();
         by_mass.sort_by(|&a, &b| masses_kg[a].total_cmp(&masses_kg[b]).then(a.cmp(&b)));
         let mut lightest: Genome = fixed.iter().map(|f| f.unwrap_or(0)).collect();
         let mut left = room;
         let mut next = by_mass.iter();
         let mut current = *next.next().expect("catalogue is not empty");
-        for &p in &free {
+        for &p in free {
             while left[current] == 0 {
                 current = *next.next().expect("room was checked");
             }
@@ -291,27 +355,7 @@ impl FeasibleSet {
                 left[current] -= 1;
             }
         }
-        if let Some(max) = max_mass_kg {
-            let min = space.mass_kg(&lightest);
-            if min > max * (1.0 + MASS_SLACK) {
-                return Err(OptimizeError::Infeasible {
-                    reason: format!(
-                        "design.constraints.max_total_mass_kg = {max} kg, but the lightest design \
-                         meeting the other constraints weighs {min} kg ({})",
-                        space.labels(&lightest).join(" ")
-                    ),
-                });
-            }
-        }
-        Ok(FeasibleSet {
-            positions: space.positions,
-            masses_kg,
-            caps,
-            fixed,
-            free,
-            max_mass_kg,
-            lightest,
-        })
+        lightest
     }
 
     /// Number of positions N.
