@@ -14,11 +14,15 @@
 //!    [`Preload`] and gravity, from whose exact equilibrium a run starts.
 //! 2. **Excite it** — [`excitation`]: a [`Striker`] sphere, a [`BlastProfile`] force, or an
 //!    actuator [`Drive`] (force or displacement; harmonic, chirp or table [`Signal`]).
-//! 3. **Integrate** — [`ode`] compiles the chain into y' = f(t, y) on flat `f64` slices;
+//! 3. **Integrate** — [`ode`] compiles the chain into y' = f(t, y) (each contact's force from its
+//!    [`ContactLaw`](model::ContactLaw));
 //!    [`integrate`] advances it with a Butcher [`Tableau`] (RK4, Dormand–Prince 5(4), or the
 //!    Runge–Kutta–Nyström pair RKN6(4) for x'' = a(x); the adaptive ones optionally landing
 //!    steps on contacts' predicted openings and closings); a stated peak tolerance
-//!    ([`Method::PeakTolerance`]) picks the method per run.
+//!    ([`Method::PeakTolerance`]) picks the method per run. The equations, the stage loop, the
+//!    error norm, the crossing prediction and the step control are written once over the number
+//!    type, so [`simulate_many`] runs many designs in SIMD lanes ([`lanes`]) with any physics,
+//!    bit for bit as [`simulate()`] runs each (docs/extending.md: adding a law or a method).
 //! 4. **Run and record** — [`simulate()`] owns the loop, samples on a uniform grid for a
 //!    [`Recorder`] (e.g. [`Trajectory`]) and returns the figures of merit ([`RunSummary`]).
 //! 5. **Analyse** — [`analysis`]: spectra ([`Spectrum`]), spatio-temporal force and energy maps

@@ -6,7 +6,7 @@
 //! the damped laws of docs/physics.md §14, a force proportional to the rate of overlap δ̇. A law is
 //! compiled per contact ([`ContactLaw::compile`]) into its kind and one coefficient; the kind is
 //! shared by every run of a lane group, the coefficient is per run. Adding a law: a variant here,
-//! its force in [`ContactLaw::force`], its compilation from [`ContactDamping`] in
+//! its force in `ContactLaw::force`, its compilation from [`ContactDamping`] in
 //! [`ContactLaw::compile`] (docs/extending.md).
 
 use crate::model::ContactDamping;
