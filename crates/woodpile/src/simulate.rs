@@ -682,17 +682,8 @@ pub(crate) fn simulate_watching(
     let started = std::time::Instant::now();
     let mut ode = ChainOde::new(chain, excitation)?;
     check_method_fits(&ode, settings.method)?;
-    let y0 = ode.initial_state();
     let dim = ode.dimension();
-    let units = ode.tolerance_units();
-    let mut integrator = Integrator::new(
-        settings.method,
-        &mut ode,
-        0.0,
-        y0,
-        &units,
-        settings.sample_interval_s,
-    );
+    let (mut integrator, _) = start_integrator(&mut ode, settings);
     recorder.start(&Layout {
         n_elements: ode.n_elements(),
         has_striker: ode.has_striker(),
@@ -1030,4 +1021,23 @@ pub(crate) fn check_method_fits(ode: &ChainOde, method: Method) -> Result<()> {
         }
         _ => Ok(()),
     }
+}
+
+/// The integrator of a run at its start: the chain's initial state, the run's method with the
+/// chain's tolerance units (also returned: the lanes scale their own atol by them).
+pub(crate) fn start_integrator(
+    ode: &mut ChainOde,
+    settings: &RunSettings,
+) -> (Integrator, Vec<f64>) {
+    let y0 = ode.initial_state();
+    let units = ode.tolerance_units();
+    let integrator = Integrator::new(
+        settings.method,
+        ode,
+        0.0,
+        y0,
+        &units,
+        settings.sample_interval_s,
+    );
+    (integrator, units)
 }

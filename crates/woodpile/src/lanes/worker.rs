@@ -8,12 +8,14 @@
 
 use crate::error::Result;
 use crate::integrate::{
-    self, fixed_step_end, Integrator, IntegratorStats, LandingRule, Method, OdeSystem, StepControl,
-    Tableau, Verdict,
+    self, fixed_step_end, IntegratorStats, LandingRule, Method, OdeSystem, StepControl, Tableau,
+    Verdict,
 };
 use crate::ode::{ChainOde, Equations, Load};
 use crate::real::{Lane, Mask, Real, MAX_LANES};
-use crate::simulate::{too_many_steps, PeakWatch, RunSettings, RunSummary, Watch};
+use crate::simulate::{
+    start_integrator, too_many_steps, PeakWatch, RunSettings, RunSummary, Watch,
+};
 
 use super::{on_scalar_path, Group, Job};
 
@@ -186,16 +188,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
             ..
         } = jobs[job];
         let started = std::time::Instant::now();
-        let y0 = ode.initial_state();
-        let units = ode.tolerance_units();
-        let integrator = Integrator::new(
-            settings.method,
-            &mut ode,
-            0.0,
-            y0,
-            &units,
-            settings.sample_interval_s,
-        );
+        let (integrator, units) = start_integrator(&mut ode, settings);
         let watch = Watch::start(
             &mut ode,
             excitation,
