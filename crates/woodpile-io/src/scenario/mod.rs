@@ -796,34 +796,8 @@ impl Scenario {
         c.crossing_angle_deg.get_or_insert(CROSSING_ANGLE_DEG);
         if let Some(elements) = &mut c.elements {
             for e in elements {
-                let kind = e.kind.unwrap_or(if e.rod_mm.is_some() {
-                    ElementKind::Catalogue
-                } else {
-                    ElementKind::Rod
-                });
-                match kind {
-                    ElementKind::Catalogue => {
-                        e.kind = None;
-                    }
-                    ElementKind::Rod => {
-                        e.kind = Some(kind);
-                        e.diameter_mm.get_or_insert(ROD_DIAMETER_MM);
-                        // A derived cell (neither given masses nor a finite-element rod).
-                        if let Some(c) = &mut e.cell {
-                            if c.primary_mass_g.is_none() && c.fe_elements.is_none() {
-                                c.reduction.get_or_insert(ReductionSpec::PoleZero);
-                            }
-                        }
-                        e.material
-                            .get_or_insert_with(|| MaterialSpec::preset(ELEMENT_MATERIAL));
-                    }
-                    ElementKind::Sphere => {
-                        e.kind = Some(kind);
-                        e.material
-                            .get_or_insert_with(|| MaterialSpec::preset(ELEMENT_MATERIAL));
-                    }
-                }
-                if kind != ElementKind::Sphere {
+                e.complete();
+                if e.kind != Some(ElementKind::Sphere) {
                     e.model.get_or_insert(chain_model);
                 }
             }
@@ -901,6 +875,38 @@ impl Scenario {
     /// it and runs exactly the same model.
     pub fn to_toml(&self) -> String {
         emit::to_toml(&self.complete())
+    }
+}
+
+impl ElementSpec {
+    /// The kind: as given, else a catalogue rod when `rod_mm` is given, else a user rod.
+    pub fn effective_kind(&self) -> ElementKind {
+        self.kind.unwrap_or(if self.rod_mm.is_some() {
+            ElementKind::Catalogue
+        } else {
+            ElementKind::Rod
+        })
+    }
+
+    /// Writes out the kind (none for a catalogue rod) and the defaults of the keys it uses,
+    /// but not the cell model, which follows `chain.model`.
+    pub fn complete(&mut self) {
+        let kind = self.effective_kind();
+        self.kind = (kind != ElementKind::Catalogue).then_some(kind);
+        if kind == ElementKind::Catalogue {
+            return;
+        }
+        self.material
+            .get_or_insert_with(|| MaterialSpec::preset(defaults::ELEMENT_MATERIAL));
+        if kind == ElementKind::Rod {
+            self.diameter_mm.get_or_insert(defaults::ROD_DIAMETER_MM);
+            // A derived cell (neither given masses nor a finite-element rod).
+            if let Some(c) = &mut self.cell {
+                if c.primary_mass_g.is_none() && c.fe_elements.is_none() {
+                    c.reduction.get_or_insert(ReductionSpec::PoleZero);
+                }
+            }
+        }
     }
 }
 
