@@ -108,7 +108,9 @@ impl Key {
     }
 }
 
-/// Every key of the scenario file, in the order of the file.
+/// Every key of the scenario file, in the order of the file: the one table that emission
+/// comments from, completion agrees with (claim `scenario_keys_table`) and front ends list
+/// (names, types, units, defaults read from [`woodpile::defaults`], choices, alternatives).
 pub fn keys() -> &'static [Key] {
     static KEYS: LazyLock<Vec<Key>> = LazyLock::new(table);
     &KEYS

@@ -23,7 +23,7 @@
 
 mod builtin;
 mod emit;
-pub mod keys;
+mod keys;
 mod resolve;
 
 pub use builtin::{
