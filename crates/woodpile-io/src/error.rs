@@ -127,7 +127,7 @@ pub enum Error {
         /// The limit it exceeds.
         limit: f64,
     },
-    /// A run or command beyond an up-front limit ([`crate::limits`]); the option named by
+    /// A run or command beyond an up-front limit (module `limits`); the option named by
     /// `limit` overrides it.
     #[error("invalid {field} = {value}: {reason}")]
     OverLimit {
@@ -161,15 +161,15 @@ pub enum Error {
     Model(#[from] woodpile::Error),
 }
 
-/// An up-front limit of [`crate::limits`], each with its own override.
+/// An up-front limit (module `limits`), each with its own override.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Limit {
-    /// More worker threads than [`crate::limits::THREADS_PER_CORE`] per core.
+    /// More worker threads than `limits::THREADS_PER_CORE` per core.
     Threads,
-    /// More integration steps than [`crate::limits::MAX_STEPS`].
+    /// More integration steps than `limits::MAX_STEPS`.
     Steps,
-    /// A run directory larger than [`crate::limits::MAX_OUTPUT_BYTES`].
+    /// A run directory larger than `limits::MAX_OUTPUT_BYTES`.
     OutputSize,
 }
 

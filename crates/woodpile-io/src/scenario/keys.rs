@@ -159,9 +159,12 @@ const REDUCTIONS: &[&str] = &[
     ReductionSpec::ModalMass.name(),
 ];
 
-const POSITIVE: &str = "a finite number > 0";
-const NON_NEGATIVE: &str = "a finite number >= 0";
-const ANGLE: &str = "strictly between 0 and 180";
+/// What a positive key accepts (also the wording of resolve's message).
+pub(crate) const POSITIVE: &str = "a finite number > 0";
+/// What a non-negative key accepts (also the wording of resolve's message).
+pub(crate) const NON_NEGATIVE: &str = "a finite number >= 0";
+/// What an angle between rods accepts (also the wording of resolve's message).
+pub(crate) const ANGLE: &str = "strictly between 0 and 180";
 const MATERIAL: &str = "a preset name or a table";
 const INTEGRATOR_KEYS: &[&str] = &["run.integrator", "run.time_step_s", "run.rtol", "run.atol"];
 const PEAK_TOLERANCE: &[&str] = &["run.peak_tolerance"];

@@ -1,6 +1,7 @@
 //! From a scenario to the library's model: every value checked under its scenario key.
 
 use super::emit::float;
+use super::keys::{ANGLE, NON_NEGATIVE, POSITIVE};
 use super::{
     CellSpec, ContactLaw, DriveKind, ElementKind, ElementSpec, ExcitationKind, ExcitationSpec,
     IntegratorKind, MaterialSpec, ProfileKind, Scenario, SignalKind, WallKind, WallSpec,
@@ -76,7 +77,7 @@ fn positive(field: &str, value: f64) -> Result<f64, Error> {
         Err(Error::invalid(
             field,
             float(value),
-            "must be a finite number > 0",
+            format!("must be {POSITIVE}"),
         ))
     }
 }
@@ -89,7 +90,7 @@ fn non_negative(field: &str, value: f64) -> Result<f64, Error> {
         Err(Error::invalid(
             field,
             float(value),
-            "must be a finite number >= 0",
+            format!("must be {NON_NEGATIVE}"),
         ))
     }
 }
@@ -508,7 +509,7 @@ fn resolve_chain(
         return Err(Error::invalid(
             keys.crossing_angle_deg,
             angle,
-            "must lie strictly between 0 and 180 (0 and 180 are parallel rods: a line contact)",
+            format!("must lie {ANGLE} (0 and 180 are parallel rods: a line contact)"),
         ));
     }
     if s.wall.effective_kind() == WallKind::Flat {
@@ -540,7 +541,7 @@ fn resolve_chain(
             return Err(Error::invalid(
                 key,
                 float(a),
-                "must lie strictly between 0 and 180 (0 and 180 are parallel rods: a line contact)",
+                format!("must lie {ANGLE} (0 and 180 are parallel rods: a line contact)"),
             ));
         }
         builder = builder.element_crossing_angle_rad(i, a.to_radians());
