@@ -70,6 +70,20 @@ pub enum KeyDefault {
     Derived(String),
 }
 
+impl std::fmt::Display for KeyDefault {
+    /// As a TOML value (`1e-7`, `"rk4"`, `true`); a derived default in words, in parentheses;
+    /// nothing for none.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            KeyDefault::None => Ok(()),
+            KeyDefault::Float(x) => f.write_str(&super::emit::float(*x)),
+            KeyDefault::Bool(b) => write!(f, "{b}"),
+            KeyDefault::Name(n) => write!(f, "\"{n}\""),
+            KeyDefault::Derived(words) => write!(f, "({words})"),
+        }
+    }
+}
+
 /// One key of the scenario file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Key {

@@ -104,13 +104,18 @@ fn every_key_of_the_table_round_trips_and_the_emitter_writes_no_other() {
     }
 }
 
-/// The table's default of `path` as a TOML value (None: no fixed default).
+/// The table's default of `path` as a TOML value (None: no fixed default), read from its
+/// written form (`KeyDefault`'s `Display`, what a front end shows).
 fn default_value(path: &str) -> Option<Value> {
     match &key(path)?.default {
-        KeyDefault::Float(x) => Some(Value::Float(*x)),
-        KeyDefault::Bool(b) => Some(Value::Boolean(*b)),
-        KeyDefault::Name(n) => Some(Value::String(n.to_string())),
-        _ => None,
+        KeyDefault::None | KeyDefault::Derived(_) => None,
+        fixed => {
+            let text = format!("v = {fixed}");
+            let doc: Table = text
+                .parse()
+                .unwrap_or_else(|e| panic!("{path}: `{text}`: {e}"));
+            Some(doc["v"].clone())
+        }
     }
 }
 
