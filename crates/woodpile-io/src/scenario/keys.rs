@@ -285,6 +285,7 @@ fn table() -> Vec<Key> {
     .concat()
 }
 
+#[rustfmt::skip] // one row per key
 fn chain_keys() -> Vec<Key> {
     let rods = "Table 1 catalogue rods (fused quartz, 5 mm diameter) by length, top to bottom";
     let rod_lengths = "lengths of the Table 1 catalogue (woodpile::TABLE1_LENGTHS_MM)";
@@ -293,289 +294,90 @@ fn chain_keys() -> Vec<Key> {
     let models = "cell model: Table 1 resonators, or one rigid body";
     vec![
         table_key("chain", "the column of elements, top to bottom"),
-        Key::new(
-            "chain.rods_mm",
-            KeyType::IntegerList,
-            "mm",
-            rod_lengths,
-            rods,
-        )
-        .instead_of(&["chain.elements"]),
+        Key::new("chain.rods_mm", KeyType::IntegerList, "mm", rod_lengths, rods).instead_of(&["chain.elements"]),
         list("chain.elements", "at least one entry", elements).instead_of(&["chain.rods_mm"]),
-        named(
-            "chain.model",
-            MODELS,
-            Some(ModelSpec::Resonant.name()),
-            models,
-        ),
-        float(
-            "chain.crossing_angle_deg",
-            "deg",
-            ANGLE,
-            "angle between neighbouring rods",
-        )
-        .or(KeyDefault::Float(d::CROSSING_ANGLE_DEG)),
-        list(
-            "chain.contact_beta",
-            "one entry per contact",
-            "beta set directly (1 = elements 1-2, N = wall)",
-        ),
-        int(
-            "chain.contact_beta[].contact",
-            "",
-            "1..=N (N = the wall)",
-            "contact number",
-        ),
-        float(
-            "chain.contact_beta[].beta",
-            "N/m^1.5",
-            POSITIVE,
-            "the contact's beta",
-        ),
+        named("chain.model", MODELS, Some(ModelSpec::Resonant.name()), models),
+        float("chain.crossing_angle_deg", "deg", ANGLE, "angle between neighbouring rods").or(KeyDefault::Float(d::CROSSING_ANGLE_DEG)),
+        list("chain.contact_beta", "one entry per contact", "beta set directly (1 = elements 1-2, N = wall)"),
+        int("chain.contact_beta[].contact", "", "1..=N (N = the wall)", "contact number"),
+        float("chain.contact_beta[].beta", "N/m^1.5", POSITIVE, "the contact's beta"),
     ]
 }
 
+#[rustfmt::skip] // one row per key
 fn element_keys() -> Vec<Key> {
     let kind = "catalogue when rod_mm is given, else rod";
     vec![
-        named(
-            "chain.elements[].kind",
-            ELEMENT_KINDS,
-            None,
-            "what the element is",
-        )
-        .or(derived(kind)),
-        int(
-            "chain.elements[].rod_mm",
-            "mm",
-            "a Table 1 length",
-            "catalogue rod length",
-        ),
-        named(
-            "chain.elements[].model",
-            MODELS,
-            None,
-            "cell model of this rod",
-        )
-        .or(derived("chain.model")),
-        float(
-            "chain.elements[].diameter_mm",
-            "mm",
-            POSITIVE,
-            "diameter of a rod or sphere (a tube's outer one)",
-        )
-        .or(KeyDefault::Float(d::ROD_DIAMETER_MM)),
-        float(
-            "chain.elements[].crossing_angle_deg",
-            "deg",
-            ANGLE,
-            "angle to the rod above",
-        )
-        .or(derived("chain.crossing_angle_deg")),
-        float(
-            "chain.elements[].inner_diameter_mm",
-            "mm",
-            "below diameter_mm",
-            "inner diameter of a tube (none: a solid rod)",
-        ),
-        float(
-            "chain.elements[].length_mm",
-            "mm",
-            POSITIVE,
-            "length of a rod",
-        ),
-        material(
-            "chain.elements[].material",
-            d::ELEMENT_MATERIAL,
-            "material of a rod or sphere",
-        ),
+        named("chain.elements[].kind", ELEMENT_KINDS, None, "what the element is").or(derived(kind)),
+        int("chain.elements[].rod_mm", "mm", "a Table 1 length", "catalogue rod length"),
+        named("chain.elements[].model", MODELS, None, "cell model of this rod").or(derived("chain.model")),
+        float("chain.elements[].diameter_mm", "mm", POSITIVE, "diameter of a rod or sphere (a tube's outer one)").or(KeyDefault::Float(d::ROD_DIAMETER_MM)),
+        float("chain.elements[].crossing_angle_deg", "deg", ANGLE, "angle to the rod above").or(derived("chain.crossing_angle_deg")),
+        float("chain.elements[].inner_diameter_mm", "mm", "below diameter_mm", "inner diameter of a tube (none: a solid rod)"),
+        float("chain.elements[].length_mm", "mm", POSITIVE, "length of a rod"),
+        material("chain.elements[].material", d::ELEMENT_MATERIAL, "material of a rod or sphere"),
     ]
 }
 
+#[rustfmt::skip] // one row per key
 fn cell_keys() -> Vec<Key> {
     let reduction = Some(ReductionSpec::PoleZero.name());
     vec![
-        table_key(
-            "chain.elements[].cell",
-            "unit cell of a rod (none: derived by beam theory)",
-        ),
-        float(
-            "chain.elements[].cell.primary_mass_g",
-            "g",
-            POSITIVE,
-            "primary mass M of a given cell",
-        ),
-        list(
-            "chain.elements[].cell.resonators",
-            "",
-            "resonators of a given cell",
-        ),
-        float(
-            "chain.elements[].cell.resonators[].mass_g",
-            "g",
-            POSITIVE,
-            "auxiliary mass m_j",
-        ),
-        float(
-            "chain.elements[].cell.resonators[].stiffness_kn_per_mm",
-            "kN/mm",
-            POSITIVE,
-            "spring stiffness k_j",
-        ),
-        int(
-            "chain.elements[].cell.modes",
-            "",
-            "1..=4",
-            "resonators of a derived cell",
-        ),
-        named(
-            "chain.elements[].cell.reduction",
-            REDUCTIONS,
-            reduction,
-            "reduction of a derived cell",
-        ),
-        int(
-            "chain.elements[].cell.fe_elements",
-            "",
-            "1..=64",
-            "finite-element beam elements per half rod",
-        ),
+        table_key("chain.elements[].cell", "unit cell of a rod (none: derived by beam theory)"),
+        float("chain.elements[].cell.primary_mass_g", "g", POSITIVE, "primary mass M of a given cell"),
+        list("chain.elements[].cell.resonators", "", "resonators of a given cell"),
+        float("chain.elements[].cell.resonators[].mass_g", "g", POSITIVE, "auxiliary mass m_j"),
+        float("chain.elements[].cell.resonators[].stiffness_kn_per_mm", "kN/mm", POSITIVE, "spring stiffness k_j"),
+        int("chain.elements[].cell.modes", "", "1..=4", "resonators of a derived cell"),
+        named("chain.elements[].cell.reduction", REDUCTIONS, reduction, "reduction of a derived cell"),
+        int("chain.elements[].cell.fe_elements", "", "1..=64", "finite-element beam elements per half rod"),
     ]
 }
 
+#[rustfmt::skip] // one row per key
 fn impact_keys() -> Vec<Key> {
     let kinds = "a striker, a blast, an actuator, or nothing";
     vec![
         table_key("excitation", "what drives the chain"),
-        named(
-            "excitation.kind",
-            EXCITATIONS,
-            Some(ExcitationKind::Impact.name()),
-            kinds,
-        ),
-        float(
-            "excitation.drop_height_m",
-            "m",
-            POSITIVE,
-            "impact: drop height h, v0 = sqrt(2 g h)",
-        )
-        .or(KeyDefault::Float(d::DROP_HEIGHT_M))
-        .instead_of(&["excitation.velocity_m_s"]),
-        float(
-            "excitation.velocity_m_s",
-            "m/s",
-            POSITIVE,
-            "impact: initial striker velocity",
-        )
-        .instead_of(&["excitation.drop_height_m"]),
+        named("excitation.kind", EXCITATIONS, Some(ExcitationKind::Impact.name()), kinds),
+        float("excitation.drop_height_m", "m", POSITIVE, "impact: drop height h, v0 = sqrt(2 g h)").or(KeyDefault::Float(d::DROP_HEIGHT_M)).instead_of(&["excitation.velocity_m_s"]),
+        float("excitation.velocity_m_s", "m/s", POSITIVE, "impact: initial striker velocity").instead_of(&["excitation.drop_height_m"]),
         table_key("excitation.striker", "impact: the striker sphere"),
-        float(
-            "excitation.striker.diameter_mm",
-            "mm",
-            POSITIVE,
-            "striker diameter",
-        )
-        .or(KeyDefault::Float(d::STRIKER_DIAMETER_MM)),
-        material(
-            "excitation.striker.material",
-            d::STRIKER_MATERIAL,
-            "striker material",
-        ),
-        float(
-            "excitation.beta",
-            "N/m^1.5",
-            POSITIVE,
-            "impact: striker-element 1 contact coefficient",
-        )
-        .or(derived("Hertz theory")),
+        float("excitation.striker.diameter_mm", "mm", POSITIVE, "striker diameter").or(KeyDefault::Float(d::STRIKER_DIAMETER_MM)),
+        material("excitation.striker.material", d::STRIKER_MATERIAL, "striker material"),
+        float("excitation.beta", "N/m^1.5", POSITIVE, "impact: striker-element 1 contact coefficient").or(derived("Hertz theory")),
     ]
 }
 
+#[rustfmt::skip] // one row per key
 fn blast_keys() -> Vec<Key> {
     let profile = Some(ProfileKind::Friedlander.name());
     let shape = "blast: F0 (1 - t/Td) exp(-b t/Td), or a CSV table";
     vec![
         named("excitation.profile", PROFILES, profile, shape),
-        float(
-            "excitation.peak_force_n",
-            "N",
-            POSITIVE,
-            "blast: peak force F0",
-        )
-        .or(KeyDefault::Float(d::BLAST_PEAK_FORCE_N)),
-        float(
-            "excitation.duration_s",
-            "s",
-            POSITIVE,
-            "blast: positive phase Td",
-        )
-        .or(KeyDefault::Float(d::BLAST_DURATION_S)),
-        float(
-            "excitation.decay",
-            "",
-            NON_NEGATIVE,
-            "blast: decay b (1 = Friedlander, 0 = triangle)",
-        )
-        .or(KeyDefault::Float(d::BLAST_DECAY)),
-        Key::new(
-            "excitation.file",
-            KeyType::String,
-            "",
-            "a CSV file",
-            "table profile or signal, relative to the scenario file",
-        ),
+        float("excitation.peak_force_n", "N", POSITIVE, "blast: peak force F0").or(KeyDefault::Float(d::BLAST_PEAK_FORCE_N)),
+        float("excitation.duration_s", "s", POSITIVE, "blast: positive phase Td").or(KeyDefault::Float(d::BLAST_DURATION_S)),
+        float("excitation.decay", "", NON_NEGATIVE, "blast: decay b (1 = Friedlander, 0 = triangle)").or(KeyDefault::Float(d::BLAST_DECAY)),
+        Key::new("excitation.file", KeyType::String, "", "a CSV file", "table profile or signal, relative to the scenario file"),
     ]
 }
 
+#[rustfmt::skip] // one row per key
 fn drive_keys() -> Vec<Key> {
     let drives = "drive: a force (N) or a displacement (m, through the tip)";
     let ramp = "the signal's (woodpile::Signal::default_ramp_s)";
     [
         vec![
-            named(
-                "excitation.drive",
-                DRIVES,
-                Some(DriveKind::Force.name()),
-                drives,
-            ),
+            named("excitation.drive", DRIVES, Some(DriveKind::Force.name()), drives),
             named("excitation.signal", SIGNALS, None, "drive: the signal"),
-            float(
-                "excitation.amplitude",
-                "N or m",
-                "",
-                "drive: amplitude (harmonic, chirp)",
-            ),
-            float(
-                "excitation.frequency_hz",
-                "Hz",
-                POSITIVE,
-                "drive: harmonic frequency",
-            ),
+            float("excitation.amplitude", "N or m", "", "drive: amplitude (harmonic, chirp)"),
+            float("excitation.frequency_hz", "Hz", POSITIVE, "drive: harmonic frequency"),
             float("excitation.start_hz", "Hz", POSITIVE, "drive: chirp from"),
             float("excitation.end_hz", "Hz", POSITIVE, "drive: chirp to"),
-            float(
-                "excitation.sweep_duration_s",
-                "s",
-                POSITIVE,
-                "drive: chirp over",
-            ),
-            named(
-                "excitation.sweep",
-                SWEEPS,
-                Some(SweepSpec::Linear.name()),
-                "drive: how a chirp sweeps",
-            ),
-            float(
-                "excitation.ramp_s",
-                "s",
-                NON_NEGATIVE,
-                "drive: sin^2 ramp (chirp: both ends)",
-            )
-            .or(derived(ramp)),
-            table_key(
-                "excitation.tip",
-                "drive: the actuator's tip, keys as in [wall]",
-            ),
+            float("excitation.sweep_duration_s", "s", POSITIVE, "drive: chirp over"),
+            named("excitation.sweep", SWEEPS, Some(SweepSpec::Linear.name()), "drive: how a chirp sweeps"),
+            float("excitation.ramp_s", "s", NON_NEGATIVE, "drive: sin^2 ramp (chirp: both ends)").or(derived(ramp)),
+            table_key("excitation.tip", "drive: the actuator's tip, keys as in [wall]"),
         ],
         support_keys([
             "excitation.tip.kind",
@@ -583,28 +385,26 @@ fn drive_keys() -> Vec<Key> {
             "excitation.tip.cap_radius_mm",
             "excitation.tip.beta",
         ]),
-    ]
-    .concat()
+    ].concat()
 }
 
 /// The keys of a support (`[wall]`, a displacement actuator's tip): kind, material, cap radius
 /// and beta.
+#[rustfmt::skip] // one row per key
 fn support_keys(names: [&'static str; 4]) -> Vec<Key> {
     let kinds = "a sensor with a spherical cap, a flat, a given beta, or free";
     let mut keys = vec![
         named(names[0], WALLS, None, kinds).or(derived("beta when beta is given, else cap")),
         material(names[1], d::WALL_MATERIAL, "material of the cap or flat"),
-        float(names[2], "mm", POSITIVE, "cap radius R_c")
-            .or(KeyDefault::Float(d::WALL_CAP_RADIUS_MM)),
+        float(names[2], "mm", POSITIVE, "cap radius R_c").or(KeyDefault::Float(d::WALL_CAP_RADIUS_MM)),
         float(names[3], "N/m^1.5", POSITIVE, "the contact's beta"),
     ];
-    if names[0] == "wall.kind" {
-        keys.insert(0, table_key("wall", "the support under the last element"));
-    }
+    if names[0] == "wall.kind" { keys.insert(0, table_key("wall", "the support under the last element")); }
     keys
 }
 
 /// The keys of one contact's law: `[damping]` itself, `damping.striker`, `damping.wall`.
+#[rustfmt::skip] // one row per key
 fn law_keys(names: [&'static str; 3], default: KeyDefault) -> Vec<Key> {
     let restitution = "coefficient of restitution e (restitution, hunt-crossley)";
     vec![
@@ -614,6 +414,7 @@ fn law_keys(names: [&'static str; 3], default: KeyDefault) -> Vec<Key> {
     ]
 }
 
+#[rustfmt::skip] // one row per key
 fn damping_keys() -> Vec<Key> {
     let none = woodpile::Damping::default();
     let contact = || derived("damping.contact");
@@ -655,80 +456,31 @@ fn damping_keys() -> Vec<Key> {
             contact(),
         ),
         vec![
-            Key::new(
-                "damping.allow_pull",
-                KeyType::Bool,
-                "",
-                "",
-                "may a damped contact pull near separation",
-            )
-            .or(KeyDefault::Bool(none.allow_pull)),
-            float(
-                "damping.impact_speed_m_s",
-                "m/s",
-                POSITIVE,
-                "Hunt-Crossley impact speed v_in",
-            )
-            .or(derived("the striker's speed")),
-            float(
-                "damping.resonator_ratio",
-                "",
-                NON_NEGATIVE,
-                "damping ratio zeta of every resonator",
-            )
-            .or(KeyDefault::Float(none.resonator_ratio)),
-            list(
-                "damping.resonators",
-                "",
-                "damping ratio of single resonators",
-            ),
-            int(
-                "damping.resonators[].element",
-                "",
-                "1..=N",
-                "element, from 1 at the top",
-            ),
-            int(
-                "damping.resonators[].resonator",
-                "",
-                "1.. (the element's resonators)",
-                "resonator of that element, from 1",
-            ),
-            float(
-                "damping.resonators[].ratio",
-                "",
-                NON_NEGATIVE,
-                "its damping ratio zeta",
-            ),
+            Key::new("damping.allow_pull", KeyType::Bool, "", "", "may a damped contact pull near separation").or(KeyDefault::Bool(none.allow_pull)),
+            float("damping.impact_speed_m_s", "m/s", POSITIVE, "Hunt-Crossley impact speed v_in").or(derived("the striker's speed")),
+            float("damping.resonator_ratio", "", NON_NEGATIVE, "damping ratio zeta of every resonator").or(KeyDefault::Float(none.resonator_ratio)),
+            list("damping.resonators", "", "damping ratio of single resonators"),
+            int("damping.resonators[].element", "", "1..=N", "element, from 1 at the top"),
+            int("damping.resonators[].resonator", "", "1.. (the element's resonators)", "resonator of that element, from 1"),
+            float("damping.resonators[].ratio", "", NON_NEGATIVE, "its damping ratio zeta"),
             float("damping.on_site_time_s", "s", POSITIVE, on_site),
         ],
-    ]
-    .concat()
+    ].concat()
 }
 
+#[rustfmt::skip] // one row per key
 fn preload_keys() -> Vec<Key> {
     let none = woodpile::Preload::default();
     let preload =
         "a static force on the top element and gravity (docs/physics.md §14); none: unloaded";
     vec![
         table_key("preload", preload),
-        float(
-            "preload.force_n",
-            "N",
-            NON_NEGATIVE,
-            "static force on the top element",
-        )
-        .or(KeyDefault::Float(none.force_n)),
-        float(
-            "preload.gravity_m_s2",
-            "m/s^2",
-            NON_NEGATIVE,
-            "gravity along the column",
-        )
-        .or(KeyDefault::Float(none.gravity_m_s2)),
+        float("preload.force_n", "N", NON_NEGATIVE, "static force on the top element").or(KeyDefault::Float(none.force_n)),
+        float("preload.gravity_m_s2", "m/s^2", NON_NEGATIVE, "gravity along the column").or(KeyDefault::Float(none.gravity_m_s2)),
     ]
 }
 
+#[rustfmt::skip] // one row per key
 fn run_keys() -> Vec<Key> {
     let duration = format!(
         "the excitation's: {:e} s for an impact, {:e} s for a blast, a drive's from its signal",
@@ -740,40 +492,11 @@ fn run_keys() -> Vec<Key> {
     vec![
         table_key("run", "duration, integrator and sampling"),
         float("run.duration_s", "s", POSITIVE, "simulated time").or(KeyDefault::Derived(duration)),
-        float("run.peak_tolerance", "", "a small relative error", accuracy)
-            .instead_of(INTEGRATOR_KEYS),
-        named(
-            "run.integrator",
-            INTEGRATORS,
-            Some(IntegratorKind::Rk4.name()),
-            integrators,
-        )
-        .instead_of(PEAK_TOLERANCE),
-        float(
-            "run.time_step_s",
-            "s",
-            "> 0 and below run.duration_s",
-            "rk4 step",
-        )
-        .or(KeyDefault::Float(d::TIME_STEP_S))
-        .instead_of(PEAK_TOLERANCE),
-        float(
-            "run.rtol",
-            "",
-            "at least 1e-14",
-            "dopri5 relative tolerance",
-        )
-        .or(KeyDefault::Float(d::RTOL))
-        .instead_of(PEAK_TOLERANCE),
-        float("run.atol", "m", POSITIVE, "dopri5 absolute tolerance")
-            .or(KeyDefault::Float(d::ATOL))
-            .instead_of(PEAK_TOLERANCE),
-        float(
-            "run.sample_interval_s",
-            "s",
-            "> 0 and at most run.duration_s",
-            "uniform output grid",
-        )
-        .or(KeyDefault::Float(d::SAMPLE_INTERVAL_S)),
+        float("run.peak_tolerance", "", "a small relative error", accuracy).instead_of(INTEGRATOR_KEYS),
+        named("run.integrator", INTEGRATORS, Some(IntegratorKind::Rk4.name()), integrators).instead_of(PEAK_TOLERANCE),
+        float("run.time_step_s", "s", "> 0 and below run.duration_s", "rk4 step").or(KeyDefault::Float(d::TIME_STEP_S)).instead_of(PEAK_TOLERANCE),
+        float("run.rtol", "", "at least 1e-14", "dopri5 relative tolerance").or(KeyDefault::Float(d::RTOL)).instead_of(PEAK_TOLERANCE),
+        float("run.atol", "m", POSITIVE, "dopri5 absolute tolerance").or(KeyDefault::Float(d::ATOL)).instead_of(PEAK_TOLERANCE),
+        float("run.sample_interval_s", "s", "> 0 and at most run.duration_s", "uniform output grid").or(KeyDefault::Float(d::SAMPLE_INTERVAL_S)),
     ]
 }
