@@ -34,6 +34,14 @@ fn an_invalid_value_names_its_key_value_and_valid_range() {
     assert_eq!(e.field(), Some("chain.rods_mm[3]"));
     assert_eq!(e.value().as_deref(), Some("45"));
     assert!(e.reason().contains("20, 30, 40"), "{}", e.reason());
+    // A name not in its catalogue: the key, the name, and the valid names.
+    let e = neutral(
+        scenario_error("[chain]\nrods_mm = [20]\n[wall]\nmaterial = \"unobtainium\"\n"),
+        ErrorKind::Scenario,
+    );
+    assert_eq!(e.field(), Some("wall.material"));
+    assert_eq!(e.value().as_deref(), Some("unobtainium"));
+    assert!(e.reason().contains("stainless-steel"), "{}", e.reason());
 }
 
 #[test]
