@@ -18,6 +18,14 @@ pub fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
     }
 }
 
+/// The error for a file that cannot be read as expected.
+pub fn read_error(path: &Path, reason: impl Into<String>) -> Error {
+    Error::Read {
+        path: path.to_path_buf(),
+        source: std::io::Error::other(reason.into()),
+    }
+}
+
 /// Staging directories of this process still in use: an interrupt handler removes them
 /// ([`remove_active_staging`]) before the process exits.
 static ACTIVE_STAGING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
@@ -90,15 +98,14 @@ fn check_target(target: &Path, overwrite: bool) -> Result<(), Error> {
                 if overwrite {
                     Ok(())
                 } else {
-                    Err(Error::invalid(
-                        "--out",
-                        target.display(),
-                        "holds an earlier run: pass --overwrite to replace its run files (your other files and plots/ are kept), or choose another --out",
-                    ))
+                    Err(Error::OutputExists {
+                        path: target.to_path_buf(),
+                    })
                 }
             } else {
                 Err(Error::OutputNotEmpty {
                     path: target.to_path_buf(),
+                    marker: RUN_MARKER,
                 })
             }
         }

@@ -24,12 +24,12 @@
 //! objective = "transmitted-force"   # transmission-ratio | transmitted-energy | transmitted-impulse
 //! ```
 //!
-//! Outputs in `--out DIR`: `checkpoint.json` and `history.csv` (rewritten atomically after every
+//! Outputs in the output directory: `checkpoint.json` and `history.csv` (rewritten atomically after every
 //! generation), then `population.csv`, `best.toml` (a scenario `woodpile simulate` re-runs to
 //! the same figures) and `summary.json`. A directory that holds anything is never written
-//! into unless `--resume` continues the run it holds, with the same config.
+//! into unless resuming continues the run it holds, with the same config.
 
-use crate::atomic::{io_err, write_atomic};
+use crate::atomic::{io_err, read_error, write_atomic};
 use crate::error::Error;
 use crate::scenario::{
     resolve, resolve_with_keys, ChainKeys, ChainSpec, ElementKind, ElementSpec, ExcitationKind,
@@ -479,6 +479,95 @@ fn catalogue_index(
     }
 }
 
+/// Checks the catalogue of `design`: not empty, no entry twice, not too long.
+fn check_catalogue(d: &DesignSpec) -> Result<(), Error> {
+    let n_cat = d
+        .elements
+        .as_ref()
+        .map(Vec::len)
+        .or(d.catalogue_mm.as_ref().map(Vec::len))
+        .unwrap_or(0);
+    if n_cat == 0 {
+        let key = if d.elements.is_some() {
+            "design.elements"
+        } else {
+            "design.catalogue_mm"
+        };
+        let example = "e.g. catalogue_mm = [20, 30, 40, 50, 60, 70, 80]";
+        return Err(Error::invalid(
+            key,
+            "[]",
+            format!("the catalogue needs at least one element, {example}"),
+        ));
+    }
+    if let Some((i, j)) = first_duplicate(d.catalogue_mm.as_deref().unwrap_or_default()) {
+        return Err(Error::invalid(
+            format!("design.catalogue_mm[{j}]"),
+            d.catalogue_mm.as_ref().map_or(0, |c| c[j]),
+            format!("repeats design.catalogue_mm[{i}]; list each rod once"),
+        ));
+    }
+    if let Some((i, j)) = first_duplicate(d.elements.as_deref().unwrap_or_default()) {
+        return Err(Error::invalid(
+            format!("design.elements[{j}]"),
+            "(the same element)",
+            format!("repeats design.elements[{i}]; list each element once"),
+        ));
+    }
+    if n_cat > woodpile::optimize::MAX_CATALOGUE_LEN {
+        return Err(Error::invalid(
+            "design.catalogue",
+            n_cat,
+            format!("at most {} entries", woodpile::optimize::MAX_CATALOGUE_LEN),
+        ));
+    }
+    Ok(())
+}
+
+/// The constraints of the config, their layers and elements checked against the catalogue.
+fn constraints(cfg: &OptimizeConfig, positions: usize) -> Result<Constraints, Error> {
+    let c = &cfg.design.constraints;
+    let mut constraints = Constraints {
+        max_total_mass_kg: c.max_total_mass_g.map(|g| g * 1e-3),
+        ..Constraints::default()
+    };
+    for (k, f) in c.fixed.iter().enumerate() {
+        let field = format!("design.constraints.fixed[{k}]");
+        if f.layer == 0 || f.layer > positions {
+            return Err(Error::invalid(
+                format!("{field}.layer"),
+                f.layer,
+                format!("layers are 1..={positions} (1 = top)"),
+            ));
+        }
+        let e = catalogue_index(&field, f.rod_mm, f.element, cfg)?;
+        constraints.fixed.push((f.layer - 1, e));
+    }
+    for (k, m) in c.max_count.iter().enumerate() {
+        let field = format!("design.constraints.max_count[{k}]");
+        let e = catalogue_index(&field, m.rod_mm, m.element, cfg)?;
+        constraints.max_count.push((e, m.count));
+    }
+    Ok(constraints)
+}
+
+/// The GA settings of `[ga]` with `threads` workers (checked by [`GaSettings::validate`]).
+fn ga_settings(g: &GaSpec, threads: usize) -> GaSettings {
+    GaSettings {
+        population: g.population.unwrap_or(100),
+        truncation: g.truncation.unwrap_or(0.3),
+        elites: g.elites.unwrap_or(1),
+        generations: g.generations.unwrap_or(100),
+        stall_generations: g.stall_generations.filter(|&s| s > 0),
+        seed: g.seed.unwrap_or(1),
+        mutation_range: g.mutation_range,
+        threads,
+        cache: g.cache.unwrap_or(true),
+        screen_peak_tolerance: g.screen_peak_tolerance,
+        stop_early: g.stop_early.unwrap_or(false),
+    }
+}
+
 impl Problem {
     /// Validates a config (after the command line's overrides) and builds the design space.
     pub fn new(config: &OptimizeConfig, base_dir: &Path, threads: usize) -> Result<Self, Error> {
@@ -504,45 +593,7 @@ impl Problem {
                 "give one catalogue: catalogue_mm (Table 1 rods) or elements (general form)",
             ));
         }
-        let n_cat = d
-            .elements
-            .as_ref()
-            .map(Vec::len)
-            .or(d.catalogue_mm.as_ref().map(Vec::len))
-            .unwrap_or(0);
-        if n_cat == 0 {
-            let key = if d.elements.is_some() {
-                "design.elements"
-            } else {
-                "design.catalogue_mm"
-            };
-            return Err(Error::invalid(
-                key,
-                "[]",
-                "the catalogue needs at least one element, e.g. catalogue_mm = [20, 30, 40, 50, 60, 70, 80]",
-            ));
-        }
-        if let Some((i, j)) = first_duplicate(d.catalogue_mm.as_deref().unwrap_or_default()) {
-            return Err(Error::invalid(
-                format!("design.catalogue_mm[{j}]"),
-                d.catalogue_mm.as_ref().map_or(0, |c| c[j]),
-                format!("repeats design.catalogue_mm[{i}]; list each rod once"),
-            ));
-        }
-        if let Some((i, j)) = first_duplicate(d.elements.as_deref().unwrap_or_default()) {
-            return Err(Error::invalid(
-                format!("design.elements[{j}]"),
-                "(the same element)",
-                format!("repeats design.elements[{i}]; list each element once"),
-            ));
-        }
-        if n_cat > woodpile::optimize::MAX_CATALOGUE_LEN {
-            return Err(Error::invalid(
-                "design.catalogue",
-                n_cat,
-                format!("at most {} entries", woodpile::optimize::MAX_CATALOGUE_LEN),
-            ));
-        }
+        check_catalogue(d)?;
         // The catalogue as a chain resolves every element, the wall, the load and the run;
         // the catalogue's errors name the design keys.
         let catalogue_chain = ChainSpec {
@@ -555,28 +606,7 @@ impl Problem {
         let resolved =
             resolve_with_keys(&cfg.scenario(catalogue_chain, None), base_dir, &DESIGN_KEYS)?;
         let catalogue = resolved.chain.elements().to_vec();
-        let c = &d.constraints;
-        let mut constraints = Constraints {
-            max_total_mass_kg: c.max_total_mass_g.map(|g| g * 1e-3),
-            ..Constraints::default()
-        };
-        for (k, f) in c.fixed.iter().enumerate() {
-            let field = format!("design.constraints.fixed[{k}]");
-            if f.layer == 0 || f.layer > positions {
-                return Err(Error::invalid(
-                    format!("{field}.layer"),
-                    f.layer,
-                    format!("layers are 1..={positions} (1 = top)"),
-                ));
-            }
-            let e = catalogue_index(&field, f.rod_mm, f.element, &cfg)?;
-            constraints.fixed.push((f.layer - 1, e));
-        }
-        for (k, m) in c.max_count.iter().enumerate() {
-            let field = format!("design.constraints.max_count[{k}]");
-            let e = catalogue_index(&field, m.rod_mm, m.element, &cfg)?;
-            constraints.max_count.push((e, m.count));
-        }
+        let constraints = constraints(&cfg, positions)?;
         let space = DesignSpace {
             positions,
             catalogue,
@@ -586,23 +616,10 @@ impl Problem {
             settings: resolved.settings,
             constraints,
         };
-        let g = &cfg.ga;
-        let objective_name = g.objective.clone().unwrap_or_default();
+        let objective_name = cfg.ga.objective.clone().unwrap_or_default();
         let objective =
             StandardObjective::from_name(&objective_name).map_err(Error::at("ga.objective"))?;
-        let settings = GaSettings {
-            population: g.population.unwrap_or(100),
-            truncation: g.truncation.unwrap_or(0.3),
-            elites: g.elites.unwrap_or(1),
-            generations: g.generations.unwrap_or(100),
-            stall_generations: g.stall_generations.filter(|&s| s > 0),
-            seed: g.seed.unwrap_or(1),
-            mutation_range: g.mutation_range,
-            threads,
-            cache: g.cache.unwrap_or(true),
-            screen_peak_tolerance: g.screen_peak_tolerance,
-            stop_early: g.stop_early.unwrap_or(false),
-        };
+        let settings = ga_settings(&cfg.ga, threads);
         settings.validate()?;
         woodpile::optimize::FeasibleSet::new(&space).map_err(optimize_error)?;
         Ok(Problem {
@@ -636,7 +653,7 @@ pub const DESIGN_KEYS: ChainKeys = ChainKeys {
     crossing_angle_deg: "design.crossing_angle_deg",
 };
 
-/// The command line's error for a library optimisation error.
+/// woodpile-io's error for a library optimisation error.
 pub fn optimize_error(e: OptimizeError) -> Error {
     match e {
         OptimizeError::Model(m) => Error::Model(m),
@@ -651,12 +668,11 @@ pub fn optimize_error(e: OptimizeError) -> Error {
             objective,
             format!("returned NaN for design [{design}]"),
         ),
-        OptimizeError::StateMismatch { reason } => {
-            Error::invalid("--resume", CHECKPOINT_FILE, reason)
-        }
-        OptimizeError::ThreadPool { threads, reason } => {
-            Error::invalid("--threads", threads, reason)
-        }
+        OptimizeError::StateMismatch { reason } => Error::ResumeRefused {
+            path: CHECKPOINT_FILE.into(),
+            reason,
+        },
+        OptimizeError::ThreadPool { threads, reason } => Error::ThreadPool { threads, reason },
     }
 }
 
@@ -914,7 +930,7 @@ pub fn stop_text(reason: StopReason) -> &'static str {
 
 /// The output directory policy of `woodpile optimize`: with `resume`, the checkpoint in `out`
 /// (checked against `config`); without, `out` must be absent or empty (an earlier run there is
-/// named, with --resume as the way to continue it). Nothing is written.
+/// [`Error::CheckpointExists`]: resuming continues it). Nothing is written.
 pub fn prepare_output(
     out: &Path,
     resume: bool,
@@ -922,23 +938,25 @@ pub fn prepare_output(
 ) -> Result<Option<GaState>, Error> {
     if resume {
         if !out.join(CHECKPOINT_FILE).is_file() {
-            return Err(Error::invalid(
-                "--resume",
-                out.display(),
-                format!("holds no {CHECKPOINT_FILE}: nothing to resume; drop --resume to start a new run"),
-            ));
+            return Err(Error::NothingToResume {
+                path: out.to_path_buf(),
+                file: CHECKPOINT_FILE,
+            });
         }
         return read_checkpoint(out, config).map(Some);
     }
     match fs::read_dir(out) {
         Ok(mut entries) => {
             if entries.next().is_some() {
-                let what = if out.join(CHECKPOINT_FILE).is_file() {
-                    "holds an earlier optimisation run: add --resume to continue it (same config and seed), or choose another --out"
+                let path = out.to_path_buf();
+                return Err(if out.join(CHECKPOINT_FILE).is_file() {
+                    Error::CheckpointExists { path }
                 } else {
-                    "exists and is not empty: refusing to write into it; choose another --out"
-                };
-                return Err(Error::invalid("--out", out.display(), what));
+                    Error::OutputNotEmpty {
+                        path,
+                        marker: CHECKPOINT_FILE,
+                    }
+                });
             }
             Ok(None)
         }
@@ -964,11 +982,13 @@ pub fn read_checkpoint(dir: &Path, config: &OptimizeConfig) -> Result<GaState, E
         path: path.clone(),
         source: e,
     })?;
-    let corrupt = |message: String| Error::Parse {
+    let corrupt = |message: String| {
+        Error::Parse {
         source_name: path.display().to_string(),
         message: format!(
-            "{message}; the checkpoint is corrupt: restore it or start a new run in another --out"
+            "{message}; the checkpoint is corrupt: restore it or start a new run in another output directory"
         ),
+    }
     };
     let cp: Checkpoint = serde_json::from_str(&text).map_err(|e| corrupt(e.to_string()))?;
     if cp.format != CHECKPOINT_FORMAT {
@@ -977,18 +997,21 @@ pub fn read_checkpoint(dir: &Path, config: &OptimizeConfig) -> Result<GaState, E
             cp.format
         )));
     }
-    let refuse = |reason: String| Error::invalid("--resume", path.display(), reason);
+    let refuse = |reason: String| Error::ResumeRefused {
+        path: path.clone(),
+        reason,
+    };
     let ours = env!("CARGO_PKG_VERSION");
     if cp.tool_version != ours {
         return Err(refuse(format!(
-            "the checkpoint was written by woodpile {}, this is woodpile {ours}: a run resumes exactly only with the version that started it; finish it with woodpile {}, or start a new run in another --out",
+            "the checkpoint was written by woodpile {}, this is woodpile {ours}: a run resumes exactly only with the version that started it; finish it with woodpile {}, or start a new run in another output directory",
             cp.tool_version, cp.tool_version
         )));
     }
     let actual = cp.content_checksum();
     if cp.checksum != actual {
         return Err(refuse(format!(
-            "the checkpoint's checksum is {} but its content hashes to {actual}: it was modified after woodpile wrote it, so its objectives cannot be trusted; restore it or start a new run in another --out",
+            "the checkpoint's checksum is {} but its content hashes to {actual}: it was modified after woodpile wrote it, so its objectives cannot be trusted; restore it or start a new run in another output directory",
             cp.checksum
         )));
     }
@@ -1006,14 +1029,10 @@ pub fn read_checkpoint(dir: &Path, config: &OptimizeConfig) -> Result<GaState, E
                 )
             })
             .collect();
-        return Err(Error::invalid(
-            "--resume",
-            path.display(),
-            format!(
-                "the checkpoint belongs to a different problem: {}; resume with the same config, --model and --seed",
-                differing.join("; ")
-            ),
-        ));
+        return Err(refuse(format!(
+            "the checkpoint belongs to a different problem: {}; resume with the same config, model and seed",
+            differing.join("; ")
+        )));
     }
     Ok(cp.into_state())
 }
@@ -1032,12 +1051,12 @@ pub struct HistoryPoint {
 /// Reads `history.csv` of `woodpile optimize`: one point per generation.
 pub fn read_history(path: &Path) -> Result<Vec<HistoryPoint>, Error> {
     let cols = ["best".to_string(), "mean".to_string()];
-    let csv_err = |e: csv::Error| crate::rundir::read_error(path, e.to_string());
+    let csv_err = |e: csv::Error| read_error(path, e.to_string());
     let mut r = csv::Reader::from_path(path).map_err(csv_err)?;
     let header = r.headers().map_err(csv_err)?.clone();
     let index = |name: &str| {
         header.iter().position(|h| h == name).ok_or_else(|| {
-            crate::rundir::read_error(
+            read_error(
                 path,
                 format!("no column `{name}`: not a history.csv of `woodpile optimize`"),
             )
@@ -1050,14 +1069,11 @@ pub fn read_history(path: &Path) -> Result<Vec<HistoryPoint>, Error> {
         let rec = rec.map_err(csv_err)?;
         let field = |i: usize| {
             rec.get(i).map(str::trim).ok_or_else(|| {
-                crate::rundir::read_error(
-                    path,
-                    format!("line {}: missing column {}", line + 2, i + 1),
-                )
+                read_error(path, format!("line {}: missing column {}", line + 2, i + 1))
             })
         };
         let not_number = |i: usize| {
-            crate::rundir::read_error(
+            read_error(
                 path,
                 format!("line {}: not a number in column {}", line + 2, i + 1),
             )
@@ -1078,7 +1094,7 @@ pub fn read_history(path: &Path) -> Result<Vec<HistoryPoint>, Error> {
         });
     }
     if points.is_empty() {
-        return Err(crate::rundir::read_error(
+        return Err(read_error(
             path,
             "no generation recorded yet: nothing to plot",
         ));

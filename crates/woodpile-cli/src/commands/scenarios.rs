@@ -44,6 +44,7 @@ pub fn lookup(name: &str) -> Result<scenario::Scenario, CliError> {
 
 /// Prints a built-in scenario as complete, commented TOML.
 pub fn show(args: &ShowArgs, _ctx: &Context) -> Result<(), CliError> {
-    print!("{}", lookup(&args.name)?.to_toml());
+    let text = lookup(&args.name)?.to_toml();
+    print!("# Run it with `woodpile simulate THIS_FILE.toml --out DIR`.\n{text}");
     Ok(())
 }
