@@ -16,7 +16,6 @@
 //! - [`limits`]: up-front limits (threads, steps, output size) with overrides.
 //! - [`optimize`]: the optimisation config, the problem it defines and its checkpoint.
 //! - [`transmission`]: the output directory of a transmission spectrum.
-//! - [`study`]: the paper's study as data: the cases the report runs and the paper's numbers.
 //! - [`Error`]: every failure, typed, naming the field, the value and what would be valid.
 
 pub mod atomic;
@@ -27,7 +26,6 @@ pub mod npy;
 pub mod optimize;
 pub mod rundir;
 pub mod scenario;
-pub mod study;
 pub mod table;
 pub mod transmission;
 

@@ -431,15 +431,7 @@ pub fn plot_optimization(
 
 fn draw_optimization(dir: &Path, out: &Path) -> Result<(Vec<PathBuf>, Option<String>), Error> {
     let output = read_output(dir)?;
-    let points: Vec<ConvergencePoint> = output
-        .history
-        .iter()
-        .map(|h| ConvergencePoint {
-            generation: h.generation,
-            best: h.best,
-            mean: h.mean,
-        })
-        .collect();
+    let points: Vec<ConvergencePoint> = output.history.iter().map(Into::into).collect();
     let summary = output.summary.as_ref();
     let config = output.config.as_ref();
     let objective = summary

@@ -41,6 +41,28 @@ pub struct ConvergencePoint {
     pub mean: f64,
 }
 
+impl From<&woodpile::optimize::GenerationStats> for ConvergencePoint {
+    /// A generation of a GA run in memory.
+    fn from(g: &woodpile::optimize::GenerationStats) -> Self {
+        ConvergencePoint {
+            generation: g.generation,
+            best: g.best,
+            mean: g.mean,
+        }
+    }
+}
+
+impl From<&woodpile_io::optimize::HistoryPoint> for ConvergencePoint {
+    /// A generation read back from an optimisation's `history.csv`.
+    fn from(h: &woodpile_io::optimize::HistoryPoint) -> Self {
+        ConvergencePoint {
+            generation: h.generation,
+            best: h.best,
+            mean: h.mean,
+        }
+    }
+}
+
 const LEGEND_FONT: u32 = 15;
 
 /// Drawing units per layout unit of the line plots: they lay out as 1100 × 600 (or 1000 × 600)

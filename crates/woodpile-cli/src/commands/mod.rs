@@ -5,6 +5,9 @@
 //! and one match arm in `main.rs`.
 
 pub mod cells;
+pub mod optimize;
+pub mod plot;
+pub mod report;
 pub mod scenarios;
 pub mod simulate;
 pub mod transmission;
