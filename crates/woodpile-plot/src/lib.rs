@@ -231,3 +231,22 @@ pub(crate) fn padded(lo: f64, hi: f64) -> (f64, f64) {
         (lo - 0.5 * lo.abs(), hi + 0.5 * hi.abs())
     }
 }
+
+/// Short number for axis labels: up to 3 significant digits without trailing zeros, scientific
+/// outside [1e-3, 1e5).
+pub(crate) fn format_number(v: f64) -> String {
+    let a = v.abs();
+    if a < 1e-12 {
+        "0".to_string()
+    } else if !(1e-3..1e5).contains(&a) {
+        format!("{v:.0e}")
+    } else {
+        let decimals = (2 - a.log10().floor() as i32).max(0) as usize;
+        let s = format!("{v:.decimals$}");
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    }
+}
