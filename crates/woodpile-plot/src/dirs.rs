@@ -27,11 +27,17 @@ use woodpile_io::rundir::{read_error, read_run_info, read_trajectory};
 use woodpile_io::scenario::resolve;
 use woodpile_io::Error;
 
-/// A drawing failure as an output error naming the figure's path.
+/// A drawing failure as an output error naming the figure's path; an output option out of
+/// range as invalid input naming the option.
 impl From<PlotError> for Error {
     fn from(e: PlotError) -> Self {
-        let path = match &e {
-            PlotError::Draw { path, .. } => path.clone(),
+        let path = match e {
+            PlotError::InvalidOutput {
+                field,
+                value,
+                reason,
+            } => return Error::invalid(field, value, reason),
+            PlotError::Draw { ref path, .. } => path.clone(),
             PlotError::BadData { .. } => PathBuf::from("figure"),
         };
         Error::Output {

@@ -70,6 +70,16 @@ pub enum PlotError {
         /// Why.
         reason: String,
     },
+    /// An output option ([`Output`]) outside its range.
+    #[error("output {field} = {value}: {reason}")]
+    InvalidOutput {
+        /// The field of [`Output`].
+        field: &'static str,
+        /// Its value.
+        value: f64,
+        /// What is valid.
+        reason: String,
+    },
     /// The drawing backend failed (e.g. the file could not be written).
     #[error("drawing {path} failed: {reason}")]
     Draw {

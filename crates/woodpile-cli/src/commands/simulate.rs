@@ -67,14 +67,7 @@ pub struct Loaded {
 pub fn load(source: &Source) -> Result<Loaded, CliError> {
     if let Some(file) = &source.file {
         let scenario = Scenario::load(file)?;
-        let name = file
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "scenario".into());
-        let base_dir = match file.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
+        let (name, base_dir) = super::name_and_base(file, "scenario");
         return Ok(Loaded {
             name,
             file: Some(file.clone()),

@@ -228,19 +228,17 @@ impl Blast {
         );
         doc.figure(
             &self.compare,
-            &s.out,
             "The blast load (contact 0, Fig. 8) and the wall force of the four chains.",
         );
     }
 
     /// Each chain's figures under the blast.
-    pub fn write_chains(&self, doc: &mut Doc, s: &Setup) {
+    pub fn write_chains(&self, doc: &mut Doc) {
         let panels = [("a", "b"), ("c", "d"), ("e", "f"), ("g", "h")];
         for ((c, panels), share) in self.cases.iter().zip(panels).zip(self.shares()) {
             doc.h3(format!("{} under the blast", c.chain_title));
-            for (f, cap) in c.files.iter().zip(self.captions(c, panels, share)) {
-                doc.figure(f, &s.out, format!("{}, blast: {cap}", c.chain_title));
-            }
+            let prefix = format!("{}, blast", c.chain_title);
+            doc.figures(&c.files, &prefix, self.captions(c, panels, share));
         }
     }
 

@@ -23,20 +23,14 @@ pub fn run(s: &Setup) -> Result<Cells, CliError> {
 
 impl Cells {
     /// The section.
-    pub fn write(&self, doc: &mut Doc, s: &Setup) {
+    pub fn write(&self, doc: &mut Doc) {
         let ef = &self.files;
         doc.h2("Effective mass of the rods (Fig. 3)");
         doc.p("M_eff(ω)/M_total of the Table 1 unit cells (paper Eq. 3, 4): negative between each local resonance f_j and the next zero F_j (shaded).");
-        doc.figure(
-            &ef[..2.min(ef.len())],
-            &s.out,
-            "Effective mass of the 20, 30, 40 mm rods (one resonator each) (Fig. 3 a). What to see: M_eff/M_total is negative (shaded) above each rod's local resonance, in bands that move down as the rods get longer.",
+        doc.figure(&ef[..2.min(ef.len())], "Effective mass of the 20, 30, 40 mm rods (one resonator each) (Fig. 3 a). What to see: M_eff/M_total is negative (shaded) above each rod's local resonance, in bands that move down as the rods get longer.",
         );
         if ef.len() > 2 {
-            doc.figure(
-                &ef[2..],
-                &s.out,
-                "Effective mass of the 50–80 mm rods (two resonators each) (Fig. 3 b). What to see: two negative-mass bands per rod (first and third bending modes), lower for longer rods.",
+            doc.figure(&ef[2..], "Effective mass of the 50–80 mm rods (two resonators each) (Fig. 3 b). What to see: two negative-mass bands per rod (first and third bending modes), lower for longer rods.",
             );
         }
     }

@@ -132,10 +132,7 @@ impl Fine {
         ];
         doc.table(&header, rows.to_vec());
         doc.p(self.verdict());
-        doc.figure(
-            &self.files,
-            &s.out,
-            "The GA optimum over rods of every length 20–80 mm (1 mm steps, cells from beam theory), rods to scale, top (striker) to bottom (sensor).",
+        doc.figure(&self.files, "The GA optimum over rods of every length 20–80 mm (1 mm steps, cells from beam theory), rods to scale, top (striker) to bottom (sensor).",
         );
     }
 

@@ -146,7 +146,7 @@ impl Impact {
     }
 
     /// The section: the table of first transits and every chain's figures.
-    pub fn write(&self, doc: &mut Doc, s: &Setup) {
+    pub fn write(&self, doc: &mut Doc) {
         doc.h2("Homogeneous chains under impact (Fig. 5 a–c)");
         doc.p("Twenty identical rods on the sensor, hit by the striker. The paper: 20 mm rods carry a solitary wave with a small oscillating tail (a nanopteron); 40 and 80 mm rods split the wave into groups separated in time (80 mm: two groups ~0.2 ms apart).");
         doc.p("Measured on the wall force, during the first transit only (from the wave's arrival at the wall, for as long as it took to get there from contact 1; later events include reflections): the separated peaks, i.e. local maxima of at least 5 % of the window's maximum, two neighbouring maxima counting as one unless the force between them falls below half the smaller one.");
@@ -182,12 +182,11 @@ impl Impact {
             ],
             rows.collect(),
         );
-        doc.figure(&self.wall_compare, &s.out, "Wall force of the four homogeneous chains under the impact. What to see: when each wave arrives and how it is grouped (the table above counts the separated peaks of the first transit).");
+        doc.figure(&self.wall_compare, "Wall force of the four homogeneous chains under the impact. What to see: when each wave arrives and how it is grouped (the table above counts the separated peaks of the first transit).");
         for ((c, w), (rod_mm, model)) in self.cases.iter().zip(&self.waves).zip(CHAINS) {
             doc.h3(format!("{} under impact", c.chain_title));
-            for (f, cap) in c.files.iter().zip(captions(c, w, rod_mm, model)) {
-                doc.figure(f, &s.out, format!("{}, impact: {cap}", c.chain_title));
-            }
+            let prefix = format!("{}, impact", c.chain_title);
+            doc.figures(&c.files, &prefix, captions(c, w, rod_mm, model));
         }
     }
 }

@@ -94,7 +94,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let (doc, summary) = result?;
     let title = "woodpile: reproduction of Kim, Yang et al. 2017 (impact and blast mitigation with locally resonant woodpiles)";
     let md = doc.markdown(title);
-    let html = doc.html(title, &args.out)?;
+    let html = doc.html(title)?;
     write_atomic(&args.out, "report.md", md.as_bytes())?;
     write_atomic(&args.out, "report.html", html.as_bytes())?;
     if !ctx.quiet {
@@ -162,7 +162,7 @@ fn build(s: &Setup) -> Result<(Doc, String), CliError> {
     let cells = cells::run(s)?;
     s.bar.stage("writing the report");
     let elapsed = s.bar.elapsed().as_secs_f64();
-    let mut doc = Doc::default();
+    let mut doc = Doc::new(&s.out);
     intro(
         &mut doc,
         s,
@@ -179,15 +179,15 @@ fn build(s: &Setup) -> Result<(Doc, String), CliError> {
         &["quantity", "paper", "ours", "difference", "why they differ"],
         table.rows,
     );
-    impact.write(&mut doc, s);
-    optima.write(&mut doc, s);
-    protocol.write(&mut doc, s, &optima);
+    impact.write(&mut doc);
+    optima.write(&mut doc);
+    protocol.write(&mut doc, &optima);
     blast.write_overview(&mut doc, s);
-    sweep.write(&mut doc, s);
-    blast.write_chains(&mut doc, s);
+    sweep.write(&mut doc);
+    blast.write_chains(&mut doc);
     fine.write(&mut doc, s, &optima);
-    transmission.write(&mut doc, s);
-    cells.write(&mut doc, s);
+    transmission.write(&mut doc);
+    cells.write(&mut doc);
     reproducing(&mut doc, s);
     s.bar.inc(1);
     let (cr, cg) = (&optima.cases[0].summary, &optima.cases[1].summary);

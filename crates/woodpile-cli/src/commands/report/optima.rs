@@ -220,7 +220,7 @@ impl Optima {
     }
 
     /// The section: the optima in a table, then each optimum's figures.
-    pub fn write(&self, doc: &mut Doc, s: &Setup) {
+    pub fn write(&self, doc: &mut Doc) {
         doc.h2("Optimised chains under impact (Figs. 5 d, e, 6, 7 c)");
         doc.p(format!(
             "The breeder GA searched the 7^20 arrangements of Table 1 rods for the least peak wall force, once with resonant rods and once with rigid ones. Resonant optimum (top to bottom, mm): `{}`; rigid optimum: `{}`. The paper's resonant optimum puts long rods (80, 70 mm) at the top and short rods in a disordered pattern at the bottom; its rigid optimum alternates heavy and light rods.",
@@ -261,10 +261,8 @@ impl Optima {
         doc.table(&header, rows.collect());
         for (ga, c) in runs.iter().zip(&self.cases) {
             doc.h3(format!("{} optimum", ga.model));
-            for (f, cap) in c.files.iter().zip(captions(ga, c)) {
-                let caption = format!("GA optimum, {} model, impact: {cap}", ga.model);
-                doc.figure(f, &s.out, caption);
-            }
+            let prefix = format!("GA optimum, {} model, impact", ga.model);
+            doc.figures(&c.files, &prefix, captions(ga, c));
         }
     }
 }

@@ -71,7 +71,7 @@ pub fn run(s: &Setup, optima: &Optima) -> Result<Protocol, CliError> {
 
 impl Protocol {
     /// The section: where the peaks fall along the chain, and what damping does to them.
-    pub fn write(&self, doc: &mut Doc, s: &Setup, optima: &Optima) {
+    pub fn write(&self, doc: &mut Doc, optima: &Optima) {
         let cr = &optima.cases[0].summary;
         let peaks = &self.lossless.peak_wall_force_n;
         let n = peaks.len();
@@ -98,7 +98,7 @@ impl Protocol {
         } else {
             String::new()
         };
-        doc.figure(&self.map_files, &s.out, format!("Layer-by-layer protocol on the resonant GA optimum under the impact: wall force of the first k rods on the sensor over time (Fig. 7 a; the paper's is measured). What to see: how the ridges of the incident pulse split and fade from interface to interface.{first_eleven}"));
+        doc.figure(&self.map_files, format!("Layer-by-layer protocol on the resonant GA optimum under the impact: wall force of the first k rods on the sensor over time (Fig. 7 a; the paper's is measured). What to see: how the ridges of the incident pulse split and fade from interface to interface.{first_eleven}"));
         // Damped over lossless, averaged over the front and the rear half of the chain.
         let mean_ratio = |range: std::ops::Range<usize>| {
             let len = range.len() as f64;
@@ -119,6 +119,6 @@ impl Protocol {
                 "here the losses do not lower the rear peaks more than the front ones, so damping of this size alone does not reproduce the direction of that discrepancy."
             },
         ));
-        doc.figure(&self.peak_files, &s.out, "Layer-by-layer protocol on the resonant GA optimum under the impact: peak force per interface, protocol (lossless and damped) against the full chain's contact peaks (Fig. 7 b; the paper's red dots are measured). What to see: where along the chain the peaks fall, and how far the damped protocol lies below the lossless one toward the rear (the paper's measured peaks are below its simulation there, which it attributes to damping).");
+        doc.figure(&self.peak_files, "Layer-by-layer protocol on the resonant GA optimum under the impact: peak force per interface, protocol (lossless and damped) against the full chain's contact peaks (Fig. 7 b; the paper's red dots are measured). What to see: where along the chain the peaks fall, and how far the damped protocol lies below the lossless one toward the rear (the paper's measured peaks are below its simulation there, which it attributes to damping).");
     }
 }

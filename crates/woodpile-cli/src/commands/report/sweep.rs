@@ -131,7 +131,7 @@ impl Sweep {
     }
 
     /// The subsection: where the three ratios hold together, closest load first.
-    pub fn write(&self, doc: &mut Doc, s: &Setup) {
+    pub fn write(&self, doc: &mut Doc) {
         let paper = BLAST_RATIOS.map(|p| p.text());
         doc.h3("Which blast the paper used: F0 × Td");
         doc.p(format!("The paper gives no numbers for its blast except that it lasted about 0.5 ms; our default, 200 N / 0.2 ms, is an assumption (docs/physics.md §6). Below, the same four chains under Friedlander loads (decay 1) of every F0 × Td of the grid: for each load the three ratios of peak last-layer energy to the 20 mm chain's (40 mm, 80 mm, the optimised chain; the paper: {}) and the largest factor by which one of them misses the paper's value (1 = all three agree), closest first.", paper.join(", ")));
@@ -186,10 +186,7 @@ impl Sweep {
             "worst factor",
         ];
         doc.table(&header, rows.collect());
-        doc.figure(
-            &self.files,
-            &s.out,
-            "The largest factor by which one of the three blast energy ratios misses the paper's, over the peak force F0 and duration Td of a Friedlander load (log colours; darker is closer).",
+        doc.figure(&self.files, "The largest factor by which one of the three blast energy ratios misses the paper's, over the peak force F0 and duration Td of a Friedlander load (log colours; darker is closer).",
         );
     }
 }

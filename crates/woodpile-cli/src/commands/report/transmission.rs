@@ -51,7 +51,7 @@ pub fn run(s: &Setup) -> Result<Transmission, CliError> {
 
 impl Transmission {
     /// The subsection: the measured band edges against the predicted ones.
-    pub fn write(&self, doc: &mut Doc, s: &Setup) {
+    pub fn write(&self, doc: &mut Doc) {
         let t = &self.spectrum;
         let threshold = TRANSMISSION_STOP_DB;
         doc.h3("Transmission spectrum of the 80 mm chain");
@@ -79,6 +79,6 @@ impl Transmission {
             ],
             rows.collect(),
         );
-        doc.figure(&self.files, &s.out, "Transmission of twenty preloaded 80 mm rods: measured spectrum, the −20 dB stop-band level, and the predicted Bloch gaps shaded.");
+        doc.figure(&self.files, "Transmission of twenty preloaded 80 mm rods: measured spectrum, the −20 dB stop-band level, and the predicted Bloch gaps shaded.");
     }
 }
