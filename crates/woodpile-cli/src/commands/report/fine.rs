@@ -5,7 +5,7 @@
 use super::doc::Doc;
 use super::ga::GaRun;
 use super::optima::{ga_problem, Optima};
-use super::study::{join_mm, mean_length_mm, pct, ratio, Setup};
+use super::study::{mean_length_mm, Setup};
 use crate::CliError;
 use std::path::PathBuf;
 use woodpile::{simulate, RunSummary};
@@ -102,24 +102,12 @@ impl Fine {
         ]
         .map(|(name, ga, summary)| {
             let n = ga.rods.len();
-            vec![
-                name.to_string(),
-                join_mm(&ga.rods),
-                format!("{:.2} N", summary.incident_peak_force_n),
-                format!("{:.2} N", summary.transmitted_peak_force_n),
-                pct(ratio(summary)),
-                format!(
-                    "{:.0} / {:.0} mm",
-                    mean_length_mm(&ga.rods, 0..5),
-                    mean_length_mm(&ga.rods, n.saturating_sub(5)..n)
-                ),
-                format!(
-                    "{} generations, {} simulations{}",
-                    ga.result.generations,
-                    ga.result.evaluations,
-                    if ga.cached { " (from cache)" } else { "" }
-                ),
-            ]
+            let means = format!(
+                "{:.0} / {:.0} mm",
+                mean_length_mm(&ga.rods, 0..5),
+                mean_length_mm(&ga.rods, n.saturating_sub(5)..n)
+            );
+            ga.row(name, summary, means, ga.search_text(false))
         });
         let header = [
             "design space",

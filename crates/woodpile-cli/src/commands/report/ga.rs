@@ -2,13 +2,13 @@
 //! FNV-1a hash of the tool version and the complete problem (config, GA settings, seed), and a
 //! rerun of the report reuses it.
 
-use super::study::Setup;
+use super::study::{join_mm, pct, ratio, Setup};
 use crate::CliError;
 use serde::{Deserialize, Serialize};
 use std::fs;
 use std::path::{Path, PathBuf};
 use woodpile::optimize::{BreederGa, GaState, GenerationStats, Objective};
-use woodpile::Chain;
+use woodpile::{Chain, RunSummary};
 use woodpile_io::atomic::write_atomic;
 use woodpile_io::optimize::{fnv1a64, optimize_error, OptimizeConfig, Problem};
 
@@ -141,6 +141,43 @@ impl GaRun {
             objective: problem.objective.as_str().to_string(),
             unit: problem.objective.unit().to_string(),
         })
+    }
+}
+
+impl GaRun {
+    /// A row of a table of optima: `name`, the best chain, its incident and transmitted peak
+    /// forces and their ratio (from its re-simulated `summary`), `extra`, and `search`.
+    pub fn row(
+        &self,
+        name: &str,
+        summary: &RunSummary,
+        extra: String,
+        search: String,
+    ) -> Vec<String> {
+        vec![
+            name.to_string(),
+            join_mm(&self.rods),
+            format!("{:.2} N", summary.incident_peak_force_n),
+            format!("{:.2} N", summary.transmitted_peak_force_n),
+            pct(ratio(summary)),
+            extra,
+            search,
+        ]
+    }
+
+    /// `12 generations, 610 simulations[, 3.2 s][ (from cache)]`.
+    pub fn search_text(&self, with_time: bool) -> String {
+        let r = &self.result;
+        let time = if with_time {
+            format!(", {:.1} s", r.elapsed_s)
+        } else {
+            String::new()
+        };
+        let cached = if self.cached { " (from cache)" } else { "" };
+        format!(
+            "{} generations, {} simulations{time}{cached}",
+            r.generations, r.evaluations
+        )
     }
 }
 

@@ -5,21 +5,21 @@
 //!
 //! One module per section, each holding its runs, its figures, its text and the paper's numbers
 //! it is compared with; this module runs them in order and assembles the document:
-//! - [`impact`]: homogeneous 20-rod chains of 20, 40, 80 mm rods (resonant) and 20 mm (rigid)
+//! - `impact`: homogeneous 20-rod chains of 20, 40, 80 mm rods (resonant) and 20 mm (rigid)
 //!   under the impact: force and energy maps, force histories, spectra, the separated pulses at
 //!   the wall (paper Figs. 5 a–c, 6);
-//! - [`optima`]: the breeder GA for the least wall force under the impact, resonant and rigid
+//! - `optima`: the breeder GA for the least wall force under the impact, resonant and rigid
 //!   (paper Fig. 5 d, e): convergence, best chain, incident and transmitted force, restitution;
-//! - [`protocol`]: the layer-by-layer protocol on the resonant optimum (paper Fig. 7 a, b);
-//! - [`blast`]: the Friedlander blast on 20, 40, 80 mm chains and the paper's blast-optimised
+//! - `protocol`: the layer-by-layer protocol on the resonant optimum (paper Fig. 7 a, b);
+//! - `blast`: the Friedlander blast on 20, 40, 80 mm chains and the paper's blast-optimised
 //!   chain: peak energy of the last layer, spectra against the negative-mass bands (paper
-//!   Figs. 8, 9); [`sweep`]: the same chains over a grid of blast loads;
-//! - [`fine`]: the GA over rods of every length with cells from beam theory (beyond the paper);
-//! - [`transmission`]: the transmission spectrum of preloaded 80 mm rods (beyond the paper);
-//! - [`cells`]: the effective-mass curves of the catalogue (paper Fig. 3).
+//!   Figs. 8, 9); `sweep`: the same chains over a grid of blast loads;
+//! - `fine`: the GA over rods of every length with cells from beam theory (beyond the paper);
+//! - `transmission`: the transmission spectrum of preloaded 80 mm rods (beyond the paper);
+//! - `cells`: the effective-mass curves of the catalogue (paper Fig. 3).
 //!
-//! [`study`] holds what the sections share (the loads, a simulated [`study::Case`], the paper's
-//! numbers as [`PaperValue`]s, the comparison table), [`ga`] the GA runs, [`doc`] the Markdown
+//! `study` holds what the sections share (the loads, a simulated `study::Case`, the paper's
+//! numbers as [`PaperValue`]s, the comparison table), `ga` the GA runs, `doc` the Markdown
 //! and HTML. The GA results, the only expensive part, are kept in `DIR/cache/` under a stable
 //! FNV-1a hash of the tool version and the complete problem (config, GA settings, seed); a rerun
 //! reuses them. Everything else is re-simulated (well under a second per run). `report.md` and

@@ -229,25 +229,11 @@ impl Optima {
         ));
         let runs = [&self.resonant, &self.rigid];
         let rows = runs.iter().zip(&self.cases).map(|(ga, c)| {
-            vec![
-                ga.model.to_string(),
-                join_mm(&ga.rods),
-                format!("{:.2} N", c.summary.incident_peak_force_n),
-                format!("{:.2} N", c.summary.transmitted_peak_force_n),
-                pct(ratio(&c.summary)),
-                c.summary
-                    .restitution_coefficient()
-                    .map_or("n/a (striker not yet away)".to_string(), |e| {
-                        format!("{e:.4}")
-                    }),
-                format!(
-                    "{} generations, {} simulations, {:.1} s{}",
-                    ga.result.generations,
-                    ga.result.evaluations,
-                    ga.result.elapsed_s,
-                    if ga.cached { " (from cache)" } else { "" }
-                ),
-            ]
+            let restitution = (c.summary.restitution_coefficient())
+                .map_or("n/a (striker not yet away)".to_string(), |e| {
+                    format!("{e:.4}")
+                });
+            ga.row(ga.model, &c.summary, restitution, ga.search_text(true))
         });
         let header = [
             "model",
