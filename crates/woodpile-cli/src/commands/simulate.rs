@@ -9,7 +9,7 @@ use woodpile::{simulate, Trajectory};
 use woodpile_io::atomic::{Staging, RUN_MARKER};
 use woodpile_io::limits::RunSize;
 use woodpile_io::rundir::{write_run, RunRecord, SummaryJson, RUN_FILES};
-use woodpile_io::scenario::{resolve, Scenario, DEFAULT_SCENARIO};
+use woodpile_io::scenario::{resolve, Resolved, Scenario, DEFAULT_SCENARIO};
 
 /// Which scenario a command runs: a file or a built-in (shared by `simulate` and
 /// `transmission`).
@@ -63,6 +63,17 @@ pub struct Loaded {
     pub base_dir: PathBuf,
 }
 
+impl Loaded {
+    /// The scenario resolved into the core's types; its warnings are printed on stderr.
+    pub fn resolve(&self) -> Result<Resolved, CliError> {
+        let resolved = resolve(&self.scenario, &self.base_dir)?;
+        for warning in &resolved.warnings {
+            eprintln!("warning: {warning}");
+        }
+        Ok(resolved)
+    }
+}
+
 /// Loads a scenario file, or a built-in scenario by name (default: the default job).
 pub fn load(source: &Source) -> Result<Loaded, CliError> {
     if let Some(file) = &source.file {
@@ -87,10 +98,7 @@ pub fn load(source: &Source) -> Result<Loaded, CliError> {
 /// Runs `woodpile simulate`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let loaded = load(&args.source)?;
-    let resolved = resolve(&loaded.scenario, &loaded.base_dir)?;
-    for warning in &resolved.warnings {
-        eprintln!("warning: {warning}");
-    }
+    let resolved = loaded.resolve()?;
     RunSize::estimate(&resolved.settings, resolved.chain.len()).check(
         args.allow_long,
         args.allow_large,

@@ -84,7 +84,7 @@ pub struct Blast {
 }
 
 /// Runs and draws one chain under the blast.
-fn chain(s: &Setup, (rod_mm, name, slug): (Option<u32>, &str, &str)) -> Result<Case, CliError> {
+fn case(s: &Setup, (rod_mm, name, slug): (Option<u32>, &str, &str)) -> Result<Case, CliError> {
     let (chain, chain_title) = blast_chain(rod_mm)?;
     let mut case = Case::simulate(name, &chain_title, chain, &s.blast, &s.blast_settings)?;
     let title = format!("{chain_title}, {}", s.blast_text);
@@ -102,7 +102,7 @@ fn chain(s: &Setup, (rod_mm, name, slug): (Option<u32>, &str, &str)) -> Result<C
 pub fn run(s: &Setup) -> Result<Blast, CliError> {
     let cases = BLAST_CHAINS
         .par_iter()
-        .map(|&c| chain(s, c))
+        .map(|&c| case(s, c))
         .collect::<Result<Vec<_>, CliError>>()?;
     let wall = |c: &Case| c.trajectory.contact_force_n(c.trajectory.n_elements);
     let load = plot::Series::new("load (contact 0)", cases[0].trajectory.contact_force_n(0));

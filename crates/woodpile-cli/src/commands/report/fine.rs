@@ -49,7 +49,7 @@ pub struct Fine {
 pub fn run(s: &Setup) -> Result<Fine, CliError> {
     let ga = |stage: &str, step_mm: f64, label: &'static str| {
         s.bar.stage(stage);
-        let run = GaRun::get(&derived_ga_problem(step_mm, s)?, label, s);
+        let run = GaRun::cached_or_run(&derived_ga_problem(step_mm, s)?, label, s);
         s.bar.inc(1);
         run
     };

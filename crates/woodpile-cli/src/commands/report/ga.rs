@@ -106,7 +106,11 @@ pub struct GaRun {
 impl GaRun {
     /// The GA of `cfg` labelled `label`: from the cache when it holds one for the same inputs,
     /// else run now (each generation shown on the progress bar) and stored.
-    pub fn get(cfg: &OptimizeConfig, label: &'static str, s: &Setup) -> Result<GaRun, CliError> {
+    pub fn cached_or_run(
+        cfg: &OptimizeConfig,
+        label: &'static str,
+        s: &Setup,
+    ) -> Result<GaRun, CliError> {
         let problem = Problem::new(cfg, Path::new("."), s.threads)?;
         let total = problem.settings.generations;
         let cache = Cache {

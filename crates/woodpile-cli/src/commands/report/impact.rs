@@ -44,7 +44,7 @@ pub struct Impact {
 }
 
 /// Runs and draws one homogeneous chain.
-fn chain(s: &Setup, rod_mm: u32, model: CellModel) -> Result<Case, CliError> {
+fn case(s: &Setup, rod_mm: u32, model: CellModel) -> Result<Case, CliError> {
     let (model_name, suffix) = match model {
         CellModel::Rigid => ("rigid", "_rigid"),
         _ => ("resonant", ""),
@@ -87,7 +87,7 @@ fn chain(s: &Setup, rod_mm: u32, model: CellModel) -> Result<Case, CliError> {
 pub fn run(s: &Setup) -> Result<Impact, CliError> {
     let cases = CHAINS
         .par_iter()
-        .map(|&(rod_mm, model)| chain(s, rod_mm, model))
+        .map(|&(rod_mm, model)| case(s, rod_mm, model))
         .collect::<Result<Vec<_>, CliError>>()?;
     let wall_series: Vec<plot::Series> = cases
         .iter()

@@ -99,7 +99,7 @@ pub struct Optima {
 pub fn run(s: &Setup) -> Result<Optima, CliError> {
     let ga = |stage: &str, model, label| {
         s.bar.stage(stage);
-        let run = GaRun::get(&ga_problem(model, s.seed, s.quick)?, label, s);
+        let run = GaRun::cached_or_run(&ga_problem(model, s.seed, s.quick)?, label, s);
         s.bar.inc(1);
         run
     };
