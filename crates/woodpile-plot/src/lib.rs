@@ -32,6 +32,9 @@
 //!
 //! [`dirs`] draws the figure set of a whole output directory (a `woodpile simulate` run or a
 //! `woodpile optimize` output), read back through [`woodpile_io`].
+//!
+//! Errors are [`PlotError`]: data that cannot be drawn, an [`Output`] option out of range (its
+//! field, value and range), or a file that could not be written.
 
 mod chain;
 mod colorbar;

@@ -145,66 +145,108 @@ fn prepare_dir(out: &Path) -> Result<(), CliError> {
 /// over derived cells, cells.
 const STEPS: u64 = 15;
 
-/// Runs every section and writes them in order; returns the document and a short summary.
+/// Runs every section, then writes them in order; returns the document and a short summary.
 fn build(s: &Setup) -> Result<(Doc, String), CliError> {
-    s.bar.stage("homogeneous chains under impact");
-    let impact = impact::run(s)?;
-    let optima = optima::run(s)?;
-    s.bar.stage("layer-by-layer protocol");
-    let protocol = protocol::run(s, &optima)?;
-    s.bar.inc(1);
-    s.bar.stage("blast cases");
-    let blast = blast::run(s)?;
-    let sweep = sweep::run(s)?;
-    let fine = fine::run(s)?;
-    s.bar.stage("transmission spectrum");
-    let transmission = transmission::run(s)?;
-    let cells = cells::run(s)?;
+    let sections = Sections::run(s)?;
     s.bar.stage("writing the report");
     let elapsed = s.bar.elapsed().as_secs_f64();
-    let mut doc = Doc::new(&s.out);
-    intro(
-        &mut doc,
-        s,
-        [&optima.resonant, &optima.rigid, &fine.seven, &fine.fine],
-        elapsed,
-    );
-    let mut table = Comparison::default();
-    optima.compare(s, &mut table);
-    impact.compare(&mut table);
-    blast.compare(&mut table);
-    doc.h2("Comparison with the paper");
-    doc.p("Each number the paper reports (docs/physics.md §9) beside ours. Differences in percent are relative to the paper's value; `pp` are percentage points.");
-    doc.table(
-        &["quantity", "paper", "ours", "difference", "why they differ"],
-        table.rows,
-    );
-    impact.write(&mut doc);
-    optima.write(&mut doc);
-    protocol.write(&mut doc, &optima);
-    blast.write_overview(&mut doc, s);
-    sweep.write(&mut doc);
-    blast.write_chains(&mut doc);
-    fine.write(&mut doc, s, &optima);
-    transmission.write(&mut doc);
-    cells.write(&mut doc);
-    reproducing(&mut doc, s);
+    let doc = sections.write(s, elapsed);
     s.bar.inc(1);
-    let (cr, cg) = (&optima.cases[0].summary, &optima.cases[1].summary);
-    let shares = blast.shares();
-    let summary = format!(
-        "resonant optimum {:.2} N of {:.2} N ({}), rigid optimum {:.2} N of {:.2} N ({}); blast: 40 mm {}, 80 mm {}, paper optimum {} of the 20 mm chain's peak transmitted energy",
-        cr.transmitted_peak_force_n,
-        cr.incident_peak_force_n,
-        pct(ratio(cr)),
-        cg.transmitted_peak_force_n,
-        cg.incident_peak_force_n,
-        pct(ratio(cg)),
-        pct(shares[1]),
-        pct(shares[2]),
-        pct(shares[3]),
-    );
-    Ok((doc, summary))
+    Ok((doc, sections.summary()))
+}
+
+/// The results of every section.
+struct Sections {
+    impact: impact::Impact,
+    optima: optima::Optima,
+    protocol: protocol::Protocol,
+    blast: blast::Blast,
+    sweep: sweep::Sweep,
+    fine: fine::Fine,
+    transmission: transmission::Transmission,
+    cells: cells::Cells,
+}
+
+impl Sections {
+    /// Runs the sections, each showing its stages and steps on the progress bar.
+    fn run(s: &Setup) -> Result<Self, CliError> {
+        s.bar.stage("homogeneous chains under impact");
+        let impact = impact::run(s)?;
+        let optima = optima::run(s)?;
+        s.bar.stage("layer-by-layer protocol");
+        let protocol = protocol::run(s, &optima)?;
+        s.bar.inc(1);
+        s.bar.stage("blast cases");
+        let blast = blast::run(s)?;
+        let sweep = sweep::run(s)?;
+        let fine = fine::run(s)?;
+        s.bar.stage("transmission spectrum");
+        let transmission = transmission::run(s)?;
+        let cells = cells::run(s)?;
+        Ok(Sections {
+            impact,
+            optima,
+            protocol,
+            blast,
+            sweep,
+            fine,
+            transmission,
+            cells,
+        })
+    }
+
+    /// The document: how it was made, the comparison with the paper, then each section.
+    fn write(&self, s: &Setup, elapsed: f64) -> Doc {
+        let mut doc = Doc::new(&s.out);
+        let gas = [
+            &self.optima.resonant,
+            &self.optima.rigid,
+            &self.fine.seven,
+            &self.fine.fine,
+        ];
+        intro(&mut doc, s, gas, elapsed);
+        let mut table = Comparison::default();
+        self.optima.compare(s, &mut table);
+        self.impact.compare(&mut table);
+        self.blast.compare(&mut table);
+        doc.h2("Comparison with the paper");
+        doc.p("Each number the paper reports (docs/physics.md §9) beside ours. Differences in percent are relative to the paper's value; `pp` are percentage points.");
+        doc.table(
+            &["quantity", "paper", "ours", "difference", "why they differ"],
+            table.rows,
+        );
+        self.impact.write(&mut doc);
+        self.optima.write(&mut doc);
+        self.protocol.write(&mut doc, &self.optima);
+        self.blast.write_overview(&mut doc, s);
+        self.sweep.write(&mut doc);
+        self.blast.write_chains(&mut doc);
+        self.fine.write(&mut doc, s, &self.optima);
+        self.transmission.write(&mut doc);
+        self.cells.write(&mut doc);
+        doc.h2("Reproducing and caching");
+        doc.p("Every figure is also written as SVG beside its PNG in figures/. The GA results are kept in cache/ under an FNV-1a hash of the tool version and the complete problem (config, GA settings, seed); rerunning the same command reuses them. The simulations themselves take well under a second each and are re-run.");
+        doc.code(command(s));
+        doc
+    }
+
+    /// The one-paragraph summary printed at the end of `woodpile report`.
+    fn summary(&self) -> String {
+        let (cr, cg) = (&self.optima.cases[0].summary, &self.optima.cases[1].summary);
+        let shares = self.blast.shares();
+        format!(
+            "resonant optimum {:.2} N of {:.2} N ({}), rigid optimum {:.2} N of {:.2} N ({}); blast: 40 mm {}, 80 mm {}, paper optimum {} of the 20 mm chain's peak transmitted energy",
+            cr.transmitted_peak_force_n,
+            cr.incident_peak_force_n,
+            pct(ratio(cr)),
+            cg.transmitted_peak_force_n,
+            cg.incident_peak_force_n,
+            pct(ratio(cg)),
+            pct(shares[1]),
+            pct(shares[2]),
+            pct(shares[3]),
+        )
+    }
 }
 
 /// The command that makes this report.
@@ -248,11 +290,4 @@ fn intro(doc: &mut Doc, s: &Setup, gas: [&ga::GaRun; 4], elapsed: f64) {
         ),
         format!("Wall-clock time of the runs: {elapsed:.1} s."),
     ]);
-}
-
-/// How to reproduce the report, and what is cached.
-fn reproducing(doc: &mut Doc, s: &Setup) {
-    doc.h2("Reproducing and caching");
-    doc.p("Every figure is also written as SVG beside its PNG in figures/. The GA results are kept in cache/ under an FNV-1a hash of the tool version and the complete problem (config, GA settings, seed); rerunning the same command reuses them. The simulations themselves take well under a second each and are re-run.");
-    doc.code(command(s));
 }
