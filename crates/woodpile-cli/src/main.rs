@@ -28,14 +28,14 @@ enum Command {
     /// Print the unit-cell catalogue (paper Table 1): masses, resonances, negative-mass bands.
     Cells(commands::cells::Args),
     /// Search the element arrangement that minimises an objective (breeder GA, docs/physics.md §11).
-    Optimize(woodpile_cli::optimize_cmd::Args),
+    Optimize(commands::optimize::Args),
     /// Measure the transmission spectrum of a preloaded chain and compare its gaps with the
     /// Bloch prediction (docs/physics.md §15).
     Transmission(commands::transmission::Args),
     /// Draw the figures of a `simulate` or `optimize` output directory into DIR/plots (PNG, SVG).
-    Plot(woodpile_cli::plot_cmd::Args),
+    Plot(commands::plot::Args),
     /// Run everything the paper's figures need; write the figures, report.md and report.html.
-    Report(woodpile_cli::report::Args),
+    Report(commands::report::Args),
 }
 
 fn dispatch(command: &Command, ctx: &Context) -> Result<(), CliError> {
@@ -44,10 +44,10 @@ fn dispatch(command: &Command, ctx: &Context) -> Result<(), CliError> {
         Command::Scenarios(args) => commands::scenarios::list(args, ctx),
         Command::Scenario(args) => commands::scenarios::show(args, ctx),
         Command::Cells(args) => commands::cells::run(args, ctx),
-        Command::Optimize(args) => woodpile_cli::optimize_cmd::run(args, ctx),
+        Command::Optimize(args) => commands::optimize::run(args, ctx),
         Command::Transmission(args) => commands::transmission::run(args, ctx),
-        Command::Plot(args) => woodpile_cli::plot_cmd::run(args, ctx),
-        Command::Report(args) => woodpile_cli::report::run(args, ctx),
+        Command::Plot(args) => commands::plot::run(args, ctx),
+        Command::Report(args) => commands::report::run(args, ctx),
     }
 }
 

@@ -24,8 +24,6 @@
 //!    ([`Error::field`], [`Error::value`], [`Error::reason`]); [`Error::kind`] sorts it for a
 //!    front end, which words its own options (no exit codes or flag names here).
 //!
-//! [`study`] (the paper's study as data, used by the report) is moving to the command line.
-//!
 //! ```
 //! use woodpile_io::error::ErrorKind;
 //! use woodpile_io::scenario::{key, resolve, Scenario};
@@ -52,7 +50,6 @@ pub mod npy;
 pub mod optimize;
 pub mod rundir;
 pub mod scenario;
-pub mod study;
 pub mod table;
 pub mod transmission;
 

@@ -1,6 +1,7 @@
 //! A picture of a chain: rods to scale, top to bottom (paper Fig. 5 d, e, right panels).
 
 use crate::{render, ColorMap, DrawResult, Figure, PlotError, Result, FONT};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -205,19 +206,8 @@ impl ChainPicture<'_> {
                 ),
             ])?;
         }
-        let wall_y = -(rows as f64) - 0.85;
         if !matches!(self.chain.wall(), Wall::Free) {
-            chart.draw_series(std::iter::once(Rectangle::new(
-                [(-half * 0.8, wall_y - 0.35), (half * 0.8, wall_y + 0.21)],
-                RGBColor(90, 90, 90).filled(),
-            )))?;
-            chart.draw_series(std::iter::once(Text::new(
-                "wall / force sensor",
-                (0.0, wall_y - 0.07),
-                TextStyle::from((FONT, 14).into_font())
-                    .color(&WHITE)
-                    .pos(Pos::new(HPos::Center, VPos::Center)),
-            )))?;
+            draw_wall(&mut chart, half, -(rows as f64) - 0.85)?;
         }
         Ok(())
     }
@@ -317,4 +307,27 @@ impl Figure for ChainPicture<'_> {
         self.draw_rods(&rods, None)?;
         self.draw_strip(&strip)
     }
+}
+
+/// The wall (the force sensor) under the rods: a bar `2 × 0.8 half` wide, centred at `wall_y`.
+fn draw_wall<DB: DrawingBackend>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    half: f64,
+    wall_y: f64,
+) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
+    chart.draw_series(std::iter::once(Rectangle::new(
+        [(-half * 0.8, wall_y - 0.35), (half * 0.8, wall_y + 0.21)],
+        RGBColor(90, 90, 90).filled(),
+    )))?;
+    chart.draw_series(std::iter::once(Text::new(
+        "wall / force sensor",
+        (0.0, wall_y - 0.07),
+        TextStyle::from((FONT, 14).into_font())
+            .color(&WHITE)
+            .pos(Pos::new(HPos::Center, VPos::Center)),
+    )))?;
+    Ok(())
 }

@@ -3,9 +3,8 @@
 //! the label right beside the widest tick label, and any saturation stated on the bar (a "≥" or
 //! "≤" on the limit's label and a triangular cap in the limit's colour).
 
-use crate::heatmap::format_number;
 use crate::typeset::Line;
-use crate::{padded, ColorMap, DrawResult, FONT};
+use crate::{format_number, padded, ColorMap, DrawResult, FONT};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};

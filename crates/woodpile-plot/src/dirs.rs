@@ -20,18 +20,24 @@ use woodpile::analysis::{
     SpectrumSettings, Window,
 };
 use woodpile::model::TABLE1_LENGTHS_MM;
-use woodpile::Map2;
 use woodpile::{EffectiveMassCurve, UnitCell};
+use woodpile::{Map2, Trajectory};
 use woodpile_io::optimize::read_output;
 use woodpile_io::rundir::{read_error, read_run_info, read_trajectory};
 use woodpile_io::scenario::resolve;
 use woodpile_io::Error;
 
-/// A drawing failure as an output error naming the figure's path.
+/// A drawing failure as an output error naming the figure's path; an output option out of
+/// range as invalid input naming the option.
 impl From<PlotError> for Error {
     fn from(e: PlotError) -> Self {
-        let path = match &e {
-            PlotError::Draw { path, .. } => path.clone(),
+        let path = match e {
+            PlotError::InvalidOutput {
+                field,
+                value,
+                reason,
+            } => return Error::invalid(field, value, reason),
+            PlotError::Draw { ref path, .. } => path.clone(),
             PlotError::BadData { .. } => PathBuf::from("figure"),
         };
         Error::Output {
@@ -150,99 +156,211 @@ pub fn plot_run(dir: &Path, out: &Path, plot: &RunPlot) -> Result<Vec<PathBuf>, 
     with_output(&plot.output, || draw_run(dir, out, plot))
 }
 
+/// A run read back for its figures, its windows checked against the record.
+struct RunFigures<'a> {
+    /// What is drawn, and how.
+    plot: &'a RunPlot,
+    /// `run.json`.
+    info: woodpile_io::rundir::RunInfo,
+    /// The samples.
+    t: Trajectory,
+    /// What drives contact 0 (`striker`, `load`, `actuator`).
+    role: Option<&'static str>,
+    /// The contacts drawn as histories and spectra, with their labels.
+    picks: Vec<(usize, String)>,
+    /// The time window of the histories \[s\].
+    window_s: (f64, f64),
+    /// The spectrum settings (the window function of `plot`).
+    settings: SpectrumSettings,
+    /// The title of every figure but the chain's.
+    title: String,
+}
+
 fn draw_run(dir: &Path, out: &Path, plot: &RunPlot) -> Result<Vec<PathBuf>, Error> {
-    let info = read_run_info(dir)?;
-    let n = info.labels.len();
-    let role = contact0_role(&info.excitation);
-    let signal_picks = plot
-        .signals
-        .iter()
-        .map(|name| signal_contact_of(name, n, role))
-        .collect::<Result<Vec<_>, _>>()?;
-    let t = read_trajectory(dir, n)?;
-    if t.len() < 2 {
-        return Err(read_error(
-            &dir.join("time_s.npy"),
-            "fewer than 2 samples: nothing to plot",
-        ));
-    }
-    let (t0, t1) = (t.times_s[0], t.times_s[t.len() - 1]);
-    let ms = |v: f64| format!("{}", (v * 1e6).round() / 1e3);
-    let (w0, w1) = plot.time_s.unwrap_or((t0, t1));
-    let inside = t.times_s.iter().filter(|&&x| w0 <= x && x <= w1).count();
-    if inside < 2 {
-        return Err(Error::invalid(
-            "--time-ms",
-            format!("{},{}", ms(w0), ms(w1)),
-            format!(
-                "holds {inside} sample(s), at least 2 are needed; the run covers {} to {} ms",
-                ms(t0),
-                ms(t1)
-            ),
-        ));
-    }
-    let settings = SpectrumSettings {
-        window: plot.window,
-        scaling: Scaling::FourierMagnitude,
-        ..SpectrumSettings::default()
-    };
-    let spectrum_map = contact_spectrum_map(&t, &settings)?;
-    let (f0, f1) = plot.frequency_hz;
-    let khz = |v: f64| format!("{}", v.round() / 1e3);
-    let nyquist = spectrum_map.cols.values.last().copied().unwrap_or(0.0);
-    let Some(spectrum_map) = columns_between(&spectrum_map, f0, f1)? else {
-        return Err(Error::invalid(
-            "--frequency-khz",
-            format!("{},{}", khz(f0), khz(f1)),
-            format!(
-                "holds fewer than 2 frequencies of the spectra, which cover 0 to {} kHz",
-                khz(nyquist)
-            ),
-        ));
-    };
+    let run = RunFigures::read(dir, plot)?;
+    let spectrum_map = run.spectrum_map()?;
     create_dir(out)?;
-    let chain = describe_chain(&info.labels);
-    // Short enough for the maps' width at the default text size: a long chain is described
-    // by the chain picture, not the titles.
-    let title = if chain.chars().count() <= 24 {
-        format!("{}: {chain}, {}", info.name, info.excitation)
-    } else {
-        format!("{}, {}", info.name, info.excitation)
-    };
-    let stem = |s: &str| out.join(s);
-    let windowed = |map: Map2| -> Result<Map2, Error> {
-        Ok(match plot.time_s {
-            Some((a, b)) => columns_between(&map, a, b)?.unwrap_or(map),
-            None => map,
-        })
-    };
-    let mut files = Vec::new();
-    let colours = plot.map_colours;
-    files.extend(
-        colours
-            .apply(crate::force_heatmap(
-                &windowed(force_map(&t)?)?,
-                &title,
-                role,
-            ))
-            .write(&stem("force_map"))?,
-    );
-    files.extend(
-        colours
-            .apply(crate::energy_heatmap(
-                &windowed(energy_map(&t)?)?,
-                &title,
-                role,
-            ))
-            .write(&stem("energy_map"))?,
-    );
+    let mut files = run.maps(out)?;
     files.extend(crate::spectrum_map(
         &spectrum_map,
-        &title,
-        f1,
-        role,
-        &stem("spectrum_map"),
+        &run.title,
+        plot.frequency_hz.1,
+        run.role,
+        &out.join("spectrum_map"),
     )?);
+    files.extend(run.histories(out)?);
+    files.extend(run.spectra(out)?);
+    if let Some(chain) = &run.info.chain {
+        let chain_title = format!("{}, {} elements", run.info.name, run.info.labels.len());
+        files.extend(crate::chain_picture(
+            chain,
+            &chain_title,
+            run.role,
+            &out.join("chain"),
+        )?);
+    }
+    Ok(files)
+}
+
+impl<'a> RunFigures<'a> {
+    /// Reads the run in `dir`; the signals and the time window are checked, errors naming the
+    /// flags (`--signal`, `--time-ms`).
+    fn read(dir: &Path, plot: &'a RunPlot) -> Result<Self, Error> {
+        let info = read_run_info(dir)?;
+        let n = info.labels.len();
+        let role = contact0_role(&info.excitation);
+        let signal_picks = plot
+            .signals
+            .iter()
+            .map(|name| signal_contact_of(name, n, role))
+            .collect::<Result<Vec<_>, _>>()?;
+        let t = read_trajectory(dir, n)?;
+        if t.len() < 2 {
+            return Err(read_error(
+                &dir.join("time_s.npy"),
+                "fewer than 2 samples: nothing to plot",
+            ));
+        }
+        let (t0, t1) = (t.times_s[0], t.times_s[t.len() - 1]);
+        let ms = |v: f64| format!("{}", (v * 1e6).round() / 1e3);
+        let (w0, w1) = plot.time_s.unwrap_or((t0, t1));
+        let inside = t.times_s.iter().filter(|&&x| w0 <= x && x <= w1).count();
+        if inside < 2 {
+            return Err(Error::invalid(
+                "--time-ms",
+                format!("{},{}", ms(w0), ms(w1)),
+                format!(
+                    "holds {inside} sample(s), at least 2 are needed; the run covers {} to {} ms",
+                    ms(t0),
+                    ms(t1)
+                ),
+            ));
+        }
+        let chain = describe_chain(&info.labels);
+        // Short enough for the maps' width at the default text size: a long chain is described
+        // by the chain picture, not the titles.
+        let title = if chain.chars().count() <= 24 {
+            format!("{}: {chain}, {}", info.name, info.excitation)
+        } else {
+            format!("{}, {}", info.name, info.excitation)
+        };
+        let picks = if signal_picks.is_empty() {
+            default_picks(n, role)
+        } else {
+            signal_picks
+        };
+        Ok(RunFigures {
+            plot,
+            info,
+            t,
+            role,
+            picks,
+            window_s: (w0, w1),
+            settings: SpectrumSettings {
+                window: plot.window,
+                scaling: Scaling::FourierMagnitude,
+                ..SpectrumSettings::default()
+            },
+            title,
+        })
+    }
+
+    /// The spectrum map in the frequency window; an error naming `--frequency-khz` when fewer
+    /// than 2 frequencies are inside.
+    fn spectrum_map(&self) -> Result<Map2, Error> {
+        let map = contact_spectrum_map(&self.t, &self.settings)?;
+        let (f0, f1) = self.plot.frequency_hz;
+        let khz = |v: f64| format!("{}", v.round() / 1e3);
+        let nyquist = map.cols.values.last().copied().unwrap_or(0.0);
+        columns_between(&map, f0, f1)?.ok_or_else(|| {
+            Error::invalid(
+                "--frequency-khz",
+                format!("{},{}", khz(f0), khz(f1)),
+                format!(
+                    "holds fewer than 2 frequencies of the spectra, which cover 0 to {} kHz",
+                    khz(nyquist)
+                ),
+            )
+        })
+    }
+
+    /// `force_map` and `energy_map`, in the time window and the colours of the plot.
+    fn maps(&self, out: &Path) -> Result<Vec<PathBuf>, Error> {
+        let windowed = |map: Map2| -> Result<Map2, Error> {
+            Ok(match self.plot.time_s {
+                Some((a, b)) => columns_between(&map, a, b)?.unwrap_or(map),
+                None => map,
+            })
+        };
+        let colours = self.plot.map_colours;
+        let (title, role) = (&self.title, self.role);
+        let (force, energy) = (
+            windowed(force_map(&self.t)?)?,
+            windowed(energy_map(&self.t)?)?,
+        );
+        let mut files = (colours.apply(crate::force_heatmap(&force, title, role)))
+            .write(&out.join("force_map"))?;
+        files.extend(
+            colours
+                .apply(crate::energy_heatmap(&energy, title, role))
+                .write(&out.join("energy_map"))?,
+        );
+        Ok(files)
+    }
+
+    /// `force_histories` in the time window and, without one, `force_histories_onset`.
+    fn histories(&self, out: &Path) -> Result<Vec<PathBuf>, Error> {
+        let t = &self.t;
+        let series: Vec<Series> = self
+            .picks
+            .iter()
+            .map(|(c, l)| Series::new(l.clone(), t.contact_force_n(*c)))
+            .collect();
+        let mut files = crate::force_histories_between(
+            &t.times_s,
+            &series,
+            &self.title,
+            self.window_s,
+            &out.join("force_histories"),
+        )?;
+        if self.plot.time_s.is_none() {
+            if let Some(onset) = crate::onset_window_s(&t.times_s, &series, 0.5) {
+                files.extend(crate::force_histories_between(
+                    &t.times_s,
+                    &series,
+                    &format!("{}: first arrivals", self.title),
+                    onset,
+                    &out.join("force_histories_onset"),
+                )?);
+            }
+        }
+        Ok(files)
+    }
+
+    /// `spectra` of the picked contacts in the frequency window, the chain's bands shaded.
+    fn spectra(&self, out: &Path) -> Result<Vec<PathBuf>, Error> {
+        let dt = woodpile::analysis::sample_interval_s(&self.t)?;
+        let spectra = self
+            .picks
+            .iter()
+            .map(|(c, l)| {
+                let s = Spectrum::of(&self.t.contact_force_n(*c), dt, &self.settings)?;
+                Ok((l.clone(), s))
+            })
+            .collect::<Result<Vec<_>, woodpile::Error>>()?;
+        let refs: Vec<(String, &Spectrum)> = spectra.iter().map(|(l, s)| (l.clone(), s)).collect();
+        Ok(crate::spectra_between(
+            &refs,
+            &woodpile::analysis::chain_bands_hz(&self.info.cells),
+            &self.title,
+            self.plot.frequency_hz,
+            &out.join("spectra"),
+        )?)
+    }
+}
+
+/// The contacts drawn without `--signal`: contact 0, the incident contact and the wall.
+fn default_picks(n: usize, role: Option<&str>) -> Vec<(usize, String)> {
     let contact0 = match role {
         Some(r) => format!("contact 0 ({r})"),
         None => "contact 0".to_string(),
@@ -252,59 +370,7 @@ fn draw_run(dir: &Path, out: &Path, plot: &RunPlot) -> Result<Vec<PathBuf>, Erro
         picks.push((1, "contact 1 (incident)".to_string()));
     }
     picks.push((n, format!("contact {n} (wall)")));
-    if !signal_picks.is_empty() {
-        picks = signal_picks;
-    }
-    let series: Vec<Series> = picks
-        .iter()
-        .map(|(c, l)| Series::new(l.clone(), t.contact_force_n(*c)))
-        .collect();
-    files.extend(crate::force_histories_between(
-        &t.times_s,
-        &series,
-        &title,
-        (w0, w1),
-        &stem("force_histories"),
-    )?);
-    if plot.time_s.is_none() {
-        if let Some(onset) = crate::onset_window_s(&t.times_s, &series, 0.5) {
-            files.extend(crate::force_histories_between(
-                &t.times_s,
-                &series,
-                &format!("{title}: first arrivals"),
-                onset,
-                &stem("force_histories_onset"),
-            )?);
-        }
-    }
-    let dt = woodpile::analysis::sample_interval_s(&t)?;
-    let spectra = picks
-        .iter()
-        .map(|(c, l)| {
-            Ok((
-                l.clone(),
-                Spectrum::of(&t.contact_force_n(*c), dt, &settings)?,
-            ))
-        })
-        .collect::<Result<Vec<_>, woodpile::Error>>()?;
-    let refs: Vec<(String, &Spectrum)> = spectra.iter().map(|(l, s)| (l.clone(), s)).collect();
-    files.extend(crate::spectra_between(
-        &refs,
-        &woodpile::analysis::chain_bands_hz(&info.cells),
-        &title,
-        (f0, f1),
-        &stem("spectra"),
-    )?);
-    if let Some(chain) = &info.chain {
-        let chain_title = format!("{}, {n} elements", info.name);
-        files.extend(crate::chain_picture(
-            chain,
-            &chain_title,
-            role,
-            &stem("chain"),
-        )?);
-    }
-    Ok(files)
+    picks
 }
 
 /// The contact a `--signal` name designates, with its legend label: `contact_K` (K = 0..n),
@@ -431,15 +497,7 @@ pub fn plot_optimization(
 
 fn draw_optimization(dir: &Path, out: &Path) -> Result<(Vec<PathBuf>, Option<String>), Error> {
     let output = read_output(dir)?;
-    let points: Vec<ConvergencePoint> = output
-        .history
-        .iter()
-        .map(|h| ConvergencePoint {
-            generation: h.generation,
-            best: h.best,
-            mean: h.mean,
-        })
-        .collect();
+    let points: Vec<ConvergencePoint> = output.history.iter().map(Into::into).collect();
     let summary = output.summary.as_ref();
     let config = output.config.as_ref();
     let objective = summary

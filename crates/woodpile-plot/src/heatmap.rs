@@ -11,7 +11,9 @@
 
 use crate::colorbar::{ColorBar, ColorScale};
 use crate::typeset::Line;
-use crate::{finite_range, render, ColorMap, DrawResult, Figure, PlotError, Result, FONT};
+use crate::{
+    finite_range, format_number, render, ColorMap, DrawResult, Figure, PlotError, Result, FONT,
+};
 use base64::Engine as _;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -363,25 +365,6 @@ impl Figure for Cells<'_, '_> {
         let (px, py) = chart.plotting_area().get_pixel_range();
         bar.draw(root, px.end, py)?;
         Ok(())
-    }
-}
-
-/// Short number for axis labels: up to 3 significant digits without trailing zeros, scientific
-/// outside [1e-3, 1e5).
-pub(crate) fn format_number(v: f64) -> String {
-    let a = v.abs();
-    if a < 1e-12 {
-        "0".to_string()
-    } else if !(1e-3..1e5).contains(&a) {
-        format!("{v:.0e}")
-    } else {
-        let decimals = (2 - a.log10().floor() as i32).max(0) as usize;
-        let s = format!("{v:.decimals$}");
-        if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            s
-        }
     }
 }
 

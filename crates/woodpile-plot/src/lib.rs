@@ -32,6 +32,9 @@
 //!
 //! [`dirs`] draws the figure set of a whole output directory (a `woodpile simulate` run or a
 //! `woodpile optimize` output), read back through [`woodpile_io`].
+//!
+//! Errors are [`PlotError`]: data that cannot be drawn, an [`Output`] option out of range (its
+//! field, value and range), or a file that could not be written.
 
 mod chain;
 mod colorbar;
@@ -68,6 +71,16 @@ pub enum PlotError {
         /// Which figure or input.
         what: String,
         /// Why.
+        reason: String,
+    },
+    /// An output option ([`Output`]) outside its range.
+    #[error("output {field} = {value}: {reason}")]
+    InvalidOutput {
+        /// The field of [`Output`].
+        field: &'static str,
+        /// Its value.
+        value: f64,
+        /// What is valid.
         reason: String,
     },
     /// The drawing backend failed (e.g. the file could not be written).
@@ -229,5 +242,24 @@ pub(crate) fn padded(lo: f64, hi: f64) -> (f64, f64) {
         (-1.0, 1.0)
     } else {
         (lo - 0.5 * lo.abs(), hi + 0.5 * hi.abs())
+    }
+}
+
+/// Short number for axis labels: up to 3 significant digits without trailing zeros, scientific
+/// outside [1e-3, 1e5).
+pub(crate) fn format_number(v: f64) -> String {
+    let a = v.abs();
+    if a < 1e-12 {
+        "0".to_string()
+    } else if !(1e-3..1e5).contains(&a) {
+        format!("{v:.0e}")
+    } else {
+        let decimals = (2 - a.log10().floor() as i32).max(0) as usize;
+        let s = format!("{v:.decimals$}");
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
     }
 }

@@ -1,6 +1,6 @@
 //! Line plots: force histories, spectra, effective-mass curves, GA convergence, peaks per layer.
 
-use crate::heatmap::format_number;
+use crate::format_number;
 use crate::{
     finite_range, padded, render, series_color, DrawResult, Figure, PlotError, Result, FONT,
 };
@@ -39,6 +39,28 @@ pub struct ConvergencePoint {
     pub best: f64,
     /// Mean objective value of the generation.
     pub mean: f64,
+}
+
+impl From<&woodpile::optimize::GenerationStats> for ConvergencePoint {
+    /// A generation of a GA run in memory.
+    fn from(g: &woodpile::optimize::GenerationStats) -> Self {
+        ConvergencePoint {
+            generation: g.generation,
+            best: g.best,
+            mean: g.mean,
+        }
+    }
+}
+
+impl From<&woodpile_io::optimize::HistoryPoint> for ConvergencePoint {
+    /// A generation read back from an optimisation's `history.csv`.
+    fn from(h: &woodpile_io::optimize::HistoryPoint) -> Self {
+        ConvergencePoint {
+            generation: h.generation,
+            best: h.best,
+            mean: h.mean,
+        }
+    }
 }
 
 const LEGEND_FONT: u32 = 15;
@@ -229,40 +251,31 @@ impl Figure for LinePlot {
             .margin(15 * FINE)
             .x_label_area_size(50 * FINE)
             .y_label_area_size(85 * FINE);
+        // The same axes on a log or a linear y coordinate: two chart types, one mesh.
+        macro_rules! axes_and_series {
+            ($y:expr) => {{
+                let mut chart = builder.build_cartesian_2d(x0..x1, $y)?;
+                chart
+                    .configure_mesh()
+                    .x_desc(&self.x_label)
+                    .x_labels(x_labels)
+                    .x_label_formatter(&|v| format_number(*v))
+                    .y_desc(&self.y_label)
+                    .y_label_formatter(&|v| format_number(*v))
+                    .label_style((FONT, 15 * FINE))
+                    .axis_desc_style((FONT, 17 * FINE))
+                    .set_all_tick_mark_size(5 * FINE)
+                    .axis_style(BLACK.stroke_width(FINE))
+                    .bold_line_style(BLACK.mix(0.2).stroke_width(FINE))
+                    .light_line_style(WHITE.mix(0.0))
+                    .draw()?;
+                self.draw_on(&mut chart, y0, y1)
+            }};
+        }
         if self.log_y {
-            let mut chart = builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())?;
-            chart
-                .configure_mesh()
-                .x_desc(&self.x_label)
-                .x_labels(x_labels)
-                .x_label_formatter(&|v| format_number(*v))
-                .y_desc(&self.y_label)
-                .y_label_formatter(&|v| format_number(*v))
-                .label_style((FONT, 15 * FINE))
-                .axis_desc_style((FONT, 17 * FINE))
-                .set_all_tick_mark_size(5 * FINE)
-                .axis_style(BLACK.stroke_width(FINE))
-                .bold_line_style(BLACK.mix(0.2).stroke_width(FINE))
-                .light_line_style(WHITE.mix(0.0))
-                .draw()?;
-            self.draw_on(&mut chart, y0, y1)
+            axes_and_series!((y0..y1).log_scale())
         } else {
-            let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1)?;
-            chart
-                .configure_mesh()
-                .x_desc(&self.x_label)
-                .x_labels(x_labels)
-                .x_label_formatter(&|v| format_number(*v))
-                .y_desc(&self.y_label)
-                .y_label_formatter(&|v| format_number(*v))
-                .label_style((FONT, 15 * FINE))
-                .axis_desc_style((FONT, 17 * FINE))
-                .set_all_tick_mark_size(5 * FINE)
-                .axis_style(BLACK.stroke_width(FINE))
-                .bold_line_style(BLACK.mix(0.2).stroke_width(FINE))
-                .light_line_style(WHITE.mix(0.0))
-                .draw()?;
-            self.draw_on(&mut chart, y0, y1)
+            axes_and_series!(y0..y1)
         }
     }
 }

@@ -147,11 +147,15 @@ pub struct Placement {
 }
 
 impl Output {
-    /// Checks the values; the error names the field, the value and what is valid.
+    /// Checks the values; the error ([`PlotError::InvalidOutput`]) names the field, the value
+    /// and what is valid.
     pub fn check(&self) -> Result<()> {
-        let bad = |field: &str, value: f64, valid: &str| PlotError::BadData {
-            what: format!("output {field} {value}"),
-            reason: valid.to_string(),
+        let bad = |field: &'static str, value: f64, reason: &str| {
+            Err(PlotError::InvalidOutput {
+                field,
+                value,
+                reason: reason.to_string(),
+            })
         };
         if self.formats.is_empty() {
             return Err(PlotError::BadData {
@@ -159,22 +163,26 @@ impl Output {
                 reason: format!("none given; valid: {}", Format::NAMES),
             });
         }
+        if !(self.dpi.is_finite() && (30.0..=2400.0).contains(&self.dpi)) {
+            return bad(
+                "dpi",
+                self.dpi,
+                "must be a number from 30 to 2400 (dots per inch)",
+            );
+        }
         for (field, v) in [("width_in", self.width_in), ("height_in", self.height_in)] {
             if let Some(v) = v {
                 if !(v.is_finite() && (0.5..=50.0).contains(&v)) {
-                    return Err(bad(field, v, "must be between 0.5 and 50 in"));
+                    return bad(field, v, "must be a number of inches from 0.5 to 50");
                 }
             }
         }
-        if !(self.dpi.is_finite() && (30.0..=2400.0).contains(&self.dpi)) {
-            return Err(bad("dpi", self.dpi, "must be between 30 and 2400"));
-        }
         if !(self.text_scale.is_finite() && (0.5..=3.0).contains(&self.text_scale)) {
-            return Err(bad(
+            return bad(
                 "text_scale",
                 self.text_scale,
-                "must be between 0.5 and 3",
-            ));
+                "must be a number from 0.5 to 3",
+            );
         }
         Ok(())
     }

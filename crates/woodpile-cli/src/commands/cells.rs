@@ -75,19 +75,24 @@ fn derived(args: &Args, length_mm: f64) -> Result<DerivedCell, CliError> {
     derive(&request, &flag)
 }
 
+/// `values` scaled by `scale`, each with `digits` decimals, separated by commas.
+fn joined(values: impl IntoIterator<Item = f64>, scale: f64, digits: usize) -> String {
+    let texts: Vec<String> = values
+        .into_iter()
+        .map(|x| format!("{:.digits$}", x * scale))
+        .collect();
+    texts.join(", ")
+}
+
 /// A derived cell as text.
 fn derived_text(c: &DerivedCell) -> String {
-    let list = |v: &[f64], digits: usize| {
-        v.iter()
-            .map(|x| format!("{x:.digits$}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    let list = |v: &[f64], digits: usize| joined(v.iter().copied(), 1.0, digits);
     let tube = if c.inner_diameter_mm > 0.0 {
         format!(" (tube, inner {} mm)", c.inner_diameter_mm)
     } else {
         String::new()
     };
+    let r = &c.resonators;
     format!(
         "rod {} mm × {} mm{tube}, {}: {} resonator(s), {} reduction (docs/physics.md §13)\n\
          total mass {:.4} g, primary mass M {:.4} g\n\
@@ -98,40 +103,17 @@ fn derived_text(c: &DerivedCell) -> String {
         c.length_mm,
         c.diameter_mm,
         c.material,
-        c.resonators.len(),
+        r.len(),
         c.reduction,
         c.total_mass_g,
         c.primary_mass_g,
-        list(
-            &c.resonators.iter().map(|r| r.mass_g).collect::<Vec<_>>(),
-            4
-        ),
-        list(
-            &c.resonators
-                .iter()
-                .map(|r| r.stiffness_kn_per_mm)
-                .collect::<Vec<_>>(),
-            4
-        ),
-        list(
-            &c.resonators
-                .iter()
-                .map(|r| r.frequency_khz)
-                .collect::<Vec<_>>(),
-            2
-        ),
+        joined(r.iter().map(|r| r.mass_g), 1.0, 4),
+        joined(r.iter().map(|r| r.stiffness_kn_per_mm), 1.0, 4),
+        joined(r.iter().map(|r| r.frequency_khz), 1.0, 2),
         list(&c.rod_centre_blocked_khz, 2),
         list(&c.free_resonances_khz, 2),
         list(&c.rod_free_free_khz, 2),
     )
-}
-
-fn khz(values: &[f64]) -> String {
-    values
-        .iter()
-        .map(|f| format!("{:.2}", f * 1e-3))
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 /// The catalogue as a text table.
@@ -148,16 +130,7 @@ pub fn table() -> Result<String, CliError> {
     );
     for l in TABLE1_LENGTHS_MM {
         let cell = UnitCell::table1(l)?;
-        let m: Vec<String> = cell
-            .resonators
-            .iter()
-            .map(|r| format!("{:.3}", r.mass_kg * 1e3))
-            .collect();
-        let k: Vec<String> = cell
-            .resonators
-            .iter()
-            .map(|r| format!("{:.4}", r.stiffness_n_per_m * 1e-6))
-            .collect();
+        let r = &cell.resonators;
         let bands: Vec<String> = cell
             .negative_mass_bands_hz()
             .iter()
@@ -168,10 +141,10 @@ pub fn table() -> Result<String, CliError> {
             l,
             cell.total_mass_kg() * 1e3,
             cell.primary_mass_kg * 1e3,
-            m.join(", "),
-            k.join(", "),
-            khz(&cell.local_resonances_hz()),
-            khz(&cell.free_resonances_hz()),
+            joined(r.iter().map(|r| r.mass_kg), 1e3, 3),
+            joined(r.iter().map(|r| r.stiffness_n_per_m), 1e-6, 4),
+            joined(cell.local_resonances_hz(), 1e-3, 2),
+            joined(cell.free_resonances_hz(), 1e-3, 2),
             bands.join(", ")
         ));
     }

@@ -4,7 +4,12 @@
 //! `pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError>`, then one variant of `Command`
 //! and one match arm in `main.rs`.
 
+use std::path::{Path, PathBuf};
+
 pub mod cells;
+pub mod optimize;
+pub mod plot;
+pub mod report;
 pub mod scenarios;
 pub mod simulate;
 pub mod transmission;
@@ -14,4 +19,17 @@ pub mod transmission;
 pub struct Context {
     /// Print nothing but errors.
     pub quiet: bool,
+}
+
+/// The name a file gives a command's outputs (its stem, or `fallback`) and the directory its
+/// relative paths start from (its folder, or `.`).
+pub fn name_and_base(file: &Path, fallback: &str) -> (String, PathBuf) {
+    let name = file
+        .file_stem()
+        .map_or_else(|| fallback.into(), |s| s.to_string_lossy().into_owned());
+    let base = match file.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    (name, base)
 }

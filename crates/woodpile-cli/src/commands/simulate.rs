@@ -9,7 +9,7 @@ use woodpile::{simulate, Trajectory};
 use woodpile_io::atomic::{Staging, RUN_MARKER};
 use woodpile_io::limits::RunSize;
 use woodpile_io::rundir::{write_run, RunRecord, SummaryJson, RUN_FILES};
-use woodpile_io::scenario::{resolve, Scenario, DEFAULT_SCENARIO};
+use woodpile_io::scenario::{resolve, Resolved, Scenario, DEFAULT_SCENARIO};
 
 /// Which scenario a command runs: a file or a built-in (shared by `simulate` and
 /// `transmission`).
@@ -63,18 +63,22 @@ pub struct Loaded {
     pub base_dir: PathBuf,
 }
 
+impl Loaded {
+    /// The scenario resolved into the core's types; its warnings are printed on stderr.
+    pub fn resolve(&self) -> Result<Resolved, CliError> {
+        let resolved = resolve(&self.scenario, &self.base_dir)?;
+        for warning in &resolved.warnings {
+            eprintln!("warning: {warning}");
+        }
+        Ok(resolved)
+    }
+}
+
 /// Loads a scenario file, or a built-in scenario by name (default: the default job).
 pub fn load(source: &Source) -> Result<Loaded, CliError> {
     if let Some(file) = &source.file {
         let scenario = Scenario::load(file)?;
-        let name = file
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "scenario".into());
-        let base_dir = match file.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
+        let (name, base_dir) = super::name_and_base(file, "scenario");
         return Ok(Loaded {
             name,
             file: Some(file.clone()),
@@ -94,10 +98,7 @@ pub fn load(source: &Source) -> Result<Loaded, CliError> {
 /// Runs `woodpile simulate`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let loaded = load(&args.source)?;
-    let resolved = resolve(&loaded.scenario, &loaded.base_dir)?;
-    for warning in &resolved.warnings {
-        eprintln!("warning: {warning}");
-    }
+    let resolved = loaded.resolve()?;
     RunSize::estimate(&resolved.settings, resolved.chain.len()).check(
         args.allow_long,
         args.allow_large,

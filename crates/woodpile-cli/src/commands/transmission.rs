@@ -8,7 +8,6 @@ use std::path::{Path, PathBuf};
 use woodpile::analysis::{transmission, TransmissionSettings};
 use woodpile::defaults;
 use woodpile_io::atomic::Staging;
-use woodpile_io::scenario::resolve;
 use woodpile_io::transmission::{
     write_transmission, TransmissionJson, TRANSMISSION_FILES, TRANSMISSION_MARKER,
 };
@@ -46,10 +45,7 @@ pub struct Args {
 /// Runs `woodpile transmission`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let loaded = load(&args.source)?;
-    let resolved = resolve(&loaded.scenario, &loaded.base_dir)?;
-    for warning in &resolved.warnings {
-        eprintln!("warning: {warning}");
-    }
+    let resolved = loaded.resolve()?;
     if resolved.chain.damping().is_lossless() {
         eprintln!("warning: the chain has no damping: its response rings past the end of the record and leaks into the gaps; add e.g. [damping] on_site_time_s = 0.02 (docs/physics.md §15)");
     }

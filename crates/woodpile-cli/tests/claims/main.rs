@@ -19,6 +19,7 @@ mod optimize_best_reruns;
 #[cfg(unix)]
 mod optimize_interrupt_resume;
 mod output_files;
+mod paper_values_stated_once;
 mod plot_opt_dir;
 mod plot_run_dir;
 mod progress_lines;

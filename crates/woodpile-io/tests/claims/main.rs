@@ -1,4 +1,4 @@
-//! Claims of the file formats and the study data shared by every front end.
+//! Claims of the file formats shared by every front end.
 //!
 //! One test binary per crate (link time dominates the suite): each module below is one claim,
 //! and opens with the claim it checks and the reason for its tolerance.
@@ -7,7 +7,6 @@ mod checkpoint_screened_resume;
 mod element_angles_and_mass_in_mass;
 mod errors_speak_no_front_end;
 mod lab_scenario_keys;
-mod paper_values_stated_once;
 mod peak_tolerance_key;
 mod rod_range_catalogue;
 mod run_directory_roundtrip;

@@ -42,7 +42,6 @@ pub struct Args {
     pub resume: bool,
 }
 
-/// The config file.
 /// Loads the config the arguments name, with the command line's overrides.
 pub fn load_config(args: &Args) -> Result<(OptimizeConfig, String, PathBuf), CliError> {
     let (mut cfg, name, base) = match (&args.file, &args.scenario) {
@@ -52,14 +51,7 @@ pub fn load_config(args: &Args) -> Result<(OptimizeConfig, String, PathBuf), Cli
                 source: e,
             })?;
             let cfg = OptimizeConfig::parse(&text, &file.display().to_string())?;
-            let base = match file.parent() {
-                Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-                _ => PathBuf::from("."),
-            };
-            let name = file
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_else(|| "optimize".into());
+            let (name, base) = super::name_and_base(file, "optimize");
             (cfg, name, base)
         }
         (None, Some(name)) => (
@@ -213,7 +205,6 @@ fn terminal_summary(
     )
 }
 
-/// "N screenings, " when screening ran, nothing otherwise.
 /// The screening runs and the designs whose run stopped early, where there are any.
 fn screened_text(ledger: &woodpile::optimize::Ledger) -> String {
     let mut text = String::new();

@@ -25,14 +25,25 @@ pub enum Block {
 }
 
 /// The report being assembled, and the figures it names.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct Doc {
+    /// The report's directory: figures are named relative to it.
+    root: PathBuf,
     blocks: Vec<Block>,
     /// Number of figures it shows.
     pub figures: usize,
 }
 
 impl Doc {
+    /// An empty report written into `root`.
+    pub fn new(root: &Path) -> Self {
+        Doc {
+            root: root.to_path_buf(),
+            blocks: Vec::new(),
+            figures: 0,
+        }
+    }
+
     pub fn h2(&mut self, t: impl Into<String>) {
         self.blocks.push(Block::Heading(2, t.into()));
     }
@@ -55,18 +66,31 @@ impl Doc {
         self.blocks.push(Block::Code(t.into()));
     }
     /// A figure: `files` as returned by a plot function (the PNG is shown, the SVG linked).
-    pub fn figure(&mut self, files: &[PathBuf], root: &Path, caption: impl Into<String>) {
+    pub fn figure(&mut self, files: &[PathBuf], caption: impl Into<String>) {
         if let Some(png) = files
             .iter()
             .find(|f| f.extension().is_some_and(|e| e == "png"))
         {
-            let rel = png.strip_prefix(root).unwrap_or(png);
+            let rel = png.strip_prefix(&self.root).unwrap_or(png);
             let rel = rel.to_string_lossy().replace('\\', "/");
             self.figures += 1;
             self.blocks.push(Block::Figure(
                 rel,
                 format!("Figure {}. {}", self.figures, caption.into()),
             ));
+        }
+    }
+
+    /// One figure per plot of `files` (as many as there are captions), each captioned
+    /// `PREFIX: caption`.
+    pub fn figures(
+        &mut self,
+        files: &[Vec<PathBuf>],
+        prefix: &str,
+        captions: impl IntoIterator<Item = String>,
+    ) {
+        for (f, caption) in files.iter().zip(captions) {
+            self.figure(f, format!("{prefix}: {caption}"));
         }
     }
 
@@ -125,7 +149,7 @@ impl Doc {
         s
     }
 
-    pub fn html(&self, title: &str, root: &Path) -> Result<String, CliError> {
+    pub fn html(&self, title: &str) -> Result<String, CliError> {
         let mut s =
             String::from("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n");
         let _ = writeln!(s, "<title>{}</title>", escape(title));
@@ -177,7 +201,7 @@ impl Doc {
                     // The SVG beside the PNG when there is one: vector lines and text stay sharp
                     // at any zoom, and it is a tenth of the 300 dpi PNG's size (maps carry their
                     // cells as one image either way).
-                    let png = root.join(path);
+                    let png = self.root.join(path);
                     let svg = png.with_extension("svg");
                     let (file, mime) = if svg.is_file() {
                         (svg, "image/svg+xml")

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use woodpile::analysis::Window;
 use woodpile_io::rundir::{detect_dir, DirKind};
 use woodpile_plot::dirs::{plot_optimization, plot_run, RunPlot};
-use woodpile_plot::{Format, Output};
+use woodpile_plot::{Format, Output, PlotError};
 
 /// Arguments of `woodpile plot`.
 #[derive(Debug, Clone, clap::Args)]
@@ -102,27 +102,6 @@ fn parse_range(flag: &str, text: &str, unit: &str) -> Result<(f64, f64), CliErro
 fn output(args: &Args) -> Result<Output, CliError> {
     let formats = Format::parse_list(&args.format)
         .map_err(|reason| CliError::invalid("--format", &args.format, reason))?;
-    if !(args.dpi.is_finite() && (30.0..=2400.0).contains(&args.dpi)) {
-        return Err(CliError::invalid(
-            "--dpi",
-            args.dpi,
-            "must be a number from 30 to 2400 (dots per inch)",
-        ));
-    }
-    for (flag, v) in [
-        ("--width-in", args.width_in),
-        ("--height-in", args.height_in),
-    ] {
-        if let Some(v) = v {
-            if !(v.is_finite() && (0.5..=50.0).contains(&v)) {
-                return Err(CliError::invalid(
-                    flag,
-                    v,
-                    "must be a number of inches from 0.5 to 50",
-                ));
-            }
-        }
-    }
     let out = Output {
         formats,
         width_in: args.width_in,
@@ -130,9 +109,18 @@ fn output(args: &Args) -> Result<Output, CliError> {
         dpi: args.dpi,
         ..Output::default()
     };
+    out.check().map_err(|e| match e {
+        PlotError::InvalidOutput {
+            field,
+            value,
+            reason,
+        } => CliError::invalid(format!("--{}", field.replace('_', "-")), value, reason),
+        other => CliError::from(other),
+    })?;
     let place = out.place((woodpile_plot::output::REFERENCE_WIDTH, 620), 1);
     let side = place.pixels.0.max(place.pixels.1);
-    if f64::from(side) > woodpile_plot::output::MAX_PIXELS_PER_SIDE && formats_png(&out) {
+    let png = out.formats.contains(&Format::Png);
+    if f64::from(side) > woodpile_plot::output::MAX_PIXELS_PER_SIDE && png {
         return Err(CliError::invalid(
             "--dpi",
             args.dpi,
@@ -143,10 +131,6 @@ fn output(args: &Args) -> Result<Output, CliError> {
         ));
     }
     Ok(out)
-}
-
-fn formats_png(out: &Output) -> bool {
-    out.formats.contains(&Format::Png)
 }
 
 /// Runs `woodpile plot`.
