@@ -144,113 +144,92 @@ fn is_numerical(e: &woodpile::Error) -> bool {
     )
 }
 
+/// Why a directory holding an earlier run is not replaced, in Python's terms.
+const EARLIER_RUN: &str = "holds an earlier run: pass overwrite=True to replace its run files \
+    (other files and folders in it are kept), or choose another directory";
+
+/// Why any other non-empty directory is refused.
+const NOT_A_RUN: &str = "is not empty and holds no earlier run (no run.json): refusing to write \
+    into it; choose another directory";
+
 /// The one mapping of `woodpile_io::Error` to Python: its kind, its field, value and reason,
 /// and a message in Python's terms (keyword arguments, not the command line's flags).
 pub fn classify(e: IoError) -> Failure {
     use woodpile::Error as M;
+    use Kind::*;
     let message = e.to_string();
+    let with = |kind, field: Option<String>, value: Option<String>, reason: Option<String>| {
+        let message = message.clone();
+        Failure {
+            kind,
+            message,
+            field,
+            value,
+            reason,
+        }
+    };
     match e {
-        // The command line's output and resume flags, by the Python names of the same things.
-        IoError::Invalid { field, value, .. } if field == "--out" => Failure::invalid(
-            "directory",
-            value,
-            "holds an earlier run: pass overwrite=True to replace its run files (other files and \
-             folders in it are kept), or choose another directory",
-        )
-        .kind(Kind::Overwrite),
-        IoError::Invalid {
-            field,
-            value,
-            reason,
-        } if field == "--resume" || field == "--threads" => {
-            let python_name = if field == "--resume" { "checkpoint" } else { "threads" };
-            Failure::invalid(python_name, value, reason)
+        // The command line's output, resume and thread flags and its run-directory argument, by
+        // their Python names (today's woodpile-io names the command line's).
+        IoError::Invalid { field, value, .. } if field == "--out" => {
+            Failure::invalid("directory", value, EARLIER_RUN).kind(Overwrite)
         }
-        IoError::Invalid {
-            field,
-            value,
-            reason,
+        IoError::Invalid { field, value, reason } if field == "--resume" => {
+            Failure::invalid("checkpoint", value, reason)
         }
-        | IoError::Model(M::InvalidParameter {
-            field,
-            value,
-            reason,
-        }) => Failure::invalid(field, value, reason),
-        IoError::Field {
-            field,
-            source:
-                M::InvalidParameter {
-                    field: inner,
-                    value,
-                    reason,
-                },
-        } => Failure::invalid(format!("{field}.{inner}"), value, reason),
-        IoError::Field { field, source } => Failure {
-            field: Some(field),
-            reason: Some(source.to_string()),
-            ..Failure::new(Kind::Scenario, message)
-        },
-        IoError::Model(M::Unknown { what, name, valid }) => Failure {
-            value: Some(name),
-            reason: Some(format!("not a known {what}; valid: {valid}")),
-            ..Failure::new(Kind::Scenario, message)
-        },
-        IoError::Model(M::WaveNotArrived { duration_s, .. }) => Failure {
-            field: Some("run.duration_s".into()),
-            value: Some(format!("{duration_s:e}")),
-            reason: Some("too short for the wave to reach the wall; increase it".into()),
-            ..Failure::new(Kind::Scenario, message)
-        },
+        IoError::Invalid { field, value, reason } if field == "--threads" => {
+            Failure::invalid("threads", value, reason)
+        }
+        IoError::Invalid { field, value, reason } if field == "RUN_DIR" => {
+            Failure::invalid("directory", value, reason)
+        }
+        IoError::Invalid { field, value, reason }
+        | IoError::Model(M::InvalidParameter { field, value, reason }) => {
+            Failure::invalid(field, value, reason)
+        }
+        IoError::Field { field, source: M::InvalidParameter { field: inner, value, reason } } => {
+            Failure::invalid(format!("{field}.{inner}"), value, reason)
+        }
+        IoError::Field { field, source } => {
+            with(Scenario, Some(field), None, Some(source.to_string()))
+        }
+        IoError::Model(M::Unknown { what, name, valid }) => {
+            with(Scenario, None, Some(name), Some(format!("not a known {what}; valid: {valid}")))
+        }
+        IoError::Model(M::WaveNotArrived { duration_s, .. }) => with(
+            Scenario,
+            Some("run.duration_s".into()),
+            Some(format!("{duration_s:e}")),
+            Some("too short for the wave to reach the wall; increase it".into()),
+        ),
         IoError::Model(m) | IoError::Evaluation { source: m, .. } if is_numerical(&m) => {
-            Failure::new(Kind::Run, message)
+            Failure::new(Run, message)
         }
         IoError::UnknownScenario { name, valid } => Failure {
             message: format!(
                 "unknown scenario `{name}` (valid: {valid}); woodpile.builtin_scenarios() lists them"
             ),
-            field: Some("name".into()),
-            value: Some(name),
-            reason: Some(format!("valid: {valid}")),
-            kind: Kind::Scenario,
+            ..with(Scenario, Some("name".into()), Some(name), Some(format!("valid: {valid}")))
         },
-        IoError::OutputNotEmpty { path } => Failure::invalid(
-            "directory",
-            path.display(),
-            "is not empty and holds no earlier run (no run.json): refusing to write into it; \
-             choose another directory",
-        )
-        .kind(Kind::Overwrite),
-        IoError::Read { path, source } | IoError::Output { path, source } => Failure {
-            value: Some(path.display().to_string()),
-            reason: Some(source.to_string()),
-            ..Failure::new(Kind::Io, message)
-        },
-        IoError::Table {
-            path,
-            line,
-            message: what,
-        } => Failure {
-            value: Some(format!("{}, line {line}", path.display())),
-            reason: Some(what),
-            ..Failure::new(Kind::Scenario, message)
-        },
-        IoError::Inaccurate {
-            relative_error,
-            reference,
-            limit,
-        } => Failure::new(
-            Kind::Inaccurate,
+        IoError::OutputNotEmpty { path } => {
+            Failure::invalid("directory", path.display(), NOT_A_RUN).kind(Overwrite)
+        }
+        IoError::Read { path, source } | IoError::Output { path, source } => {
+            with(Io, None, Some(path.display().to_string()), Some(source.to_string()))
+        }
+        IoError::Table { path, line, message: what } => {
+            with(Scenario, None, Some(format!("{}, line {line}", path.display())), Some(what))
+        }
+        IoError::Inaccurate { relative_error, reference, limit } => Failure::new(
+            Inaccurate,
             format!(
                 "inaccurate run: the energy balance is off by {relative_error:.2e} of \
                  {reference}, above the limit {limit:.0e}; use a smaller run.time_step_s (rk4) \
                  or a tighter rtol/atol (dopri5)"
             ),
         ),
-        IoError::Interrupted { saved } => Failure {
-            reason: Some(saved),
-            ..Failure::new(Kind::Interrupted, message)
-        },
+        IoError::Interrupted { saved } => with(Interrupted, None, None, Some(saved)),
         // Parse errors (line and column in the message), other library errors about the input.
-        _ => Failure::new(Kind::Scenario, message),
+        _ => Failure::new(Scenario, message),
     }
 }
