@@ -6,9 +6,11 @@
 //!
 //! - [`commands`]: one module per subcommand.
 //! - [`progress`]: a bar with an ETA on a terminal, a line per stage otherwise.
-//! - [`CliError`]: every failure, with [`CliError::exit_code`] (2 = bad input, 1 = failed run).
+//! - [`CliError`]: every failure (woodpile-io's error); [`exit`] gives its exit code (2 = bad
+//!   input, 1 = failed run, 130 = interrupted) and its message in this command line's flags.
 
 pub mod commands;
+pub mod exit;
 pub mod interrupt;
 pub mod optimize_cmd;
 pub mod plot_cmd;

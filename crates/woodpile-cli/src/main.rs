@@ -4,7 +4,7 @@
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 use woodpile_cli::commands::{self, Context};
-use woodpile_cli::CliError;
+use woodpile_cli::{exit, CliError};
 
 /// Locally resonant woodpile metamaterials under impact and blast (Kim, Yang et al. 2017).
 #[derive(Debug, Parser)]
@@ -58,12 +58,12 @@ fn main() -> ExitCode {
     match dispatch(&cli.command, &ctx) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e @ woodpile_cli::CliError::Interrupted { .. }) => {
-            eprintln!("{e}");
-            ExitCode::from(e.exit_code())
+            eprintln!("{}", exit::message(&e));
+            ExitCode::from(exit::code(&e))
         }
         Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::from(e.exit_code())
+            eprintln!("error: {}", exit::message(&e));
+            ExitCode::from(exit::code(&e))
         }
     }
 }

@@ -90,15 +90,14 @@ fn check_target(target: &Path, overwrite: bool) -> Result<(), Error> {
                 if overwrite {
                     Ok(())
                 } else {
-                    Err(Error::invalid(
-                        "--out",
-                        target.display(),
-                        "holds an earlier run: pass --overwrite to replace its run files (your other files and plots/ are kept), or choose another --out",
-                    ))
+                    Err(Error::OutputExists {
+                        path: target.to_path_buf(),
+                    })
                 }
             } else {
                 Err(Error::OutputNotEmpty {
                     path: target.to_path_buf(),
+                    marker: RUN_MARKER,
                 })
             }
         }

@@ -2,7 +2,7 @@
 //! that a typo (`--threads 100000`, `duration_s = 1e6`) is an error at once rather than a hang;
 //! and the accuracy check after a run ([`check_accuracy`]).
 
-use crate::error::Error;
+use crate::error::{Error, Limit};
 
 /// Most worker threads allowed per available core without an override.
 pub const THREADS_PER_CORE: usize = 4;
@@ -13,19 +13,20 @@ pub fn available_cores() -> usize {
 }
 
 /// Checks a worker-thread count (0 = one per core). More than [`THREADS_PER_CORE`] per
-/// available core is refused unless `allow` is set; `field` names the option (`--threads`).
+/// available core is refused unless `allow` is set; `field` names the option as the front end
+/// spells it.
 pub fn check_threads(field: &str, threads: usize, allow: bool) -> Result<usize, Error> {
     let cores = available_cores();
     let most = THREADS_PER_CORE * cores;
     if threads > most && !allow {
-        return Err(Error::invalid(
-            field,
-            threads,
-            format!(
-                "at most {most} ({THREADS_PER_CORE} per core, {cores} cores here); 0 = one per core; \
-                 pass --allow-many-threads to use more anyway"
+        return Err(Error::OverLimit {
+            limit: Limit::Threads,
+            field: field.to_string(),
+            value: threads.to_string(),
+            reason: format!(
+                "at most {most} ({THREADS_PER_CORE} per core, {cores} cores here); 0 = one per core"
             ),
-        ));
+        });
     }
     Ok(threads)
 }
@@ -75,25 +76,31 @@ impl RunSize {
     ) -> Result<(), Error> {
         if let Some(steps) = self.steps {
             if steps > MAX_STEPS && !allow_long {
-                return Err(Error::invalid(
-                    "run.duration_s / run.time_step_s",
-                    format!("{steps:.3e} steps"),
-                    format!(
+                return Err(Error::OverLimit {
+                    limit: Limit::Steps,
+                    field: "run.duration_s / run.time_step_s".into(),
+                    value: format!("{steps:.3e} steps"),
+                    reason: format!(
                         "more than {MAX_STEPS:.0e} integration steps (the run would not end in reasonable time); \
-                         shorten run.duration_s or enlarge run.time_step_s, or pass --allow-long"
+                         shorten run.duration_s or enlarge run.time_step_s"
                     ),
-                ));
+                });
             }
         }
         if write_output && self.output_bytes > MAX_OUTPUT_BYTES && !allow_large {
-            return Err(Error::invalid(
-                "run.sample_interval_s",
-                format!("{} samples, about {:.1} GB of output", self.samples, self.output_bytes / 1e9),
-                format!(
-                    "the run directory would exceed {:.0} GB; enlarge run.sample_interval_s or shorten run.duration_s, or pass --allow-large",
+            return Err(Error::OverLimit {
+                limit: Limit::OutputSize,
+                field: "run.sample_interval_s".into(),
+                value: format!(
+                    "{} samples, about {:.1} GB of output",
+                    self.samples,
+                    self.output_bytes / 1e9
+                ),
+                reason: format!(
+                    "the run directory would exceed {:.0} GB; enlarge run.sample_interval_s or shorten run.duration_s",
                     MAX_OUTPUT_BYTES / 1e9
                 ),
-            ));
+            });
         }
         Ok(())
     }

@@ -24,10 +24,10 @@
 //! objective = "transmitted-force"   # transmission-ratio | transmitted-energy | transmitted-impulse
 //! ```
 //!
-//! Outputs in `--out DIR`: `checkpoint.json` and `history.csv` (rewritten atomically after every
+//! Outputs in the output directory: `checkpoint.json` and `history.csv` (rewritten atomically after every
 //! generation), then `population.csv`, `best.toml` (a scenario `woodpile simulate` re-runs to
 //! the same figures) and `summary.json`. A directory that holds anything is never written
-//! into unless `--resume` continues the run it holds, with the same config.
+//! into unless resuming continues the run it holds, with the same config.
 
 use crate::atomic::{io_err, write_atomic};
 use crate::error::Error;
@@ -636,7 +636,7 @@ pub const DESIGN_KEYS: ChainKeys = ChainKeys {
     crossing_angle_deg: "design.crossing_angle_deg",
 };
 
-/// The command line's error for a library optimisation error.
+/// woodpile-io's error for a library optimisation error.
 pub fn optimize_error(e: OptimizeError) -> Error {
     match e {
         OptimizeError::Model(m) => Error::Model(m),
@@ -651,12 +651,11 @@ pub fn optimize_error(e: OptimizeError) -> Error {
             objective,
             format!("returned NaN for design [{design}]"),
         ),
-        OptimizeError::StateMismatch { reason } => {
-            Error::invalid("--resume", CHECKPOINT_FILE, reason)
-        }
-        OptimizeError::ThreadPool { threads, reason } => {
-            Error::invalid("--threads", threads, reason)
-        }
+        OptimizeError::StateMismatch { reason } => Error::ResumeRefused {
+            path: CHECKPOINT_FILE.into(),
+            reason,
+        },
+        OptimizeError::ThreadPool { threads, reason } => Error::ThreadPool { threads, reason },
     }
 }
 
@@ -914,7 +913,7 @@ pub fn stop_text(reason: StopReason) -> &'static str {
 
 /// The output directory policy of `woodpile optimize`: with `resume`, the checkpoint in `out`
 /// (checked against `config`); without, `out` must be absent or empty (an earlier run there is
-/// named, with --resume as the way to continue it). Nothing is written.
+/// [`Error::CheckpointExists`]: resuming continues it). Nothing is written.
 pub fn prepare_output(
     out: &Path,
     resume: bool,
@@ -922,23 +921,25 @@ pub fn prepare_output(
 ) -> Result<Option<GaState>, Error> {
     if resume {
         if !out.join(CHECKPOINT_FILE).is_file() {
-            return Err(Error::invalid(
-                "--resume",
-                out.display(),
-                format!("holds no {CHECKPOINT_FILE}: nothing to resume; drop --resume to start a new run"),
-            ));
+            return Err(Error::NothingToResume {
+                path: out.to_path_buf(),
+                file: CHECKPOINT_FILE,
+            });
         }
         return read_checkpoint(out, config).map(Some);
     }
     match fs::read_dir(out) {
         Ok(mut entries) => {
             if entries.next().is_some() {
-                let what = if out.join(CHECKPOINT_FILE).is_file() {
-                    "holds an earlier optimisation run: add --resume to continue it (same config and seed), or choose another --out"
+                let path = out.to_path_buf();
+                return Err(if out.join(CHECKPOINT_FILE).is_file() {
+                    Error::CheckpointExists { path }
                 } else {
-                    "exists and is not empty: refusing to write into it; choose another --out"
-                };
-                return Err(Error::invalid("--out", out.display(), what));
+                    Error::OutputNotEmpty {
+                        path,
+                        marker: CHECKPOINT_FILE,
+                    }
+                });
             }
             Ok(None)
         }
@@ -964,11 +965,13 @@ pub fn read_checkpoint(dir: &Path, config: &OptimizeConfig) -> Result<GaState, E
         path: path.clone(),
         source: e,
     })?;
-    let corrupt = |message: String| Error::Parse {
+    let corrupt = |message: String| {
+        Error::Parse {
         source_name: path.display().to_string(),
         message: format!(
-            "{message}; the checkpoint is corrupt: restore it or start a new run in another --out"
+            "{message}; the checkpoint is corrupt: restore it or start a new run in another output directory"
         ),
+    }
     };
     let cp: Checkpoint = serde_json::from_str(&text).map_err(|e| corrupt(e.to_string()))?;
     if cp.format != CHECKPOINT_FORMAT {
@@ -977,18 +980,21 @@ pub fn read_checkpoint(dir: &Path, config: &OptimizeConfig) -> Result<GaState, E
             cp.format
         )));
     }
-    let refuse = |reason: String| Error::invalid("--resume", path.display(), reason);
+    let refuse = |reason: String| Error::ResumeRefused {
+        path: path.clone(),
+        reason,
+    };
     let ours = env!("CARGO_PKG_VERSION");
     if cp.tool_version != ours {
         return Err(refuse(format!(
-            "the checkpoint was written by woodpile {}, this is woodpile {ours}: a run resumes exactly only with the version that started it; finish it with woodpile {}, or start a new run in another --out",
+            "the checkpoint was written by woodpile {}, this is woodpile {ours}: a run resumes exactly only with the version that started it; finish it with woodpile {}, or start a new run in another output directory",
             cp.tool_version, cp.tool_version
         )));
     }
     let actual = cp.content_checksum();
     if cp.checksum != actual {
         return Err(refuse(format!(
-            "the checkpoint's checksum is {} but its content hashes to {actual}: it was modified after woodpile wrote it, so its objectives cannot be trusted; restore it or start a new run in another --out",
+            "the checkpoint's checksum is {} but its content hashes to {actual}: it was modified after woodpile wrote it, so its objectives cannot be trusted; restore it or start a new run in another output directory",
             cp.checksum
         )));
     }
@@ -1006,14 +1012,10 @@ pub fn read_checkpoint(dir: &Path, config: &OptimizeConfig) -> Result<GaState, E
                 )
             })
             .collect();
-        return Err(Error::invalid(
-            "--resume",
-            path.display(),
-            format!(
-                "the checkpoint belongs to a different problem: {}; resume with the same config, --model and --seed",
-                differing.join("; ")
-            ),
-        ));
+        return Err(refuse(format!(
+            "the checkpoint belongs to a different problem: {}; resume with the same config, model and seed",
+            differing.join("; ")
+        )));
     }
     Ok(cp.into_state())
 }

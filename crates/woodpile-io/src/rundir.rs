@@ -115,7 +115,7 @@ pub struct SummaryJson {
     /// Whether the transmitted peak reached the documented fraction of the incident one.
     pub wave_arrived: bool,
     /// Whether the energy balance closes to within `woodpile::defaults::ENERGY_ERROR_WARN`
-    /// (false: the run was kept with a warning or with `--allow-inaccurate`).
+    /// (false: the run was kept with a warning or because inaccuracy was allowed).
     pub energy_balance_ok: bool,
     /// Striker restitution e (impact; null for a blast).
     pub restitution_coefficient: Option<f64>,

@@ -5,6 +5,7 @@
 
 mod checkpoint_screened_resume;
 mod element_angles_and_mass_in_mass;
+mod errors_speak_no_front_end;
 mod lab_scenario_keys;
 mod paper_values_stated_once;
 mod peak_tolerance_key;
