@@ -14,7 +14,8 @@ the attributes set, so nothing needs to parse a message::
 
 Each class also derives from the built-in exception that code written before the classes
 existed catches: :class:`ScenarioError` is a :class:`ValueError`, :class:`FileError` an
-:class:`OSError`, :class:`OverwriteError` a :class:`FileExistsError`, :class:`RunError` and
+:class:`OSError`, :class:`OverwriteError` a :class:`FileExistsError` (so also an
+:class:`OSError`), :class:`RunError` and
 :class:`StateError` :class:`RuntimeError`\\ s. ``args`` is ``(message, field, value, reason)``.
 """
 
@@ -27,6 +28,7 @@ __all__ = [
     "OverwriteError",
     "RunError",
     "InaccurateRunError",
+    "LimitError",
     "InterruptedRunError",
     "StateError",
 ]
@@ -88,6 +90,12 @@ class RunError(WoodpileError, RuntimeError):
 class InaccurateRunError(RunError):
     """A run whose energy balance does not close to the stated accuracy: its numbers would not
     mean what they say."""
+
+
+class LimitError(ScenarioError):
+    """A run beyond an up-front limit (integration steps, the run directory's size, worker
+    threads): ``field`` names the key that leads there, ``reason`` the limit and how to stay
+    within it."""
 
 
 class InterruptedRunError(WoodpileError):

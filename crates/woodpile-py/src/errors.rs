@@ -24,6 +24,8 @@ pub enum Kind {
     Run,
     /// A run's energy balance does not close to the stated accuracy (`InaccurateRunError`).
     Inaccurate,
+    /// Beyond an up-front limit of the run (steps, output size, threads) (`LimitError`).
+    Limit,
     /// The work was interrupted (`InterruptedRunError`).
     Interrupted,
     /// A call the object's state does not allow yet, e.g. `tell()` without `ask()` (`StateError`).
@@ -39,6 +41,7 @@ impl Kind {
             Kind::Overwrite => "OverwriteError",
             Kind::Run => "RunError",
             Kind::Inaccurate => "InaccurateRunError",
+            Kind::Limit => "LimitError",
             Kind::Interrupted => "InterruptedRunError",
             Kind::State => "StateError",
         }
@@ -84,11 +87,6 @@ impl Failure {
         }
     }
 
-    /// The same error with another kind.
-    fn kind(self, kind: Kind) -> Self {
-        Failure { kind, ..self }
-    }
-
     /// The exception instance, built from the class of `woodpile.errors`.
     fn to_py(&self, py: Python<'_>) -> PyErr {
         let class =
@@ -131,105 +129,63 @@ pub fn ga_err(e: woodpile::optimize::OptimizeError) -> PyErr {
     py_err(woodpile_io::optimize::optimize_error(e))
 }
 
-/// Whether a library error is a numerical failure of the run rather than a bad input.
-fn is_numerical(e: &woodpile::Error) -> bool {
-    use woodpile::Error as E;
-    matches!(
-        e,
-        E::NonFiniteState { .. }
-            | E::RunawayOverlap { .. }
-            | E::LoadBeyondContact { .. }
-            | E::TooManySteps { .. }
-            | E::StepSizeTooSmall { .. }
-    )
-}
-
 /// Why a directory holding an earlier run is not replaced, in Python's terms.
 const EARLIER_RUN: &str = "holds an earlier run: pass overwrite=True to replace its run files \
     (other files and folders in it are kept), or choose another directory";
 
-/// Why any other non-empty directory is refused.
-const NOT_A_RUN: &str = "is not empty and holds no earlier run (no run.json): refusing to write \
-    into it; choose another directory";
-
-/// The one mapping of `woodpile_io::Error` to Python: its kind, its field, value and reason,
-/// and a message in Python's terms (keyword arguments, not the command line's flags).
+/// The one mapping of `woodpile_io::Error` to Python: the class from its kind, its field, value
+/// and reason as woodpile-io gives them, and Python's words where the error asks for an option
+/// of the front end (`overwrite=True`) or names an argument (`directory`, `checkpoint`,
+/// `threads`).
 pub fn classify(e: IoError) -> Failure {
-    use woodpile::Error as M;
-    use Kind::*;
-    let message = e.to_string();
-    let with = |kind, field: Option<String>, value: Option<String>, reason: Option<String>| {
-        let message = message.clone();
-        Failure {
-            kind,
-            message,
+    use woodpile_io::error::ErrorKind as K;
+    let kind = match e.kind() {
+        K::Io => Kind::Io,
+        K::Overwrite => Kind::Overwrite,
+        K::Limit => Kind::Limit,
+        K::Run => Kind::Run,
+        K::Inaccurate => Kind::Inaccurate,
+        K::Interrupted => Kind::Interrupted,
+        _ => Kind::Scenario,
+    };
+    let failure = Failure {
+        kind,
+        message: e.to_string(),
+        field: e.field().map(String::from),
+        value: e.value(),
+        reason: Some(e.reason()),
+    };
+    let directory = |reason: String| Failure {
+        message: format!(
+            "output directory {} {reason}",
+            failure.value.as_deref().unwrap_or("")
+        ),
+        field: Some("directory".into()),
+        reason: Some(reason),
+        kind: Kind::Overwrite,
+        ..failure.clone()
+    };
+    match e {
+        IoError::OutputExists { .. } => directory(EARLIER_RUN.into()),
+        // Not an earlier run, so overwrite=True would not help; the directory is left untouched.
+        IoError::OutputNotEmpty { marker, .. } => directory(format!(
+            "is not empty and holds no earlier run (no {marker}): refusing to write into it; \
+             choose another directory"
+        )),
+        IoError::ResumeRefused { .. } => Failure {
+            field: Some("checkpoint".into()),
+            ..failure
+        },
+        IoError::ThreadPool { .. } => Failure {
+            field: Some("threads".into()),
+            ..failure
+        },
+        // A run directory that cannot be read: the argument of `load_run`.
+        IoError::Invalid {
             field,
             value,
             reason,
-        }
-    };
-    match e {
-        // The command line's output, resume and thread flags and its run-directory argument, by
-        // their Python names (today's woodpile-io names the command line's).
-        IoError::Invalid { field, value, .. } if field == "--out" => {
-            Failure::invalid("directory", value, EARLIER_RUN).kind(Overwrite)
-        }
-        IoError::Invalid { field, value, reason } if field == "--resume" => {
-            Failure::invalid("checkpoint", value, reason)
-        }
-        IoError::Invalid { field, value, reason } if field == "--threads" => {
-            Failure::invalid("threads", value, reason)
-        }
-        IoError::Invalid { field, value, reason } if field == "RUN_DIR" => {
-            Failure::invalid("directory", value, reason)
-        }
-        IoError::Invalid { field, value, reason }
-        | IoError::Model(M::InvalidParameter { field, value, reason }) => {
-            Failure::invalid(field, value, reason)
-        }
-        IoError::Field { field, source: M::InvalidParameter { field: inner, value, reason } } => {
-            Failure::invalid(format!("{field}.{inner}"), value, reason)
-        }
-        IoError::Field { field, source } => {
-            with(Scenario, Some(field), None, Some(source.to_string()))
-        }
-        IoError::Model(M::Unknown { what, name, valid }) => {
-            with(Scenario, None, Some(name), Some(format!("not a known {what}; valid: {valid}")))
-        }
-        IoError::Model(M::WaveNotArrived { duration_s, .. }) => with(
-            Scenario,
-            Some("run.duration_s".into()),
-            Some(format!("{duration_s:e}")),
-            Some("too short for the wave to reach the wall; increase it".into()),
-        ),
-        IoError::Model(m) | IoError::Evaluation { source: m, .. } if is_numerical(&m) => {
-            Failure::new(Run, message)
-        }
-        IoError::UnknownScenario { name, valid } => Failure {
-            message: format!(
-                "unknown scenario `{name}` (valid: {valid}); woodpile.builtin_scenarios() lists them"
-            ),
-            ..with(Scenario, Some("name".into()), Some(name), Some(format!("valid: {valid}")))
-        },
-        IoError::OutputNotEmpty { path } => {
-            Failure::invalid("directory", path.display(), NOT_A_RUN).kind(Overwrite)
-        }
-        IoError::Read { path, source } | IoError::Output { path, source } => {
-            with(Io, None, Some(path.display().to_string()), Some(source.to_string()))
-        }
-        IoError::Table { path, line, message: what } => {
-            with(Scenario, None, Some(format!("{}, line {line}", path.display())), Some(what))
-        }
-        IoError::Inaccurate { relative_error, reference, limit } => Failure::new(
-            Inaccurate,
-            format!(
-                "inaccurate run: the energy balance is off by {relative_error:.2e} of \
-                 {reference}, above the limit {limit:.0e}; use a smaller run.time_step_s (rk4) \
-                 or a tighter rtol/atol (dopri5)"
-            ),
-        ),
-        IoError::Interrupted { saved } => with(Interrupted, None, None, Some(saved)),
-        // Parse errors (line and column in the message), other library errors about the input.
-        _ => Failure::new(Scenario, message),
+        } if field == "RUN_DIR" => Failure::invalid("directory", value, reason),
+        _ => failure,
     }
 }
