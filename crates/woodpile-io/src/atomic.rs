@@ -18,6 +18,14 @@ pub fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
     }
 }
 
+/// The error for a file that cannot be read as expected.
+pub fn read_error(path: &Path, reason: impl Into<String>) -> Error {
+    Error::Read {
+        path: path.to_path_buf(),
+        source: std::io::Error::other(reason.into()),
+    }
+}
+
 /// Staging directories of this process still in use: an interrupt handler removes them
 /// ([`remove_active_staging`]) before the process exits.
 static ACTIVE_STAGING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());

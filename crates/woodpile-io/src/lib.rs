@@ -2,22 +2,47 @@
 //!
 //! Everything between the physics core ([`woodpile`]) and a front end (the `woodpile` command
 //! line, the Python package): the file formats, shared so that every front end reads and writes
-//! the same files with the same checks.
+//! the same files with the same checks, and says what is wrong in the words of the files.
 //!
-//! - [`scenario`]: the TOML scenario format ([`scenario::Scenario`]), completion of its
-//!   defaults, the built-in scenarios, TOML emission and [`scenario::resolve`] into a
-//!   [`woodpile::Chain`], [`woodpile::Excitation`] and [`woodpile::RunSettings`].
-//! - [`table`]: blast force tables from CSV.
-//! - [`cells`]: a rod's unit cell derived by beam theory, as one typed record.
-//! - [`rundir`]: the run directory (`summary.json`, `run.json`, CSV and `.npy`), written and
-//!   read back.
-//! - [`npy`]: NumPy `.npy` float64 arrays, written and read.
-//! - [`atomic`]: atomic file replacement and staged run directories.
-//! - [`limits`]: up-front limits (threads, steps, output size) with overrides.
-//! - [`optimize`]: the optimisation config, the problem it defines and its checkpoint.
-//! - [`transmission`]: the output directory of a transmission spectrum.
-//! - [`study`]: the paper's study as data: the cases the report runs and the paper's numbers.
-//! - [`Error`]: every failure, typed, naming the field, the value and what would be valid.
+//! ## Map, in the order a front end works
+//!
+//! 1. **Read a scenario** — [`scenario`]: the TOML format ([`scenario::Scenario`]), the built-in
+//!    scenarios, and [`scenario::keys()`], the one table of its keys (type, unit, default, choices,
+//!    alternatives). [`scenario::Scenario::complete`] writes every default once;
+//!    [`scenario::Scenario::to_toml`] writes the completed file with a comment per key;
+//!    [`scenario::resolve`] checks it and builds the core's [`woodpile::Chain`],
+//!    [`woodpile::Excitation`] and [`woodpile::RunSettings`]. Inputs it names: [`table`] (blast
+//!    force tables from CSV), [`cells`] (a rod's unit cell derived by beam theory).
+//! 2. **Check before running** — [`limits`]: threads, steps and output size, each with its
+//!    override; after the run, the energy balance ([`limits::check_accuracy`]).
+//! 3. **Write and read back** — [`atomic`] (atomic files, staged run directories with one
+//!    overwrite policy), [`rundir`] (`summary.json`, `run.json`, CSV and [`npy`] arrays),
+//!    [`transmission`] (a transmission spectrum's directory).
+//! 4. **Optimise** — [`optimize`]: the optimisation config, the problem it defines, its
+//!    checksummed checkpoint and outputs.
+//! 5. **Say what went wrong** — [`Error`]: typed, naming the field, the value and what is valid
+//!    ([`Error::field`], [`Error::value`], [`Error::reason`]); [`Error::kind`] sorts it for a
+//!    front end, which words its own options (no exit codes or flag names here).
+//!
+//! [`study`] (the paper's study as data, used by the report) is moving to the command line.
+//!
+//! ```
+//! use woodpile_io::error::ErrorKind;
+//! use woodpile_io::scenario::{key, resolve, Scenario};
+//!
+//! let text = "[chain]\nrods_mm = [80, 40, 20]\n[run]\nduration_s = 1e-4\n";
+//! let resolved = resolve(&Scenario::parse(text)?, std::path::Path::new("."))?;
+//! assert_eq!(resolved.chain.len(), 3);
+//!
+//! // The keys table gives each key's default and unit ...
+//! let step = key("run.time_step_s").expect("a key of the file");
+//! assert_eq!(step.unit, "s");
+//! // ... and errors name the key, the value and what is valid.
+//! let bad = Scenario::parse("[chain]\nrods_mm = [45]\n")?;
+//! let e = resolve(&bad, std::path::Path::new(".")).unwrap_err();
+//! assert_eq!((e.kind(), e.field()), (ErrorKind::Scenario, Some("chain.rods_mm[0]")));
+//! # Ok::<(), woodpile_io::Error>(())
+//! ```
 
 pub mod atomic;
 pub mod cells;

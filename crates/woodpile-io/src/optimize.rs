@@ -29,7 +29,7 @@
 //! the same figures) and `summary.json`. A directory that holds anything is never written
 //! into unless resuming continues the run it holds, with the same config.
 
-use crate::atomic::{io_err, write_atomic};
+use crate::atomic::{io_err, read_error, write_atomic};
 use crate::error::Error;
 use crate::scenario::{
     resolve, resolve_with_keys, ChainKeys, ChainSpec, ElementKind, ElementSpec, ExcitationKind,
@@ -479,6 +479,95 @@ fn catalogue_index(
     }
 }
 
+/// Checks the catalogue of `design`: not empty, no entry twice, not too long.
+fn check_catalogue(d: &DesignSpec) -> Result<(), Error> {
+    let n_cat = d
+        .elements
+        .as_ref()
+        .map(Vec::len)
+        .or(d.catalogue_mm.as_ref().map(Vec::len))
+        .unwrap_or(0);
+    if n_cat == 0 {
+        let key = if d.elements.is_some() {
+            "design.elements"
+        } else {
+            "design.catalogue_mm"
+        };
+        let example = "e.g. catalogue_mm = [20, 30, 40, 50, 60, 70, 80]";
+        return Err(Error::invalid(
+            key,
+            "[]",
+            format!("the catalogue needs at least one element, {example}"),
+        ));
+    }
+    if let Some((i, j)) = first_duplicate(d.catalogue_mm.as_deref().unwrap_or_default()) {
+        return Err(Error::invalid(
+            format!("design.catalogue_mm[{j}]"),
+            d.catalogue_mm.as_ref().map_or(0, |c| c[j]),
+            format!("repeats design.catalogue_mm[{i}]; list each rod once"),
+        ));
+    }
+    if let Some((i, j)) = first_duplicate(d.elements.as_deref().unwrap_or_default()) {
+        return Err(Error::invalid(
+            format!("design.elements[{j}]"),
+            "(the same element)",
+            format!("repeats design.elements[{i}]; list each element once"),
+        ));
+    }
+    if n_cat > woodpile::optimize::MAX_CATALOGUE_LEN {
+        return Err(Error::invalid(
+            "design.catalogue",
+            n_cat,
+            format!("at most {} entries", woodpile::optimize::MAX_CATALOGUE_LEN),
+        ));
+    }
+    Ok(())
+}
+
+/// The constraints of the config, their layers and elements checked against the catalogue.
+fn constraints(cfg: &OptimizeConfig, positions: usize) -> Result<Constraints, Error> {
+    let c = &cfg.design.constraints;
+    let mut constraints = Constraints {
+        max_total_mass_kg: c.max_total_mass_g.map(|g| g * 1e-3),
+        ..Constraints::default()
+    };
+    for (k, f) in c.fixed.iter().enumerate() {
+        let field = format!("design.constraints.fixed[{k}]");
+        if f.layer == 0 || f.layer > positions {
+            return Err(Error::invalid(
+                format!("{field}.layer"),
+                f.layer,
+                format!("layers are 1..={positions} (1 = top)"),
+            ));
+        }
+        let e = catalogue_index(&field, f.rod_mm, f.element, cfg)?;
+        constraints.fixed.push((f.layer - 1, e));
+    }
+    for (k, m) in c.max_count.iter().enumerate() {
+        let field = format!("design.constraints.max_count[{k}]");
+        let e = catalogue_index(&field, m.rod_mm, m.element, cfg)?;
+        constraints.max_count.push((e, m.count));
+    }
+    Ok(constraints)
+}
+
+/// The GA settings of `[ga]` with `threads` workers (checked by [`GaSettings::validate`]).
+fn ga_settings(g: &GaSpec, threads: usize) -> GaSettings {
+    GaSettings {
+        population: g.population.unwrap_or(100),
+        truncation: g.truncation.unwrap_or(0.3),
+        elites: g.elites.unwrap_or(1),
+        generations: g.generations.unwrap_or(100),
+        stall_generations: g.stall_generations.filter(|&s| s > 0),
+        seed: g.seed.unwrap_or(1),
+        mutation_range: g.mutation_range,
+        threads,
+        cache: g.cache.unwrap_or(true),
+        screen_peak_tolerance: g.screen_peak_tolerance,
+        stop_early: g.stop_early.unwrap_or(false),
+    }
+}
+
 impl Problem {
     /// Validates a config (after the command line's overrides) and builds the design space.
     pub fn new(config: &OptimizeConfig, base_dir: &Path, threads: usize) -> Result<Self, Error> {
@@ -504,45 +593,7 @@ impl Problem {
                 "give one catalogue: catalogue_mm (Table 1 rods) or elements (general form)",
             ));
         }
-        let n_cat = d
-            .elements
-            .as_ref()
-            .map(Vec::len)
-            .or(d.catalogue_mm.as_ref().map(Vec::len))
-            .unwrap_or(0);
-        if n_cat == 0 {
-            let key = if d.elements.is_some() {
-                "design.elements"
-            } else {
-                "design.catalogue_mm"
-            };
-            return Err(Error::invalid(
-                key,
-                "[]",
-                "the catalogue needs at least one element, e.g. catalogue_mm = [20, 30, 40, 50, 60, 70, 80]",
-            ));
-        }
-        if let Some((i, j)) = first_duplicate(d.catalogue_mm.as_deref().unwrap_or_default()) {
-            return Err(Error::invalid(
-                format!("design.catalogue_mm[{j}]"),
-                d.catalogue_mm.as_ref().map_or(0, |c| c[j]),
-                format!("repeats design.catalogue_mm[{i}]; list each rod once"),
-            ));
-        }
-        if let Some((i, j)) = first_duplicate(d.elements.as_deref().unwrap_or_default()) {
-            return Err(Error::invalid(
-                format!("design.elements[{j}]"),
-                "(the same element)",
-                format!("repeats design.elements[{i}]; list each element once"),
-            ));
-        }
-        if n_cat > woodpile::optimize::MAX_CATALOGUE_LEN {
-            return Err(Error::invalid(
-                "design.catalogue",
-                n_cat,
-                format!("at most {} entries", woodpile::optimize::MAX_CATALOGUE_LEN),
-            ));
-        }
+        check_catalogue(d)?;
         // The catalogue as a chain resolves every element, the wall, the load and the run;
         // the catalogue's errors name the design keys.
         let catalogue_chain = ChainSpec {
@@ -555,28 +606,7 @@ impl Problem {
         let resolved =
             resolve_with_keys(&cfg.scenario(catalogue_chain, None), base_dir, &DESIGN_KEYS)?;
         let catalogue = resolved.chain.elements().to_vec();
-        let c = &d.constraints;
-        let mut constraints = Constraints {
-            max_total_mass_kg: c.max_total_mass_g.map(|g| g * 1e-3),
-            ..Constraints::default()
-        };
-        for (k, f) in c.fixed.iter().enumerate() {
-            let field = format!("design.constraints.fixed[{k}]");
-            if f.layer == 0 || f.layer > positions {
-                return Err(Error::invalid(
-                    format!("{field}.layer"),
-                    f.layer,
-                    format!("layers are 1..={positions} (1 = top)"),
-                ));
-            }
-            let e = catalogue_index(&field, f.rod_mm, f.element, &cfg)?;
-            constraints.fixed.push((f.layer - 1, e));
-        }
-        for (k, m) in c.max_count.iter().enumerate() {
-            let field = format!("design.constraints.max_count[{k}]");
-            let e = catalogue_index(&field, m.rod_mm, m.element, &cfg)?;
-            constraints.max_count.push((e, m.count));
-        }
+        let constraints = constraints(&cfg, positions)?;
         let space = DesignSpace {
             positions,
             catalogue,
@@ -586,23 +616,10 @@ impl Problem {
             settings: resolved.settings,
             constraints,
         };
-        let g = &cfg.ga;
-        let objective_name = g.objective.clone().unwrap_or_default();
+        let objective_name = cfg.ga.objective.clone().unwrap_or_default();
         let objective =
             StandardObjective::from_name(&objective_name).map_err(Error::at("ga.objective"))?;
-        let settings = GaSettings {
-            population: g.population.unwrap_or(100),
-            truncation: g.truncation.unwrap_or(0.3),
-            elites: g.elites.unwrap_or(1),
-            generations: g.generations.unwrap_or(100),
-            stall_generations: g.stall_generations.filter(|&s| s > 0),
-            seed: g.seed.unwrap_or(1),
-            mutation_range: g.mutation_range,
-            threads,
-            cache: g.cache.unwrap_or(true),
-            screen_peak_tolerance: g.screen_peak_tolerance,
-            stop_early: g.stop_early.unwrap_or(false),
-        };
+        let settings = ga_settings(&cfg.ga, threads);
         settings.validate()?;
         woodpile::optimize::FeasibleSet::new(&space).map_err(optimize_error)?;
         Ok(Problem {
@@ -1034,12 +1051,12 @@ pub struct HistoryPoint {
 /// Reads `history.csv` of `woodpile optimize`: one point per generation.
 pub fn read_history(path: &Path) -> Result<Vec<HistoryPoint>, Error> {
     let cols = ["best".to_string(), "mean".to_string()];
-    let csv_err = |e: csv::Error| crate::rundir::read_error(path, e.to_string());
+    let csv_err = |e: csv::Error| read_error(path, e.to_string());
     let mut r = csv::Reader::from_path(path).map_err(csv_err)?;
     let header = r.headers().map_err(csv_err)?.clone();
     let index = |name: &str| {
         header.iter().position(|h| h == name).ok_or_else(|| {
-            crate::rundir::read_error(
+            read_error(
                 path,
                 format!("no column `{name}`: not a history.csv of `woodpile optimize`"),
             )
@@ -1052,14 +1069,11 @@ pub fn read_history(path: &Path) -> Result<Vec<HistoryPoint>, Error> {
         let rec = rec.map_err(csv_err)?;
         let field = |i: usize| {
             rec.get(i).map(str::trim).ok_or_else(|| {
-                crate::rundir::read_error(
-                    path,
-                    format!("line {}: missing column {}", line + 2, i + 1),
-                )
+                read_error(path, format!("line {}: missing column {}", line + 2, i + 1))
             })
         };
         let not_number = |i: usize| {
-            crate::rundir::read_error(
+            read_error(
                 path,
                 format!("line {}: not a number in column {}", line + 2, i + 1),
             )
@@ -1080,7 +1094,7 @@ pub fn read_history(path: &Path) -> Result<Vec<HistoryPoint>, Error> {
         });
     }
     if points.is_empty() {
-        return Err(crate::rundir::read_error(
+        return Err(read_error(
             path,
             "no generation recorded yet: nothing to plot",
         ));

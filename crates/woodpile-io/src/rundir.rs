@@ -5,6 +5,7 @@
 //! run. An existing output directory is replaced only when it holds a previous run (`run.json`)
 //! or is empty.
 
+pub use crate::atomic::read_error;
 use crate::atomic::{io_err, RUN_MARKER};
 use crate::error::Error;
 use crate::scenario::{resolve, ExcitationKind, Resolved, Scenario};
@@ -313,14 +314,16 @@ pub fn write_npy(path: &Path, shape: &[u64], data: &[f64]) -> Result<(), Error> 
 /// `velocities_m_s.npy` (samples × N), `striker.npy` (impact: samples × \[position m, velocity
 /// m/s\]).
 pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), Error> {
-    let t = r.trajectory;
-    let n = t.n_elements;
-    let nc = t.n_contacts();
-    let ns = t.len();
-    let chain = &r.resolved.chain;
-
     write_json(&dir.join("summary.json"), &SummaryJson::new(r))?;
+    write_csvs(dir, r.trajectory)?;
+    write_npys(dir, r.trajectory)?;
+    // run.json last: its presence marks a complete run.
+    write_json(&dir.join(RUN_MARKER), &run_json(r))
+}
 
+/// `run.json`: the completed scenario, the model's numbers and the integrator's statistics.
+fn run_json(r: &RunRecord<'_>) -> RunJson {
+    let chain = &r.resolved.chain;
     let (striker_beta, striker_mass, striker_v0) = match &r.resolved.excitation {
         Excitation::Impact(s) => (
             s.contact_beta(chain).ok(),
@@ -330,7 +333,7 @@ pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), Error> {
         Excitation::Blast(_) | Excitation::Drive(_) | Excitation::Rest => (None, None, None),
     };
     let s = r.summary;
-    let run = RunJson {
+    RunJson {
         tool: "woodpile".to_string(),
         format: Some(RUN_FORMAT.to_string()),
         version: env!("CARGO_PKG_VERSION").to_string(),
@@ -368,9 +371,12 @@ pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), Error> {
         },
         n_samples: s.n_samples,
         wall_time_s: s.wall_time_s,
-    };
+    }
+}
 
-    // CSV
+/// The samples as CSV: forces, energy, displacements, velocities and the striker.
+fn write_csvs(dir: &Path, t: &Trajectory) -> Result<(), Error> {
+    let (n, nc, ns) = (t.n_elements, t.n_contacts(), t.len());
     let mut header = vec!["time_s".to_string()];
     header.extend((0..nc).map(|c| format!("contact_{c}_n")));
     write_csv(
@@ -426,8 +432,13 @@ pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), Error> {
                 .map(|(&x, &v)| vec![x, v]),
         )?;
     }
+    Ok(())
+}
 
-    // NumPy
+/// The samples as NumPy arrays, one file per quantity.
+fn write_npys(dir: &Path, t: &Trajectory) -> Result<(), Error> {
+    let (n, nc, ns) = (t.n_elements, t.n_contacts(), t.len());
+    let has_striker = t.striker_position_m.len() == ns && ns > 0;
     let (ns64, nc64, n64) = (ns as u64, nc as u64, n as u64);
     write_npy(&dir.join("time_s.npy"), &[ns64], &t.times_s)?;
     write_npy(
@@ -462,9 +473,7 @@ pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), Error> {
             .collect();
         write_npy(&dir.join("striker.npy"), &[ns64, 2], &data)?;
     }
-
-    // run.json last: its presence marks a complete run.
-    write_json(&dir.join(RUN_MARKER), &run)
+    Ok(())
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -493,14 +502,6 @@ pub struct RunInfo {
 /// The error for a directory that is not a run (named as `RUN_DIR`).
 pub fn bad_dir(dir: &Path, reason: impl Into<String>) -> Error {
     Error::invalid("RUN_DIR", dir.display(), reason)
-}
-
-/// The error for a run file that cannot be read as expected.
-pub fn read_error(path: &Path, reason: impl Into<String>) -> Error {
-    Error::Read {
-        path: path.to_path_buf(),
-        source: std::io::Error::other(reason.into()),
-    }
 }
 
 /// Reads and checks `run.json`: a woodpile run of a format this build reads.

@@ -23,11 +23,13 @@
 
 mod builtin;
 mod emit;
+mod keys;
 mod resolve;
 
 pub use builtin::{
     all as builtins, builtin, builtin_names, BuiltinScenario, DEFAULT_SCENARIO, OPTIMIZED_CHAIN_MM,
 };
+pub use keys::{key, keys, Key, KeyDefault, KeyType};
 pub use resolve::{resolve, resolve_element, resolve_with_keys, ChainKeys, Resolved};
 
 use crate::error::Error;
@@ -81,7 +83,7 @@ impl ModelSpec {
     }
 
     /// The name used in files.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             ModelSpec::Resonant => "resonant",
             ModelSpec::Rigid => "rigid",
@@ -134,7 +136,7 @@ pub enum ElementKind {
 
 impl ElementKind {
     /// The name used in files.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             ElementKind::Catalogue => "catalogue",
             ElementKind::Rod => "rod",
@@ -214,6 +216,14 @@ pub enum ReductionSpec {
 }
 
 impl ReductionSpec {
+    /// The name used in files.
+    pub const fn name(self) -> &'static str {
+        match self {
+            ReductionSpec::PoleZero => "pole-zero",
+            ReductionSpec::ModalMass => "modal-mass",
+        }
+    }
+
     /// The library's reduction.
     pub fn reduction(self) -> woodpile::Reduction {
         match self {
@@ -316,7 +326,7 @@ pub enum ExcitationKind {
 
 impl ExcitationKind {
     /// The name used in files.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             ExcitationKind::Impact => "impact",
             ExcitationKind::Blast => "blast",
@@ -360,6 +370,16 @@ pub enum SweepSpec {
     Logarithmic,
 }
 
+impl SweepSpec {
+    /// The name used in files.
+    pub const fn name(self) -> &'static str {
+        match self {
+            SweepSpec::Linear => "linear",
+            SweepSpec::Logarithmic => "logarithmic",
+        }
+    }
+}
+
 /// A contact damping law ([`woodpile::ContactDamping`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -377,7 +397,7 @@ pub enum ContactLaw {
 
 impl DriveKind {
     /// The name used in files.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             DriveKind::Force => "force",
             DriveKind::Displacement => "displacement",
@@ -387,7 +407,7 @@ impl DriveKind {
 
 impl SignalKind {
     /// The name used in files.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             SignalKind::Harmonic => "harmonic",
             SignalKind::Chirp => "chirp",
@@ -408,7 +428,7 @@ impl SweepSpec {
 
 impl ContactLaw {
     /// The name used in files.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             ContactLaw::None => "none",
             ContactLaw::Restitution => "restitution",
@@ -503,6 +523,16 @@ pub enum ProfileKind {
     Friedlander,
     /// A (time_s, force_n) table from a CSV file, linearly interpolated.
     Table,
+}
+
+impl ProfileKind {
+    /// The name used in files.
+    pub const fn name(self) -> &'static str {
+        match self {
+            ProfileKind::Friedlander => "friedlander",
+            ProfileKind::Table => "table",
+        }
+    }
 }
 
 /// `[excitation]`. Impact keys: `drop_height_m` or `velocity_m_s`, `striker`, `beta`.
@@ -644,7 +674,7 @@ pub enum WallKind {
 
 impl WallKind {
     /// The name used in files.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             WallKind::Cap => "cap",
             WallKind::Flat => "flat",
@@ -685,7 +715,7 @@ pub enum IntegratorKind {
 
 impl IntegratorKind {
     /// The name used in files.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             IntegratorKind::Rk4 => "rk4",
             IntegratorKind::Dopri5 => "dopri5",
@@ -766,28 +796,8 @@ impl Scenario {
         c.crossing_angle_deg.get_or_insert(CROSSING_ANGLE_DEG);
         if let Some(elements) = &mut c.elements {
             for e in elements {
-                let kind = e.kind.unwrap_or(if e.rod_mm.is_some() {
-                    ElementKind::Catalogue
-                } else {
-                    ElementKind::Rod
-                });
-                match kind {
-                    ElementKind::Catalogue => {
-                        e.kind = None;
-                    }
-                    ElementKind::Rod => {
-                        e.kind = Some(kind);
-                        e.diameter_mm.get_or_insert(ROD_DIAMETER_MM);
-                        e.material
-                            .get_or_insert_with(|| MaterialSpec::preset(ELEMENT_MATERIAL));
-                    }
-                    ElementKind::Sphere => {
-                        e.kind = Some(kind);
-                        e.material
-                            .get_or_insert_with(|| MaterialSpec::preset(ELEMENT_MATERIAL));
-                    }
-                }
-                if kind != ElementKind::Sphere {
+                e.complete();
+                if e.kind != Some(ElementKind::Sphere) {
                     e.model.get_or_insert(chain_model);
                 }
             }
@@ -865,6 +875,38 @@ impl Scenario {
     /// it and runs exactly the same model.
     pub fn to_toml(&self) -> String {
         emit::to_toml(&self.complete())
+    }
+}
+
+impl ElementSpec {
+    /// The kind: as given, else a catalogue rod when `rod_mm` is given, else a user rod.
+    pub fn effective_kind(&self) -> ElementKind {
+        self.kind.unwrap_or(if self.rod_mm.is_some() {
+            ElementKind::Catalogue
+        } else {
+            ElementKind::Rod
+        })
+    }
+
+    /// Writes out the kind (none for a catalogue rod) and the defaults of the keys it uses,
+    /// but not the cell model, which follows `chain.model`.
+    pub fn complete(&mut self) {
+        let kind = self.effective_kind();
+        self.kind = (kind != ElementKind::Catalogue).then_some(kind);
+        if kind == ElementKind::Catalogue {
+            return;
+        }
+        self.material
+            .get_or_insert_with(|| MaterialSpec::preset(defaults::ELEMENT_MATERIAL));
+        if kind == ElementKind::Rod {
+            self.diameter_mm.get_or_insert(defaults::ROD_DIAMETER_MM);
+            // A derived cell (neither given masses nor a finite-element rod).
+            if let Some(c) = &mut self.cell {
+                if c.primary_mass_g.is_none() && c.fe_elements.is_none() {
+                    c.reduction.get_or_insert(ReductionSpec::PoleZero);
+                }
+            }
+        }
     }
 }
 

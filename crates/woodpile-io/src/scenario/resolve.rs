@@ -2,9 +2,8 @@
 
 use super::emit::float;
 use super::{
-    defaults, CellSpec, ContactLaw, DriveKind, ElementKind, ElementSpec, ExcitationKind,
-    ExcitationSpec, IntegratorKind, MaterialSpec, ProfileKind, Scenario, SignalKind, WallKind,
-    WallSpec,
+    CellSpec, ContactLaw, DriveKind, ElementKind, ElementSpec, ExcitationKind, ExcitationSpec,
+    IntegratorKind, MaterialSpec, ProfileKind, Scenario, SignalKind, WallKind, WallSpec,
 };
 use crate::error::Error;
 use crate::table::load_table;
@@ -95,6 +94,15 @@ fn non_negative(field: &str, value: f64) -> Result<f64, Error> {
     }
 }
 
+/// A value that completion ([`Scenario::complete`]) writes wherever it applies: resolving reads it
+/// from the completed scenario instead of applying the default a second time. Its absence names
+/// the key (not reachable from a completed scenario).
+fn completed<T: Clone>(field: &str, value: Option<&T>) -> Result<T, Error> {
+    value
+        .cloned()
+        .ok_or_else(|| Error::invalid(field, "(missing)", "must be given"))
+}
+
 /// A key that does not apply to the chosen kind.
 fn not_applicable(field: &str, value: impl ToString, why: &str) -> Error {
     Error::invalid(field, value, format!("not used {why}; remove it"))
@@ -148,7 +156,6 @@ pub fn resolve_element(
     chain_model: woodpile::CellModel,
     warnings: &mut Vec<String>,
 ) -> Result<Element, Error> {
-    let field = key;
     let kind =
         match (e.kind, e.rod_mm) {
             (Some(k), _) => k,
@@ -161,193 +168,232 @@ pub fn resolve_element(
         };
     let why = format!("with kind = \"{}\"", kind.name());
     let model = e.model.map(|m| m.cell_model()).unwrap_or(chain_model);
+    let mut e = e.clone();
+    e.complete();
+    let e = &e;
     match kind {
-        ElementKind::Catalogue => {
-            let Some(l) = e.rod_mm else {
-                return Err(Error::invalid(
-                    field("rod_mm"),
-                    "(missing)",
-                    "a catalogue element needs rod_mm",
-                ));
-            };
-            if let Some(d) = e.diameter_mm {
-                return Err(not_applicable(&field("diameter_mm"), d, &why));
-            }
-            if let Some(d) = e.length_mm {
-                return Err(not_applicable(&field("length_mm"), d, &why));
-            }
-            if let Some(d) = e.inner_diameter_mm {
-                return Err(not_applicable(&field("inner_diameter_mm"), d, &why));
-            }
-            if e.material.is_some() {
-                return Err(not_applicable(&field("material"), "…", &why));
-            }
-            if e.cell.is_some() {
-                return Err(not_applicable(&field("cell"), "{…}", &why));
-            }
-            Element::table1_rod(l, model).map_err(Error::at(field("rod_mm")))
-        }
-        ElementKind::Rod => {
-            if let Some(l) = e.rod_mm {
-                return Err(not_applicable(
-                    &field("rod_mm"),
-                    l,
-                    "with kind = \"rod\" (use length_mm and cell; or drop kind for a Table 1 rod)",
-                ));
-            }
-            let diameter = positive(
-                &field("diameter_mm"),
-                e.diameter_mm.unwrap_or(defaults::ROD_DIAMETER_MM),
-            )?;
-            let Some(length) = e.length_mm else {
-                return Err(Error::invalid(
-                    field("length_mm"),
-                    "(missing)",
-                    "a user rod needs length_mm",
-                ));
-            };
-            let length = positive(&field("length_mm"), length)?;
-            let inner = non_negative(
-                &field("inner_diameter_mm"),
-                e.inner_diameter_mm.unwrap_or(0.0),
-            )?;
-            if inner >= diameter {
-                return Err(Error::invalid(
-                    field("inner_diameter_mm"),
-                    float(inner),
-                    format!(
-                        "must be smaller than {} ({})",
-                        field("diameter_mm"),
-                        float(diameter)
-                    ),
-                ));
-            }
-            let mat = element_material(&field("material"), e.material.as_ref())?;
-            let default_cell = CellSpec::default();
-            let cell_spec = e.cell.as_ref().unwrap_or(&default_cell);
-            let c = match cell_spec.primary_mass_g {
-                Some(primary_mass_g) => {
-                    refuse_cell_keys(
-                        field,
-                        cell_spec,
-                        &["modes", "reduction", "fe_elements"],
-                        "with a given cell (primary_mass_g): these derive a cell from the rod",
-                    )?;
-                    let given = cell(&field("cell"), primary_mass_g, cell_spec)?;
-                    let area = std::f64::consts::PI / 4.0 * (diameter.powi(2) - inner.powi(2));
-                    let rod_mass_kg = mat.density_kg_m3 * area * length * 1e-9;
-                    warn_mass(
-                        warnings,
-                        &field("cell"),
-                        given.total_mass_kg(),
-                        rod_mass_kg,
-                        "ρ·A·L",
-                    );
-                    given
-                }
-                None => {
-                    if !cell_spec.resonators.is_empty() {
-                        return Err(Error::invalid(field("cell.primary_mass_g"), "(missing)", "a given cell needs primary_mass_g with its resonators; or drop resonators to derive the cell from the rod"));
-                    }
-                    let rod = Rod::new(length * 1e-3, diameter * 1e-3, inner * 1e-3, mat.clone())?;
-                    // The only invalid parameter left is the number of modes or of elements.
-                    let at = |key: &str| {
-                        let key = field(key);
-                        move |e| match e {
-                            woodpile::Error::InvalidParameter { value, reason, .. } => {
-                                Error::invalid(key, value, reason)
-                            }
-                            other => Error::Model(other),
-                        }
-                    };
-                    match cell_spec.fe_elements {
-                        Some(n) => {
-                            refuse_cell_keys(
-                                field,
-                                cell_spec,
-                                &["modes", "reduction"],
-                                "with fe_elements (the finite-element rod keeps every mode)",
-                            )?;
-                            UnitCell::from_rod_fe(&rod, n).map_err(at("cell.fe_elements"))?
-                        }
-                        None => {
-                            let reduction = cell_spec.reduction.unwrap_or_default().reduction();
-                            UnitCell::from_rod(&rod, cell_spec.modes, reduction)
-                                .map_err(at("cell.modes"))?
-                        }
-                    }
-                }
-            };
-            let c = model.apply(c);
-            Ok(Element {
-                label: format!("rod{}mm", length),
-                body: Body::Rod {
-                    diameter_m: diameter * 1e-3,
-                    length_m: length * 1e-3,
-                },
-                material: mat,
-                cell: c,
-            })
-        }
-        ElementKind::Sphere => {
-            if let Some(l) = e.rod_mm {
-                return Err(not_applicable(&field("rod_mm"), l, &why));
-            }
-            if let Some(l) = e.length_mm {
-                return Err(not_applicable(&field("length_mm"), l, &why));
-            }
-            if let Some(d) = e.inner_diameter_mm {
-                return Err(not_applicable(&field("inner_diameter_mm"), d, &why));
-            }
-            if let Some(m) = e.model {
-                return Err(not_applicable(&field("model"), m.name(), &why));
-            }
-            let Some(d) = e.diameter_mm else {
-                return Err(Error::invalid(
-                    field("diameter_mm"),
-                    "(missing)",
-                    "a sphere needs diameter_mm",
-                ));
-            };
-            let d = positive(&field("diameter_mm"), d)?;
-            let mat = element_material(&field("material"), e.material.as_ref())?;
-            let mut sphere = Element::sphere(d * 1e-3, mat)?;
-            if let Some(spec) = &e.cell {
-                // A mass-in-mass sphere: a given cell (shell and internal resonators).
-                let Some(primary_mass_g) = spec.primary_mass_g else {
-                    return Err(Error::invalid(
-                        field("cell.primary_mass_g"),
-                        "(missing)",
-                        "a sphere's cell is given: primary_mass_g and resonators (cells are derived for rods only)",
-                    ));
-                };
-                refuse_cell_keys(
-                    field,
-                    spec,
-                    &["modes", "reduction", "fe_elements"],
-                    "with kind = \"sphere\" (cells are derived for rods only)",
-                )?;
-                let given = cell(&field("cell"), primary_mass_g, spec)?;
-                warn_mass(
-                    warnings,
-                    &field("cell"),
-                    given.total_mass_kg(),
-                    sphere.cell.total_mass_kg(),
-                    "ρπd³/6",
-                );
-                sphere.cell = chain_model.apply(given);
-            }
-            Ok(sphere)
-        }
+        ElementKind::Catalogue => catalogue_element(e, key, model, &why),
+        ElementKind::Rod => rod_element(e, key, model, warnings),
+        ElementKind::Sphere => sphere_element(e, key, chain_model, &why, warnings),
     }
 }
 
-/// An element's material: the one given, or the default rod material.
-fn element_material(field: &str, spec: Option<&MaterialSpec>) -> Result<Material, Error> {
-    match spec {
-        Some(m) => material(field, m),
-        None => Ok(Material::preset(defaults::ELEMENT_MATERIAL)?),
+/// A Table 1 rod (`rod_mm`), refusing the keys of a user rod.
+fn catalogue_element(
+    e: &ElementSpec,
+    field: &dyn Fn(&str) -> String,
+    model: woodpile::CellModel,
+    why: &str,
+) -> Result<Element, Error> {
+    let Some(l) = e.rod_mm else {
+        return Err(Error::invalid(
+            field("rod_mm"),
+            "(missing)",
+            "a catalogue element needs rod_mm",
+        ));
+    };
+    if let Some(d) = e.diameter_mm {
+        return Err(not_applicable(&field("diameter_mm"), d, why));
     }
+    if let Some(d) = e.length_mm {
+        return Err(not_applicable(&field("length_mm"), d, why));
+    }
+    if let Some(d) = e.inner_diameter_mm {
+        return Err(not_applicable(&field("inner_diameter_mm"), d, why));
+    }
+    if e.material.is_some() {
+        return Err(not_applicable(&field("material"), "…", why));
+    }
+    if e.cell.is_some() {
+        return Err(not_applicable(&field("cell"), "{…}", why));
+    }
+    Element::table1_rod(l, model).map_err(Error::at(field("rod_mm")))
+}
+
+/// A user rod: its geometry, material and unit cell.
+fn rod_element(
+    e: &ElementSpec,
+    field: &dyn Fn(&str) -> String,
+    model: woodpile::CellModel,
+    warnings: &mut Vec<String>,
+) -> Result<Element, Error> {
+    if let Some(l) = e.rod_mm {
+        return Err(not_applicable(
+            &field("rod_mm"),
+            l,
+            "with kind = \"rod\" (use length_mm and cell; or drop kind for a Table 1 rod)",
+        ));
+    }
+    let diameter = positive(
+        &field("diameter_mm"),
+        completed(&field("diameter_mm"), e.diameter_mm.as_ref())?,
+    )?;
+    let Some(length) = e.length_mm else {
+        return Err(Error::invalid(
+            field("length_mm"),
+            "(missing)",
+            "a user rod needs length_mm",
+        ));
+    };
+    let length = positive(&field("length_mm"), length)?;
+    let inner = non_negative(
+        &field("inner_diameter_mm"),
+        e.inner_diameter_mm.unwrap_or(0.0),
+    )?;
+    if inner >= diameter {
+        return Err(Error::invalid(
+            field("inner_diameter_mm"),
+            float(inner),
+            format!(
+                "must be smaller than {} ({})",
+                field("diameter_mm"),
+                float(diameter)
+            ),
+        ));
+    }
+    let mat = material(
+        &field("material"),
+        &completed(&field("material"), e.material.as_ref())?,
+    )?;
+    let c = rod_cell(e, field, (diameter, inner, length), &mat, warnings)?;
+    let c = model.apply(c);
+    Ok(Element {
+        label: format!("rod{}mm", length),
+        body: Body::Rod {
+            diameter_m: diameter * 1e-3,
+            length_m: length * 1e-3,
+        },
+        material: mat,
+        cell: c,
+    })
+}
+
+/// A user rod's unit cell: given (masses and springs, checked against the rod's mass), derived
+/// by beam theory, or the finite-element rod. `size` is (diameter, inner diameter, length) \[mm\].
+fn rod_cell(
+    e: &ElementSpec,
+    field: &dyn Fn(&str) -> String,
+    size: (f64, f64, f64),
+    mat: &Material,
+    warnings: &mut Vec<String>,
+) -> Result<UnitCell, Error> {
+    let (diameter, inner, length) = size;
+    let default_cell = CellSpec::default();
+    let cell_spec = e.cell.as_ref().unwrap_or(&default_cell);
+    Ok(match cell_spec.primary_mass_g {
+        Some(primary_mass_g) => {
+            refuse_cell_keys(
+                field,
+                cell_spec,
+                &["modes", "reduction", "fe_elements"],
+                "with a given cell (primary_mass_g): these derive a cell from the rod",
+            )?;
+            let given = cell(&field("cell"), primary_mass_g, cell_spec)?;
+            let area = std::f64::consts::PI / 4.0 * (diameter.powi(2) - inner.powi(2));
+            let rod_mass_kg = mat.density_kg_m3 * area * length * 1e-9;
+            warn_mass(
+                warnings,
+                &field("cell"),
+                given.total_mass_kg(),
+                rod_mass_kg,
+                "ρ·A·L",
+            );
+            given
+        }
+        None => {
+            if !cell_spec.resonators.is_empty() {
+                return Err(Error::invalid(field("cell.primary_mass_g"), "(missing)", "a given cell needs primary_mass_g with its resonators; or drop resonators to derive the cell from the rod"));
+            }
+            let rod = Rod::new(length * 1e-3, diameter * 1e-3, inner * 1e-3, mat.clone())?;
+            // The only invalid parameter left is the number of modes or of elements.
+            let at = |key: &str| {
+                let key = field(key);
+                move |e| match e {
+                    woodpile::Error::InvalidParameter { value, reason, .. } => {
+                        Error::invalid(key, value, reason)
+                    }
+                    other => Error::Model(other),
+                }
+            };
+            match cell_spec.fe_elements {
+                Some(n) => {
+                    refuse_cell_keys(
+                        field,
+                        cell_spec,
+                        &["modes", "reduction"],
+                        "with fe_elements (the finite-element rod keeps every mode)",
+                    )?;
+                    UnitCell::from_rod_fe(&rod, n).map_err(at("cell.fe_elements"))?
+                }
+                None => {
+                    let reduction = cell_spec.reduction.unwrap_or_default().reduction();
+                    UnitCell::from_rod(&rod, cell_spec.modes, reduction)
+                        .map_err(at("cell.modes"))?
+                }
+            }
+        }
+    })
+}
+
+/// A sphere, with a given mass-in-mass cell when `cell` is set.
+fn sphere_element(
+    e: &ElementSpec,
+    field: &dyn Fn(&str) -> String,
+    chain_model: woodpile::CellModel,
+    why: &str,
+    warnings: &mut Vec<String>,
+) -> Result<Element, Error> {
+    if let Some(l) = e.rod_mm {
+        return Err(not_applicable(&field("rod_mm"), l, why));
+    }
+    if let Some(l) = e.length_mm {
+        return Err(not_applicable(&field("length_mm"), l, why));
+    }
+    if let Some(d) = e.inner_diameter_mm {
+        return Err(not_applicable(&field("inner_diameter_mm"), d, why));
+    }
+    if let Some(m) = e.model {
+        return Err(not_applicable(&field("model"), m.name(), why));
+    }
+    let Some(d) = e.diameter_mm else {
+        return Err(Error::invalid(
+            field("diameter_mm"),
+            "(missing)",
+            "a sphere needs diameter_mm",
+        ));
+    };
+    let d = positive(&field("diameter_mm"), d)?;
+    let mat = material(
+        &field("material"),
+        &completed(&field("material"), e.material.as_ref())?,
+    )?;
+    let mut sphere = Element::sphere(d * 1e-3, mat)?;
+    if let Some(spec) = &e.cell {
+        // A mass-in-mass sphere: a given cell (shell and internal resonators).
+        let Some(primary_mass_g) = spec.primary_mass_g else {
+            return Err(Error::invalid(
+                field("cell.primary_mass_g"),
+                "(missing)",
+                "a sphere's cell is given: primary_mass_g and resonators (cells are derived for rods only)",
+            ));
+        };
+        refuse_cell_keys(
+            field,
+            spec,
+            &["modes", "reduction", "fe_elements"],
+            "with kind = \"sphere\" (cells are derived for rods only)",
+        )?;
+        let given = cell(&field("cell"), primary_mass_g, spec)?;
+        warn_mass(
+            warnings,
+            &field("cell"),
+            given.total_mass_kg(),
+            sphere.cell.total_mass_kg(),
+            "ρπd³/6",
+        );
+        sphere.cell = chain_model.apply(given);
+    }
+    Ok(sphere)
 }
 
 /// Where the keys of a chain live in the file being resolved: the `[chain]` table of a
@@ -388,10 +434,12 @@ pub fn resolve_with_keys(
     base_dir: &Path,
     keys: &ChainKeys,
 ) -> Result<Resolved, Error> {
+    // Defaults are applied once, by completion; resolving checks and converts.
+    let scenario = &scenario.complete();
     let mut warnings = Vec::new();
     let chain = resolve_chain(scenario, keys, &mut warnings)?;
     let excitation = resolve_excitation(scenario, &chain, base_dir)?;
-    let settings = resolve_run(scenario, &excitation)?;
+    let settings = resolve_run(scenario)?;
     Ok(Resolved {
         chain,
         excitation,
@@ -455,7 +503,7 @@ fn resolve_chain(
             "a chain needs at least one element",
         ));
     }
-    let angle = c.crossing_angle_deg.unwrap_or(defaults::CROSSING_ANGLE_DEG);
+    let angle = completed(keys.crossing_angle_deg, c.crossing_angle_deg.as_ref())?;
     if !(angle.is_finite() && angle > 0.0 && angle < 180.0) {
         return Err(Error::invalid(
             keys.crossing_angle_deg,
@@ -479,7 +527,7 @@ fn resolve_chain(
         .crossing_angle_rad(angle.to_radians())
         .wall(resolve_wall(&s.wall, "wall")?)
         .damping(resolve_damping(s)?)
-        .preload(resolve_preload(s));
+        .preload(resolve_preload(s)?);
     for (i, e) in c.elements.iter().flatten().enumerate() {
         let Some(a) = e.crossing_angle_deg else {
             continue;
@@ -514,9 +562,9 @@ fn resolve_wall(w: &WallSpec, key: &str) -> Result<Wall, Error> {
         ""
     };
     let why = format!("with {key}.kind = \"{}\"{given}", kind.name());
-    let material_of = |w: &WallSpec| match &w.material {
-        Some(m) => material(&format!("{key}.material"), m),
-        None => Ok(Material::preset(defaults::WALL_MATERIAL)?),
+    let material_of = |w: &WallSpec| {
+        let field = format!("{key}.material");
+        material(&field, &completed(&field, w.material.as_ref())?)
     };
     if kind != WallKind::Cap {
         if let Some(r) = w.cap_radius_mm {
@@ -538,10 +586,10 @@ fn resolve_wall(w: &WallSpec, key: &str) -> Result<Wall, Error> {
     Ok(match kind {
         WallKind::Cap => Wall::Cap {
             material: material_of(w)?,
-            radius_m: positive(
-                &format!("{key}.cap_radius_mm"),
-                w.cap_radius_mm.unwrap_or(defaults::CAP_RADIUS_MM),
-            )? * 1e-3,
+            radius_m: {
+                let field = format!("{key}.cap_radius_mm");
+                positive(&field, completed(&field, w.cap_radius_mm.as_ref())?)? * 1e-3
+            },
         },
         WallKind::Flat => Wall::Flat {
             material: material_of(w)?,
@@ -650,15 +698,15 @@ fn resolve_excitation(s: &Scenario, chain: &Chain, base_dir: &Path) -> Result<Ex
                     BlastProfile::Friedlander {
                         peak_force_n: positive(
                             "excitation.peak_force_n",
-                            x.peak_force_n.unwrap_or(defaults::PEAK_FORCE_N),
+                            completed("excitation.peak_force_n", x.peak_force_n.as_ref())?,
                         )?,
                         duration_s: positive(
                             "excitation.duration_s",
-                            x.duration_s.unwrap_or(defaults::BLAST_DURATION_S),
+                            completed("excitation.duration_s", x.duration_s.as_ref())?,
                         )?,
                         decay: non_negative(
                             "excitation.decay",
-                            x.decay.unwrap_or(defaults::DECAY),
+                            completed("excitation.decay", x.decay.as_ref())?,
                         )?,
                     }
                 }
@@ -691,20 +739,16 @@ fn resolve_impact(x: &ExcitationSpec, chain: &Chain) -> Result<Excitation, Error
             ))
         }
         (_, Some(v)) => positive("excitation.velocity_m_s", v)?,
-        (h, None) => woodpile::velocity_from_drop_height(positive(
-            "excitation.drop_height_m",
-            h.unwrap_or(defaults::DROP_HEIGHT_M),
-        )?),
+        (h, None) => {
+            let field = "excitation.drop_height_m";
+            woodpile::velocity_from_drop_height(positive(field, completed(field, h.as_ref())?)?)
+        }
     };
-    let st = x.striker.clone().unwrap_or_default();
-    let diameter = positive(
-        "excitation.striker.diameter_mm",
-        st.diameter_mm.unwrap_or(defaults::STRIKER_DIAMETER_MM),
-    )?;
-    let mat = match &st.material {
-        Some(m) => material("excitation.striker.material", m)?,
-        None => Material::preset(defaults::STRIKER_MATERIAL)?,
-    };
+    let st = completed("excitation.striker", x.striker.as_ref())?;
+    let field = "excitation.striker.diameter_mm";
+    let diameter = positive(field, completed(field, st.diameter_mm.as_ref())?)?;
+    let field = "excitation.striker.material";
+    let mat = material(field, &completed(field, st.material.as_ref())?)?;
     let beta = x.beta.map(|b| positive("excitation.beta", b)).transpose()?;
     let striker = Striker {
         diameter_m: diameter * 1e-3,
@@ -786,7 +830,7 @@ fn resolve_drive(x: &ExcitationSpec, chain: &Chain, base_dir: &Path) -> Result<E
         (DriveKind::Force, None) => DriveQuantity::Force,
         (DriveKind::Displacement, tip) => {
             let tip = resolve_wall(
-                tip.as_ref().unwrap_or(&WallSpec::default()),
+                &completed("excitation.tip", tip.as_ref())?,
                 "excitation.tip",
             )?;
             if tip == Wall::Free {
@@ -804,7 +848,7 @@ fn resolve_drive(x: &ExcitationSpec, chain: &Chain, base_dir: &Path) -> Result<E
     };
     let drive = Drive {
         quantity,
-        ramp_s: x.ramp_s.unwrap_or_else(|| signal.default_ramp_s()),
+        ramp_s: completed("excitation.ramp_s", x.ramp_s.as_ref())?,
         signal,
     };
     drive.validate()?;
@@ -857,7 +901,7 @@ fn resolve_damping(s: &Scenario) -> Result<Damping, Error> {
     let Some(d) = &s.damping else {
         return Ok(Damping::default());
     };
-    let law = d.contact.unwrap_or_default();
+    let law = completed("damping.contact", d.contact.as_ref())?;
     let contacts = contact_law("damping", law, d.restitution, d.viscous_time_s)?;
     let x = &s.excitation;
     let has_striker = x.kind == ExcitationKind::Impact
@@ -881,7 +925,7 @@ fn resolve_damping(s: &Scenario) -> Result<Damping, Error> {
         if !applies {
             return Err(not_applicable(&key, "{…}", why));
         }
-        let law = c.contact.unwrap_or(law);
+        let law = completed(&format!("{key}.contact"), c.contact.as_ref())?;
         overrides[slot] = Some(contact_law(&key, law, c.restitution, c.viscous_time_s)?);
     }
     // Whether a contact is Hunt–Crossley (lossy: with e < 1, which needs v_in).
@@ -907,13 +951,12 @@ fn resolve_damping(s: &Scenario) -> Result<Damping, Error> {
         }
         _ => {}
     }
-    let none = Damping::default();
     Ok(Damping {
         contacts,
         striker: overrides[0],
         wall: overrides[1],
-        allow_pull: d.allow_pull.unwrap_or(none.allow_pull),
-        resonator_ratio: d.resonator_ratio.unwrap_or(none.resonator_ratio),
+        allow_pull: completed("damping.allow_pull", d.allow_pull.as_ref())?,
+        resonator_ratio: completed("damping.resonator_ratio", d.resonator_ratio.as_ref())?,
         resonator_overrides: d
             .resonators
             .iter()
@@ -929,26 +972,23 @@ fn resolve_damping(s: &Scenario) -> Result<Damping, Error> {
 }
 
 /// `[preload]` (values are checked by the chain builder, under these keys).
-fn resolve_preload(s: &Scenario) -> Preload {
-    let p = s.preload.unwrap_or_default();
-    let none = Preload::default();
-    Preload {
-        force_n: p.force_n.unwrap_or(none.force_n),
-        gravity_m_s2: p.gravity_m_s2.unwrap_or(none.gravity_m_s2),
-    }
+fn resolve_preload(s: &Scenario) -> Result<Preload, Error> {
+    let Some(p) = &s.preload else {
+        return Ok(Preload::default());
+    };
+    Ok(Preload {
+        force_n: completed("preload.force_n", p.force_n.as_ref())?,
+        gravity_m_s2: completed("preload.gravity_m_s2", p.gravity_m_s2.as_ref())?,
+    })
 }
 
-fn resolve_run(s: &Scenario, excitation: &Excitation) -> Result<RunSettings, Error> {
+/// `[run]`. Positivity is checked here (naming NaN as the file writes it); how the step, the
+/// sampling and the duration relate is checked once, by [`RunSettings::validate`].
+fn resolve_run(s: &Scenario) -> Result<RunSettings, Error> {
     let r = &s.run;
-    let duration = positive(
-        "run.duration_s",
-        r.duration_s
-            .unwrap_or_else(|| RunSettings::paper_for(excitation).duration_s),
-    )?;
-    let sample = positive(
-        "run.sample_interval_s",
-        r.sample_interval_s.unwrap_or(defaults::SAMPLE_INTERVAL_S),
-    )?;
+    let get = |field: &str, v: Option<f64>| positive(field, completed(field, v.as_ref())?);
+    let duration = get("run.duration_s", r.duration_s)?;
+    let sample = get("run.sample_interval_s", r.sample_interval_s)?;
     let method = if let Some(tolerance) = r.peak_tolerance {
         let why = "with run.peak_tolerance (woodpile chooses the integrator for it)";
         if let Some(i) = r.integrator {
@@ -965,7 +1005,7 @@ fn resolve_run(s: &Scenario, excitation: &Excitation) -> Result<RunSettings, Err
         }
         Method::for_peak_tolerance(tolerance)?
     } else {
-        match r.integrator.unwrap_or_default() {
+        match completed("run.integrator", r.integrator.as_ref())? {
             IntegratorKind::Rk4 => {
                 let why = "with run.integrator = \"rk4\" (a fixed step; set integrator = \"dopri5\" for tolerances)";
                 for (key, v) in [("run.rtol", r.rtol), ("run.atol", r.atol)] {
@@ -973,18 +1013,9 @@ fn resolve_run(s: &Scenario, excitation: &Excitation) -> Result<RunSettings, Err
                         return Err(not_applicable(key, v, why));
                     }
                 }
-                let dt = positive(
-                    "run.time_step_s",
-                    r.time_step_s.unwrap_or(defaults::TIME_STEP_S),
-                )?;
-                if dt >= duration {
-                    return Err(Error::invalid(
-                        "run.time_step_s",
-                        float(dt),
-                        format!("must be smaller than run.duration_s = {}", float(duration)),
-                    ));
+                Method::Rk4 {
+                    time_step_s: get("run.time_step_s", r.time_step_s)?,
                 }
-                Method::Rk4 { time_step_s: dt }
             }
             IntegratorKind::Dopri5 => {
                 if let Some(v) = r.time_step_s {
@@ -994,19 +1025,13 @@ fn resolve_run(s: &Scenario, excitation: &Excitation) -> Result<RunSettings, Err
                         "with run.integrator = \"dopri5\" (adaptive; set rtol/atol)",
                     ));
                 }
-                let rtol = positive("run.rtol", r.rtol.unwrap_or(defaults::RTOL))?;
-                let atol = positive("run.atol", r.atol.unwrap_or(defaults::ATOL))?;
-                Method::Dopri5 { rtol, atol }
+                Method::Dopri5 {
+                    rtol: get("run.rtol", r.rtol)?,
+                    atol: get("run.atol", r.atol)?,
+                }
             }
         }
     };
-    if sample > duration {
-        return Err(Error::invalid(
-            "run.sample_interval_s",
-            float(sample),
-            format!("must not exceed run.duration_s = {}", float(duration)),
-        ));
-    }
     let settings = RunSettings {
         duration_s: duration,
         method,

@@ -11,3 +11,4 @@ mod paper_values_stated_once;
 mod peak_tolerance_key;
 mod rod_range_catalogue;
 mod run_directory_roundtrip;
+mod scenario_keys_table;
