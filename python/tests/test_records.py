@@ -72,3 +72,25 @@ def test_a_peak_tolerance_replaces_the_integrator_settings_and_back():
     assert not {"integrator", "time_step_s", "rtol", "atol"} & set(run)
     back = s.replace(**{"run.time_step_s": 1e-7}).to_dict()["run"]
     assert "peak_tolerance" not in back and back["time_step_s"] == 1e-7
+
+
+def test_scenario_keys_carry_the_defaults_that_completion_writes():
+    """The key table comes from the extension (woodpile-io's table, its defaults from
+    woodpile::defaults): every key with a plain default that a minimal scenario's completion
+    writes holds exactly that default (compared with ==: the same f64 crosses twice), and the
+    table knows which keys replace each other."""
+    keys = {k.name: k for k in woodpile.scenario_keys()}
+    completed = Scenario.from_toml("[chain]\nrods_mm = [80, 40]\n").to_dict()
+    checked = []
+    for name, key in keys.items():
+        if key.default is None or "[]" in name:
+            continue
+        node = completed
+        for part in name.split("."):
+            node = node.get(part) if isinstance(node, dict) else None
+        if node is not None:
+            assert node == key.default, name
+            checked.append(name)
+    assert "run.time_step_s" in checked and "excitation.striker.diameter_mm" in checked, checked
+    assert "excitation.drop_height_m" in keys["excitation.velocity_m_s"].alternatives
+    assert keys["run.integrator"].choices == ("rk4", "dopri5")

@@ -6,7 +6,7 @@ studies on any ``concurrent.futures`` executor or a ``dask.distributed.Client``.
 
 One module per domain, everything public re-exported here:
 
-- :mod:`woodpile.scenario`: :class:`Scenario`, :func:`builtin_scenarios`
+- :mod:`woodpile.scenario`: :class:`Scenario`, :func:`builtin_scenarios`, :func:`scenario_keys`
 - :mod:`woodpile.run`: :class:`Run`, :func:`simulate`, :func:`load_run`
 - :mod:`woodpile.study`: :func:`evaluate`, :func:`sweep`
 - :mod:`woodpile.analysis`: :func:`cells`, :func:`effective_mass`, :func:`band_gaps`,
@@ -39,7 +39,7 @@ from .errors import (
 )
 from .optimize import BestDesign, BreederGA, GenerationStats, OptimizeResult, optimize
 from .run import Run, load_run, simulate
-from .scenario import Scenario, builtin_scenarios
+from .scenario import Scenario, ScenarioKey, builtin_scenarios, scenario_keys
 from .study import SUMMARY_COLUMNS, evaluate, sweep
 
 __all__ = [
@@ -60,6 +60,8 @@ __all__ = [
     "sweep",
     "SUMMARY_COLUMNS",
     "builtin_scenarios",
+    "scenario_keys",
+    "ScenarioKey",
     "cells",
     "Cell",
     "effective_mass",

@@ -1,7 +1,7 @@
 """Type stubs of the extension module ``woodpile._core`` (crates/woodpile-py), one section per
 binding file. Errors are raised as the classes of :mod:`woodpile.errors`."""
 
-from typing import Literal, Optional
+from typing import Literal, Optional, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -17,7 +17,9 @@ def builtin_toml(name: str) -> str: ...
 def complete_toml(text: str, base_dir: str) -> str: ...
 def toml_to_json(text: str) -> str: ...
 def json_to_toml(json: str) -> str: ...
-def excluded_by(key: str) -> list[str]: ...
+def scenario_keys() -> list[
+    tuple[str, str, str, Union[float, bool, str, None], Optional[str], list[str], list[str], str, str]
+]: ...
 
 # run.rs -----------------------------------------------------------------------------------
 

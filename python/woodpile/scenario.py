@@ -2,20 +2,66 @@
 
 from __future__ import annotations
 
+import functools
 import json
 import os
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Mapping, Union
 
 from . import _core
 from .errors import ScenarioError
 
-__all__ = ["Scenario", "builtin_scenarios"]
+__all__ = ["Scenario", "ScenarioKey", "builtin_scenarios", "scenario_keys"]
 
 
 def builtin_scenarios() -> list[str]:
     """Names of the built-in scenarios (as ``woodpile scenarios`` lists them)."""
     return list(_core.builtin_scenarios())
+
+
+@dataclass(frozen=True)
+class ScenarioKey:
+    """One key of the scenario file, from woodpile-io's table of keys (the same table the
+    command line completes, emits and checks scenarios with)."""
+
+    #: Dotted path as errors name it (``run.time_step_s``); a list entry's key is
+    #: ``LIST[].KEY`` (``chain.elements[].rod_mm``).
+    name: str
+    #: Type of the value: ``float``, ``integer``, ``bool``, ``string``, ``name``, ``material``,
+    #: ``list of integers``, ``list of tables`` or ``table``.
+    type: str
+    #: Unit of the value ("" when dimensionless or not a number).
+    unit: str
+    #: The default when the key is not given (from ``woodpile::defaults``); None when it has
+    #: none or when it follows from other keys (then see ``default_rule``).
+    default: Union[float, bool, str, None]
+    #: How a default that follows from other keys is derived, in words; else None.
+    default_rule: str | None
+    #: The valid names of a ``name`` key.
+    choices: tuple[str, ...]
+    #: The keys that setting this one removes (``excitation.velocity_m_s`` ↔
+    #: ``excitation.drop_height_m``).
+    alternatives: tuple[str, ...]
+    #: What values are valid, in words ("" when any value of the type is).
+    valid: str
+    #: What the key is, in one line.
+    doc: str
+
+
+@functools.lru_cache(maxsize=1)
+def _key_table() -> dict[str, ScenarioKey]:
+    """The keys by name (the extension's table, read once)."""
+    return {
+        name: ScenarioKey(name, ty, unit, default, rule, tuple(choices), tuple(alternatives), valid, doc)
+        for name, ty, unit, default, rule, choices, alternatives, valid, doc in _core.scenario_keys()
+    }
+
+
+def scenario_keys() -> list[ScenarioKey]:
+    """Every key of the scenario file, in the order of the file: name, type, unit, default,
+    choices, alternatives, what is valid and what it is."""
+    return list(_key_table().values())
 
 
 class Scenario:
@@ -82,7 +128,8 @@ class Scenario:
 
         Setting one of two alternative keys removes the other (``velocity_m_s`` replaces
         ``drop_height_m``, ``rods_mm`` replaces ``elements``, ``run.peak_tolerance`` replaces the
-        integrator settings; the extension knows which). Errors name the key.
+        integrator settings: each key's ``alternatives`` in :func:`scenario_keys`). Errors name
+        the key.
         """
         d = self.to_dict()
         for dotted, value in changes.items():
@@ -121,9 +168,10 @@ def _set_dotted(d: dict[str, Any], dotted: str, value: Any) -> None:
             )
         node = child
     node[parts[-1]] = value
-    for other in _core.excluded_by(dotted):
-        *path, key = other.split(".")
+    known = _key_table().get(dotted)
+    for other in known.alternatives if known is not None else ():
+        *path, last = other.split(".")
         parent: Any = d
         for p in path:
             parent = parent.get(p, {})
-        parent.pop(key, None)
+        parent.pop(last, None)

@@ -1,29 +1,26 @@
-//! Scenarios (`woodpile.scenario`): built-in scenarios, completion and the TOML ↔ JSON bridge
-//! for Python dictionaries, and which keys exclude each other.
+//! Scenarios (`woodpile.scenario`): built-in scenarios, completion, the TOML ↔ JSON bridge for
+//! Python dictionaries, and woodpile-io's table of scenario keys (defaults, alternatives).
 
 use crate::errors::{py_err, Failure, Kind};
 use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyFloat, PyString};
 use std::path::PathBuf;
-use woodpile_io::scenario::{builtin, builtin_names, resolve, Scenario};
+use woodpile_io::scenario::{builtin, builtin_names, keys, resolve, KeyDefault, Scenario};
 
-/// Keys that exclude each other: setting the first removes the others. The scenario format's
-/// rule (`Scenario::complete` fills in one of each pair); it moves to woodpile-io's table of
-/// scenario keys when that exists.
-const EXCLUSIVE: &[(&str, &[&str])] = &[
-    ("excitation.velocity_m_s", &["excitation.drop_height_m"]),
-    ("excitation.drop_height_m", &["excitation.velocity_m_s"]),
-    ("chain.rods_mm", &["chain.elements"]),
-    ("chain.elements", &["chain.rods_mm"]),
-    // A stated peak accuracy replaces the integrator settings, and the other way round.
-    (
-        "run.peak_tolerance",
-        &["run.integrator", "run.time_step_s", "run.rtol", "run.atol"],
-    ),
-    ("run.integrator", &["run.peak_tolerance"]),
-    ("run.time_step_s", &["run.peak_tolerance"]),
-    ("run.rtol", &["run.peak_tolerance"]),
-    ("run.atol", &["run.peak_tolerance"]),
-];
+/// One key of the scenario file, as Python's `ScenarioKey` takes it (its fields in order):
+/// name, type, unit, default, the rule of a derived default, choices, alternatives (the keys
+/// setting it removes), what is valid, doc.
+type KeyRow = (
+    &'static str,
+    &'static str,
+    &'static str,
+    Option<Py<PyAny>>,
+    Option<String>,
+    Vec<&'static str>,
+    Vec<&'static str>,
+    &'static str,
+    &'static str,
+);
 
 /// Names of the built-in scenarios.
 #[pyfunction]
@@ -68,13 +65,37 @@ fn json_to_toml(json: &str) -> PyResult<String> {
     Ok(scenario.to_toml())
 }
 
-/// The dotted keys that setting `key` removes (empty for a key without alternatives).
+/// Every key of the scenario file (woodpile-io's table), in the order of the file; defaults
+/// come from `woodpile::defaults` through it.
 #[pyfunction]
-fn excluded_by(key: &str) -> Vec<&'static str> {
-    EXCLUSIVE
+fn scenario_keys(py: Python<'_>) -> Vec<KeyRow> {
+    keys()
         .iter()
-        .find(|(k, _)| *k == key)
-        .map_or_else(Vec::new, |(_, others)| others.to_vec())
+        .map(|k| {
+            let (default, derived) = match &k.default {
+                KeyDefault::Float(x) => (Some(PyFloat::new(py, *x).into_any().unbind()), None),
+                KeyDefault::Bool(b) => (
+                    Some(PyBool::new(py, *b).to_owned().into_any().unbind()),
+                    None,
+                ),
+                KeyDefault::Name(n) => (Some(PyString::new(py, n).into_any().unbind()), None),
+                KeyDefault::Derived(rule) => (None, Some(rule.clone())),
+                KeyDefault::None => (None, None),
+            };
+            let (choices, alternatives) = (k.choices.to_vec(), k.alternatives.to_vec());
+            (
+                k.name,
+                k.ty.name(),
+                k.unit,
+                default,
+                derived,
+                choices,
+                alternatives,
+                k.valid,
+                k.doc,
+            )
+        })
+        .collect()
 }
 
 /// Adds this module's functions to the extension.
@@ -84,6 +105,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(complete_toml, m)?)?;
     m.add_function(wrap_pyfunction!(toml_to_json, m)?)?;
     m.add_function(wrap_pyfunction!(json_to_toml, m)?)?;
-    m.add_function(wrap_pyfunction!(excluded_by, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario_keys, m)?)?;
     Ok(())
 }
