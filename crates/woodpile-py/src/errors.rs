@@ -2,9 +2,10 @@
 //! classes of `woodpile.errors` (a `WoodpileError` subclass per [`Kind`]) with `field`, `value`
 //! and `reason` set, so that Python code reads attributes instead of parsing messages.
 //!
-//! [`classify`] is the one place where `woodpile_io::Error` is mapped to a kind; messages that
-//! would name the command line's flags are phrased here in Python's terms (`overwrite=True`,
-//! a `directory` argument).
+//! [`classify`] is the one place where a `woodpile_io::Error` is mapped: its class from
+//! `kind()`, its attributes from `field()`, `value()` and `reason()`, and where the error asks
+//! for a front end's option or names an argument, Python's words (`overwrite=True`, the
+//! `directory` argument).
 
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
