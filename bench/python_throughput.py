@@ -20,6 +20,8 @@ import time
 from pathlib import Path
 
 import woodpile
+from woodpile.optimize import _evaluate_designs
+from woodpile.study import _chunks
 
 
 def cli_seconds(binary: str, population: int) -> float:
@@ -70,10 +72,10 @@ def main() -> None:
         with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
             with Client(cluster) as client:
                 # Warm the workers (import, problem build) outside the timing.
-                client.submit(woodpile._evaluate_designs, config, base, many[:2], 1).result()
+                client.submit(_evaluate_designs, config, base, many[:2], 1).result()
                 t = time.perf_counter()
-                parts = woodpile._chunks(many, workers * 2)
-                futures = [client.submit(woodpile._evaluate_designs, config, base, p, 1, pure=False) for p in parts]
+                parts = _chunks(many, workers * 2)
+                futures = [client.submit(_evaluate_designs, config, base, p, 1, pure=False) for p in parts]
                 values = [v for f in futures for v in f.result()]
                 seconds[workers] = time.perf_counter() - t
                 assert len(values) == len(many)

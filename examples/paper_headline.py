@@ -12,6 +12,8 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
 import woodpile  # noqa: E402
 from woodpile import plot  # noqa: E402
 
@@ -27,7 +29,9 @@ def main() -> None:
     s = run.summary
     print(f"optimised chain: incident {s['incident_peak_force_n']:.2f} N, transmitted "
           f"{s['transmitted_peak_force_n']:.2f} N, ratio {s['transmission_ratio']:.3f}")
-    plot.force_map(run).figure.savefig(out / "force_map.png", dpi=150)
+    fig, ax = plt.subplots(figsize=(7, 3.5), constrained_layout=True)
+    plot.force_map(run, ax)
+    fig.savefig(out / "force_map.png", dpi=150)
 
     # 2. The striker's speed, swept.
     speeds = [0.5, 1.0, 1.98, 3.0]
@@ -42,7 +46,9 @@ def main() -> None:
         result = woodpile.optimize(problem, executor=client)
     print(f"GA (8 positions, 20 × 5 generations on 2 Dask workers): best {result.best['objective']:.2f} N "
           f"with {' '.join(result.best['labels'])}; {int(result.history['evaluations'].iloc[-1])} simulations")
-    plot.convergence(result).figure.savefig(out / "convergence.png", dpi=150)
+    fig, ax = plt.subplots(figsize=(7, 3.5), constrained_layout=True)
+    plot.convergence(result, ax)
+    fig.savefig(out / "convergence.png", dpi=150)
 
 
 if __name__ == "__main__":

@@ -1,24 +1,37 @@
 """Matplotlib figures of runs and optimisations (``pip install "woodpile[plot]"``).
 
 Each function draws on ``ax`` (a new figure when None) and returns the Axes; units are in the
-labels. They take a :class:`woodpile.Run` (or a run directory read by :func:`woodpile.load_run`)
+labels. They take a :class:`woodpile.Run` (computed, or read back by :func:`woodpile.load_run`)
 or an :class:`woodpile.OptimizeResult`.
 """
 
 from __future__ import annotations
 
-from typing import Any, Sequence
+from typing import TYPE_CHECKING, Any, Sequence, Union
 
 import numpy as np
 
+from .analysis import spectrum
 
-def _integer_rows(ax: Any) -> None:
+if TYPE_CHECKING:
+    import pandas as pd
+    from matplotlib.axes import Axes
+
+    from .optimize import BreederGA, OptimizeResult
+    from .run import Run
+
+__all__ = ["force_map", "energy_map", "spectra", "convergence"]
+
+
+def _integer_rows(ax: Axes) -> None:
+    """Integer ticks on the y axis (contacts, layers)."""
     from matplotlib.ticker import MaxNLocator
 
     ax.yaxis.set_major_locator(MaxNLocator(integer=True))
 
 
-def _axes(ax: Any):
+def _axes(ax: Axes | None) -> Axes:
+    """``ax``, or the Axes of a new figure."""
     if ax is None:
         import matplotlib.pyplot as plt
 
@@ -26,7 +39,7 @@ def _axes(ax: Any):
     return ax
 
 
-def force_map(run: Any, ax: Any = None, *, cmap: str = "viridis"):
+def force_map(run: Run, ax: Axes | None = None, *, cmap: str = "viridis") -> Axes:
     """Contact force [N], contact × time [ms] (the paper's Figs. 5 and 9 a, c, e, g)."""
     ax = _axes(ax)
     t_ms = run.time_s * 1e3
@@ -39,7 +52,7 @@ def force_map(run: Any, ax: Any = None, *, cmap: str = "viridis"):
     return ax
 
 
-def energy_map(run: Any, ax: Any = None, *, cmap: str = "magma"):
+def energy_map(run: Run, ax: Axes | None = None, *, cmap: str = "magma") -> Axes:
     """Layer energy over the injected energy [%], layer × time [ms] (the paper's Fig. 6). The
     injected energy is the initial energy for an impact, the largest input work otherwise."""
     ax = _axes(ax)
@@ -53,12 +66,12 @@ def energy_map(run: Any, ax: Any = None, *, cmap: str = "magma"):
     return ax
 
 
-def spectra(run: Any, contacts: Sequence[int] | None = None, ax: Any = None, *, max_frequency_hz: float = 60e3):
+def spectra(
+    run: Run, contacts: Sequence[int] | None = None, ax: Axes | None = None, *, max_frequency_hz: float = 60e3
+) -> Axes:
     """Spectra of contact forces, the Fourier transform's magnitude |F̂(f)| [N/Hz] (independent of
     the record length), against frequency [kHz] (the paper's Fig. 9 b, d, f, h); by default the
     first element contact and the wall."""
-    from . import spectrum
-
     ax = _axes(ax)
     n = run.forces_n.shape[1] - 1
     dt = float(run.time_s[1] - run.time_s[0])
@@ -72,13 +85,12 @@ def spectra(run: Any, contacts: Sequence[int] | None = None, ax: Any = None, *, 
     return ax
 
 
-def convergence(result: Any, ax: Any = None):
+def convergence(result: Union[OptimizeResult, BreederGA, pd.DataFrame], ax: Axes | None = None) -> Axes:
     """Best and mean objective per generation of an optimisation (an ``OptimizeResult``, a
     ``BreederGA`` or its history DataFrame)."""
     ax = _axes(ax)
-    history = getattr(result, "history", result)
-    if callable(history):
-        history = history()
+    found: Any = getattr(result, "history", result)
+    history: pd.DataFrame = found() if callable(found) else found
     ax.plot(history.index, history["best"], marker="o", label="best")
     ax.plot(history.index, history["mean"], label="mean")
     ax.set_xlabel("generation")

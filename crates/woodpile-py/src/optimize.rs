@@ -1,0 +1,320 @@
+//! Design optimisation (`woodpile.optimize`): the breeder GA as ask/tell, so that Python can
+//! evaluate designs anywhere (an executor, Dask).
+
+use crate::errors::{ga_err, py_err, Failure, Kind};
+use pyo3::prelude::*;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use woodpile::optimize::{BreederGa, GaState, Ledger};
+use woodpile_io::optimize::{Checkpoint, OptimizeConfig, Problem};
+
+/// One optimisation: the problem of a config and the GA's state between generations.
+#[pyclass(module = "woodpile._core")]
+struct GaSession {
+    config: OptimizeConfig,
+    problem: Problem,
+    ga: BreederGa,
+    state: Option<GaState>,
+    /// The designs of the last `ask` (all children, duplicates and cached ones included).
+    pending: Option<Vec<Vec<u8>>>,
+}
+
+impl GaSession {
+    fn build(config: OptimizeConfig, base_dir: &Path, threads: usize) -> PyResult<Self> {
+        let problem = Problem::new(&config, base_dir, threads).map_err(py_err)?;
+        let ga = BreederGa::new(
+            problem.space.clone(),
+            Box::new(problem.objective),
+            problem.settings,
+        )
+        .map_err(ga_err)?;
+        Ok(GaSession {
+            config: problem.config.clone(),
+            problem,
+            ga,
+            state: None,
+            pending: None,
+        })
+    }
+
+    fn state(&self) -> PyResult<&GaState> {
+        self.state.as_ref().ok_or_else(|| {
+            Failure::new(Kind::State, "no generation yet: ask() and tell() first").into()
+        })
+    }
+}
+
+#[pymethods]
+impl GaSession {
+    /// A session for a config given as `kind` = "builtin" (a problem name), "toml" or "json"
+    /// text; `seed` overrides `ga.seed`; `threads` for local evaluation (0 = one per core).
+    #[new]
+    #[pyo3(signature = (kind, text, base_dir, seed=None, threads=0))]
+    fn new(
+        kind: &str,
+        text: &str,
+        base_dir: PathBuf,
+        seed: Option<u64>,
+        threads: usize,
+    ) -> PyResult<Self> {
+        let mut config = match kind {
+            "builtin" => OptimizeConfig::builtin(text).map_err(py_err)?,
+            "toml" => OptimizeConfig::parse(text, "problem").map_err(py_err)?,
+            "json" => serde_json::from_str(text)
+                .map_err(|e| PyErr::from(Failure::new(Kind::Scenario, format!("problem: {e}"))))?,
+            other => {
+                return Err(
+                    Failure::invalid("kind", other, "\"builtin\", \"toml\" or \"json\"").into(),
+                )
+            }
+        };
+        if seed.is_some() {
+            config.ga.seed = seed;
+        }
+        Self::build(config, &base_dir, threads)
+    }
+
+    /// The completed config as JSON (what a worker needs to evaluate designs).
+    fn config_json(&self) -> PyResult<String> {
+        serde_json::to_string(&self.config)
+            .map_err(|e| Failure::new(Kind::Run, format!("problem: {e}")).into())
+    }
+
+    /// Ask: the designs of the next generation to simulate first (with the cache, the
+    /// distinct ones it holds no value for, in order of first appearance; catalogue indices,
+    /// top to bottom).
+    fn ask(&mut self) -> Vec<Vec<u8>> {
+        let designs = match &self.state {
+            None => self.ga.initial_designs(),
+            Some(s) => self.ga.offspring(s),
+        };
+        let fresh = Ledger::default();
+        let ledger = self.state.as_ref().map_or(&fresh, |s| &s.ledger);
+        let new = self
+            .ga
+            .new_designs(&designs, ledger)
+            .into_iter()
+            .cloned()
+            .collect();
+        self.pending = Some(designs);
+        new
+    }
+
+    /// Tell: the values `evaluate` gives the designs `ask` returned; completes the generation
+    /// (with screening, first simulating here, GIL released, the designs whose rank needs a
+    /// value at the run's settings).
+    fn tell(
+        &mut self,
+        py: Python<'_>,
+        designs: Vec<Vec<u8>>,
+        objectives: Vec<f64>,
+        elapsed_s: f64,
+    ) -> PyResult<()> {
+        let pending = self.pending.take().ok_or_else(|| {
+            PyErr::from(Failure::new(Kind::State, "tell() without a pending ask()"))
+        })?;
+        let refuse = |pending, failure: Failure, session: &mut Self| {
+            session.pending = Some(pending);
+            Err(failure.into())
+        };
+        if designs.len() != objectives.len() {
+            let reason = format!("one per design: {} designs were told", designs.len());
+            let failure =
+                Failure::invalid("objectives", format!("{} values", objectives.len()), reason);
+            return refuse(pending, failure, self);
+        }
+        if let Some((g, _)) = designs.iter().zip(&objectives).find(|(_, v)| v.is_nan()) {
+            let failure =
+                Failure::invalid("objectives", "NaN", format!("a number for design {g:?}"));
+            return refuse(pending, failure, self);
+        }
+        let mut ledger = self
+            .state
+            .as_ref()
+            .map(|s| s.ledger.clone())
+            .unwrap_or_default();
+        let told: std::collections::HashSet<&Vec<u8>> = designs.iter().collect();
+        let known = |g: &Vec<u8>| {
+            told.contains(g) || ledger.cache.contains_key(g) || ledger.screened.contains_key(g)
+        };
+        if let Some(missing) = pending.iter().find(|g| !known(g)) {
+            let failure = Failure::invalid(
+                "designs",
+                format!("{} designs", designs.len()),
+                format!("every design of the last ask(); {missing:?} is missing"),
+            );
+            return refuse(pending, failure, self);
+        }
+        self.ga
+            .record_new(pending.len(), &designs, &objectives, &mut ledger);
+        let carried = self
+            .state
+            .as_ref()
+            .map(|s| self.ga.elites(s).to_vec())
+            .unwrap_or_default();
+        let ga = &self.ga;
+        let settled = py.detach(|| ga.settle(&carried, &pending, &mut ledger));
+        let individuals = match settled {
+            Ok(individuals) => individuals,
+            Err(e) => {
+                self.pending = Some(pending);
+                return Err(ga_err(e));
+            }
+        };
+        match self.state.as_mut() {
+            None => self.state = Some(self.ga.start(individuals, ledger, elapsed_s)),
+            Some(state) => self.ga.advance(state, individuals, ledger, elapsed_s),
+        }
+        Ok(())
+    }
+
+    /// First values of designs, simulated here in parallel (GIL released): screened with
+    /// `ga.screen_peak_tolerance`, at the run's settings otherwise.
+    fn evaluate(&self, py: Python<'_>, designs: Vec<Vec<u8>>) -> PyResult<Vec<f64>> {
+        py.detach(|| self.ga.evaluate_new(&designs).map_err(ga_err))
+    }
+
+    /// Why the GA stops now ("generation-limit" or "stalled"), or None to go on.
+    fn stop_reason(&self) -> Option<&'static str> {
+        let state = self.state.as_ref()?;
+        self.ga.stop_reason(state).map(|r| match r {
+            woodpile::optimize::StopReason::GenerationLimit => "generation-limit",
+            woodpile::optimize::StopReason::Stalled => "stalled",
+            _ => "stopped",
+        })
+    }
+
+    /// Generations completed (None before the first tell).
+    fn generation(&self) -> Option<usize> {
+        self.state.as_ref().map(|s| s.generation)
+    }
+
+    /// (best design, its objective, its element labels).
+    fn best(&self) -> PyResult<(Vec<u8>, f64, Vec<String>)> {
+        let b = self.state()?.best();
+        Ok((
+            b.genome.clone(),
+            b.objective,
+            self.problem.space.labels(&b.genome),
+        ))
+    }
+
+    /// The history, one row per generation: the fields of `woodpile::optimize::GenerationStats`
+    /// in their order (Python's `GenerationStats` names them).
+    #[allow(clippy::type_complexity)]
+    fn history(&self) -> PyResult<Vec<(usize, f64, f64, f64, u64, u64, u64, f64)>> {
+        Ok(self
+            .state()?
+            .history
+            .iter()
+            .map(|h| {
+                (
+                    h.generation,
+                    h.best,
+                    h.mean,
+                    h.worst,
+                    h.evaluations,
+                    h.screenings,
+                    h.cache_hits,
+                    h.elapsed_s,
+                )
+            })
+            .collect())
+    }
+
+    /// The scenario of a design, as complete TOML.
+    fn scenario_toml(&self, design: Vec<u8>) -> String {
+        self.problem.scenario(&design, None).to_toml()
+    }
+
+    /// The state as the command line's checkpoint JSON (None before the first tell).
+    fn state_json(&self) -> PyResult<Option<String>> {
+        self.state
+            .as_ref()
+            .map(|s| serde_json::to_string(&Checkpoint::new(&self.config, s)))
+            .transpose()
+            .map_err(|e| Failure::new(Kind::Run, format!("checkpoint: {e}")).into())
+    }
+
+    /// Continues from a checkpoint JSON (as `state_json` or `woodpile optimize` wrote it) of
+    /// the same problem; its checksum and problem are checked.
+    fn restore(&mut self, json: &str) -> PyResult<()> {
+        let bad =
+            |value: &str, reason: &str| PyErr::from(Failure::invalid("checkpoint", value, reason));
+        let cp: Checkpoint = serde_json::from_str(json)
+            .map_err(|e| bad("(as given)", &format!("not a checkpoint: {e}")))?;
+        if cp.checksum != cp.content_checksum() {
+            let reason = "its checksum does not match its content (edited or damaged)";
+            return Err(bad(&format!("checksum {}", cp.checksum), reason));
+        }
+        if !cp.config.same_problem(&self.config) {
+            return Err(bad(
+                "(as given)",
+                "a checkpoint of this problem; it was saved for another",
+            ));
+        }
+        let state = cp.into_state();
+        self.ga.check_state(&state).map_err(ga_err)?;
+        self.state = Some(state);
+        self.pending = None;
+        Ok(())
+    }
+
+    /// Runs the whole GA here, exactly as `woodpile optimize` does (BreederGa::run), GIL
+    /// released: the reference the ask/tell loop must reproduce.
+    fn run_to_end(&mut self, py: Python<'_>) -> PyResult<()> {
+        let stop = std::sync::atomic::AtomicBool::new(false);
+        let outcome = py
+            .detach(|| {
+                self.ga.run(self.state.take(), &stop, &mut |_| {
+                    std::ops::ControlFlow::Continue(())
+                })
+            })
+            .map_err(ga_err)?;
+        self.state = Some(outcome.state);
+        Ok(())
+    }
+}
+
+/// Objective values of designs of a problem (config JSON), for a worker process; sessions are
+/// kept per config so a worker builds each problem once.
+#[pyfunction]
+fn evaluate_designs(
+    py: Python<'_>,
+    config_json: &str,
+    base_dir: PathBuf,
+    designs: Vec<Vec<u8>>,
+    threads: usize,
+) -> PyResult<Vec<f64>> {
+    use std::sync::{Mutex, OnceLock};
+    static SESSIONS: OnceLock<Mutex<HashMap<String, std::sync::Arc<GaSession>>>> = OnceLock::new();
+    let sessions = SESSIONS.get_or_init(|| Mutex::new(HashMap::new()));
+    let key = format!("{}\u{0}{}\u{0}{threads}", base_dir.display(), config_json);
+    let session = {
+        let mut map = sessions
+            .lock()
+            .map_err(|e| PyErr::from(Failure::new(Kind::Run, format!("session cache: {e}"))))?;
+        match map.get(&key) {
+            Some(s) => s.clone(),
+            None => {
+                let s = std::sync::Arc::new(GaSession::new(
+                    "json",
+                    config_json,
+                    base_dir.clone(),
+                    None,
+                    threads,
+                )?);
+                map.insert(key, s.clone());
+                s
+            }
+        }
+    };
+    session.evaluate(py, designs)
+}
+
+/// Adds this module's class and functions to the extension.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<GaSession>()?;
+    m.add_function(wrap_pyfunction!(evaluate_designs, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,110 @@
+//! Scenarios (`woodpile.scenario`): built-in scenarios, completion, the TOML ↔ JSON bridge for
+//! Python dictionaries, and woodpile-io's table of scenario keys (defaults, alternatives).
+
+use crate::errors::{py_err, Failure, Kind};
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyFloat, PyString};
+use std::path::PathBuf;
+use woodpile_io::scenario::{builtin, builtin_names, keys, resolve, KeyDefault, Scenario};
+
+/// One key of the scenario file, as Python's `ScenarioKey` takes it (its fields in order):
+/// name, type, unit, default, the rule of a derived default, choices, alternatives (the keys
+/// setting it removes), what is valid, doc.
+type KeyRow = (
+    &'static str,
+    &'static str,
+    &'static str,
+    Option<Py<PyAny>>,
+    Option<String>,
+    Vec<&'static str>,
+    Vec<&'static str>,
+    &'static str,
+    &'static str,
+);
+
+/// Names of the built-in scenarios.
+#[pyfunction]
+fn builtin_scenarios() -> Vec<String> {
+    builtin_names()
+}
+
+/// A built-in scenario as complete TOML (every default written out).
+#[pyfunction]
+fn builtin_toml(name: &str) -> PyResult<String> {
+    let scenario = builtin(name).ok_or_else(|| {
+        py_err(woodpile_io::Error::UnknownScenario {
+            name: name.to_string(),
+            valid: builtin_names().join(", "),
+        })
+    })?;
+    Ok(scenario.to_toml())
+}
+
+/// Parses a scenario, checks that it resolves (relative files against `base_dir`) and returns
+/// it as complete TOML.
+#[pyfunction]
+fn complete_toml(text: &str, base_dir: PathBuf) -> PyResult<String> {
+    let scenario = Scenario::parse(text).map_err(py_err)?;
+    resolve(&scenario, &base_dir).map_err(py_err)?;
+    Ok(scenario.to_toml())
+}
+
+/// The scenario as JSON text (the TOML file's structure), for Python dictionaries.
+#[pyfunction]
+fn toml_to_json(text: &str) -> PyResult<String> {
+    let scenario = Scenario::parse(text).map_err(py_err)?;
+    serde_json::to_string(&scenario)
+        .map_err(|e| Failure::new(Kind::Scenario, format!("scenario: {e}")).into())
+}
+
+/// A scenario from JSON text (as [`toml_to_json`] writes it) as complete TOML.
+#[pyfunction]
+fn json_to_toml(json: &str) -> PyResult<String> {
+    let scenario: Scenario = serde_json::from_str(json)
+        .map_err(|e| PyErr::from(Failure::new(Kind::Scenario, format!("scenario: {e}"))))?;
+    Ok(scenario.to_toml())
+}
+
+/// Every key of the scenario file (woodpile-io's table), in the order of the file; defaults
+/// come from `woodpile::defaults` through it.
+#[pyfunction]
+fn scenario_keys(py: Python<'_>) -> Vec<KeyRow> {
+    keys()
+        .iter()
+        .map(|k| {
+            let (default, derived) = match &k.default {
+                KeyDefault::Float(x) => (Some(PyFloat::new(py, *x).into_any().unbind()), None),
+                KeyDefault::Bool(b) => (
+                    Some(PyBool::new(py, *b).to_owned().into_any().unbind()),
+                    None,
+                ),
+                KeyDefault::Name(n) => (Some(PyString::new(py, n).into_any().unbind()), None),
+                KeyDefault::Derived(rule) => (None, Some(rule.clone())),
+                KeyDefault::None => (None, None),
+            };
+            let (choices, alternatives) = (k.choices.to_vec(), k.alternatives.to_vec());
+            (
+                k.name,
+                k.ty.name(),
+                k.unit,
+                default,
+                derived,
+                choices,
+                alternatives,
+                k.valid,
+                k.doc,
+            )
+        })
+        .collect()
+}
+
+/// Adds this module's functions to the extension.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(builtin_scenarios, m)?)?;
+    m.add_function(wrap_pyfunction!(builtin_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(complete_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(toml_to_json, m)?)?;
+    m.add_function(wrap_pyfunction!(json_to_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario_keys, m)?)?;
+    Ok(())
+}
