@@ -222,10 +222,9 @@ impl<const L: usize> Neg for Lane<L> {
 /// the lanes, so that lane-by-lane work runs only where a contact may cross.
 #[inline(always)]
 pub(crate) fn sign_changed<R: Real>(a: R, b: R) -> bool {
-    let (pa, pb) = (a.positive(), b.positive());
     let mut changed = false;
     for l in 0..R::LANES {
-        changed |= pa[l] != pb[l];
+        changed |= (a.lane(l) > 0.0) != (b.lane(l) > 0.0);
     }
     changed
 }

@@ -4,32 +4,10 @@
 //! it, nested tables inline, a list of tables one entry per line, and floats in their shortest
 //! round-trip form.
 
-use super::keys::{key, keys, KeyType};
+use super::keys::{key, keys, toml_float as float, KeyType};
 use super::Scenario;
 use std::fmt::Write;
 use toml::{Table, Value};
-
-/// A float as TOML: shortest round-trip digits, scientific notation for very small or large
-/// magnitudes, always recognisable as a float.
-pub(crate) fn float(x: f64) -> String {
-    if x.is_nan() {
-        return "nan".into();
-    }
-    if x.is_infinite() {
-        return if x > 0.0 { "inf" } else { "-inf" }.into();
-    }
-    let a = x.abs();
-    if a == 0.0 || (1e-3..1e6).contains(&a) {
-        let s = format!("{x}");
-        if s.contains('.') {
-            s
-        } else {
-            format!("{s}.0")
-        }
-    } else {
-        format!("{x:e}")
-    }
-}
 
 /// A value on one line: scalars, arrays `[a, b]`, tables `{ k = v, … }`.
 fn inline(v: &Value) -> String {

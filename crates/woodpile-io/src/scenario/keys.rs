@@ -76,7 +76,7 @@ impl std::fmt::Display for KeyDefault {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             KeyDefault::None => Ok(()),
-            KeyDefault::Float(x) => f.write_str(&super::emit::float(*x)),
+            KeyDefault::Float(x) => f.write_str(&toml_float(*x)),
             KeyDefault::Bool(b) => write!(f, "{b}"),
             KeyDefault::Name(n) => write!(f, "\"{n}\""),
             KeyDefault::Derived(words) => write!(f, "({words})"),
@@ -499,4 +499,26 @@ fn run_keys() -> Vec<Key> {
         float("run.atol", "m", POSITIVE, "dopri5 absolute tolerance").or(KeyDefault::Float(d::ATOL)).instead_of(PEAK_TOLERANCE),
         float("run.sample_interval_s", "s", "> 0 and at most run.duration_s", "uniform output grid").or(KeyDefault::Float(d::SAMPLE_INTERVAL_S)),
     ]
+}
+
+/// A float as TOML: shortest round-trip digits, scientific notation for very small or large
+/// magnitudes, always recognisable as a float.
+pub(crate) fn toml_float(x: f64) -> String {
+    if x.is_nan() {
+        return "nan".into();
+    }
+    if x.is_infinite() {
+        return if x > 0.0 { "inf" } else { "-inf" }.into();
+    }
+    let a = x.abs();
+    if a == 0.0 || (1e-3..1e6).contains(&a) {
+        let s = format!("{x}");
+        if s.contains('.') {
+            s
+        } else {
+            format!("{s}.0")
+        }
+    } else {
+        format!("{x:e}")
+    }
 }

@@ -22,25 +22,52 @@ pub(crate) fn attempt<R: Real>(
     stage: &mut [R],
     error: &mut [R],
     h: R,
+    rhs: impl FnMut(f64, &[R], &mut [R]),
+) {
+    if tableau.nystrom.is_none() {
+        explicit_stages(tableau, y, k, stage, h, rhs);
+    } else {
+        nystrom_stages(tableau, y, k, stage, error, h, rhs);
+    }
+}
+
+/// [`attempt`] for an explicit Runge–Kutta tableau.
+#[inline(always)]
+fn explicit_stages<R: Real>(
+    tableau: &Tableau,
+    y: &[R],
+    k: &mut [Vec<R>],
+    stage: &mut [R],
+    h: R,
     mut rhs: impl FnMut(f64, &[R], &mut [R]),
 ) {
-    let stages = tableau.stages();
-    let nd = y.len() / 2;
-    for i in 1..stages {
-        let (done, rest) = k.split_at_mut(i);
-        if tableau.nystrom.is_some() {
-            let (a, c) = (&tableau.a[i], tableau.c[i]);
-            nystrom_positions(&mut stage[..nd], y, done, a, c, h, R::splat);
-        } else {
-            stage_sum(stage, Some(y), &tableau.a[i], done, |w| h * R::splat(w));
-        }
-        rhs(tableau.c[i], stage, &mut rest[0]);
+    for i in 1..tableau.stages() {
+        stage_sum(stage, Some(y), &tableau.a[i], k, |w| h * R::splat(w));
+        rhs(tableau.c[i], stage, &mut k[i]);
     }
-    if tableau.nystrom.is_some() {
-        nystrom_finish(stage, error, y, k, tableau, h, R::splat);
-    } else if !tableau.fsal {
+    if !tableau.fsal {
         stage_sum(stage, Some(y), &tableau.b, k, |w| h * R::splat(w));
     }
+}
+
+/// [`attempt`] for a Runge–Kutta–Nyström tableau.
+#[inline(always)]
+fn nystrom_stages<R: Real>(
+    tableau: &Tableau,
+    y: &[R],
+    k: &mut [Vec<R>],
+    stage: &mut [R],
+    error: &mut [R],
+    h: R,
+    mut rhs: impl FnMut(f64, &[R], &mut [R]),
+) {
+    let nd = y.len() / 2;
+    for i in 1..tableau.stages() {
+        let (a, c) = (&tableau.a[i], tableau.c[i]);
+        nystrom_positions(&mut stage[..nd], y, k, a, c, h, R::splat);
+        rhs(c, stage, &mut k[i]);
+    }
+    nystrom_finish(stage, error, y, k, tableau, h, R::splat);
 }
 
 /// The embedded error estimate (an explicit tableau's from its stages; a Nyström tableau's is
@@ -73,35 +100,40 @@ pub(crate) fn weighted_squares<R: Real>(
     }
 }
 
-/// The RMS norm sqrt(Σ_c s_c / n) of n weighted squares s_c = `square(c)`, summed in one order
-/// for every instance: four partial sums by c mod 4 over the first 4⌊n/4⌋, then the rest (so the
-/// reduction vectorises; a single running sum is a chain of dependent additions).
+/// The RMS norm sqrt(Σ_i s_i / n) of the weighted squares s_i = `square(items[i])`, summed in
+/// one order for every instance: four partial sums by i mod 4 over the first 4⌊n/4⌋, then the
+/// rest (so the reduction vectorises; a single running sum is a chain of dependent additions).
+/// One run passes its squares themselves, a lane its run's component order (`place`).
 #[inline(always)]
-pub(crate) fn rms(n: usize, square: impl Fn(usize) -> f64) -> f64 {
+pub(crate) fn rms<T: Copy>(items: &[T], square: impl Fn(T) -> f64) -> f64 {
+    let n = items.len();
     let head = n - n % 4;
     let mut partial = [0.0; 4];
-    for c in (0..head).step_by(4) {
-        for (j, s) in partial.iter_mut().enumerate() {
-            *s += square(c + j);
+    for chunk in items[..head].chunks_exact(4) {
+        for (s, &item) in partial.iter_mut().zip(chunk) {
+            *s += square(item);
         }
     }
     let mut sum: f64 = partial.iter().sum();
-    for c in head..n {
-        sum += square(c);
+    for &item in &items[head..] {
+        sum += square(item);
     }
     (sum / n as f64).sqrt()
 }
 
 /// Event-aware stepping: in each lane of `want`, the step that lands on the first predicted sign
-/// change of a switching function within the next step of size h, if it lies in the rule's
-/// landing window. From each function's value g, rate d and rate d_prev at the start of the last
-/// step of size dt (> 0): the quadratic g + d τ + c τ² ([`crossing_quadratic`]) is followed
-/// over (0, h], its first zero ([`crossing_root`]) that the rule counts is the candidate.
+/// change of one of n switching functions within the next step of size h, if it lies in the
+/// rule's landing window. From each function's value g(s), rate d(s) and rate d_prev(s) at the
+/// start of the last step of size dt (> 0): the quadratic g + d τ + c τ²
+/// ([`crossing_quadratic`]) is followed over (0, h], its first zero ([`crossing_root`]) that the
+/// rule counts is the candidate.
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn predict_crossings<R: Real>(
-    g: &[R],
-    d: &[R],
-    d_prev: &[R],
+    n: usize,
+    g: impl Fn(usize) -> R,
+    d: impl Fn(usize) -> R,
+    d_prev: impl Fn(usize) -> R,
     dt: R,
     h: R,
     want: Mask,
@@ -109,16 +141,16 @@ pub(crate) fn predict_crossings<R: Real>(
 ) -> [Option<f64>; MAX_LANES] {
     let mut first = [None; MAX_LANES];
     let half = R::splat(0.5);
-    for s in 0..g.len() {
-        let (c, gh) = crossing_quadratic(g[s], d[s], d_prev[s], dt, h, half);
-        if !sign_changed(g[s], gh) {
+    for s in 0..n {
+        let (gs, ds) = (g(s), d(s));
+        let (c, gh) = crossing_quadratic(gs, ds, d_prev(s), dt, h, half);
+        if !sign_changed(gs, gh) {
             continue;
         }
-        let (gp, ghp) = (g[s].positive(), gh.positive());
         for l in 0..R::LANES {
-            if want[l] && gp[l] != ghp[l] {
+            if want[l] && (gs.lane(l) > 0.0) != (gh.lane(l) > 0.0) {
                 let hl = h.lane(l);
-                let tau = crossing_root(g[s].lane(l), d[s].lane(l), c.lane(l), gh.lane(l), hl);
+                let tau = crossing_root(gs.lane(l), ds.lane(l), c.lane(l), gh.lane(l), hl);
                 if rule.counts(tau, hl) && first[l].is_none_or(|f: f64| tau < f) {
                     first[l] = Some(tau);
                 }
@@ -132,38 +164,30 @@ pub(crate) fn predict_crossings<R: Real>(
 }
 
 /// [`Method::Rkn64`](super::Method::Rkn64)'s check after an attempted step of size h, in each lane
-/// of `check`: the first crossing inside the step (a switching function whose sign changed from
-/// g0 to g1, with rates d0 and d1 at the ends) that lies in (0.1 h, 0.999 h)
-/// ([`crossing_inside`]). `rates` fills d0 and d1 only when some sign changed.
+/// of `check`: the first crossing inside the step (one of n switching functions whose sign changed
+/// from g0(s) to g1(s), with rates d0(s) and d1(s) at the ends, read only there) that lies in
+/// (0.1 h, 0.999 h) ([`crossing_inside`]).
 #[inline(always)]
 pub(crate) fn missed_crossings<R: Real>(
-    g0: &[R],
-    g1: &[R],
-    (d0, d1): (&mut [R], &mut [R]),
-    rates: impl FnOnce(&mut [R], &mut [R]),
+    n: usize,
+    (g0, g1): (impl Fn(usize) -> R, impl Fn(usize) -> R),
+    (d0, d1): (impl Fn(usize) -> R, impl Fn(usize) -> R),
     h: R,
     check: Mask,
 ) -> [Option<f64>; MAX_LANES] {
     let mut first = [None; MAX_LANES];
-    let changed = |s: usize| {
-        let (p0, p1) = (g0[s].positive(), g1[s].positive());
-        (0..R::LANES).any(|l| check[l] && p0[l] != p1[l])
-    };
-    if !(0..g0.len()).any(changed) {
-        return first;
-    }
-    rates(d0, d1);
-    for s in 0..g0.len() {
-        if !sign_changed(g0[s], g1[s]) {
+    for s in 0..n {
+        let (a, b) = (g0(s), g1(s));
+        if !sign_changed(a, b) {
             continue;
         }
-        let (p0, p1) = (g0[s].positive(), g1[s].positive());
+        let (da, db) = (d0(s), d1(s));
         for l in 0..R::LANES {
-            if !check[l] || p0[l] == p1[l] {
+            let (al, bl) = (a.lane(l), b.lane(l));
+            if !check[l] || (al > 0.0) == (bl > 0.0) {
                 continue;
             }
-            let (a, b) = (g0[s].lane(l), g1[s].lane(l));
-            if let Some(tau) = crossing_inside(a, d0[s].lane(l), b, d1[s].lane(l), h.lane(l)) {
+            if let Some(tau) = crossing_inside(al, da.lane(l), bl, db.lane(l), h.lane(l)) {
                 if first[l].is_none_or(|f: f64| tau < f) {
                     first[l] = Some(tau);
                 }

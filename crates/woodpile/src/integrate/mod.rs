@@ -687,7 +687,8 @@ impl Integrator {
             &mut self.stage,
             &mut self.error,
             h,
-            |c, stage, out| system.rhs(t + c * h, stage, out),
+            #[inline(always)]
+            move |c, stage, out| system.rhs(t + c * h, stage, out),
         );
         self.stats.rhs_evaluations += (self.tableau.stages() - 1) as u64;
     }
@@ -706,8 +707,7 @@ impl Integrator {
             atol,
             rtol,
         );
-        let error = &self.error;
-        kernels::rms(error.len(), |c| error[c])
+        kernels::rms(&self.error, |square| square)
     }
 
     /// Accepts the attempted step: the new state becomes current and f at it is evaluated
@@ -837,7 +837,17 @@ impl Integrator {
         let rule = LandingRule::of(&self.tableau);
         let mut want = [false; MAX_LANES];
         want[0] = true;
-        kernels::predict_crossings(&ev.g, &ev.rate, &ev.rate_prev, dt, h, want, rule)[0]
+        let (g, d, d_prev) = (&ev.g, &ev.rate, &ev.rate_prev);
+        kernels::predict_crossings(
+            g.len(),
+            |s| g[s],
+            |s| d[s],
+            |s| d_prev[s],
+            dt,
+            h,
+            want,
+            rule,
+        )[0]
     }
 
     /// [`Method::Rkn64`]'s check after an attempted step of size h (new state in `stage`, f there
@@ -848,15 +858,17 @@ impl Integrator {
         let last = self.k.len() - 1;
         system.switches(&self.y, &mut ev.g);
         system.switches(&self.stage, &mut ev.g_end);
-        let (f0, f1) = (&self.k[0], &self.k[last]);
-        let rates = |d0: &mut [f64], d1: &mut [f64]| {
-            system.switches(f0, d0);
-            system.switches(f1, d1);
-        };
+        let changed = |(g0, g1): (&f64, &f64)| (*g0 > 0.0) != (*g1 > 0.0);
+        if !ev.g.iter().zip(&ev.g_end).any(changed) {
+            return None;
+        }
+        system.switches(&self.k[0], &mut ev.rate);
+        system.switches(&self.k[last], &mut ev.rate_end);
         let mut check = [false; MAX_LANES];
         check[0] = true;
-        let buffers = (&mut ev.rate[..], &mut ev.rate_end[..]);
-        kernels::missed_crossings(&ev.g, &ev.g_end, buffers, rates, h, check)[0]
+        let (g0, g1, d0, d1) = (&ev.g, &ev.g_end, &ev.rate, &ev.rate_end);
+        let (g, d) = ((|s| g0[s], |s| g1[s]), (|s| d0[s], |s| d1[s]));
+        kernels::missed_crossings(g0.len(), g, d, h, check)[0]
     }
 
     /// f(t, y) at the current point.

@@ -80,8 +80,6 @@ pub(super) struct Lanes<'a, const L: usize> {
     err: Vec<Lane<L>>,
     force: Vec<Lane<L>>,
     overlap: Vec<Lane<L>>,
-    /// Switching functions and their rates (event-aware stepping).
-    switch: [Vec<Lane<L>>; 4],
     /// Overlap limit per slot (infinite where there is none, and in empty lanes).
     limit: Vec<Lane<L>>,
     runs: Vec<Option<LaneRun<'a>>>,
@@ -148,7 +146,6 @@ impl<'a, const L: usize> Lanes<'a, L> {
             err: zeros(dim),
             force: zeros(p + 1),
             overlap: zeros(p + 1),
-            switch: std::array::from_fn(|_| zeros(p)),
             limit: vec![Lane::splat(f64::INFINITY); p + 1],
             runs: (0..L).map(|_| None).collect(),
             group,
@@ -291,6 +288,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
     /// (also: where it ends). A lane whose step fell below the smallest allowed goes to the
     /// scalar path, which reports it.
     #[allow(clippy::type_complexity)]
+    #[inline(always)]
     fn propose_steps(&mut self) -> ([f64; L], [f64; L], [f64; L]) {
         let (mut t, mut h, mut t_fixed) = ([0.0; L], [0.0; L], [0.0; L]);
         // Lanes whose step event-aware stepping may shorten.
@@ -330,6 +328,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
 
     /// Each lane's verdict on its attempt ([`StepControl::judge`]; fixed steps are accepted).
     /// Empty lanes count as accepted (their values are never read).
+    #[inline(always)]
     fn judge(&mut self, h: &[f64; L], err: &[f64; L], missed: &[Option<f64>]) -> Mask {
         let stages = self.tableau.stages();
         let mut accepted = [true; MAX_LANES];
@@ -352,6 +351,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
     /// lanes and the old one (moved to k\[0\] by `attempt`) for rejected ones; a tableau that is
     /// not FSAL (fixed steps: every lane accepted) evaluates f at the new point, at t + h as the
     /// integrator does.
+    #[inline(always)]
     fn commit(&mut self, accepted: Mask, t: &[f64; L], h: &[f64; L]) {
         let last = self.tableau.stages() - 1;
         if accepted[..L].iter().all(|&a| a) {
@@ -387,7 +387,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
     /// its next step of size h\[l\], as [`Integrator`] predicts it (the same kernel,
     /// [`integrate::predict_crossings`], on the same switching functions).
     #[inline(always)]
-    fn predict_crossings(&mut self, h: &[f64; L], mut want: Mask) -> [Option<f64>; MAX_LANES] {
+    fn predict_crossings(&self, h: &[f64; L], mut want: Mask) -> [Option<f64>; MAX_LANES] {
         let mut dt = [1.0; L];
         for l in 0..L {
             if let Some(run) = self.runs[l].as_ref().filter(|_| want[l]) {
@@ -398,19 +398,28 @@ impl<'a, const L: usize> Lanes<'a, L> {
         if !want.iter().any(|&w| w) {
             return [None; MAX_LANES];
         }
-        // After a step, k[0] holds f at its start and f_now f at its end.
-        let [g, rate, rate_prev, _] = &mut self.switch;
-        self.eq.switches(&self.y, g);
-        self.eq.switches(&self.f_now, rate);
-        self.eq.switches(&self.k[0], rate_prev);
-        let (dt, h) = (Lane(dt), Lane(*h));
-        integrate::predict_crossings(g, rate, rate_prev, dt, h, want, self.landing_rule)
+        // After a step, k[0] holds f at its start and f_now f at its end; the switching
+        // functions are evaluated where the kernel reads them.
+        let (eq, y, f, k0) = (&self.eq, &self.y, &self.f_now, &self.k[0]);
+        integrate::predict_crossings(
+            eq.p,
+            #[inline(always)]
+            |s| eq.switch(y, s + 1),
+            #[inline(always)]
+            |s| eq.switch(f, s + 1),
+            #[inline(always)]
+            |s| eq.switch(k0, s + 1),
+            Lane(dt),
+            Lane(*h),
+            want,
+            self.landing_rule,
+        )
     }
 
     /// [`Method::Rkn64`]'s check in every lane whose attempt passed its error test without a
     /// landing: the first crossing inside the step that no landing caught, as the integrator
     /// finds it (the same kernel, [`integrate::missed_crossings`]).
-    fn missed_crossings(&mut self, h: &[f64; L], err: &[f64; L]) -> [Option<f64>; MAX_LANES] {
+    fn missed_crossings(&self, h: &[f64; L], err: &[f64; L]) -> [Option<f64>; MAX_LANES] {
         let mut check = [false; MAX_LANES];
         for l in 0..L {
             check[l] = self.runs[l]
@@ -421,16 +430,21 @@ impl<'a, const L: usize> Lanes<'a, L> {
             return [None; MAX_LANES];
         }
         let last = self.k.len() - 1;
-        let [g0, g1, d0, d1] = &mut self.switch;
-        let eq = &self.eq;
-        eq.switches(&self.y, g0);
-        eq.switches(&self.stage, g1);
+        let (eq, y0, y1) = (&self.eq, &self.y, &self.stage);
         let (f0, f1) = (&self.k[0], &self.k[last]);
-        let rates = |d0: &mut [Lane<L>], d1: &mut [Lane<L>]| {
-            eq.switches(f0, d0);
-            eq.switches(f1, d1);
-        };
-        integrate::missed_crossings(g0, g1, (d0, d1), rates, Lane(*h), check)
+        let g = (
+            #[inline(always)]
+            |s| eq.switch(y0, s + 1),
+            #[inline(always)]
+            |s| eq.switch(y1, s + 1),
+        );
+        let d = (
+            #[inline(always)]
+            |s| eq.switch(f0, s + 1),
+            #[inline(always)]
+            |s| eq.switch(f1, s + 1),
+        );
+        integrate::missed_crossings(eq.p, g, d, Lane(*h), check)
     }
 
     /// [`ChainOde::check_contacts`] of the force cache in every lane at once: whether it would
@@ -574,6 +588,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
             &mut self.stage,
             &mut self.err,
             Lane(*h),
+            #[inline(always)]
             |c, stage, out| {
                 let load = loads(runs, loaded, t, c, h);
                 eq.rhs(load, stage, out, force, overlap, velocities);
@@ -595,7 +610,15 @@ impl<'a, const L: usize> Lanes<'a, L> {
         integrate::weighted_squares(tableau, &mut self.err, k, h, y, y1, &self.atol, rtol);
         for l in 0..L {
             out[l] = match &self.runs[l] {
-                Some(run) => integrate::rms(run.place.len(), |i| self.err[run.place[i]].0[l]),
+                Some(run) => {
+                    // Lane l's squares in its run's own component order.
+                    let err = &self.err;
+                    integrate::rms(
+                        &run.place,
+                        #[inline(always)]
+                        |c| err[c].0[l],
+                    )
+                }
                 None => 0.0,
             };
         }

@@ -122,7 +122,7 @@ impl ContactLaw {
 
     /// The rate dF_e/dt [N/s] of the elastic force `force_n` at overlap δ and rate δ̇:
     /// (3/2) F δ̇ / δ while closed, 0 while open.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn elastic_force_rate(force_n: f64, overlap_m: f64, rate_m_s: f64) -> f64 {
         if overlap_m > 0.0 {
             1.5 * force_n * rate_m_s / overlap_m

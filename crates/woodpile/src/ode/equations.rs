@@ -160,15 +160,18 @@ impl<R: Real> Equations<R> {
         for i in 0..p {
             dv[i] = (force[i] - force[i + 1]) * inv_mass[i];
         }
-        let r = self.res_owner.len();
-        let xr = &x[p..p + r];
         let (dvp, dvr) = dv.split_at_mut(p);
-        let (omega2, coupling) = (&self.res_omega2[..r], &self.res_coupling[..r]);
-        for j in 0..r {
-            let o = self.res_owner[j];
-            let ext = xr[j] - x[o];
-            dvr[j] = -omega2[j] * ext;
-            dvp[o] = dvp[o] + coupling[j] * ext;
+        let resonators = self
+            .res_owner
+            .iter()
+            .zip(&self.res_omega2)
+            .zip(&self.res_coupling)
+            .zip(&x[p..])
+            .zip(dvr.iter_mut());
+        for ((((&o, &omega2), &coupling), &xj), a) in resonators {
+            let ext = xj - x[o];
+            *a = -omega2 * ext;
+            dvp[o] = dvp[o] + coupling * ext;
         }
         if self.work_integral {
             rest[nd] = force[0] * v[0];
@@ -294,9 +297,21 @@ impl<R: Real> Equations<R> {
         (power, dissipation)
     }
 
-    /// The switching functions of event-aware stepping: the overlaps of contact slots 1..=P from
-    /// positions (or their rates, from a derivative), a free end (β = 0) constant 1 (it never
-    /// closes).
+    /// The switching function of contact slot s (1..=P) of event-aware stepping: its overlap
+    /// from positions (or its rate, from a derivative); a free end (β = 0, only the wall can be
+    /// one: every other β is positive, `ChainBuilder::build`) is constant 1 (it never closes).
+    #[inline(always)]
+    pub fn switch(&self, y: &[R], s: usize) -> R {
+        let p = self.p;
+        if s < p {
+            y[s - 1] - y[s]
+        } else {
+            R::select(self.beta[p].is_zero(), R::splat(1.0), y[p - 1])
+        }
+    }
+
+    /// Every slot's switching function ([`Equations::switch`]) into `out[..P]`: the inner
+    /// slots' overlaps in one pass, then the wall's.
     #[inline(always)]
     pub fn switches(&self, y: &[R], out: &mut [R]) {
         let p = self.p;
@@ -304,10 +319,7 @@ impl<R: Real> Equations<R> {
         for i in 0..p - 1 {
             out[i] = x[i] - x[i + 1];
         }
-        out[p - 1] = x[p - 1];
-        for s in 1..=p {
-            out[s - 1] = R::select(self.beta[s].is_zero(), R::splat(1.0), out[s - 1]);
-        }
+        out[p - 1] = self.switch(y, p);
     }
 }
 

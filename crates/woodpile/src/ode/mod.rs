@@ -299,15 +299,18 @@ impl ChainOde {
 
     /// dF/dt [N/s] of the elastic contact of slot 1..=P: F = β δ^{3/2} gives
     /// 1.5 F δ'/δ while the contact is closed, 0 while it is open.
-    #[inline]
+    #[inline(always)]
     fn elastic_rate(&self, slot: usize, v: &[f64]) -> f64 {
-        let p = self.eq.p;
+        let (p, d) = (self.eq.p, self.overlap_m[slot]);
+        if d <= 0.0 {
+            return 0.0; // open: no force, no rate (and no velocities to read)
+        }
         let ddot = if slot == p {
             v[p - 1]
         } else {
             v[slot - 1] - v[slot]
         };
-        ContactLaw::elastic_force_rate(self.force_n[slot], self.overlap_m[slot], ddot)
+        ContactLaw::elastic_force_rate(self.force_n[slot], d, ddot)
     }
 
     /// Rate dF/dt [N/s] of paper contact c, from the velocities `v` of the state of the last
