@@ -1,6 +1,6 @@
 //! From a scenario to the library's model: every value checked under its scenario key.
 
-use super::emit::float;
+use super::keys::toml_float as float;
 use super::keys::{ANGLE, NON_NEGATIVE, POSITIVE};
 use super::{
     CellSpec, ContactLaw, DriveKind, ElementKind, ElementSpec, ExcitationKind, ExcitationSpec,
