@@ -44,12 +44,12 @@ pub(crate) trait Real:
     fn abs(self) -> Self;
     /// `f64::max`, lane by lane (NaN gives the other operand).
     fn max(self, o: Self) -> Self;
-    /// Where the value is > 0.
-    fn positive(self) -> Mask;
-    /// Where the value is < 0.
-    fn negative(self) -> Mask;
-    /// Where the value is exactly 0.
-    fn is_zero(self) -> Mask;
+    /// `yes` where the value is > 0, `no` elsewhere (NaN: `no`).
+    fn if_positive(self, yes: Self, no: Self) -> Self;
+    /// `yes` where the value is < 0, `no` elsewhere (NaN: `no`).
+    fn if_negative(self, yes: Self, no: Self) -> Self;
+    /// `yes` where the value is exactly 0, `no` elsewhere.
+    fn if_zero(self, yes: Self, no: Self) -> Self;
     /// `yes` where `mask` is set, `no` elsewhere.
     fn select(mask: Mask, yes: Self, no: Self) -> Self;
 }
@@ -82,22 +82,28 @@ impl Real for f64 {
         f64::max(self, o)
     }
     #[inline(always)]
-    fn positive(self) -> Mask {
-        let mut m = [false; MAX_LANES];
-        m[0] = self > 0.0;
-        m
+    fn if_positive(self, yes: Self, no: Self) -> Self {
+        if self > 0.0 {
+            yes
+        } else {
+            no
+        }
     }
     #[inline(always)]
-    fn negative(self) -> Mask {
-        let mut m = [false; MAX_LANES];
-        m[0] = self < 0.0;
-        m
+    fn if_negative(self, yes: Self, no: Self) -> Self {
+        if self < 0.0 {
+            yes
+        } else {
+            no
+        }
     }
     #[inline(always)]
-    fn is_zero(self) -> Mask {
-        let mut m = [false; MAX_LANES];
-        m[0] = self == 0.0;
-        m
+    fn if_zero(self, yes: Self, no: Self) -> Self {
+        if self == 0.0 {
+            yes
+        } else {
+            no
+        }
     }
     #[inline(always)]
     fn select(mask: Mask, yes: Self, no: Self) -> Self {
@@ -135,13 +141,15 @@ impl<const L: usize> Lane<L> {
         Lane(r)
     }
 
+    /// Lane by lane: `yes` where `test` holds for this value, `no` elsewhere (a compare and a
+    /// blend).
     #[inline(always)]
-    fn test(self, f: impl Fn(f64) -> bool) -> Mask {
-        let mut m = [false; MAX_LANES];
+    fn choose(self, test: impl Fn(f64) -> bool, yes: Self, no: Self) -> Self {
+        let mut r = [0.0; L];
         for l in 0..L {
-            m[l] = f(self.0[l]);
+            r[l] = if test(self.0[l]) { yes.0[l] } else { no.0[l] };
         }
-        m
+        Lane(r)
     }
 }
 
@@ -173,16 +181,16 @@ impl<const L: usize> Real for Lane<L> {
         self.zip(o, f64::max)
     }
     #[inline(always)]
-    fn positive(self) -> Mask {
-        self.test(|x| x > 0.0)
+    fn if_positive(self, yes: Self, no: Self) -> Self {
+        self.choose(|x| x > 0.0, yes, no)
     }
     #[inline(always)]
-    fn negative(self) -> Mask {
-        self.test(|x| x < 0.0)
+    fn if_negative(self, yes: Self, no: Self) -> Self {
+        self.choose(|x| x < 0.0, yes, no)
     }
     #[inline(always)]
-    fn is_zero(self) -> Mask {
-        self.test(|x| x == 0.0)
+    fn if_zero(self, yes: Self, no: Self) -> Self {
+        self.choose(|x| x == 0.0, yes, no)
     }
     #[inline(always)]
     fn select(mask: Mask, yes: Self, no: Self) -> Self {

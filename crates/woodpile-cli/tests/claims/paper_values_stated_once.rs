@@ -3,7 +3,7 @@
 //! paper prints), and differences are computed from the numbers (percent of the paper's value, or
 //! percentage points for fractions).
 
-use woodpile_cli::commands::report::{self as study, PaperValue, Quantity};
+use woodpile_report::{self as study, PaperValue, Quantity};
 
 const ALL: [PaperValue; 13] = [
     study::RESONANT_TRANSMITTED,

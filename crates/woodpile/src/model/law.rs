@@ -86,7 +86,6 @@ impl ContactLaw {
         if self == ContactLaw::Elastic {
             return (elastic, R::ZERO);
         }
-        let closed = overlap_m.positive();
         let damping = match self {
             ContactLaw::Elastic => R::ZERO,
             ContactLaw::Restitution => coef * root.sqrt() * rate_m_s,
@@ -95,12 +94,12 @@ impl ContactLaw {
         };
         let mut f = elastic + damping;
         if !allow_pull {
-            f = R::select(f.negative(), R::ZERO, f);
+            f = f.if_negative(R::ZERO, f);
         }
         let dissipated = (f - elastic) * rate_m_s;
         (
-            R::select(closed, f, R::ZERO),
-            R::select(closed, dissipated, R::ZERO),
+            overlap_m.if_positive(f, R::ZERO),
+            overlap_m.if_positive(dissipated, R::ZERO),
         )
     }
 

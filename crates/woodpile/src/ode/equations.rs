@@ -306,7 +306,7 @@ impl<R: Real> Equations<R> {
         if s < p {
             y[s - 1] - y[s]
         } else {
-            R::select(self.beta[p].is_zero(), R::splat(1.0), y[p - 1])
+            self.beta[p].if_zero(R::splat(1.0), y[p - 1])
         }
     }
 

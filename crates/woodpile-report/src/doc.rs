@@ -1,7 +1,7 @@
 //! The report as a list of blocks, rendered to Markdown and to a self-contained HTML page
 //! (figures embedded as base64 data URIs: the SVG of each, or its PNG when there is no SVG).
 
-use crate::CliError;
+use crate::Error;
 use base64::Engine as _;
 use std::fmt::Write as _;
 use std::fs;
@@ -44,24 +44,30 @@ impl Doc {
         }
     }
 
+    /// A section heading.
     pub fn h2(&mut self, t: impl Into<String>) {
         self.blocks.push(Block::Heading(2, t.into()));
     }
+    /// A subsection heading.
     pub fn h3(&mut self, t: impl Into<String>) {
         self.blocks.push(Block::Heading(3, t.into()));
     }
+    /// A paragraph (`code` in backticks).
     pub fn p(&mut self, t: impl Into<String>) {
         self.blocks.push(Block::Para(t.into()));
     }
+    /// A bulleted list.
     pub fn list(&mut self, items: Vec<String>) {
         self.blocks.push(Block::List(items));
     }
+    /// A table: its header and rows.
     pub fn table(&mut self, header: &[&str], rows: Vec<Vec<String>>) {
         self.blocks.push(Block::Table(
             header.iter().map(|s| s.to_string()).collect(),
             rows,
         ));
     }
+    /// Preformatted text.
     pub fn code(&mut self, t: impl Into<String>) {
         self.blocks.push(Block::Code(t.into()));
     }
@@ -106,6 +112,7 @@ impl Doc {
         a.trim_end_matches('-').to_string()
     }
 
+    /// The report as Markdown under `title`, with a table of contents.
     pub fn markdown(&self, title: &str) -> String {
         let mut s = format!("# {title}\n\n## Contents\n\n");
         for b in &self.blocks {
@@ -149,7 +156,8 @@ impl Doc {
         s
     }
 
-    pub fn html(&self, title: &str) -> Result<String, CliError> {
+    /// The report as one self-contained HTML page under `title` (figures embedded).
+    pub fn html(&self, title: &str) -> Result<String, Error> {
         let mut s =
             String::from("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n");
         let _ = writeln!(s, "<title>{}</title>", escape(title));
@@ -208,7 +216,7 @@ impl Doc {
                     } else {
                         (png, "image/png")
                     };
-                    let bytes = fs::read(&file).map_err(|e| CliError::Read {
+                    let bytes = fs::read(&file).map_err(|e| Error::Read {
                         path: file.clone(),
                         source: e,
                     })?;

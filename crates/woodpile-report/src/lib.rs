@@ -1,7 +1,11 @@
-//! `woodpile report --out DIR [--quick] [--seed S] [--threads T]`: runs everything the paper's
-//! figures and numbers need, draws every figure into `DIR/figures/` (PNG and SVG), and writes
-//! `DIR/report.md` and a self-contained `DIR/report.html` (figures embedded as SVG data URIs) with a
-//! comparison table: each number the paper reports (docs/physics.md §9) beside ours.
+//! # woodpile-report
+//!
+//! The paper's study as one report, used by `woodpile report --out DIR [--quick] [--seed S]
+//! [--threads T]` (the command line owns the arguments, the output directory's policy and the
+//! progress bar): [`build`] runs everything the paper's figures and numbers need, draws every
+//! figure into `DIR/figures/` (PNG and SVG), and returns the document ([`Doc`]: `report.md` and a
+//! self-contained `report.html`, figures embedded as SVG data URIs) with a comparison table: each
+//! number the paper reports (docs/physics.md §9) beside ours.
 //!
 //! One module per section, each holding its runs, its figures, its text and the paper's numbers
 //! it is compared with; this module runs them in order and assembles the document:
@@ -46,107 +50,33 @@ pub use optima::{
 };
 pub use study::{PaperValue, Quantity};
 
-use crate::commands::Context;
-use crate::progress::Progress;
-use crate::CliError;
-use doc::Doc;
-use std::fs;
-use std::path::{Path, PathBuf};
-use std::time::Instant;
-use study::{pct, ratio, Comparison, Setup};
-use woodpile_io::atomic::{io_err, write_atomic};
+pub use doc::Doc;
+pub use study::Setup;
+pub use woodpile_io::Error;
 
-/// Arguments of `woodpile report`.
-#[derive(Debug, Clone, clap::Args)]
-pub struct Args {
-    /// Output directory: report.md, report.html, figures/, cache/ (created; a directory that
-    /// holds anything else than an earlier report is refused).
-    #[arg(long, value_name = "DIR")]
-    pub out: PathBuf,
-    /// A smaller version for CI: GAs of population 10 × 5 generations, a 2 × 2 blast sweep (the
-    /// figures keep their meaning; the optima are not converged).
-    #[arg(long)]
-    pub quick: bool,
-    /// Seed of both GAs.
-    #[arg(long, value_name = "S", default_value_t = 1)]
-    pub seed: u64,
-    /// Worker threads (default: one per core). Does not change results.
-    #[arg(long, value_name = "T", default_value_t = 0)]
-    pub threads: usize,
-    /// Allow more than 4 worker threads per core.
-    #[arg(long)]
-    pub allow_many_threads: bool,
-}
+use study::{pct, ratio, Comparison};
 
-/// Runs `woodpile report`.
-pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
-    let started = Instant::now();
-    woodpile_io::limits::check_threads("--threads", args.threads, args.allow_many_threads)?;
-    prepare_dir(&args.out)?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads)
-        .build()
-        .map_err(|e| CliError::invalid("--threads", args.threads, e.to_string()))?;
-    let bar = Progress::new("report", STEPS, ctx.quiet);
-    let s = Setup::new(args.out.clone(), args.quick, args.seed, args.threads, &bar);
-    let result = pool.install(|| build(&s));
-    bar.finish();
-    let (doc, summary) = result?;
-    let title = "woodpile: reproduction of Kim, Yang et al. 2017 (impact and blast mitigation with locally resonant woodpiles)";
-    let md = doc.markdown(title);
-    let html = doc.html(title)?;
-    write_atomic(&args.out, "report.md", md.as_bytes())?;
-    write_atomic(&args.out, "report.html", html.as_bytes())?;
-    if !ctx.quiet {
-        println!("{summary}");
-        println!(
-            "wrote {} figures, {} and {} in {:.1} s",
-            doc.figures,
-            args.out.join("report.md").display(),
-            args.out.join("report.html").display(),
-            started.elapsed().as_secs_f64()
-        );
-    }
-    Ok(())
-}
-
-/// The output policy: `out` is created if absent; an existing directory must be empty or hold an
-/// earlier report (report.md, report.html, figures/, cache/), which is then updated in place;
-/// `figures/` and `cache/` are created and the directory is proved writable before any work.
-fn prepare_dir(out: &Path) -> Result<(), CliError> {
-    if out.exists() && !out.is_dir() {
-        return Err(CliError::invalid(
-            "--out",
-            out.display(),
-            "is a file, not a directory; choose a directory",
-        ));
-    }
-    if out.is_dir() {
-        let mut entries = fs::read_dir(out).map_err(io_err(out))?;
-        let known = ["report.md", "report.html", "figures", "cache"];
-        let earlier = known.iter().any(|k| out.join(k).exists());
-        if entries.next().is_some() && !earlier {
-            return Err(CliError::invalid(
-                "--out",
-                out.display(),
-                "exists, is not empty and holds no earlier report: refusing to write into it; choose another --out",
-            ));
-        }
-    }
-    for d in [out.to_path_buf(), out.join("figures"), out.join("cache")] {
-        fs::create_dir_all(&d).map_err(io_err(&d))?;
-    }
-    write_atomic(out, ".write-test", b"")?;
-    let _ = fs::remove_file(out.join(".write-test"));
-    Ok(())
+/// Where the report shows how far it is (the command line's progress bar).
+pub trait Progress: Sync {
+    /// A new stage begins.
+    fn stage(&self, stage: &str);
+    /// A detail of the current stage.
+    fn detail(&self, detail: &str);
+    /// `n` steps of [`STEPS`] are done.
+    fn inc(&self, n: u64);
+    /// Time since the report began.
+    fn elapsed(&self) -> std::time::Duration;
 }
 
 /// Progress steps: 4 impact chains, 2 GAs, optimum figures, protocol, 4 blast chains, 2 GAs
 /// over derived cells, cells.
-const STEPS: u64 = 15;
+pub const STEPS: u64 = 15;
+
+/// The report's title.
+pub const TITLE: &str = "woodpile: reproduction of Kim, Yang et al. 2017 (impact and blast mitigation with locally resonant woodpiles)";
 
 /// Runs every section, then writes them in order; returns the document and a short summary.
-fn build(s: &Setup) -> Result<(Doc, String), CliError> {
+pub fn build(s: &Setup) -> Result<(Doc, String), Error> {
     let sections = Sections::run(s)?;
     s.bar.stage("writing the report");
     let elapsed = s.bar.elapsed().as_secs_f64();
@@ -169,7 +99,7 @@ struct Sections {
 
 impl Sections {
     /// Runs the sections, each showing its stages and steps on the progress bar.
-    fn run(s: &Setup) -> Result<Self, CliError> {
+    fn run(s: &Setup) -> Result<Self, Error> {
         s.bar.stage("homogeneous chains under impact");
         let impact = impact::run(s)?;
         let optima = optima::run(s)?;

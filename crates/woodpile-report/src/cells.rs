@@ -3,7 +3,7 @@
 
 use super::doc::Doc;
 use super::study::Setup;
-use crate::CliError;
+use crate::Error;
 use std::path::PathBuf;
 use woodpile_plot::dirs::cells_figures;
 
@@ -14,7 +14,7 @@ pub struct Cells {
 }
 
 /// Draws the effective-mass curves of the catalogue.
-pub fn run(s: &Setup) -> Result<Cells, CliError> {
+pub fn run(s: &Setup) -> Result<Cells, Error> {
     s.bar.stage("effective-mass curves");
     let files = cells_figures(&s.figs, 0.0)?;
     s.bar.inc(1);

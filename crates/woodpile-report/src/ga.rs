@@ -3,7 +3,7 @@
 //! rerun of the report reuses it.
 
 use super::study::{join_mm, pct, ratio, Setup};
-use crate::CliError;
+use crate::Error;
 use serde::{Deserialize, Serialize};
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -68,9 +68,9 @@ impl Cache {
     }
 
     /// Stores an entry atomically.
-    fn put(&self, entry: &CachedGa) -> Result<(), CliError> {
+    fn put(&self, entry: &CachedGa) -> Result<(), Error> {
         let (path, name) = self.file(&entry.inputs);
-        let json = serde_json::to_vec(entry).map_err(|e| CliError::Output {
+        let json = serde_json::to_vec(entry).map_err(|e| Error::Output {
             path,
             source: std::io::Error::other(e),
         })?;
@@ -110,7 +110,7 @@ impl GaRun {
         cfg: &OptimizeConfig,
         label: &'static str,
         s: &Setup,
-    ) -> Result<GaRun, CliError> {
+    ) -> Result<GaRun, Error> {
         let problem = Problem::new(cfg, Path::new("."), s.threads)?;
         let total = problem.settings.generations;
         let cache = Cache {
@@ -121,7 +121,7 @@ impl GaRun {
             Some(entry) if entry.best_genome.len() == problem.space.positions => (entry, true),
             _ => {
                 let entry = run(&problem, key, &mut |g: &GaState| {
-                    s.bar.detail(format!(
+                    s.bar.detail(&format!(
                         "{label} GA: generation {}/{total}, best {:.3}, {} evaluations",
                         g.generation,
                         g.best().objective,
@@ -190,7 +190,7 @@ fn run(
     problem: &Problem,
     key: String,
     progress: &mut dyn FnMut(&GaState),
-) -> Result<CachedGa, CliError> {
+) -> Result<CachedGa, Error> {
     let ga = BreederGa::new(
         problem.space.clone(),
         Box::new(problem.objective),

@@ -4,7 +4,7 @@
 
 use super::doc::Doc;
 use super::study::{energy_held_text, pct, ratio, Case, Comparison, PaperValue, Quantity, Setup};
-use crate::CliError;
+use crate::Error;
 use rayon::prelude::*;
 use std::path::PathBuf;
 use woodpile::analysis::FirstTransit;
@@ -44,7 +44,7 @@ pub struct Impact {
 }
 
 /// Runs and draws one homogeneous chain.
-fn case(s: &Setup, rod_mm: u32, model: CellModel) -> Result<Case, CliError> {
+fn case(s: &Setup, rod_mm: u32, model: CellModel) -> Result<Case, Error> {
     let (model_name, suffix) = match model {
         CellModel::Rigid => ("rigid", "_rigid"),
         _ => ("resonant", ""),
@@ -84,11 +84,11 @@ fn case(s: &Setup, rod_mm: u32, model: CellModel) -> Result<Case, CliError> {
 }
 
 /// Runs the chains and draws their figures.
-pub fn run(s: &Setup) -> Result<Impact, CliError> {
+pub fn run(s: &Setup) -> Result<Impact, Error> {
     let cases = CHAINS
         .par_iter()
         .map(|&(rod_mm, model)| case(s, rod_mm, model))
-        .collect::<Result<Vec<_>, CliError>>()?;
+        .collect::<Result<Vec<_>, Error>>()?;
     let wall_series: Vec<plot::Series> = cases
         .iter()
         .map(|c| {

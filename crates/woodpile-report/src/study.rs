@@ -2,8 +2,8 @@
 //! simulated chain with its figures ([`Case`]), the paper's numbers as data ([`PaperValue`]) and
 //! the comparison table they go into ([`Comparison`]).
 
-use crate::progress::Progress;
-use crate::CliError;
+use crate::Error;
+use crate::Progress;
 use std::path::{Path, PathBuf};
 use woodpile::analysis::{energy_map, force_map, Spectrum, SpectrumSettings};
 use woodpile::{BlastProfile, Chain, Excitation, RunSettings, RunSummary, Striker, Trajectory};
@@ -23,7 +23,7 @@ pub struct Setup<'a> {
     /// Worker threads (0: one per core).
     pub threads: usize,
     /// Progress: a bar on a terminal, a line per stage otherwise.
-    pub bar: &'a Progress,
+    pub bar: &'a dyn Progress,
     /// `OUT/figures`.
     pub figs: PathBuf,
     /// The paper's impact.
@@ -44,7 +44,13 @@ pub struct Setup<'a> {
 
 impl<'a> Setup<'a> {
     /// The paper's loads with the defaults of docs/physics.md, figures into `out/figures`.
-    pub fn new(out: PathBuf, quick: bool, seed: u64, threads: usize, bar: &'a Progress) -> Self {
+    pub fn new(
+        out: PathBuf,
+        quick: bool,
+        seed: u64,
+        threads: usize,
+        bar: &'a dyn Progress,
+    ) -> Self {
         let striker = Striker::paper();
         let (f0, td) = match BlastProfile::paper() {
             BlastProfile::Friedlander {
@@ -109,7 +115,7 @@ impl Case {
         chain: Chain,
         excitation: &Excitation,
         settings: &RunSettings,
-    ) -> Result<Case, CliError> {
+    ) -> Result<Case, Error> {
         let mut trajectory = Trajectory::default();
         let summary = woodpile::simulate(&chain, excitation, settings, &mut trajectory)?;
         let bands = woodpile::analysis::chain_bands_hz(chain.elements().iter().map(|e| &e.cell));
@@ -126,7 +132,7 @@ impl Case {
 
     /// Draws the force map and the energy map (`STEM_force_map`, `STEM_energy_map`); `contact0`
     /// names what drives the run (`striker`, `load`).
-    pub fn draw_maps(&mut self, title: &str, contact0: &str, stem: &Path) -> Result<(), CliError> {
+    pub fn draw_maps(&mut self, title: &str, contact0: &str, stem: &Path) -> Result<(), Error> {
         let t = &self.trajectory;
         let with = |suffix: &str| {
             let mut s = stem.as_os_str().to_owned();
@@ -149,7 +155,7 @@ impl Case {
     }
 
     /// Draws the spectra of contact 1, the middle contact and the wall, the chain's bands shaded.
-    pub fn draw_spectra(&mut self, title: &str, max_hz: f64, stem: &Path) -> Result<(), CliError> {
+    pub fn draw_spectra(&mut self, title: &str, max_hz: f64, stem: &Path) -> Result<(), Error> {
         let t = &self.trajectory;
         let n = t.n_elements;
         let dt = woodpile::analysis::sample_interval_s(t)?;

@@ -5,7 +5,7 @@
 use super::doc::Doc;
 use super::study::FOURIER;
 use super::study::{join_mm, pct, Case, Comparison, PaperValue, Quantity, Setup, CHAIN_LENGTH};
-use crate::CliError;
+use crate::Error;
 use rayon::prelude::*;
 use std::path::PathBuf;
 use woodpile::analysis::{band_contrast, contact_spectrum_map, peak_layer_energy};
@@ -56,7 +56,7 @@ pub const BLAST_CHAINS: [(Option<u32>, &str, &str); 4] = [
 ];
 
 /// One of [`BLAST_CHAINS`], with the title part naming it.
-pub fn blast_chain(rod_mm: Option<u32>) -> Result<(Chain, String), CliError> {
+pub fn blast_chain(rod_mm: Option<u32>) -> Result<(Chain, String), Error> {
     let (rods, title) = match rod_mm {
         Some(l) => (
             vec![l; CHAIN_LENGTH],
@@ -84,7 +84,7 @@ pub struct Blast {
 }
 
 /// Runs and draws one chain under the blast.
-fn case(s: &Setup, (rod_mm, name, slug): (Option<u32>, &str, &str)) -> Result<Case, CliError> {
+fn case(s: &Setup, (rod_mm, name, slug): (Option<u32>, &str, &str)) -> Result<Case, Error> {
     let (chain, chain_title) = blast_chain(rod_mm)?;
     let mut case = Case::simulate(name, &chain_title, chain, &s.blast, &s.blast_settings)?;
     let title = format!("{chain_title}, {}", s.blast_text);
@@ -99,11 +99,11 @@ fn case(s: &Setup, (rod_mm, name, slug): (Option<u32>, &str, &str)) -> Result<Ca
 }
 
 /// Runs the four chains under the blast and draws them.
-pub fn run(s: &Setup) -> Result<Blast, CliError> {
+pub fn run(s: &Setup) -> Result<Blast, Error> {
     let cases = BLAST_CHAINS
         .par_iter()
         .map(|&c| case(s, c))
-        .collect::<Result<Vec<_>, CliError>>()?;
+        .collect::<Result<Vec<_>, Error>>()?;
     let wall = |c: &Case| c.trajectory.contact_force_n(c.trajectory.n_elements);
     let load = plot::Series::new("load (contact 0)", cases[0].trajectory.contact_force_n(0));
     let series: Vec<plot::Series> = std::iter::once(load)

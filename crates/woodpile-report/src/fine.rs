@@ -6,7 +6,7 @@ use super::doc::Doc;
 use super::ga::GaRun;
 use super::optima::{ga_problem, Optima};
 use super::study::{mean_length_mm, Setup};
-use crate::CliError;
+use crate::Error;
 use std::path::PathBuf;
 use woodpile::{simulate, RunSummary};
 use woodpile_io::optimize::{OptimizeConfig, RodRangeSpec};
@@ -15,7 +15,7 @@ use woodpile_plot as plot;
 
 /// The paper's impact problem (20 positions, resonant) over rods with cells derived from beam
 /// theory: lengths 20–80 mm every `step_mm` (10: the paper's seven lengths; 1: 61 lengths).
-fn derived_ga_problem(step_mm: f64, s: &Setup) -> Result<OptimizeConfig, CliError> {
+fn derived_ga_problem(step_mm: f64, s: &Setup) -> Result<OptimizeConfig, Error> {
     let mut cfg = ga_problem(ModelSpec::Resonant, s.seed, s.quick)?;
     cfg.description = Some(format!(
         "paper impact problem over rods 20-80 mm every {step_mm} mm, cells from beam theory"
@@ -46,7 +46,7 @@ pub struct Fine {
 }
 
 /// Runs (or reads from the cache) the two GAs and draws the fine optimum.
-pub fn run(s: &Setup) -> Result<Fine, CliError> {
+pub fn run(s: &Setup) -> Result<Fine, Error> {
     let ga = |stage: &str, step_mm: f64, label: &'static str| {
         s.bar.stage(stage);
         let run = GaRun::cached_or_run(&derived_ga_problem(step_mm, s)?, label, s);

@@ -3,7 +3,7 @@
 
 use super::doc::Doc;
 use super::study::Setup;
-use crate::CliError;
+use crate::Error;
 use std::path::PathBuf;
 use woodpile::analysis::{transmission, TransmissionSettings, TransmissionSpectrum};
 use woodpile::defaults::TRANSMISSION_STOP_DB;
@@ -24,7 +24,7 @@ pub struct Transmission {
 
 /// Twenty 80 mm rods on the sensor under [`PRELOAD_N`] on the top rod with on-site damping
 /// [`ON_SITE_S`], measured with the default spectrum settings (RK4 at 0.2 µs), and drawn.
-pub fn run(s: &Setup) -> Result<Transmission, CliError> {
+pub fn run(s: &Setup) -> Result<Transmission, Error> {
     let chain = ChainBuilder::table1_rods(&[80; 20], CellModel::Resonant)?
         .preload(Preload {
             force_n: PRELOAD_N,

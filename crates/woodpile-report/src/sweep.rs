@@ -4,7 +4,7 @@
 use super::blast::{blast_chain, BLAST_CHAINS, BLAST_RATIOS};
 use super::doc::Doc;
 use super::study::{pct, Setup};
-use crate::CliError;
+use crate::Error;
 use rayon::prelude::*;
 use std::path::PathBuf;
 use woodpile::analysis::{peak_layer_energy, Axis, Map2};
@@ -42,7 +42,7 @@ pub struct Sweep {
 
 /// Runs the four blast chains under every load of the grid (the quick report: four loads, only
 /// to check that the sweep is made), in parallel, and draws the worst factor over the grid.
-pub fn run(s: &Setup) -> Result<Sweep, CliError> {
+pub fn run(s: &Setup) -> Result<Sweep, Error> {
     s.bar.stage("blast sweep (F0 × Td)");
     let (peaks_n, durations_s): (&[f64], &[f64]) = if s.quick {
         (&[100.0, 400.0], &[2e-4, 5e-4])
@@ -52,7 +52,7 @@ pub fn run(s: &Setup) -> Result<Sweep, CliError> {
     let chains = BLAST_CHAINS
         .iter()
         .map(|&(rod_mm, _, _)| Ok(blast_chain(rod_mm)?.0))
-        .collect::<Result<Vec<_>, CliError>>()?;
+        .collect::<Result<Vec<_>, Error>>()?;
     let grid: Vec<(f64, f64)> = peaks_n
         .iter()
         .flat_map(|&f| durations_s.iter().map(move |&t| (f, t)))
@@ -72,7 +72,7 @@ pub fn run(s: &Setup) -> Result<Sweep, CliError> {
                     woodpile::simulate(chain, &load, &s.blast_settings, &mut t)?;
                     Ok(peak_layer_energy(&t, chain.len()))
                 })
-                .collect::<Result<Vec<f64>, CliError>>()?;
+                .collect::<Result<Vec<f64>, Error>>()?;
             let ratios = [1, 2, 3].map(|k| energies[k] / energies[0]);
             let worst_factor = ratios
                 .iter()
@@ -86,7 +86,7 @@ pub fn run(s: &Setup) -> Result<Sweep, CliError> {
                 worst_factor,
             })
         })
-        .collect::<Result<Vec<_>, CliError>>()?;
+        .collect::<Result<Vec<_>, Error>>()?;
     let map = Map2::new(
         Axis::new("peak force F0", "N", peaks_n.to_vec()),
         Axis::new("duration Td", "s", durations_s.to_vec()),

@@ -8,7 +8,7 @@ use super::study::{
     energy_held_text, join_mm, mean_length_mm, pct, ratio, Case, Comparison, PaperValue, Quantity,
     Setup,
 };
-use crate::CliError;
+use crate::Error;
 use rayon::prelude::*;
 use woodpile::analysis::{energy_map, force_map};
 use woodpile::RunSummary;
@@ -74,7 +74,7 @@ pub const RIGID_RESTITUTION: PaperValue = PaperValue::new(
 
 /// The GA problem of the paper's Fig. 5 d, e: the built-in `paper-impact` problem with the given
 /// cell model and seed; `quick` shrinks the GA to population 10 × 5 generations (for CI).
-pub fn ga_problem(model: ModelSpec, seed: u64, quick: bool) -> Result<OptimizeConfig, CliError> {
+pub fn ga_problem(model: ModelSpec, seed: u64, quick: bool) -> Result<OptimizeConfig, Error> {
     let mut cfg = OptimizeConfig::builtin("paper-impact")?;
     cfg.design.model = Some(model);
     cfg.ga.seed = Some(seed);
@@ -96,7 +96,7 @@ pub struct Optima {
 }
 
 /// Runs (or reads from the cache) both GAs and draws their optima.
-pub fn run(s: &Setup) -> Result<Optima, CliError> {
+pub fn run(s: &Setup) -> Result<Optima, Error> {
     let ga = |stage: &str, model, label| {
         s.bar.stage(stage);
         let run = GaRun::cached_or_run(&ga_problem(model, s.seed, s.quick)?, label, s);
@@ -109,7 +109,7 @@ pub fn run(s: &Setup) -> Result<Optima, CliError> {
     let cases = [&resonant, &rigid]
         .par_iter()
         .map(|ga| optimum(s, ga))
-        .collect::<Result<Vec<_>, CliError>>()?;
+        .collect::<Result<Vec<_>, Error>>()?;
     s.bar.inc(1);
     Ok(Optima {
         resonant,
@@ -119,7 +119,7 @@ pub fn run(s: &Setup) -> Result<Optima, CliError> {
 }
 
 /// Re-simulates a GA's optimum and draws it: convergence, chain, forces, force and energy maps.
-fn optimum(s: &Setup, ga: &GaRun) -> Result<Case, CliError> {
+fn optimum(s: &Setup, ga: &GaRun) -> Result<Case, Error> {
     let chain_title = format!("GA optimum ({}): {}", ga.model, join_mm(&ga.rods));
     let name = format!("{} optimum", ga.model);
     let slug = format!("optimum_{}", ga.model);

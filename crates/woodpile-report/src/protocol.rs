@@ -4,7 +4,7 @@
 use super::doc::Doc;
 use super::optima::Optima;
 use super::study::{pct, Setup};
-use crate::CliError;
+use crate::Error;
 use std::path::PathBuf;
 use woodpile::analysis::{layer_by_layer, LayerByLayer};
 use woodpile_plot as plot;
@@ -33,7 +33,7 @@ pub struct Protocol {
 }
 
 /// Runs the protocol on the resonant optimum, lossless and damped, and draws it.
-pub fn run(s: &Setup, optima: &Optima) -> Result<Protocol, CliError> {
+pub fn run(s: &Setup, optima: &Optima) -> Result<Protocol, Error> {
     let res_case = &optima.cases[0];
     let (impact, settings) = (&s.impact, &s.impact_settings);
     let lossless = layer_by_layer(&res_case.chain, impact, settings)?;
