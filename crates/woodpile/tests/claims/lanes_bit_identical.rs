@@ -10,8 +10,8 @@
 //! its order, so anything but equality is a bug (and would make GA results depend on the lane
 //! width, the thread count and the grouping of designs).
 
-use crate::lanes_common::{alone, jobs, peaks_only, random_chains};
-use woodpile::{simulate_many, BlastProfile, Excitation, LaneWidth, Method, RunSummary, Striker};
+use crate::lanes_common::{alone, assert_lanes_agree, jobs, peaks_only, random_chains};
+use woodpile::{BlastProfile, Excitation, Method, RunSummary, Striker};
 
 fn same(a: &RunSummary, b: &RunSummary) -> bool {
     let a = RunSummary {
@@ -36,24 +36,7 @@ fn check(excitation: &Excitation, method: Method, duration_s: f64) {
     let settings = peaks_only(method, duration_s);
     let alone = alone(&chains, excitation, &settings);
     let jobs = jobs(&chains, excitation, &settings);
-    for threads in [1, 3] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        for width in LaneWidth::ALL {
-            let together = pool.install(|| simulate_many(&jobs, width));
-            for (i, (t, a)) in together.iter().zip(&alone).enumerate() {
-                let t = t.as_ref().unwrap();
-                assert!(
-                    same(t, a),
-                    "chain {i}, {width:?}, {threads} threads: lanes {:?} vs alone {:?}",
-                    t.contact_peak_forces_n,
-                    a.contact_peak_forces_n
-                );
-            }
-        }
-    }
+    assert_lanes_agree(&jobs, &alone, same);
 }
 
 #[test]

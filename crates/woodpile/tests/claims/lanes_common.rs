@@ -4,8 +4,8 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use woodpile::{
-    simulate, CellModel, Chain, ChainBuilder, Excitation, Job, RunSettings, RunSummary,
-    TABLE1_LENGTHS_MM,
+    simulate, simulate_many, CellModel, Chain, ChainBuilder, Excitation, Job, LaneWidth,
+    RunSettings, RunSummary, TABLE1_LENGTHS_MM,
 };
 
 /// `count` chains of random Table 1 rods (seeded), chain i of `lengths[i % lengths.len()]` rods,
@@ -67,4 +67,32 @@ pub fn jobs<'a>(
             settings,
         })
         .collect()
+}
+
+/// Runs `jobs` together at every lane width, on one thread and on three (each group's runs then
+/// shared by three threads' lanes through one queue), and asserts that each result is `same` as
+/// its run alone (`alone`, in the order of `jobs`).
+pub fn assert_lanes_agree(
+    jobs: &[Job<'_>],
+    alone: &[RunSummary],
+    same: impl Fn(&RunSummary, &RunSummary) -> bool,
+) {
+    for threads in [1, 3] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        for width in LaneWidth::ALL {
+            let together = pool.install(|| simulate_many(jobs, width));
+            for (i, (t, a)) in together.iter().zip(alone).enumerate() {
+                let t = t.as_ref().unwrap();
+                assert!(
+                    same(t, a),
+                    "chain {i}, {width:?}, {threads} threads: lanes {:?} vs alone {:?}",
+                    t.contact_peak_forces_n,
+                    a.contact_peak_forces_n
+                );
+            }
+        }
+    }
 }

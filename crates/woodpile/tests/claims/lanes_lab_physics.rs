@@ -8,10 +8,10 @@
 //! of the scalar path with itself; and a problem mixing two damping laws splits into groups
 //! that still agree. Tolerance: none — the lanes run the scalar path's own equations.
 
-use crate::lanes_common::{alone, jobs, peaks_only, random_builders};
+use crate::lanes_common::{alone, assert_lanes_agree, jobs, peaks_only, random_builders};
 use woodpile::{
-    simulate_many, BlastProfile, Chain, ContactDamping, Damping, Drive, DriveQuantity, Excitation,
-    LaneWidth, Method, Preload, RunSettings, RunSummary, Signal, Striker, Wall,
+    BlastProfile, Chain, ContactDamping, Damping, Drive, DriveQuantity, Excitation, Method,
+    Preload, RunSettings, RunSummary, Signal, Striker, Wall,
 };
 
 fn bits(s: &RunSummary) -> String {
@@ -60,19 +60,7 @@ fn check(chains: &[Chain], excitation: &Excitation, settings: &RunSettings) {
         jobs.iter().all(|j| j.in_lanes().unwrap()),
         "every job runs in lanes"
     );
-    for threads in [1, 3] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        for width in LaneWidth::ALL {
-            let together = pool.install(|| simulate_many(&jobs, width));
-            for (i, (t, a)) in together.iter().zip(&alone).enumerate() {
-                let t = t.as_ref().unwrap();
-                assert_eq!(bits(t), bits(a), "chain {i}, {width:?}, {threads} threads");
-            }
-        }
-    }
+    assert_lanes_agree(&jobs, &alone, |t, a| bits(t) == bits(a));
 }
 
 fn dopri5() -> RunSettings {
