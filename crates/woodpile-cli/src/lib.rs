@@ -24,6 +24,7 @@
 pub mod commands;
 pub mod exit;
 pub mod interrupt;
+pub mod out;
 pub mod progress;
 
 pub use woodpile_io::Error as CliError;

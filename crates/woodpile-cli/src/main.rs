@@ -4,7 +4,7 @@
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 use woodpile_cli::commands::{self, Context};
-use woodpile_cli::{exit, CliError};
+use woodpile_cli::{exit, out, CliError};
 
 /// Locally resonant woodpile metamaterials under impact and blast (Kim, Yang et al. 2017).
 #[derive(Debug, Parser)]
@@ -57,6 +57,7 @@ fn main() -> ExitCode {
     let ctx = Context { quiet: cli.quiet };
     match dispatch(&cli.command, &ctx) {
         Ok(()) => ExitCode::SUCCESS,
+        Err(e) if out::closed_pipe(&e) => ExitCode::from(out::EXIT_CLOSED_PIPE),
         Err(e @ woodpile_cli::CliError::Interrupted { .. }) => {
             eprintln!("{}", exit::message(&e));
             ExitCode::from(exit::code(&e))

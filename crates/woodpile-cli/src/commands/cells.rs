@@ -158,17 +158,21 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         if args.json {
             let text = serde_json::to_string_pretty(&cell)
                 .map_err(|e| CliError::invalid("--json", "", e.to_string()))?;
-            println!("{text}");
+            crate::out::println(text)?;
         } else {
-            print!("{}", derived_text(&cell));
+            crate::out::print(derived_text(&cell))?;
         }
         return Ok(());
     }
-    print!("{}", table()?);
+    crate::out::print(table()?)?;
     if let Some(dir) = &args.plot {
         let files = woodpile_plot::dirs::cells_figures(dir, args.resonator_ratio)?;
         if !ctx.quiet {
-            println!("wrote {} files to {}", files.len(), dir.display());
+            crate::out::println(format_args!(
+                "wrote {} files to {}",
+                files.len(),
+                dir.display()
+            ))?;
         }
     }
     Ok(())

@@ -149,10 +149,10 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let interrupted = outcome.reason == StopReason::Interrupted;
     let figures = write_final_outputs(&problem, &name, &outcome, out)?;
     if !ctx.quiet {
-        print!(
+        crate::out::print(format_args!(
             "{}",
             terminal_summary(&problem, &name, &outcome, &figures, out)
-        );
+        ))?;
     }
     if interrupted {
         return Err(CliError::Interrupted {

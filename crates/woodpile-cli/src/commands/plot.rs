@@ -186,14 +186,18 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         }
     };
     if !ctx.quiet {
-        println!("wrote {} files to {}", files.len(), out.display());
+        crate::out::println(format_args!(
+            "wrote {} files to {}",
+            files.len(),
+            out.display()
+        ))?;
         // One line per figure: its PNG, or its first file when no PNG is written.
         let first = output_first_ext(&files);
         for f in files
             .iter()
             .filter(|f| f.extension().is_some_and(|e| e == first.as_str()))
         {
-            println!("  {}", f.display());
+            crate::out::println(format_args!("  {}", f.display()))?;
         }
     }
     Ok(())

@@ -54,14 +54,14 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     write_atomic(&args.out, "report.md", md.as_bytes())?;
     write_atomic(&args.out, "report.html", html.as_bytes())?;
     if !ctx.quiet {
-        println!("{summary}");
-        println!(
+        crate::out::println(summary)?;
+        crate::out::println(format_args!(
             "wrote {} figures, {} and {} in {:.1} s",
             doc.figures,
             args.out.join("report.md").display(),
             args.out.join("report.html").display(),
             started.elapsed().as_secs_f64()
-        );
+        ))?;
     }
     Ok(())
 }

@@ -25,11 +25,11 @@ pub fn list(_args: &ListArgs, _ctx: &Context) -> Result<(), CliError> {
         } else {
             ""
         };
-        println!(
+        crate::out::println(format_args!(
             "{:<width$}  {}{default}",
             b.name,
             b.scenario.description.as_deref().unwrap_or("")
-        );
+        ))?;
     }
     Ok(())
 }
@@ -45,6 +45,8 @@ pub fn lookup(name: &str) -> Result<scenario::Scenario, CliError> {
 /// Prints a built-in scenario as complete, commented TOML.
 pub fn show(args: &ShowArgs, _ctx: &Context) -> Result<(), CliError> {
     let text = lookup(&args.name)?.to_toml();
-    print!("# Run it with `woodpile simulate THIS_FILE.toml --out DIR`.\n{text}");
+    crate::out::print(format_args!(
+        "# Run it with `woodpile simulate THIS_FILE.toml --out DIR`.\n{text}"
+    ))?;
     Ok(())
 }

@@ -143,7 +143,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         );
     }
     if !ctx.quiet {
-        print!("{}", terminal_summary(&record, &dir));
+        crate::out::print(terminal_summary(&record, &dir))?;
     }
     Ok(())
 }

@@ -92,7 +92,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     .map_err(woodpile_io::Error::from)?;
     let dir = staging.commit(TRANSMISSION_FILES, TRANSMISSION_MARKER)?;
     if !ctx.quiet {
-        print!("{}", record.summary_text(&dir));
+        crate::out::print(record.summary_text(&dir))?;
     }
     Ok(())
 }

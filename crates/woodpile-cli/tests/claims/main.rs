@@ -25,5 +25,6 @@ mod plot_run_dir;
 mod progress_lines;
 mod report_quick;
 mod scenario_roundtrip;
+mod stdout_failures;
 mod transmission_command;
 mod up_front_limits;
