@@ -153,6 +153,10 @@ def simulate(scenario: Scenario | str) -> Run:
     """
     if isinstance(scenario, str):
         scenario = Scenario.builtin(scenario)
+    if not isinstance(scenario, Scenario):
+        raise TypeError(
+            f"simulate takes a Scenario or a built-in scenario's name, not {type(scenario).__name__}"
+        )
     return Run(_core.simulate(scenario.to_toml(), str(scenario.base_dir), scenario.name))
 
 

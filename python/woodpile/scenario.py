@@ -104,8 +104,10 @@ class Scenario:
     def from_dict(
         cls, d: Mapping[str, Any], *, name: str = "scenario", base_dir: str | os.PathLike[str] = "."
     ) -> Scenario:
-        """A scenario from a dictionary with the TOML file's structure."""
-        return cls(_core.json_to_toml(json.dumps(d)), name=name, base_dir=base_dir)
+        """A scenario from a dictionary with the TOML file's structure. Values are numbers,
+        strings, booleans, lists and tables; NumPy scalars and arrays are taken as their Python
+        values. Anything else raises :class:`~woodpile.errors.ScenarioError` naming its key."""
+        return cls(_core.json_to_toml(json.dumps(_plain(d, ""))), name=name, base_dir=base_dir)
 
     def to_dict(self) -> dict[str, Any]:
         """The scenario as a dictionary with the TOML file's structure (every default present)."""
@@ -149,6 +151,26 @@ class Scenario:
         self._toml = state["toml"]
         self.name = state["name"]
         self._base_dir = Path(state["base_dir"])
+
+
+def _plain(value: Any, key: str) -> Any:
+    """``value`` as plain JSON-able Python (NumPy scalars and arrays as their values), checked
+    all the way down; ``key`` is its dotted path, named by the error for anything else."""
+    if isinstance(value, Mapping):
+        return {k: _plain(v, f"{key}.{k}" if key else str(k)) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v, f"{key}[{i}]") for i, v in enumerate(value)]
+    if value is None or isinstance(value, (bool, int, float, str)):
+        return value
+    item = getattr(value, "tolist", None)  # NumPy scalars and arrays
+    if callable(item) and type(value).__module__ == "numpy":
+        return _plain(item(), key)
+    raise ScenarioError(
+        f"invalid {key} = {value!r}: a {type(value).__name__} is not a scenario value",
+        key,
+        repr(value),
+        "give a number, a string, a boolean, a list or a table",
+    )
 
 
 def _set_dotted(d: dict[str, Any], dotted: str, value: Any) -> None:

@@ -141,6 +141,14 @@ def sweep(scenario: Scenario, grid: Mapping[str, Sequence[Any]], executor: Execu
     import pandas as pd
 
     keys = list(grid)
+    for k in keys:
+        if isinstance(grid[k], (str, bytes)) or not isinstance(grid[k], Iterable):
+            raise ScenarioError(
+                f"invalid grid[{k!r}] = {grid[k]!r}: the values to sweep must be a list",
+                k,
+                repr(grid[k]),
+                "give a list of values, e.g. [1.0, 2.0] (a string is one value: ['rk4'])",
+            )
     combos = list(itertools.product(*(grid[k] for k in keys)))
     scenarios = [scenario.replace(**dict(zip(keys, values))) for values in combos]
     results = evaluate(scenarios, executor)
