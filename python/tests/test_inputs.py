@@ -42,3 +42,10 @@ def test_a_sweep_over_a_string_is_refused_by_key():
     with pytest.raises(ScenarioError) as e:
         woodpile.sweep(short(), {"run.integrator": "rk4"})  # type: ignore[dict-item]
     assert e.value.field == "run.integrator"
+
+
+@pytest.mark.parametrize("seed", [-1, 2**64, 1.5])
+def test_a_seed_that_is_no_count_names_the_argument(seed: object):
+    with pytest.raises(ScenarioError) as e:
+        woodpile.BreederGA("paper-impact", seed=seed)  # type: ignore[arg-type]
+    assert e.value.field == "seed"

@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal, Mapping, Sequence, TypedDict, Union
 
 from . import _core
-from .errors import StateError
+from .errors import ScenarioError, StateError
 from .scenario import Scenario
 from .study import Executor, _chunks, _workers
 
@@ -75,6 +75,13 @@ def _problem_source(problem: Problem) -> tuple[str, str, Path]:
     return "builtin", str(problem), Path(".")
 
 
+def _check_count(name: str, value: int | None, valid: str) -> None:
+    """Refuses a keyword argument that must be a non-negative integer below 2**64 (or None)."""
+    ok = value is None or (isinstance(value, int) and not isinstance(value, bool) and 0 <= value < 2**64)
+    if not ok:
+        raise ScenarioError(f"invalid {name} = {value!r}: must be {valid}", name, repr(value), valid)
+
+
 def _evaluate_designs(config_json: str, base_dir: str, designs: Sequence[Sequence[int]], threads: int) -> list[float]:
     """A chunk of designs' objective values, computed in this (worker) process."""
     return list(_core.evaluate_designs(config_json, base_dir, [list(d) for d in designs], threads))
@@ -103,6 +110,8 @@ class BreederGA:
     """
 
     def __init__(self, problem: Problem, *, seed: int | None = None, threads: int = 0):
+        _check_count("seed", seed, "the GA's seed: an integer 0 ≤ seed < 2**64")
+        _check_count("threads", threads, "threads for evaluation: 0 (one per core) or more")
         self._source = _problem_source(problem)
         self._seed = seed
         self._threads = threads
