@@ -3,7 +3,8 @@
 NumPy scalars and arrays are scenario values (as the numbers they hold: the run equals the one
 from plain floats, bit for bit); an object that is no scenario value is a ``ScenarioError`` naming
 its dotted key; ``simulate`` of something that is no scenario is a ``TypeError``; a sweep over a
-string (which Python would iterate letter by letter) is refused naming the key.
+string (which Python would iterate letter by letter) is refused naming the key; a GA seed that is
+no count names ``seed``; a run pickles (to come back from an executor) and keeps its numbers.
 """
 
 import numpy as np
@@ -49,3 +50,16 @@ def test_a_seed_that_is_no_count_names_the_argument(seed: object):
     with pytest.raises(ScenarioError) as e:
         woodpile.BreederGA("paper-impact", seed=seed)  # type: ignore[arg-type]
     assert e.value.field == "seed"
+
+
+def test_a_run_pickles_with_its_arrays_summary_and_scenario(tmp_path):
+    import pickle
+
+    run = woodpile.simulate(short())
+    back = pickle.loads(pickle.dumps(run))
+    assert back.summary == run.summary
+    assert np.array_equal(back.forces_n, run.forces_n)
+    assert back.scenario == run.scenario
+    with pytest.raises(woodpile.StateError):
+        back.save(tmp_path / "never-written")
+    assert not (tmp_path / "never-written").exists()

@@ -33,7 +33,8 @@ class Run:
     ``wall_energy_j``, ``input_work_j`` and ``dissipated_j`` (S,) [J].
 
     A run read from disk also has ``directory`` and ``run_info`` (``run.json``); both are None
-    for a run computed here. Only a computed run can be saved.
+    for a run computed here. Only a computed run can be saved, in the process that computed it: a
+    run pickles (to come back from an executor's worker) with its arrays, summary and scenario.
     """
 
     name: str
@@ -64,12 +65,14 @@ class Run:
         self.dissipated_j = core_run.dissipated_j
         self.directory = None
         self.run_info = None
+        self._scenario_toml: str | None = None
 
     @classmethod
     def _from_directory(cls, directory: Path, name: str, summary: dict[str, Any], run_info: dict[str, Any]) -> Run:
         """A run read back from its directory (use :func:`load_run`)."""
         run = cls.__new__(cls)
         run._run = None
+        run._scenario_toml = None
         run.name = name
         run.summary = summary
         run.directory = directory
@@ -96,6 +99,8 @@ class Run:
         """The scenario that was run."""
         if self._run is not None:
             return Scenario(self._run.scenario_toml(), name=self.name)
+        if self._scenario_toml is not None:
+            return Scenario(self._scenario_toml, name=self.name)
         assert self.run_info is not None  # a run is either computed or read back
         return Scenario.from_dict(self.run_info["scenario"], name=self.name)
 
@@ -129,13 +134,27 @@ class Run:
         :class:`~woodpile.errors.OverwriteError` and leave the directory as it was.
         """
         if self._run is None:
+            where = f"read from {self.directory}" if self.directory else "unpickled"
             raise StateError(
-                f"this run was read from {self.directory}; only a computed run can be saved",
+                f"this run was {where}; only a run computed in this process can be saved",
                 "directory",
                 str(directory),
                 "copy the run's directory instead",
             )
         return Path(self._run.save(str(directory), overwrite))
+
+    def __getstate__(self) -> dict[str, Any]:
+        """The run without the extension's object (which does not pickle): arrays, summary and
+        the scenario's TOML."""
+        state = dict(self.__dict__)
+        if self._run is not None:
+            state["_scenario_toml"] = self._run.scenario_toml()
+        state["_run"] = None
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        """Restores a pickled run (it cannot be saved: :meth:`save`)."""
+        self.__dict__.update(state)
 
     def __repr__(self) -> str:
         s = self.summary
