@@ -22,19 +22,24 @@ pub struct Args {
     #[arg(long, value_name = "LENGTH_MM", allow_negative_numbers = true)]
     pub rod: Option<f64>,
     /// Outer diameter of the rod, in mm.
-    #[arg(long, value_name = "MM", default_value_t = woodpile::defaults::ROD_DIAMETER_MM)]
+    #[arg(long, value_name = "MM", default_value_t = woodpile::defaults::ROD_DIAMETER_MM, requires = "rod")]
     pub diameter_mm: f64,
     /// Inner diameter of a tube, in mm (default: a solid rod).
-    #[arg(long, value_name = "MM")]
+    #[arg(long, value_name = "MM", requires = "rod")]
     pub inner_diameter_mm: Option<f64>,
     /// Material preset of the rod.
-    #[arg(long, value_name = "NAME", default_value = woodpile::defaults::ELEMENT_MATERIAL)]
+    #[arg(long, value_name = "NAME", default_value = woodpile::defaults::ELEMENT_MATERIAL, requires = "rod")]
     pub material: String,
     /// Number of resonators, 1–4 (default: one per centre-blocked mode below 38 kHz).
-    #[arg(long, value_name = "L")]
+    #[arg(long, value_name = "L", requires = "rod")]
     pub modes: Option<usize>,
     /// Reduction: pole-zero (total mass, poles and zeros exact) or modal-mass.
-    #[arg(long, value_name = "NAME", default_value = "pole-zero")]
+    #[arg(
+        long,
+        value_name = "NAME",
+        default_value = "pole-zero",
+        requires = "rod"
+    )]
     pub reduction: String,
     /// Print the derived cell as one JSON object.
     #[arg(long, requires = "rod")]

@@ -7,6 +7,7 @@
 //! derived cell (run.json records it), so a rod's length changes the result; a given cell whose
 //! mass is not the rod's is reported on stderr. A finite-element rod (`cell = { fe_elements = 16 }`)
 //! runs at a step its stiffest mode allows and is refused, naming run.time_step_s, at the paper's.
+//! A rod's options without `--rod` are refused naming it (they were silently ignored).
 
 use crate::common;
 
@@ -155,4 +156,22 @@ fn finite_element_rods_need_a_small_step() {
         resonators, 32,
         "16 elements per half: 32 modes of the held half rod"
     );
+}
+
+/// A rod's options without `--rod` would be silently ignored (the catalogue is printed instead):
+/// each is refused with exit code 2, naming `--rod`.
+#[test]
+fn rod_options_without_a_rod_are_refused() {
+    for args in [
+        ["cells", "--modes", "2"],
+        ["cells", "--diameter-mm", "6"],
+        ["cells", "--material", "steel"],
+        ["cells", "--reduction", "pole-zero"],
+        ["cells", "--inner-diameter-mm", "2"],
+    ] {
+        let out = common::woodpile().args(args).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains("--rod"), "{args:?}: {stderr}");
+    }
 }
