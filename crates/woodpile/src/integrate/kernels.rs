@@ -206,7 +206,7 @@ pub(crate) fn crossing_quadratic<R: Real>(g: R, d: R, d_prev: R, dt: R, h: R, ha
 }
 
 /// out = base + Σ_j hw(w_j) k_j over the non-zero weights w_j (out = Σ_j hw(w_j) k_j when `base`
-/// is None: `out` is only written), for f64 states and for SIMD lanes (lanes.rs) alike: the
+/// is None: `out` is only written), for f64 states and for SIMD lanes (`crate::lanes`) alike: the
 /// stages, the new state and the error estimate. The terms go in groups of up to four per pass
 /// over the state (each element's sum in a register), so a DOPRI5 step makes 8 passes instead of
 /// 21; the additions run left to right as with one pass per term, so the bits are those of one

@@ -990,7 +990,7 @@ impl LandingRule {
 }
 
 /// For a switching function that changed sign over a step of size h: the zero of its cubic
-/// Hermite interpolant if it lies in (0.1 h, 0.999 h) ([`missed_crossing`]).
+/// Hermite interpolant if it lies in (0.1 h, 0.999 h) ([`kernels::missed_crossings`]).
 #[inline(never)]
 pub(crate) fn crossing_inside(g0: f64, d0: f64, g1: f64, d1: f64, h: f64) -> Option<f64> {
     let cubic = |th: f64| {

@@ -12,9 +12,10 @@
 //! each other: a lane whose run has ended takes the next run of the queue. The work spreads over
 //! the threads of the current rayon pool: each thread advances its own lanes, and all of them
 //! take runs from one queue per group, so lanes idle only while the last runs finish. Runs of
-//! one lane group share the number of bodies and the kind of load; chains whose cells carry
-//! different numbers of resonators are padded with massless-in-effect resonators (k = 0: they
-//! exert exactly zero force) and the error norm skips the padding.
+//! one lane group share the number of bodies, the kind of load and the terms of their lab
+//! physics (`crate::ode::LabShape`); chains whose cells carry different numbers of resonators are
+//! padded with resonators that exert exactly zero force (k = c = m = 0) and the error norm skips
+//! the padding.
 //!
 //! **The lanes compute bit for bit what [`simulate`](crate::simulate()) computes** for the same run: every lane
 //! performs the scalar path's operations in the same order (IEEE arithmetic, no fused
