@@ -56,6 +56,8 @@ fn conflicting_or_meaningless_accuracies_name_their_key() {
         ),
         ("peak_tolerance = 0.5\n", "run.peak_tolerance"),
         ("peak_tolerance = -1e-5\n", "run.peak_tolerance"),
+        // Below the calibrated range (it was accepted and silently clamped to rtol 1e-13).
+        ("peak_tolerance = 1e-15\n", "at least 2e-7"),
     ] {
         let e = method_of(run).unwrap_err();
         assert!(e.contains(key), "{run}: {e}");

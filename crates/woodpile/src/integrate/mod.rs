@@ -463,8 +463,23 @@ fn check_peak_tolerance(peak_tolerance: f64) -> Result<()> {
             "is a relative error: give a value below 0.1 (e.g. 1e-5)",
         ));
     }
+    if peak_tolerance < MIN_PEAK_TOLERANCE {
+        return Err(Error::invalid(
+            "run.peak_tolerance",
+            peak_tolerance,
+            format!(
+                "must be at least {MIN_PEAK_TOLERANCE:e}: a smaller one needs an rtol below the range its \
+                 bound was calibrated on (down to 3e-11, docs/physics.md §8); for more accuracy give \
+                 run.integrator and run.rtol instead"
+            ),
+        ));
+    }
     Ok(())
 }
+
+/// The smallest stated peak tolerance: its rtol (`Method::resolve`) stays within the calibrated
+/// range (rtol ≥ 3e-11) for impacts and blasts alike.
+pub const MIN_PEAK_TOLERANCE: f64 = 2e-7;
 
 /// Counters of the work an integration did.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]

@@ -209,6 +209,19 @@ impl Damping {
                 ));
             }
             require_non_negative(&format!("{field}.ratio"), o.ratio)?;
+            let earlier = self.resonator_overrides[..k]
+                .iter()
+                .position(|e| (e.element, e.resonator) == (o.element, o.resonator));
+            if let Some(j) = earlier {
+                return Err(Error::invalid(
+                    format!("{field}.resonator"),
+                    o.resonator,
+                    format!(
+                        "resonator {} of element {} is already damped by damping.resonators[{j}] (ratio {}); give each resonator once",
+                        o.resonator, o.element, self.resonator_overrides[j].ratio
+                    ),
+                ));
+            }
         }
         if let Some(tau) = self.on_site_time_s {
             require_positive("damping.on_site_time_s", tau)?;

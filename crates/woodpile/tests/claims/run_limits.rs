@@ -6,7 +6,8 @@
 //! - A resonator of k = 1e20 N/m on m = 1e-9 kg (ω ≈ 3e14 rad/s) under Dormand–Prince would need
 //!   steps of ~1e-14 s, ~1e11 of them for 2 ms: it must stop at once with a typed error naming
 //!   the stiffness problem, not run for days (bounded here by the test finishing at all).
-//! - Two overrides of one contact coefficient are an error naming both entries.
+//! - Two overrides of one contact coefficient are an error naming both entries; so are two damping
+//!   ratios of one resonator (the second was silently taken before).
 
 use woodpile::{
     simulate, Body, ChainBuilder, Element, Error, Excitation, Material, Method, Resonator,
@@ -78,6 +79,28 @@ fn one_contact_overridden_twice_is_refused() {
     let msg = err.to_string();
     assert!(
         msg.contains("chain.contact_beta[1]") && msg.contains("chain.contact_beta[0]"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn one_resonator_damped_twice_is_refused() {
+    let once = |ratio| woodpile::ResonatorDamping {
+        element: 2,
+        resonator: 1,
+        ratio,
+    };
+    let err = ChainBuilder::table1_rods(&[20, 30, 40], woodpile::CellModel::Resonant)
+        .unwrap()
+        .damping(woodpile::Damping {
+            resonator_overrides: vec![once(0.01), once(0.02)],
+            ..woodpile::Damping::default()
+        })
+        .build()
+        .unwrap_err();
+    let msg = err.to_string();
+    assert!(
+        msg.contains("damping.resonators[1]") && msg.contains("damping.resonators[0]"),
         "{msg}"
     );
 }
