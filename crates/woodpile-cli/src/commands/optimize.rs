@@ -29,10 +29,15 @@ pub struct Args {
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
     /// Seed of the GA (overrides ga.seed).
-    #[arg(long, value_name = "S")]
+    #[arg(long, allow_negative_numbers = true, value_name = "S")]
     pub seed: Option<u64>,
     /// Worker threads for the simulations (default: one per core). Does not change results.
-    #[arg(long, value_name = "T", default_value_t = 0)]
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        value_name = "T",
+        default_value_t = 0
+    )]
     pub threads: usize,
     /// Allow more than 4 worker threads per core.
     #[arg(long)]

@@ -25,10 +25,20 @@ pub struct Args {
     #[arg(long)]
     pub quick: bool,
     /// Seed of both GAs.
-    #[arg(long, value_name = "S", default_value_t = 1)]
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        value_name = "S",
+        default_value_t = 1
+    )]
     pub seed: u64,
     /// Worker threads (default: one per core). Does not change results.
-    #[arg(long, value_name = "T", default_value_t = 0)]
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        value_name = "T",
+        default_value_t = 0
+    )]
     pub threads: usize,
     /// Allow more than 4 worker threads per core.
     #[arg(long)]

@@ -32,7 +32,7 @@ pub struct Args {
     #[arg(long, default_value_t = defaults::TRANSMISSION_END_HZ)]
     pub end_hz: f64,
     /// Frequency resolution (Hz); the driven run lasts its inverse.
-    #[arg(long, default_value_t = defaults::TRANSMISSION_RESOLUTION_HZ)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = defaults::TRANSMISSION_RESOLUTION_HZ)]
     pub resolution_hz: f64,
     /// Chirp amplitude as a fraction of the preload force.
     #[arg(long, default_value_t = defaults::TRANSMISSION_RELATIVE_AMPLITUDE)]

@@ -3,7 +3,8 @@
 //! with code 2 and a message naming the key, the value and the valid range, and creates no
 //! output directory; an output directory holding an earlier run is never written into without
 //! --resume, and a missing, corrupt or mismatched checkpoint on --resume is refused with code 2
-//! and leaves every earlier file byte for byte as it was.
+//! and leaves every earlier file byte for byte as it was. A negative --seed or --threads is refused
+//! naming the flag.
 
 use crate::common;
 
@@ -188,4 +189,36 @@ fn earlier_results_are_never_overwritten() {
         std::fs::read_to_string(d.join("other/notes.txt")).unwrap(),
         "mine"
     );
+}
+
+/// A negative count is refused naming its flag and value (clap's "use '-- -1'" tip, which fails
+/// too, was the answer before).
+#[test]
+fn negative_counts_name_their_flag() {
+    for (args, flag) in [
+        (
+            &["optimize", "any.toml", "--seed", "-1", "--out", "o"][..],
+            "--seed",
+        ),
+        (
+            &["optimize", "any.toml", "--threads", "-2", "--out", "o"],
+            "--threads",
+        ),
+        (&["report", "--out", "r", "--seed", "-1"], "--seed"),
+        (&["report", "--out", "r", "--threads", "-2"], "--threads"),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = common::run_in(dir.path(), args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(flag) && stderr.contains("'-"),
+            "{args:?}: {stderr}"
+        );
+        assert!(!stderr.contains("tip:"), "{args:?}: {stderr}");
+        assert!(
+            common::leftovers(dir.path()).is_empty(),
+            "{args:?}: left files"
+        );
+    }
 }
