@@ -113,9 +113,18 @@ impl Error {
     ) -> Self {
         Error::InvalidParameter {
             field: field.into(),
-            value: value.to_string(),
+            value: readable_number(value.to_string()),
             reason: reason.into(),
         }
+    }
+}
+
+/// A number written out in more than 16 characters (`1e300` prints as 301 digits) in its
+/// shortest scientific form; any other text as it is.
+fn readable_number(text: String) -> String {
+    match text.parse::<f64>() {
+        Ok(x) if text.len() > 16 && x.is_finite() => format!("{x:e}"),
+        _ => text,
     }
 }
 

@@ -76,11 +76,16 @@ impl RunSettings {
                 format!("must not exceed run.duration_s = {}", self.duration_s),
             ));
         }
-        if self.duration_s / self.sample_interval_s > 1e8 {
+        let samples = self.duration_s / self.sample_interval_s;
+        if samples > 1e8 {
+            // Both keys make the count: the message names both, the field the run's length.
             return Err(Error::invalid(
-                "run.sample_interval_s",
-                self.sample_interval_s,
-                "gives more than 1e8 samples; choose a larger interval",
+                "run.duration_s",
+                self.duration_s,
+                format!(
+                    "with run.sample_interval_s = {} gives {samples:.1e} samples, more than 1e8: choose a shorter run.duration_s or a larger run.sample_interval_s",
+                    self.sample_interval_s
+                ),
             ));
         }
         self.method.validate(self.duration_s)

@@ -6,6 +6,8 @@
 //! - A resonator of k = 1e20 N/m on m = 1e-9 kg (ω ≈ 3e14 rad/s) under Dormand–Prince would need
 //!   steps of ~1e-14 s, ~1e11 of them for 2 ms: it must stop at once with a typed error naming
 //!   the stiffness problem, not run for days (bounded here by the test finishing at all).
+//! - A run of 1e300 s is refused naming run.duration_s = 1e300 (it was blamed on the sample
+//!   interval, and the value printed as 301 digits), with the sample count it would give.
 //! - Two overrides of one contact coefficient are an error naming both entries; so are two damping
 //!   ratios of one resonator (the second was silently taken before).
 
@@ -101,6 +103,19 @@ fn one_resonator_damped_twice_is_refused() {
     let msg = err.to_string();
     assert!(
         msg.contains("damping.resonators[1]") && msg.contains("damping.resonators[0]"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn an_endless_run_names_its_duration() {
+    let settings = RunSettings {
+        duration_s: 1e300,
+        ..RunSettings::paper_impact()
+    };
+    let msg = settings.validate().unwrap_err().to_string();
+    assert!(
+        msg.contains("run.duration_s = 1e300") && msg.contains("1.0e306 samples"),
         "{msg}"
     );
 }
