@@ -186,17 +186,19 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         }
     };
     if !ctx.quiet {
+        // One line per figure: its PNG, or its first file when no PNG is written.
+        let first = output_first_ext(&files);
+        let listed: Vec<&PathBuf> = files
+            .iter()
+            .filter(|f| f.extension().is_some_and(|e| e == first.as_str()))
+            .collect();
         crate::out::println(format_args!(
-            "wrote {} files to {}",
+            "wrote {} figures ({} files) to {}",
+            listed.len(),
             files.len(),
             out.display()
         ))?;
-        // One line per figure: its PNG, or its first file when no PNG is written.
-        let first = output_first_ext(&files);
-        for f in files
-            .iter()
-            .filter(|f| f.extension().is_some_and(|e| e == first.as_str()))
-        {
+        for f in listed {
             crate::out::println(format_args!("  {}", f.display()))?;
         }
     }

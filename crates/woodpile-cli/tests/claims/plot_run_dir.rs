@@ -2,7 +2,8 @@
 //! RUN_DIR/plots (from the .npy files, or from the CSV files when those are gone), and refuses
 //! with exit code 2 and a message naming the problem: a directory that is not a run, a run of
 //! another format version, a missing data file, a signal name that does not exist.
-//! `woodpile cells --plot DIR` draws Fig. 3.
+//! `woodpile cells --plot DIR` draws Fig. 3. The count it prints is that of the figures it lists
+//! (it said "wrote 14 files" and listed 7).
 //! No tolerance: file existence and exit codes are exact.
 
 use std::path::Path;
@@ -67,6 +68,14 @@ fn plot_writes_every_figure_of_a_run() {
         assert_png(&run.join("plots").join(format!("{name}.png")));
         assert!(run.join("plots").join(format!("{name}.svg")).is_file());
     }
+    // What it says it wrote is what it lists: a line per figure, its PNG (and an SVG beside it).
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let listed = stdout.lines().filter(|l| l.starts_with("  ")).count();
+    let first = stdout.lines().next().unwrap_or_default();
+    assert!(
+        first.starts_with(&format!("wrote {listed} figures ({} files)", 2 * listed)),
+        "{stdout}"
+    );
     // Without the .npy files the CSV files are read.
     for f in std::fs::read_dir(&run).unwrap() {
         let p = f.unwrap().path();
