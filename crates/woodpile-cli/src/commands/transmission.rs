@@ -44,6 +44,15 @@ pub struct Args {
 
 /// Runs `woodpile transmission`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
+    if !(args.threshold_db.is_finite() && args.threshold_db < 0.0) {
+        // A stop band is where less comes out than goes in: a threshold at or above 0 dB would
+        // count pass bands (and most of the spectrum) as gaps.
+        return Err(CliError::invalid(
+            "--threshold-db",
+            args.threshold_db,
+            "must be a negative level in dB (e.g. -20): a stop band is where the transmitted amplitude falls below the driven one",
+        ));
+    }
     let loaded = load(&args.source)?;
     let resolved = loaded.resolve()?;
     if resolved.chain.damping().is_lossless() {

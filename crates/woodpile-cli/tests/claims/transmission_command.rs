@@ -88,3 +88,17 @@ fn a_chain_without_preload_is_refused() {
     assert!(err.contains("preload.force_n"), "{err}");
     assert!(!dir.path().join("tx").exists(), "nothing written");
 }
+
+/// A threshold at or above 0 dB would count pass bands as gaps: refused naming the flag (it was
+/// silently accepted).
+#[test]
+fn a_threshold_that_is_no_attenuation_is_refused() {
+    for level in ["10", "0"] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = common::run_in(dir.path(), &["transmission", "--threshold-db", level]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{level}: {stderr}");
+        assert!(stderr.contains("--threshold-db"), "{level}: {stderr}");
+        assert!(common::leftovers(dir.path()).is_empty());
+    }
+}
