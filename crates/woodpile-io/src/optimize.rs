@@ -662,6 +662,19 @@ pub fn optimize_error(e: OptimizeError) -> Error {
             "(as given)",
             format!("no design meets them: {reason}"),
         ),
+        OptimizeError::TooHeavy {
+            max_total_mass_kg,
+            lightest_kg,
+            lightest,
+        } => Error::invalid(
+            // The config states the limit in grams.
+            "design.constraints.max_total_mass_g",
+            grams(max_total_mass_kg),
+            format!(
+                "no design meets it: the lightest design meeting the other constraints weighs {} g ({lightest})",
+                grams(lightest_kg)
+            ),
+        ),
         OptimizeError::Simulation { design, source } => Error::Evaluation { design, source },
         OptimizeError::NotANumber { objective, design } => Error::invalid(
             "ga.objective",
@@ -674,6 +687,12 @@ pub fn optimize_error(e: OptimizeError) -> Error {
         },
         OptimizeError::ThreadPool { threads, reason } => Error::ThreadPool { threads, reason },
     }
+}
+
+/// A mass \[kg\] in grams, to nine significant decimals (no binary-conversion tail).
+fn grams(kg: f64) -> String {
+    let text = format!("{:.9}", kg * 1e3);
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 /// The first pair (i, j), i < j, of equal entries.

@@ -79,9 +79,10 @@ fn bad_catalogue_and_infeasible_constraints() {
             "[run]",
             "[design.constraints]\nmax_total_mass_g = 1.0\n[run]",
         ),
+        // In the config's own unit and key (it was reported as max_total_mass_kg = 0.001).
         &[
-            "design.constraints",
-            "max_total_mass_kg = 0.001",
+            "design.constraints.max_total_mass_g = 1:",
+            "weighs 2.598 g",
             "lightest design",
         ],
     );

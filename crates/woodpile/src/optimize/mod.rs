@@ -62,6 +62,16 @@ pub enum OptimizeError {
         /// Which constraints conflict, with their numbers.
         reason: String,
     },
+    /// Even the lightest design that meets the other constraints is above the mass limit.
+    #[error("infeasible constraints: design.constraints.max_total_mass_kg = {max_total_mass_kg} kg, but the lightest design meeting the other constraints weighs {lightest_kg} kg ({lightest})")]
+    TooHeavy {
+        /// The limit \[kg\].
+        max_total_mass_kg: f64,
+        /// The lightest design's mass \[kg\].
+        lightest_kg: f64,
+        /// Its element labels, top to bottom.
+        lightest: String,
+    },
     /// Simulating a candidate failed.
     #[error("evaluating design [{design}] failed: {source}")]
     Simulation {

@@ -172,12 +172,10 @@ impl FeasibleSet {
         if let Some(max) = max_mass_kg {
             let min = space.mass_kg(&lightest);
             if min > max * (1.0 + MASS_SLACK) {
-                return Err(OptimizeError::Infeasible {
-                    reason: format!(
-                        "design.constraints.max_total_mass_kg = {max} kg, but the lightest design \
-                         meeting the other constraints weighs {min} kg ({})",
-                        space.labels(&lightest).join(" ")
-                    ),
+                return Err(OptimizeError::TooHeavy {
+                    max_total_mass_kg: max,
+                    lightest_kg: min,
+                    lightest: space.labels(&lightest).join(" "),
                 });
             }
         }

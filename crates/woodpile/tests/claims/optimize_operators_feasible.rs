@@ -90,7 +90,9 @@ proptest! {
                 prop_assert!(exists);
                 prop_assert!(meets(&s, set.lightest()));
             }
-            Err(OptimizeError::Infeasible { .. }) => prop_assert!(!exists),
+            Err(OptimizeError::Infeasible { .. } | OptimizeError::TooHeavy { .. }) => {
+                prop_assert!(!exists)
+            }
             Err(e) => prop_assert!(false, "unexpected error {e}"),
         }
     }
