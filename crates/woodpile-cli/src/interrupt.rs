@@ -20,7 +20,7 @@ pub fn install() {
         STOP.store(true, Ordering::SeqCst);
         if !COOPERATIVE.load(Ordering::SeqCst) {
             woodpile_io::atomic::remove_active_staging();
-            eprintln!("interrupted: nothing was written");
+            crate::out::eprintln("interrupted: nothing was written");
             std::process::exit(i32::from(EXIT_INTERRUPTED));
         }
     });

@@ -59,11 +59,11 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) if out::closed_pipe(&e) => ExitCode::from(out::EXIT_CLOSED_PIPE),
         Err(e @ woodpile_cli::CliError::Interrupted { .. }) => {
-            eprintln!("{}", exit::message(&e));
+            out::eprintln(exit::message(&e));
             ExitCode::from(exit::code(&e))
         }
         Err(e) => {
-            eprintln!("error: {}", exit::message(&e));
+            out::eprintln(format_args!("error: {}", exit::message(&e)));
             ExitCode::from(exit::code(&e))
         }
     }

@@ -1,4 +1,5 @@
-//! Standard output that never panics (`print!` does when stdout cannot be written): a write that
+//! Standard output and error that never panic (`print!` and `eprintln!` do when they cannot be
+//! written): a write that
 //! fails is [`CliError::Output`] on `standard output`, so a full disk ends with exit code 2 and the
 //! reason, and a reader that closed the pipe (`| head`) ends the command quietly with exit code
 //! 141, as a process stopped by SIGPIPE does ([`closed_pipe`]).
@@ -29,6 +30,12 @@ pub fn println(text: impl Display) -> Result<(), CliError> {
 pub fn closed_pipe(e: &CliError) -> bool {
     matches!(e, CliError::Output { path, source }
         if source.kind() == io::ErrorKind::BrokenPipe && path.as_os_str() == "standard output")
+}
+
+/// Writes `text` and a newline to standard error (warnings, notes, the final error). A failure
+/// there is ignored: there is nowhere left to report it, and it must not panic.
+pub fn eprintln(text: impl Display) {
+    let _ = writeln!(io::stderr().lock(), "{text}");
 }
 
 /// The exit code of a command whose output pipe was closed: 128 + SIGPIPE.

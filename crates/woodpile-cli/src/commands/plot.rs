@@ -180,7 +180,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         DirKind::Optimization => {
             let (files, note) = plot_optimization(&args.dir, &out, &output)?;
             if let (Some(note), false) = (note, ctx.quiet) {
-                eprintln!("note: {note}");
+                crate::out::eprintln(format_args!("note: {note}"));
             }
             files
         }

@@ -68,7 +68,7 @@ impl Loaded {
     pub fn resolve(&self) -> Result<Resolved, CliError> {
         let resolved = resolve(&self.scenario, &self.base_dir)?;
         for warning in &resolved.warnings {
-            eprintln!("warning: {warning}");
+            crate::out::eprintln(format_args!("warning: {warning}"));
         }
         Ok(resolved)
     }
@@ -132,15 +132,15 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     write_run(staging.path(), &record)?;
     let dir = staging.commit(RUN_FILES, RUN_MARKER)?;
     if let Some(warning) = accuracy {
-        eprintln!("warning: {warning}");
+        crate::out::eprintln(format_args!("warning: {warning}"));
     }
     if !summary.wave_arrived {
-        eprintln!(
+        crate::out::eprintln(format_args!(
             "warning: the wave did not reach the wall within run.duration_s = {:e} s (transmitted peak {:.3e} N, incident {:.3e} N): the transmitted force and the ratio mean nothing; increase run.duration_s",
             resolved.settings.duration_s,
             summary.transmitted_peak_force_n,
             summary.incident_peak_force_n
-        );
+        ));
     }
     if !ctx.quiet {
         crate::out::print(terminal_summary(&record, &dir))?;

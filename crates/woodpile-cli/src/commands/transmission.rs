@@ -56,7 +56,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let loaded = load(&args.source)?;
     let resolved = loaded.resolve()?;
     if resolved.chain.damping().is_lossless() {
-        eprintln!("warning: the chain has no damping: its response rings past the end of the record and leaks into the gaps; add e.g. [damping] on_site_time_s = 0.02 (docs/physics.md §15)");
+        crate::out::eprintln(format_args!("warning: the chain has no damping: its response rings past the end of the record and leaks into the gaps; add e.g. [damping] on_site_time_s = 0.02 (docs/physics.md §15)"));
     }
     let settings = TransmissionSettings {
         start_hz: args.start_hz,
