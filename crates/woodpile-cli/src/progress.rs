@@ -9,7 +9,7 @@
 //! shown at once.
 
 use indicatif::{ProgressBar, ProgressStyle};
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
@@ -173,7 +173,7 @@ impl Progress {
             detail,
         );
         // Progress is best effort: a closed stderr must not fail the command.
-        let _ = writeln!(std::io::stderr().lock(), "{text}");
+        crate::out::eprintln(text);
     }
 }
 
