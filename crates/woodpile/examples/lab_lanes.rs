@@ -56,21 +56,6 @@ fn designs(count: usize, lab: bool) -> Vec<Chain> {
         .collect()
 }
 
-fn jobs<'a>(
-    chains: &'a [Chain],
-    excitation: &'a Excitation,
-    settings: &'a RunSettings,
-) -> Vec<Job<'a>> {
-    chains
-        .iter()
-        .map(|chain| Job {
-            chain,
-            excitation,
-            settings,
-        })
-        .collect()
-}
-
 fn same_bits(a: &RunSummary, b: &RunSummary) -> bool {
     let strip = |s: &RunSummary| {
         format!(
@@ -98,8 +83,8 @@ fn main() {
     let excitation = Excitation::Impact(Striker::paper());
     let (lossless, lab) = (designs(count, false), designs(count, true));
     let (lossless_jobs, lab_jobs) = (
-        jobs(&lossless, &excitation, &settings),
-        jobs(&lab, &excitation, &settings),
+        Job::for_each_chain(&lossless, &excitation, &settings),
+        Job::for_each_chain(&lab, &excitation, &settings),
     );
     assert!(lab_jobs.iter().all(|j| j.in_lanes().unwrap()));
     let width = LaneWidth::detect();

@@ -115,7 +115,23 @@ pub struct Job<'a> {
     pub settings: &'a RunSettings,
 }
 
-impl Job<'_> {
+impl<'a> Job<'a> {
+    /// One job per chain, all under the same excitation and settings (a design study's runs).
+    pub fn for_each_chain(
+        chains: &'a [Chain],
+        excitation: &'a Excitation,
+        settings: &'a RunSettings,
+    ) -> Vec<Job<'a>> {
+        chains
+            .iter()
+            .map(|chain| Job {
+                chain,
+                excitation,
+                settings,
+            })
+            .collect()
+    }
+
     /// Whether [`simulate_many`] advances this job in SIMD lanes (any physics, when it records no
     /// samples: `sample_interval_s` equal to `duration_s`), rather than on its own with
     /// [`simulate`](crate::simulate()). Errors as [`simulate`](crate::simulate()) would.

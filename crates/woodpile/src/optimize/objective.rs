@@ -282,14 +282,7 @@ impl StandardObjective {
         stop_above_n: f64,
     ) -> Vec<Result<Valued>> {
         let peaks_only = peaks_only(settings);
-        let jobs: Vec<Job<'_>> = chains
-            .iter()
-            .map(|chain| Job {
-                chain,
-                excitation,
-                settings: &peaks_only,
-            })
-            .collect();
+        let jobs = Job::for_each_chain(chains, excitation, &peaks_only);
         simulate_many_stopping(&jobs, lanes, PeakWatch::FiguresOfMerit, stop_above_n)
             .into_iter()
             .map(|summary| {

@@ -10,8 +10,8 @@
 //! its order, so anything but equality is a bug (and would make GA results depend on the lane
 //! width, the thread count and the grouping of designs).
 
-use crate::lanes_common::{alone, assert_lanes_agree, jobs, peaks_only, random_chains};
-use woodpile::{BlastProfile, Excitation, Method, RunSummary, Striker};
+use crate::lanes_common::{alone, assert_lanes_agree, peaks_only, random_chains};
+use woodpile::{BlastProfile, Excitation, Job, Method, RunSummary, Striker};
 
 fn same(a: &RunSummary, b: &RunSummary) -> bool {
     let a = RunSummary {
@@ -35,7 +35,7 @@ fn check(excitation: &Excitation, method: Method, duration_s: f64) {
     let chains = random_chains(7, 27, &[3, 8, 20]);
     let settings = peaks_only(method, duration_s);
     let alone = alone(&chains, excitation, &settings);
-    let jobs = jobs(&chains, excitation, &settings);
+    let jobs = Job::for_each_chain(&chains, excitation, &settings);
     assert_lanes_agree(&jobs, &alone, same);
 }
 

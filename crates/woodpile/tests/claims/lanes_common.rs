@@ -1,5 +1,5 @@
-//! What the lane claims share: random chains of Table 1 rods, and a problem's runs one by one
-//! beside the same runs as lane jobs. Not a claim.
+//! What the lane claims share: random chains of Table 1 rods, their runs one by one, and the
+//! check that runs advanced together in lanes agree with them. Not a claim.
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -50,22 +50,6 @@ pub fn alone(chains: &[Chain], excitation: &Excitation, settings: &RunSettings) 
     chains
         .iter()
         .map(|c| simulate(c, excitation, settings, &mut ()).unwrap())
-        .collect()
-}
-
-/// The same runs as lane jobs.
-pub fn jobs<'a>(
-    chains: &'a [Chain],
-    excitation: &'a Excitation,
-    settings: &'a RunSettings,
-) -> Vec<Job<'a>> {
-    chains
-        .iter()
-        .map(|chain| Job {
-            chain,
-            excitation,
-            settings,
-        })
         .collect()
 }
 

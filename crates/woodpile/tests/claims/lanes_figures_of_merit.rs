@@ -11,7 +11,7 @@
 //! Tolerance: none; anything but equality is a bug (and would make a GA's results depend on the
 //! watch).
 
-use crate::lanes_common::{alone, jobs, peaks_only, random_chains};
+use crate::lanes_common::{alone, peaks_only, random_chains};
 use woodpile::{
     simulate, simulate_many_watching, BlastProfile, CellModel, ChainBuilder, Excitation, Job,
     LaneWidth, Method, PeakWatch, RunSettings, RunSummary, Striker,
@@ -60,7 +60,7 @@ fn check(excitation: &Excitation, method: Method, duration_s: f64) {
     let chains = random_chains(11, 12, &[1, 3, 8, 20]);
     let settings = peaks_only(method, duration_s);
     let full = alone(&chains, excitation, &settings);
-    let jobs = jobs(&chains, excitation, &settings);
+    let jobs = Job::for_each_chain(&chains, excitation, &settings);
     for width in LaneWidth::ALL {
         let light = simulate_many_watching(&jobs, width, PeakWatch::FiguresOfMerit);
         for (i, (l, f)) in light.iter().zip(&full).enumerate() {

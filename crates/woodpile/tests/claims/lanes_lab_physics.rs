@@ -8,9 +8,9 @@
 //! of the scalar path with itself; and a problem mixing two damping laws splits into groups
 //! that still agree. Tolerance: none — the lanes run the scalar path's own equations.
 
-use crate::lanes_common::{alone, assert_lanes_agree, jobs, peaks_only, random_builders};
+use crate::lanes_common::{alone, assert_lanes_agree, peaks_only, random_builders};
 use woodpile::{
-    BlastProfile, Chain, ContactDamping, Damping, Drive, DriveQuantity, Excitation, Method,
+    BlastProfile, Chain, ContactDamping, Damping, Drive, DriveQuantity, Excitation, Job, Method,
     Preload, RunSettings, RunSummary, Signal, Striker, Wall,
 };
 
@@ -55,7 +55,7 @@ fn lab_chains(damping: &Damping, preload: &Preload) -> Vec<Chain> {
 
 fn check(chains: &[Chain], excitation: &Excitation, settings: &RunSettings) {
     let alone = alone(chains, excitation, settings);
-    let jobs = jobs(chains, excitation, settings);
+    let jobs = Job::for_each_chain(chains, excitation, settings);
     assert!(
         jobs.iter().all(|j| j.in_lanes().unwrap()),
         "every job runs in lanes"

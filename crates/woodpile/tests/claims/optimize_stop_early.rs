@@ -91,14 +91,7 @@ fn a_stopped_run_is_a_prefix_of_the_whole_run() {
         .iter()
         .map(|g| space.chain(g).unwrap())
         .collect();
-    let jobs: Vec<Job<'_>> = chains
-        .iter()
-        .map(|chain| Job {
-            chain,
-            excitation: &space.excitation,
-            settings: &space.settings,
-        })
-        .collect();
+    let jobs = Job::for_each_chain(&chains, &space.excitation, &space.settings);
     for (chain, job) in chains.iter().zip(&jobs) {
         let whole = simulate(chain, &space.excitation, &space.settings, &mut ()).unwrap();
         let cutoff = 0.5 * whole.transmitted_peak_force_n;
