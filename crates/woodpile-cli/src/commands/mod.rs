@@ -4,6 +4,7 @@
 //! `pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError>`, then one variant of `Command`
 //! and one match arm in `main.rs`.
 
+use crate::CliError;
 use std::path::{Path, PathBuf};
 
 pub mod cells;
@@ -13,6 +14,29 @@ pub mod report;
 pub mod scenarios;
 pub mod simulate;
 pub mod transmission;
+
+/// The worker threads of a command that runs many simulations (`optimize`, `report`).
+#[derive(Debug, Clone, Copy, clap::Args)]
+pub struct Workers {
+    /// Worker threads for the simulations (default: one per core). Does not change results.
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        value_name = "T",
+        default_value_t = 0
+    )]
+    pub threads: usize,
+    /// Allow more than 4 worker threads per core.
+    #[arg(long)]
+    pub allow_many_threads: bool,
+}
+
+impl Workers {
+    /// The thread count, checked against the per-core limit (0: one per core).
+    pub fn checked(&self) -> Result<usize, CliError> {
+        woodpile_io::limits::check_threads("--threads", self.threads, self.allow_many_threads)
+    }
+}
 
 /// Options shared by every subcommand.
 #[derive(Debug, Clone, Copy, Default)]

@@ -9,7 +9,6 @@ use std::ops::ControlFlow;
 use std::path::PathBuf;
 use woodpile::optimize::{BreederGa, GaState, Objective, StopReason};
 use woodpile_io::atomic::io_err;
-use woodpile_io::limits::check_threads;
 use woodpile_io::optimize::*;
 use woodpile_io::scenario::ModelSpec;
 
@@ -31,17 +30,9 @@ pub struct Args {
     /// Seed of the GA (overrides ga.seed).
     #[arg(long, allow_negative_numbers = true, value_name = "S")]
     pub seed: Option<u64>,
-    /// Worker threads for the simulations (default: one per core). Does not change results.
-    #[arg(
-        long,
-        allow_negative_numbers = true,
-        value_name = "T",
-        default_value_t = 0
-    )]
-    pub threads: usize,
-    /// Allow more than 4 worker threads per core.
-    #[arg(long)]
-    pub allow_many_threads: bool,
+    /// Worker threads (`--threads`, `--allow-many-threads`).
+    #[command(flatten)]
+    pub workers: super::Workers,
     /// Continue the run saved in DIR/checkpoint.json (same config and seed).
     #[arg(long)]
     pub resume: bool,
@@ -97,7 +88,7 @@ pub fn load_config(args: &Args) -> Result<(OptimizeConfig, String, PathBuf), Cli
 /// Runs `woodpile optimize`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let (cfg, name, base_dir) = load_config(args)?;
-    let threads = check_threads("--threads", args.threads, args.allow_many_threads)?;
+    let threads = args.workers.checked()?;
     let problem = Problem::new(&cfg, &base_dir, threads)?;
     let out = &args.out;
     let initial = prepare_output(out, args.resume, &problem.config)?;

@@ -32,30 +32,28 @@ pub struct Args {
         default_value_t = 1
     )]
     pub seed: u64,
-    /// Worker threads (default: one per core). Does not change results.
-    #[arg(
-        long,
-        allow_negative_numbers = true,
-        value_name = "T",
-        default_value_t = 0
-    )]
-    pub threads: usize,
-    /// Allow more than 4 worker threads per core.
-    #[arg(long)]
-    pub allow_many_threads: bool,
+    /// Worker threads (`--threads`, `--allow-many-threads`).
+    #[command(flatten)]
+    pub workers: super::Workers,
 }
 
 /// Runs `woodpile report`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let started = Instant::now();
-    woodpile_io::limits::check_threads("--threads", args.threads, args.allow_many_threads)?;
+    args.workers.checked()?;
     prepare_dir(&args.out)?;
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads)
+        .num_threads(args.workers.threads)
         .build()
-        .map_err(|e| CliError::invalid("--threads", args.threads, e.to_string()))?;
+        .map_err(|e| CliError::invalid("--threads", args.workers.threads, e.to_string()))?;
     let bar = Progress::new("report", woodpile_report::STEPS, ctx.quiet);
-    let s = Setup::new(args.out.clone(), args.quick, args.seed, args.threads, &bar);
+    let s = Setup::new(
+        args.out.clone(),
+        args.quick,
+        args.seed,
+        args.workers.threads,
+        &bar,
+    );
     let result = pool.install(|| woodpile_report::build(&s));
     bar.finish();
     let (doc, summary) = result?;
