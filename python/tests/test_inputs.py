@@ -4,7 +4,8 @@ NumPy scalars and arrays are scenario values (as the numbers they hold: the run 
 from plain floats, bit for bit); an object that is no scenario value is a ``ScenarioError`` naming
 its dotted key; ``simulate`` of something that is no scenario is a ``TypeError``; a sweep over a
 string (which Python would iterate letter by letter) is refused naming the key; a GA seed that is
-no count names ``seed``; a run pickles (to come back from an executor) and keeps its numbers.
+no count names ``seed``; a run pickles (to come back from an executor) and keeps its numbers; a
+sweep value the scenario refuses is a row whose ``error`` names the key, the other rows run.
 """
 
 import numpy as np
@@ -63,3 +64,11 @@ def test_a_run_pickles_with_its_arrays_summary_and_scenario(tmp_path):
     with pytest.raises(woodpile.StateError):
         back.save(tmp_path / "never-written")
     assert not (tmp_path / "never-written").exists()
+
+
+def test_a_sweep_value_the_scenario_refuses_is_an_error_row():
+    table = woodpile.sweep(short(), {"excitation.velocity_m_s": [1.0, "fast", 2.0]})
+    assert list(table["excitation.velocity_m_s"]) == [1.0, "fast", 2.0]
+    assert table["error"].isna().tolist() == [True, False, True]
+    assert "excitation.velocity_m_s" in table["error"][1]
+    assert table["transmitted_peak_force_n"][2] > table["transmitted_peak_force_n"][0] > 0.0

@@ -164,8 +164,15 @@ class Run:
         )
 
 
-def simulate(scenario: Scenario | str) -> Run:
-    """Runs a scenario (or a built-in scenario's name); the GIL is released while Rust runs.
+def simulate(
+    scenario: Scenario | str, *, allow_long: bool = False, allow_large: bool = False
+) -> Run:
+    """Runs a scenario (or a built-in scenario's name); the GIL is released while Rust runs,
+    and Ctrl-C stops it within a step (``KeyboardInterrupt``).
+
+    The command line's up-front limits apply: a run of more integration steps than the limit
+    (``woodpile simulate --allow-long``) raises :class:`~woodpile.errors.LimitError` unless
+    ``allow_long``; a trajectory larger than the output limit unless ``allow_large``.
 
     Raises :class:`~woodpile.errors.ScenarioError` for a value that is not valid and
     :class:`~woodpile.errors.RunError` when the run fails numerically.
@@ -176,7 +183,14 @@ def simulate(scenario: Scenario | str) -> Run:
         raise TypeError(
             f"simulate takes a Scenario or a built-in scenario's name, not {type(scenario).__name__}"
         )
-    return Run(_core.simulate(scenario.to_toml(), str(scenario.base_dir), scenario.name))
+    for name, flag in (("allow_long", allow_long), ("allow_large", allow_large)):
+        if not isinstance(flag, bool):
+            raise TypeError(f"{name} must be True or False, not {flag!r}")
+    return Run(
+        _core.simulate(
+            scenario.to_toml(), str(scenario.base_dir), scenario.name, allow_long, allow_large
+        )
+    )
 
 
 def load_run(directory: str | os.PathLike[str]) -> Run:

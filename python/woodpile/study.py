@@ -137,7 +137,9 @@ def evaluate(
 
 def sweep(scenario: Scenario, grid: Mapping[str, Sequence[Any]], executor: Executor | None = None) -> pd.DataFrame:
     """The Cartesian product of ``grid`` (dotted keys → values) applied to ``scenario``: one row
-    per run, the swept values first, then :func:`evaluate`'s columns."""
+    per run, the swept values first, then :func:`evaluate`'s columns. A combination that is no
+    valid scenario, or whose run fails, gives a row whose ``error`` column says why (naming the
+    key); the other rows are computed as usual."""
     import pandas as pd
 
     keys = list(grid)
@@ -150,7 +152,19 @@ def sweep(scenario: Scenario, grid: Mapping[str, Sequence[Any]], executor: Execu
                 "give a list of values, e.g. [1.0, 2.0] (a string is one value: ['rk4'])",
             )
     combos = list(itertools.product(*(grid[k] for k in keys)))
-    scenarios = [scenario.replace(**dict(zip(keys, values))) for values in combos]
-    results = evaluate(scenarios, executor)
+    # A combination the scenario refuses is a row with its error, as a run that fails is.
+    scenarios: list[Scenario | None] = []
+    refused: list[str | None] = []
+    for values in combos:
+        try:
+            scenarios.append(scenario.replace(**dict(zip(keys, values))))
+            refused.append(None)
+        except ScenarioError as e:
+            scenarios.append(None)
+            refused.append(str(e))
+    valid = evaluate([s for s in scenarios if s is not None], executor)
+    runs = iter(valid.to_dict("records"))
+    rows = [next(runs) if error is None else _row(None, error) for error in refused]
+    results = pd.DataFrame(rows, columns=SUMMARY_COLUMNS)
     swept = pd.DataFrame([[copy.deepcopy(v) for v in c] for c in combos], columns=keys)
     return pd.concat([swept, results], axis=1)

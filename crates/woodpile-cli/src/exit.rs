@@ -20,7 +20,7 @@ fn override_flag(limit: Limit) -> &'static str {
     match limit {
         Limit::Threads => "--allow-many-threads",
         Limit::Steps => "--allow-long",
-        Limit::OutputSize => "--allow-large",
+        Limit::OutputSize | Limit::Generation => "--allow-large",
         _ => "the matching --allow-* flag",
     }
 }

@@ -1,7 +1,7 @@
 //! Ctrl-C and SIGTERM, one handler for every command.
 //!
-//! A command that can stop cleanly by itself (`optimize`: it finishes the generation, saves its
-//! checkpoint and exits 130) marks itself [`cooperative`] and polls [`stop_flag`]. For every other
+//! A command that can stop cleanly by itself (`optimize`: it abandons the generation under way,
+//! writes its outputs from the last complete one and exits 130; its checkpoint resumes exactly) marks itself [`cooperative`] and polls [`stop_flag`]. For every other
 //! command the handler removes the staging directories of unfinished outputs (so the output
 //! location is as it was) and exits at once with [`EXIT_INTERRUPTED`].
 
@@ -14,13 +14,21 @@ pub const EXIT_INTERRUPTED: u8 = 130;
 static STOP: AtomicBool = AtomicBool::new(false);
 static COOPERATIVE: AtomicBool = AtomicBool::new(false);
 
-/// Installs the handler (once per process; later calls do nothing).
+/// Installs the handler (once per process; later calls do nothing). The first interrupt also
+/// asks the library to stop every run at its next step ([`woodpile::interrupt`]), so a
+/// cooperative command stops within a step rather than at the end of its current stage; a
+/// second interrupt ends even a cooperative command at once, its unfinished outputs removed.
 pub fn install() {
     let _ = ctrlc::set_handler(|| {
-        STOP.store(true, Ordering::SeqCst);
-        if !COOPERATIVE.load(Ordering::SeqCst) {
+        let again = STOP.swap(true, Ordering::SeqCst);
+        woodpile::interrupt::request();
+        if again || !COOPERATIVE.load(Ordering::SeqCst) {
             woodpile_io::atomic::remove_active_staging();
-            crate::out::eprintln("interrupted: nothing was written");
+            crate::out::eprintln(if again {
+                "interrupted again: stopped at once; the last checkpoint is kept"
+            } else {
+                "interrupted: nothing was written"
+            });
             std::process::exit(i32::from(EXIT_INTERRUPTED));
         }
     });

@@ -171,6 +171,8 @@ pub enum Limit {
     Steps,
     /// A run directory larger than `limits::MAX_OUTPUT_BYTES`.
     OutputSize,
+    /// A design study's generation above `limits::MAX_GENERATION_ELEMENTS` elements.
+    Generation,
 }
 
 /// What kind of failure an [`Error`] is: what a front end maps to an exit code or an
@@ -263,7 +265,12 @@ impl Error {
             Error::OutputExists { .. } | Error::CheckpointExists { .. } => ErrorKind::Overwrite,
             Error::OverLimit { .. } => ErrorKind::Limit,
             Error::Inaccurate { .. } => ErrorKind::Inaccurate,
-            Error::Interrupted { .. } => ErrorKind::Interrupted,
+            Error::Interrupted { .. }
+            | Error::Model(woodpile::Error::Interrupted { .. })
+            | Error::Evaluation {
+                source: woodpile::Error::Interrupted { .. },
+                ..
+            } => ErrorKind::Interrupted,
             _ => ErrorKind::Scenario,
         }
     }

@@ -106,6 +106,29 @@ impl RunSize {
     }
 }
 
+/// Most elements one generation of a design study may simulate without an override
+/// (population × positions): about the work of one run at the step limit, so that a typo
+/// (`positions = 100000`, `population = 100000000`) is refused at once rather than hanging.
+pub const MAX_GENERATION_ELEMENTS: usize = 1_000_000;
+
+/// Refuses a generation of `population` designs of `positions` elements above
+/// [`MAX_GENERATION_ELEMENTS`] unless `allow`.
+pub fn check_generation(population: usize, positions: usize, allow: bool) -> Result<(), Error> {
+    let elements = population.saturating_mul(positions);
+    if elements > MAX_GENERATION_ELEMENTS && !allow {
+        return Err(Error::OverLimit {
+            limit: Limit::Generation,
+            field: "ga.population × design.positions".into(),
+            value: format!("{population} × {positions} = {elements} elements per generation"),
+            reason: format!(
+                "more than {MAX_GENERATION_ELEMENTS} elements simulated per generation (a generation would not end in reasonable time, \
+                 and its designs would fill memory); reduce ga.population or design.positions"
+            ),
+        });
+    }
+    Ok(())
+}
+
 /// Checks the energy balance against docs/physics.md §8: above [`ENERGY_ERROR_FAIL`](woodpile::defaults::ENERGY_ERROR_FAIL) the run is
 /// refused (unless `allow`); above [`ENERGY_ERROR_WARN`](woodpile::defaults::ENERGY_ERROR_WARN) (or when allowed) the warning to print
 /// is returned.

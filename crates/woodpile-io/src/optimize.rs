@@ -283,6 +283,10 @@ pub struct GaSpec {
     /// the choices stay those of a run without it (default: off). Needs `transmitted-force`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stop_early: Option<bool>,
+    /// Goes ahead with a generation above the up-front limit
+    /// (`limits::MAX_GENERATION_ELEMENTS` elements simulated per generation; default false).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub allow_large: Option<bool>,
 }
 
 impl OptimizeConfig {
@@ -320,8 +324,13 @@ impl OptimizeConfig {
 
     /// Whether two configs pose the same problem: equal in everything but descriptive text.
     pub fn same_problem(&self, other: &Self) -> bool {
+        // The limit's override changes no result.
         let bare = |c: &Self| OptimizeConfig {
             description: None,
+            ga: GaSpec {
+                allow_large: None,
+                ..c.ga.clone()
+            },
             ..c.clone()
         };
         bare(self) == bare(other)
@@ -586,6 +595,13 @@ impl Problem {
         if positions == 0 {
             return Err(Error::invalid("design.positions", 0, "must be at least 1"));
         }
+        crate::limits::check_generation(
+            cfg.ga
+                .population
+                .unwrap_or(GaSettings::default().population),
+            positions,
+            cfg.ga.allow_large.unwrap_or(false),
+        )?;
         if d.catalogue_mm.is_some() && d.elements.is_some() {
             return Err(Error::invalid(
                 "design",

@@ -173,7 +173,7 @@ fn transmission<'py>(
         ..standard
     };
     let threshold_db = threshold_db.unwrap_or(woodpile::defaults::TRANSMISSION_STOP_DB);
-    let (t, record) = py.detach(|| {
+    let (t, record) = crate::interrupt::detach_interruptibly(py, || {
         let t = woodpile::analysis::transmission(&resolved.chain, &settings).map_err(core_err)?;
         let record =
             woodpile_io::transmission::TransmissionJson::new(name, &t, &settings, threshold_db);

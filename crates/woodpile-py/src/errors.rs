@@ -134,6 +134,18 @@ pub fn ga_err(e: woodpile::optimize::OptimizeError) -> PyErr {
 const EARLIER_RUN: &str = "holds an earlier run: pass overwrite=True to replace its run files \
     (other files and folders in it are kept), or choose another directory";
 
+/// The keyword argument that overrides `limit`.
+fn override_argument(limit: woodpile_io::error::Limit) -> &'static str {
+    use woodpile_io::error::Limit;
+    match limit {
+        Limit::Threads => "fewer threads",
+        Limit::Steps => "allow_long=True",
+        Limit::OutputSize => "allow_large=True",
+        Limit::Generation => "ga.allow_large = true in the config",
+        _ => "the matching allow_* argument",
+    }
+}
+
 /// The one mapping of `woodpile_io::Error` to Python: the class from its kind, its field, value
 /// and reason as woodpile-io gives them, and Python's words where the error asks for an option
 /// of the front end (`overwrite=True`) or names an argument (`directory`, `checkpoint`,
@@ -175,6 +187,15 @@ pub fn classify(e: IoError) -> Failure {
         )),
         IoError::ResumeRefused { .. } => Failure {
             field: Some("checkpoint".into()),
+            ..failure
+        },
+        // The override as this front end spells it.
+        IoError::OverLimit { limit, .. } => Failure {
+            message: format!(
+                "{}; pass {} to go ahead anyway",
+                failure.message,
+                override_argument(limit)
+            ),
             ..failure
         },
         IoError::ThreadPool { .. } => Failure {

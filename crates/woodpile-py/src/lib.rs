@@ -14,10 +14,11 @@
 //! | [`optimize`] | `woodpile.optimize` | the breeder GA as ask/tell |
 //! | [`errors`] | `woodpile.errors` | every error as a `WoodpileError` subclass |
 //!
-//! The GIL is released while Rust simulates.
+//! The GIL is released while Rust simulates, and Ctrl-C stops it within a step ([`interrupt`]).
 
 mod analysis;
 mod errors;
+mod interrupt;
 mod optimize;
 mod run;
 mod scenario;

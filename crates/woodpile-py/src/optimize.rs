@@ -153,12 +153,14 @@ impl GaSession {
             .map(|s| self.ga.elites(s).to_vec())
             .unwrap_or_default();
         let ga = &self.ga;
-        let settled = py.detach(|| ga.settle(&carried, &pending, &mut ledger));
+        let settled = crate::interrupt::detach_interruptibly(py, || {
+            ga.settle(&carried, &pending, &mut ledger).map_err(ga_err)
+        });
         let individuals = match settled {
             Ok(individuals) => individuals,
             Err(e) => {
                 self.pending = Some(pending);
-                return Err(ga_err(e));
+                return Err(e);
             }
         };
         match self.state.as_mut() {
@@ -171,7 +173,9 @@ impl GaSession {
     /// First values of designs, simulated here in parallel (GIL released): screened with
     /// `ga.screen_peak_tolerance`, at the run's settings otherwise.
     fn evaluate(&self, py: Python<'_>, designs: Vec<Vec<u8>>) -> PyResult<Vec<f64>> {
-        py.detach(|| self.ga.evaluate_new(&designs).map_err(ga_err))
+        crate::interrupt::detach_interruptibly(py, || {
+            self.ga.evaluate_new(&designs).map_err(ga_err)
+        })
     }
 
     /// Why the GA stops now ("generation-limit" or "stalled"), or None to go on.
@@ -264,15 +268,20 @@ impl GaSession {
     /// released: the reference the ask/tell loop must reproduce.
     fn run_to_end(&mut self, py: Python<'_>) -> PyResult<()> {
         let stop = std::sync::atomic::AtomicBool::new(false);
-        let outcome = py
-            .detach(|| {
-                self.ga.run(self.state.take(), &stop, &mut |_| {
-                    std::ops::ControlFlow::Continue(())
-                })
+        let (outcome, raised) = crate::interrupt::detach_polling(py, || {
+            self.ga.run(self.state.take(), &stop, &mut |_| {
+                std::ops::ControlFlow::Continue(())
             })
-            .map_err(ga_err)?;
-        self.state = Some(outcome.state);
-        Ok(())
+        });
+        // Interrupted: the state of the last complete generation is kept, then the exception.
+        match (outcome, raised) {
+            (Ok(outcome), raised) => {
+                self.state = Some(outcome.state);
+                raised.map_or(Ok(()), Err)
+            }
+            (Err(_), Some(raised)) => Err(raised),
+            (Err(e), None) => Err(ga_err(e)),
+        }
     }
 }
 

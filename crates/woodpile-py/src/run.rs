@@ -130,12 +130,26 @@ impl Run {
     }
 }
 
-/// Resolves and runs a scenario (TOML text; relative files against `base_dir`), GIL released.
+/// Resolves and runs a scenario (TOML text; relative files against `base_dir`), GIL released,
+/// Ctrl-C honoured. The command line's up-front limits apply (more than `limits::MAX_STEPS`
+/// steps unless `allow_long`; samples beyond `limits::MAX_OUTPUT_BYTES` unless `allow_large`:
+/// the trajectory is held in memory).
 #[pyfunction]
-fn simulate(py: Python<'_>, text: &str, base_dir: PathBuf, name: String) -> PyResult<Run> {
+#[pyo3(signature = (text, base_dir, name, allow_long=false, allow_large=false))]
+fn simulate(
+    py: Python<'_>,
+    text: &str,
+    base_dir: PathBuf,
+    name: String,
+    allow_long: bool,
+    allow_large: bool,
+) -> PyResult<Run> {
     let scenario = Scenario::parse(text).map_err(py_err)?;
     let resolved = resolve(&scenario, &base_dir).map_err(py_err)?;
-    py.detach(|| {
+    woodpile_io::limits::RunSize::estimate(&resolved.settings, resolved.chain.len())
+        .check(allow_long, allow_large, true)
+        .map_err(py_err)?;
+    crate::interrupt::detach_interruptibly(py, || {
         let mut trajectory = Trajectory::default();
         let summary = run_simulation(
             &resolved.chain,

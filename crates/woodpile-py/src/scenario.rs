@@ -57,12 +57,40 @@ fn toml_to_json(text: &str) -> PyResult<String> {
         .map_err(|e| Failure::new(Kind::Scenario, format!("scenario: {e}")).into())
 }
 
-/// A scenario from JSON text (as [`toml_to_json`] writes it) as complete TOML.
+/// A scenario from JSON text (as [`toml_to_json`] writes it) as complete TOML. A value of the
+/// wrong type or an unknown key is refused naming its dotted key (`chain.rods_mm[2]`) and the
+/// value, not a place in the JSON text.
 #[pyfunction]
 fn json_to_toml(json: &str) -> PyResult<String> {
-    let scenario: Scenario = serde_json::from_str(json)
-        .map_err(|e| PyErr::from(Failure::new(Kind::Scenario, format!("scenario: {e}"))))?;
+    let not_json =
+        |e: serde_json::Error| PyErr::from(Failure::new(Kind::Scenario, format!("scenario: {e}")));
+    let tree: serde_json::Value = serde_json::from_str(json).map_err(not_json)?;
+    let scenario: Scenario = serde_path_to_error::deserialize(&tree).map_err(|e| {
+        let value = json_pointer(e.path())
+            .and_then(|p| tree.pointer(&p))
+            .map_or_else(|| "(as given)".to_string(), |v| v.to_string());
+        let field = e.path().to_string();
+        let reason = e.into_inner().to_string();
+        PyErr::from(if field == "." {
+            Failure::new(Kind::Scenario, format!("scenario: {reason}"))
+        } else {
+            Failure::invalid(field, value, reason)
+        })
+    })?;
     Ok(scenario.to_toml())
+}
+
+/// The JSON pointer (`/chain/rods_mm/2`) of a deserialisation path, when every segment is a
+/// key or an index.
+fn json_pointer(path: &serde_path_to_error::Path) -> Option<String> {
+    use serde_path_to_error::Segment;
+    path.iter()
+        .map(|segment| match segment {
+            Segment::Map { key } => Some(format!("/{}", key.replace('~', "~0").replace('/', "~1"))),
+            Segment::Seq { index } => Some(format!("/{index}")),
+            _ => None,
+        })
+        .collect()
 }
 
 /// Every key of the scenario file (woodpile-io's table), in the order of the file; defaults

@@ -21,7 +21,7 @@ fn evaluate(
     base_dir: PathBuf,
     threads: Option<usize>,
 ) -> PyResult<Vec<Outcome>> {
-    py.detach(|| {
+    crate::interrupt::detach_interruptibly(py, || {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads.unwrap_or(0))
             .build()

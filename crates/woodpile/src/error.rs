@@ -81,6 +81,13 @@ pub enum Error {
         /// Overlap that energy could produce at this contact, (5 E / 2β)^{2/5} \[m\].
         reachable_m: f64,
     },
+    /// The run stopped because a stop was requested ([`crate::interrupt`]: Ctrl-C, SIGTERM,
+    /// Python's `KeyboardInterrupt`).
+    #[error("interrupted at t = {time_s:.6e} s")]
+    Interrupted {
+        /// Simulation time reached \[s\] (0 for a run that never started).
+        time_s: f64,
+    },
     /// The run needed more integration steps than allowed.
     #[error("the run stopped after {steps} integration steps at t = {time_s:.6e} s of run.duration_s = {duration_s:e} s (limit {steps}); shorten run.duration_s, use a larger run.time_step_s, or loosen rtol")]
     TooManySteps {

@@ -31,6 +31,9 @@
 //! 6. **Optimise** — [`optimize`]: the breeder genetic algorithm ([`BreederGa`]) over a
 //!    [`DesignSpace`] of catalogue elements, with a user-extensible [`Objective`].
 //!
+//! Every long loop polls one process-wide stop request ([`interrupt`]), which front ends set on
+//! Ctrl-C, SIGTERM or Python's `KeyboardInterrupt`.
+//!
 //! ```
 //! use woodpile::{simulate, CellModel, ChainBuilder, Excitation, RunSettings, Striker, Trajectory};
 //!
@@ -56,6 +59,7 @@ pub mod defaults;
 pub mod error;
 pub mod excitation;
 pub mod integrate;
+pub mod interrupt;
 pub mod lanes;
 pub mod model;
 pub mod ode;

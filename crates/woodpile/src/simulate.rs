@@ -721,6 +721,9 @@ pub(crate) fn simulate_watching(
         if integrator.stats().steps > defaults::MAX_STEPS {
             return Err(too_many_steps(t1, settings));
         }
+        if crate::interrupt::requested() {
+            return Err(Error::Interrupted { time_s: t1 });
+        }
         watch.after_step(&ode, t0, t1, integrator.y());
         while let Some((ts, at_step)) = watch.sample_due(t1) {
             let y = if at_step {

@@ -36,6 +36,10 @@ pub struct Args {
     /// Continue the run saved in DIR/checkpoint.json (same config and seed).
     #[arg(long)]
     pub resume: bool,
+    /// Go ahead with a generation above the up-front limit of elements simulated per
+    /// generation (sets ga.allow_large).
+    #[arg(long)]
+    pub allow_large: bool,
 }
 
 /// Loads the config the arguments name, with the command line's overrides.
@@ -81,6 +85,9 @@ pub fn load_config(args: &Args) -> Result<(OptimizeConfig, String, PathBuf), Cli
     }
     if let Some(seed) = args.seed {
         cfg.ga.seed = Some(seed);
+    }
+    if args.allow_large {
+        cfg.ga.allow_large = Some(true);
     }
     Ok((cfg, name, base))
 }
@@ -137,10 +144,20 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     };
     let outcome = ga.run(initial, stop, &mut observer);
     bar.finish();
+    // The best design is simulated once more for the outputs: the request that stopped the GA
+    // is withdrawn (a second Ctrl-C still ends the command at once).
+    woodpile::interrupt::clear();
     if let Some(e) = write_error {
         return Err(e);
     }
-    let outcome = outcome.map_err(optimize_error)?;
+    let outcome = match outcome {
+        Err(e) if e.is_interrupted() => {
+            return Err(CliError::Interrupted {
+                saved: "during generation 0, before its checkpoint: nothing to resume; run the same command again to start over".into(),
+            })
+        }
+        other => other.map_err(optimize_error)?,
+    };
     let state = &outcome.state;
     let interrupted = outcome.reason == StopReason::Interrupted;
     let figures = write_final_outputs(&problem, &name, &outcome, out)?;

@@ -1,5 +1,6 @@
-//! Claim: Ctrl-C (SIGINT) stops `woodpile optimize` cleanly after the current generation (exit 130), with
-//! its checkpoint written and a message saying how to resume; `--resume` then ends exactly
+//! Claim: Ctrl-C (SIGINT) stops `woodpile optimize` cleanly (exit 130) at its last complete
+//! generation (a generation under way is abandoned), with its checkpoint written and a message
+//! saying how to resume; `--resume` then ends exactly
 //! where an uninterrupted run ends (same population, history, cache and counters), with 1 or
 //! 2 threads.
 //!

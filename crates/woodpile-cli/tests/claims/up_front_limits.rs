@@ -65,3 +65,24 @@ fn absurd_thread_count_is_refused() {
         &["--threads", "100000"],
     );
 }
+
+/// `positions = 100000` (100 × 100,000 elements per generation) and `population = 100000000`
+/// (2e9) once hung for minutes without a word; both are refused at once against the limit of
+/// 1e6 elements per generation, naming both keys, the product and the override.
+#[test]
+fn endless_generation_is_refused() {
+    refused(
+        &["optimize", "s.toml", "--out", "o"],
+        "[design]\npositions = 100000\n",
+        &[
+            "ga.population × design.positions",
+            "100 × 100000 = 10000000",
+            "--allow-large",
+        ],
+    );
+    refused(
+        &["optimize", "s.toml", "--out", "o"],
+        "[ga]\npopulation = 100000000\n",
+        &["100000000 × 20 = 2000000000", "--allow-large"],
+    );
+}

@@ -178,6 +178,16 @@ impl<'a, const L: usize> Lanes<'a, L> {
             self.drained = true;
             return;
         };
+        if crate::interrupt::requested() {
+            // No queued run starts: each ends interrupted, and the lanes stop asking.
+            let interrupted = || Err(crate::Error::Interrupted { time_s: 0.0 });
+            self.done.push((job, interrupted()));
+            while let Some((job, _)) = self.group.next_run() {
+                self.done.push((job, interrupted()));
+            }
+            self.drained = true;
+            return;
+        }
         let jobs = self.jobs;
         let Job {
             excitation,
@@ -506,6 +516,13 @@ impl<'a, const L: usize> Lanes<'a, L> {
                     run.y[n_dof + i] = self.y[nd + i].0[l];
                 }
             }
+        }
+        if crate::interrupt::requested() {
+            let job = run.job;
+            self.vacate(l);
+            self.done
+                .push((job, Err(crate::Error::Interrupted { time_s: t1 })));
+            return;
         }
         if run.stats.steps > crate::defaults::MAX_STEPS {
             let e = too_many_steps(t1, run.settings);

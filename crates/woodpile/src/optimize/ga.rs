@@ -972,7 +972,8 @@ impl BreederGa {
     }
 
     /// Runs from `state` (None = a fresh start) until the generation limit, the stall limit, the
-    /// stop flag (checked between generations) or the observer (called after every generation,
+    /// stop flag or a stop request ([`crate::interrupt`]: checked between generations, and within
+    /// one by every run, the generation then abandoned) or the observer (called after every generation,
     /// including generation 0, e.g. to write a checkpoint) ends it.
     pub fn run(
         &self,
@@ -998,13 +999,22 @@ impl BreederGa {
         };
         loop {
             let reason = self.stop_reason(&state).or_else(|| {
-                stop.load(Ordering::SeqCst)
+                (stop.load(Ordering::SeqCst) || crate::interrupt::requested())
                     .then_some(StopReason::Interrupted)
             });
             if let Some(reason) = reason {
                 return Ok(Outcome { state, reason });
             }
-            self.next_generation(&mut state)?;
+            match self.next_generation(&mut state) {
+                // A generation cut short leaves the state at the last complete one.
+                Err(e) if e.is_interrupted() => {
+                    return Ok(Outcome {
+                        state,
+                        reason: StopReason::Interrupted,
+                    })
+                }
+                other => other?,
+            }
             if observer(&state).is_break() {
                 return Ok(Outcome {
                     state,

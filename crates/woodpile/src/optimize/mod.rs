@@ -103,3 +103,16 @@ pub enum OptimizeError {
         reason: String,
     },
 }
+
+impl OptimizeError {
+    /// Whether a stop request ([`crate::interrupt`]) ended the evaluation.
+    pub fn is_interrupted(&self) -> bool {
+        matches!(
+            self,
+            OptimizeError::Simulation {
+                source: crate::Error::Interrupted { .. },
+                ..
+            }
+        )
+    }
+}
