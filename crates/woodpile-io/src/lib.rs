@@ -42,6 +42,10 @@
 //! # Ok::<(), woodpile_io::Error>(())
 //! ```
 
+/// This version of woodpile, as written into every file it writes (run directories, checkpoints,
+/// summaries) and checked where a file must come from the same version (a checkpoint to resume).
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
 pub mod atomic;
 pub mod cells;
 pub mod error;

@@ -798,7 +798,7 @@ impl Checkpoint {
     pub fn new(config: &OptimizeConfig, s: &GaState) -> Self {
         let mut cp = Checkpoint {
             format: CHECKPOINT_FORMAT.to_string(),
-            tool_version: env!("CARGO_PKG_VERSION").to_string(),
+            tool_version: crate::VERSION.to_string(),
             checksum: String::new(),
             config: config.clone(),
             generation: s.generation,
@@ -1036,7 +1036,7 @@ pub fn read_checkpoint(dir: &Path, config: &OptimizeConfig) -> Result<GaState, E
         path: path.clone(),
         reason,
     };
-    let ours = env!("CARGO_PKG_VERSION");
+    let ours = crate::VERSION;
     if cp.tool_version != ours {
         return Err(refuse(format!(
             "the checkpoint was written by woodpile {}, this is woodpile {ours}: a run resumes exactly only with the version that started it; finish it with woodpile {}, or start a new run in another output directory",
@@ -1174,7 +1174,7 @@ pub fn write_final_outputs(
     )?;
     let summary = OptimizeSummary {
         tool: "woodpile optimize".into(),
-        version: env!("CARGO_PKG_VERSION").into(),
+        version: crate::VERSION.into(),
         problem: name.into(),
         status: if interrupted {
             "interrupted"

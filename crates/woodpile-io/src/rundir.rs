@@ -336,7 +336,7 @@ fn run_json(r: &RunRecord<'_>) -> RunJson {
     RunJson {
         tool: "woodpile".to_string(),
         format: Some(RUN_FORMAT.to_string()),
-        version: env!("CARGO_PKG_VERSION").to_string(),
+        version: crate::VERSION.to_string(),
         scenario_name: r.name.to_string(),
         scenario_file: r.file.map(|p| p.display().to_string()),
         scenario: r.scenario.complete(),
@@ -610,7 +610,7 @@ fn check_format(path: &Path, run: &Value) -> Result<(), Error> {
         .and_then(Value::as_str)
         .unwrap_or("unknown");
     let major_minor = |v: &str| v.split('.').take(2).collect::<Vec<_>>().join(".");
-    let ours = env!("CARGO_PKG_VERSION");
+    let ours = crate::VERSION;
     if major_minor(version) != major_minor(ours) {
         return Err(read_error(
             path,

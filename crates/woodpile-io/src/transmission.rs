@@ -98,7 +98,7 @@ impl TransmissionJson {
     ) -> Self {
         TransmissionJson {
             tool: "woodpile".into(),
-            version: env!("CARGO_PKG_VERSION").into(),
+            version: crate::VERSION.into(),
             scenario: scenario.into(),
             preload_n: t.preload_n,
             amplitude_n: t.amplitude_n,

@@ -1,0 +1,105 @@
+// The fuzz targets, shared by the AFL binaries (crates/woodpile-fuzz/src/bin) and the replay
+// claim (crates/woodpile-io/tests/claims/fuzz_corpus.rs). Plain functions of bytes.
+
+/// The readers under test; the corpus of each lives in `crates/woodpile-fuzz/corpus/<name>/`.
+pub const TARGETS: [(&str, fn(&[u8])); 5] = [
+    ("scenario", fuzz_scenario),
+    ("optimize_config", fuzz_optimize_config),
+    ("npy", fuzz_npy),
+    ("table", fuzz_table),
+    ("checkpoint", fuzz_checkpoint),
+];
+
+/// A scratch directory of this process for the readers that take files.
+fn scratch() -> &'static std::path::Path {
+    static DIR: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
+    DIR.get_or_init(|| {
+        let dir = std::env::temp_dir().join(format!("woodpile-fuzz-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("a scratch directory");
+        // The blast table that scenarios of the corpus name.
+        std::fs::write(
+            dir.join("table.csv"),
+            "time_s, force_n\n0, 0\n1e-5, 10\n2e-5, 0\n",
+        )
+        .expect("a scratch table");
+        dir
+    })
+}
+
+/// A scenario file: parse, resolve (every check and the chain's construction), and the
+/// completed scenario written out must read back as the same scenario.
+pub fn fuzz_scenario(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let Ok(scenario) = woodpile_io::scenario::Scenario::parse(text) else {
+        return;
+    };
+    let complete = scenario.complete();
+    let again = woodpile_io::scenario::Scenario::parse(&complete.to_toml())
+        .expect("a completed scenario's TOML reads back");
+    assert_eq!(again, complete, "completion round-trips");
+    let _ = woodpile_io::scenario::resolve(&scenario, scratch());
+}
+
+/// An optimisation config: parse, then build the problem (design space, constraints, limits).
+pub fn fuzz_optimize_config(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let Ok(config) = woodpile_io::optimize::OptimizeConfig::parse(text, "fuzz") else {
+        return;
+    };
+    let _ = woodpile_io::optimize::Problem::new(&config, scratch(), 1);
+}
+
+/// A `.npy` array.
+pub fn fuzz_npy(data: &[u8]) {
+    let _ = woodpile_io::npy::read(data);
+}
+
+/// A blast table (CSV `time_s, force_n`), read from a file as the scenario's `excitation.file`.
+pub fn fuzz_table(data: &[u8]) {
+    let path = scratch().join("fuzzed-table.csv");
+    if std::fs::write(&path, data).is_ok() {
+        let _ = woodpile_io::table::load_blast_table(&path);
+    }
+}
+
+/// An optimisation checkpoint. The bytes are the JSON; a checkpoint that parses gets this
+/// version and a matching checksum, so that the fuzzer reaches the checks behind them (the
+/// state against its problem) rather than stopping at the checksum.
+pub fn fuzz_checkpoint(data: &[u8]) {
+    use woodpile_io::optimize::{read_checkpoint, Checkpoint, CHECKPOINT_FILE, CHECKPOINT_FORMAT};
+    let Ok(mut checkpoint) = serde_json::from_slice::<Checkpoint>(data) else {
+        return;
+    };
+    checkpoint.format = CHECKPOINT_FORMAT.to_string();
+    checkpoint.tool_version = woodpile_io::VERSION.to_string();
+    checkpoint.checksum = checkpoint.content_checksum();
+    let dir = scratch().join("checkpoint");
+    if std::fs::create_dir_all(&dir).is_err() {
+        return;
+    }
+    let Ok(json) = serde_json::to_string(&checkpoint) else {
+        return;
+    };
+    if std::fs::write(dir.join(CHECKPOINT_FILE), json).is_err() {
+        return;
+    }
+    let config = checkpoint.config.clone();
+    let Ok(state) = read_checkpoint(&dir, &config) else {
+        return;
+    };
+    let Ok(problem) = woodpile_io::optimize::Problem::new(&config, scratch(), 1) else {
+        return;
+    };
+    let ga = woodpile::BreederGa::new(
+        problem.space.clone(),
+        Box::new(problem.objective),
+        problem.settings,
+    );
+    if let Ok(ga) = ga {
+        let _ = ga.check_state(&state);
+    }
+}
