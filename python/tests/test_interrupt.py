@@ -1,6 +1,7 @@
 """Claims: Ctrl-C reaches Rust. ``simulate``, ``evaluate`` and a sweep raise ``KeyboardInterrupt``
 less than 2 s after SIGINT while their work would take far longer, and the next call runs
-normally; the command line's up-front limits hold in Python too.
+normally; the command line's up-front limits hold in Python too (``simulate`` raises
+``LimitError`` naming ``allow_long``; in ``evaluate`` such a run is an error row).
 
 Each case runs in a child Python (the signal must reach its main thread) that starts the work,
 reports ``started`` and, on ``KeyboardInterrupt``, tries a short run and reports ``interrupted``.
@@ -70,3 +71,13 @@ def test_an_endless_run_is_refused_by_the_step_limit() -> None:
         woodpile.simulate(s)
     assert e.value.field == "run.duration_s / run.time_step_s"
     assert "allow_long=True" in str(e.value)
+
+
+def test_an_endless_run_in_a_study_is_an_error_row() -> None:
+    endless = woodpile.Scenario.builtin("paper-impact-80mm").replace(
+        **{"run.duration_s": 10.0, "run.time_step_s": 1e-9, "run.sample_interval_s": 10.0}
+    )
+    short = endless.replace(**{"run.duration_s": 1e-4, "run.time_step_s": 1e-7, "run.sample_interval_s": 1e-4})
+    table = woodpile.evaluate([endless, short])
+    assert "run.duration_s / run.time_step_s" in table["error"][0]
+    assert table["error"].isna().tolist() == [False, True]

@@ -4,6 +4,7 @@ use crate::errors::Failure;
 use pyo3::prelude::*;
 use rayon::prelude::*;
 use std::path::PathBuf;
+use woodpile_io::limits::RunSize;
 use woodpile_io::scenario::{resolve, Resolved, Scenario};
 
 /// One scenario's result: its `RunSummary` as JSON, or the message of its error.
@@ -29,7 +30,13 @@ fn evaluate(
         Ok(pool.install(|| {
             let resolved: Vec<Result<Resolved, woodpile_io::Error>> = texts
                 .par_iter()
-                .map(|t| Scenario::parse(t).and_then(|s| resolve(&s, &base_dir)))
+                .map(|t| {
+                    let resolved = Scenario::parse(t).and_then(|s| resolve(&s, &base_dir))?;
+                    // The step limit of a single run holds for each (no samples are kept).
+                    RunSize::estimate(&resolved.settings, resolved.chain.len())
+                        .check(false, false, false)?;
+                    Ok(resolved)
+                })
                 .collect();
             // One call: the lanes of every thread share one queue of runs.
             let jobs: Vec<woodpile::Job<'_>> = resolved
