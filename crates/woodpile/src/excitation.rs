@@ -102,6 +102,17 @@ impl BlastProfile {
         Ok(p)
     }
 
+    /// The largest force of the profile \[N\] (F0 for Friedlander, whose decay b ≥ 0; the
+    /// largest |F_k| of a table).
+    pub fn peak_force_n(&self) -> f64 {
+        match self {
+            BlastProfile::Friedlander { peak_force_n, .. } => peak_force_n.abs(),
+            BlastProfile::Table { forces_n, .. } => {
+                forces_n.iter().fold(0.0, |m: f64, f| m.max(f.abs()))
+            }
+        }
+    }
+
     /// Force F(t) \[N\].
     #[inline]
     pub fn force_n(&self, t: f64) -> f64 {
