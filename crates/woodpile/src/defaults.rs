@@ -78,3 +78,7 @@ pub const TRANSMISSION_SAMPLE_INTERVAL_S: f64 = 5e-6;
 pub const TRANSMISSION_DAMPING_TIME_S: f64 = 0.02;
 /// A frequency where the transmission is below this level \[dB\] is in a measured stop band.
 pub const TRANSMISSION_STOP_DB: f64 = -20.0;
+
+/// Longest rod, in diameters, whose cell is derived from beam theory (docs/physics.md §13): at
+/// 10⁴ diameters a 5 mm fused-quartz rod (50 m) has its first bending mode near 0.01 Hz.
+pub const ROD_MAX_SLENDERNESS: f64 = 1e4;

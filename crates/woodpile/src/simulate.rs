@@ -684,6 +684,11 @@ pub(crate) fn simulate_watching(
     stop_above_n: f64,
 ) -> Result<RunSummary> {
     settings.validate()?;
+    let fixed_step_s = match settings.method {
+        Method::Rk4 { time_step_s } => Some(time_step_s),
+        _ => None,
+    };
+    excitation.check_against_run(fixed_step_s)?;
     let started = std::time::Instant::now();
     let mut ode = ChainOde::new(chain, excitation)?;
     check_method_fits(&ode, settings.method)?;
@@ -886,7 +891,7 @@ fn load_beyond_reach(
             exceeds(need, limits[0]).then(|| Error::LoadExceedsContact {
                 time_s,
                 contact: 0,
-                load: format!("the striker at {v:.3e} m/s, with {energy} of relative motion,"),
+                load: format!("the striker at {v:.3e} m/s (excitation.velocity_m_s, or drop_height_m), with {energy} of relative motion,"),
                 needed: words(need),
                 limit_m: limits[0],
             })
@@ -899,7 +904,7 @@ fn load_beyond_reach(
                 exceeds(need, limits[c]).then(|| Error::LoadExceedsContact {
                     time_s,
                     contact: c,
-                    load: format!("the blast's peak force {peak_n:.3e} N, held statically,"),
+                    load: format!("the blast's peak force {peak_n:.3e} N (excitation.peak_force_n, or the table's largest force), held statically,"),
                     needed: words(need),
                     limit_m: limits[c],
                 })

@@ -23,6 +23,7 @@ mod paper_values_stated_once;
 mod plot_opt_dir;
 mod plot_run_dir;
 mod progress_lines;
+mod readme_file_table;
 mod report_quick;
 mod scenario_roundtrip;
 mod stdout_failures;
