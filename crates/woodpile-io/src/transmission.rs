@@ -1,6 +1,7 @@
 //! The output directory of `woodpile transmission` (docs/physics.md §15): the spectrum as CSV and
-//! `.npy`, and `transmission.json` with the settings, the Bloch prediction, the measured stop
-//! bands and the edge comparison. Written into a staged directory; `transmission.json` last.
+//! `.npy` beside the finite chain's linear response, and `transmission.json` with the settings,
+//! any damping added for the measurement, the Bloch prediction, the measured and linear stop bands
+//! and the edge table. Written into a staged directory; `transmission.json` last.
 
 use crate::atomic::io_err;
 use crate::error::Error;
@@ -255,7 +256,7 @@ impl TransmissionJson {
             .filter(|e| e.error_vs_linear.is_none_or(|x| x.abs() > 0.01))
             .count();
         if off > 0 {
-            o.push_str(&format!("warning      {off} measured edge(s) missing or more than 1 % off the linear prediction: the record (1/Δf = {:.3} s) is too short for the damping to end the response, or the bins too coarse; halve --resolution-hz (docs/physics.md §15)\n", 1.0 / self.resolution_hz));
+            o.push_str(&format!("warning      {off} measured edge(s) missing or more than 1 % off the linear prediction: the record (1/Δf = {:.3} s) is too short for the damping to end the response, or the bins too coarse; halve --resolution-hz, or damp a lossless chain (docs/physics.md §15)\n", 1.0 / self.resolution_hz));
         }
         o
     }

@@ -13,6 +13,7 @@ mod cells_table;
 mod checkpoint_integrity;
 mod common;
 mod default_job;
+mod meaningless_inputs_refused;
 mod meaningless_results;
 mod optimize_bad_input;
 mod optimize_best_reruns;

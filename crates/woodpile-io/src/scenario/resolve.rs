@@ -603,7 +603,7 @@ fn resolve_wall(w: &WallSpec, key: &str) -> Result<Wall, Error> {
                 if radius_mm > MAX_CAP_RADIUS_MM {
                     return Err(Error::invalid(
                         field,
-                        radius_mm,
+                        format!("{radius_mm:e}"),
                         format!("at most {MAX_CAP_RADIUS_MM:e} mm (1 km): a cap this flat is a flat wall; use {key}.kind = \"flat\" (against a rod a line contact, so give {key}.beta)"),
                     ));
                 }
