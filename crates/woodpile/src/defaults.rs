@@ -80,5 +80,5 @@ pub const TRANSMISSION_DAMPING_TIME_S: f64 = 0.02;
 pub const TRANSMISSION_STOP_DB: f64 = -20.0;
 
 /// Longest rod, in diameters, whose cell is derived from beam theory (docs/physics.md §13): at
-/// 10⁴ diameters a 5 mm fused-quartz rod (50 m) has its first bending mode near 0.01 Hz.
+/// 10⁴ diameters a 5 mm fused-quartz rod (50 m) has its first bending mode at 6.4 mHz.
 pub const ROD_MAX_SLENDERNESS: f64 = 1e4;

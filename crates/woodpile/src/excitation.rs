@@ -479,7 +479,9 @@ impl Signal {
     /// The highest frequency of a harmonic signal or a chirp \[Hz\] (None for a table).
     pub fn highest_frequency_hz(&self) -> Option<(&'static str, f64)> {
         match self {
-            Signal::Harmonic { frequency_hz, .. } => Some(("excitation.frequency_hz", *frequency_hz)),
+            Signal::Harmonic { frequency_hz, .. } => {
+                Some(("excitation.frequency_hz", *frequency_hz))
+            }
             Signal::Chirp {
                 start_hz, end_hz, ..
             } if start_hz > end_hz => Some(("excitation.start_hz", *start_hz)),
@@ -494,7 +496,11 @@ const NOTHING_DRIVEN: &str = "a drive of amplitude 0 moves nothing, and every dy
 fn require_drive_amplitude(amplitude: f64) -> Result<()> {
     require_non_negative("excitation.amplitude", amplitude)?;
     if amplitude == 0.0 {
-        return Err(Error::invalid("excitation.amplitude", amplitude, NOTHING_DRIVEN));
+        return Err(Error::invalid(
+            "excitation.amplitude",
+            amplitude,
+            NOTHING_DRIVEN,
+        ));
     }
     Ok(())
 }

@@ -133,9 +133,8 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     // Writing a long run's samples takes a while: shown as stages when the run showed progress
     // or the samples are many.
     let values = trajectory.len() * (2 * resolved.chain.len() + 4);
-    let writing = (!ctx.quiet && (watched_progress || values > WRITE_QUIET_BELOW)).then(|| {
-        Progress::new("simulate", woodpile_io::rundir::WRITE_RUN_STAGES, ctx.quiet)
-    });
+    let writing = (!ctx.quiet && (watched_progress || values > WRITE_QUIET_BELOW))
+        .then(|| Progress::new("simulate", woodpile_io::rundir::WRITE_RUN_STAGES, ctx.quiet));
     woodpile_io::rundir::write_run_reporting(staging.path(), &record, &mut |stage| {
         if let Some(p) = &writing {
             p.inc(1);
@@ -249,12 +248,16 @@ fn simulated(time_s: f64, duration_s: f64) -> String {
     )
 }
 
-/// Most runs of equal labels a `chain` line lists before it elides the middle.
+/// Most labels, or runs of equal labels, a `chain` line lists before it abbreviates.
 const CHAIN_RUNS_SHOWN: usize = 24;
 
-/// Element labels top to bottom, runs of equal ones as `80mm×40`, and for a long chain the first
-/// and last runs around `… (N more runs) …`: one line, however long the chain.
+/// Element labels top to bottom; for a chain longer than [`CHAIN_RUNS_SHOWN`], runs of equal ones
+/// as `80mm×40`, and when still too many the first and last runs around `… (N more runs) …`: one
+/// line, however long the chain.
 fn abbreviated_labels(labels: &[String]) -> String {
+    if labels.len() <= CHAIN_RUNS_SHOWN {
+        return labels.join(" ");
+    }
     let mut runs: Vec<(&str, usize)> = Vec::new();
     for l in labels {
         match runs.last_mut() {
@@ -264,7 +267,13 @@ fn abbreviated_labels(labels: &[String]) -> String {
     }
     let text = |r: &[(&str, usize)]| {
         r.iter()
-            .map(|&(l, n)| if n == 1 { l.to_string() } else { format!("{l}×{n}") })
+            .map(|&(l, n)| {
+                if n == 1 {
+                    l.to_string()
+                } else {
+                    format!("{l}×{n}")
+                }
+            })
             .collect::<Vec<_>>()
             .join(" ")
     };

@@ -39,7 +39,7 @@ pub struct Args {
     pub relative_amplitude: f64,
     /// On-site damping time τ (s) given for the measurement to a chain without damping, so that
     /// its response ends within the record [default: 0.02]; 0 measures the lossless chain. A
-    /// chain with its own [damping] keeps it.
+    /// chain with its own damping keeps it.
     #[arg(long, value_name = "S", allow_negative_numbers = true)]
     pub damping_time_s: Option<f64>,
     /// Level (dB) below which a frequency counts as in a measured stop band.

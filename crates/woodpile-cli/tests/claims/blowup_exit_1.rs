@@ -62,7 +62,10 @@ fn an_impossible_load_is_not_blamed_on_the_step() {
         for e in ["the load exceeds", key, "a smaller time step will not help"] {
             assert!(stderr.contains(e), "{line}: expected `{e}` in {stderr}");
         }
-        assert!(!stderr.contains("reduce run.time_step_s"), "{line}: {stderr}");
+        assert!(
+            !stderr.contains("reduce run.time_step_s"),
+            "{line}: {stderr}"
+        );
         for bad in ["inf", "NaN"] {
             assert!(!stderr.contains(bad), "{line}: `{bad}` in {stderr}");
         }

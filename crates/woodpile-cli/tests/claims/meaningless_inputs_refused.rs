@@ -36,7 +36,8 @@ fn refused(args: &[&str], scenario: Option<&str>, expect: &[&str]) -> String {
     err
 }
 
-const DRIVE: &str = "[chain]\nrods_mm = [20, 20]\n[excitation]\nkind = \"drive\"\nsignal = \"harmonic\"\n";
+const DRIVE: &str =
+    "[chain]\nrods_mm = [20, 20]\n[excitation]\nkind = \"drive\"\nsignal = \"harmonic\"\n";
 
 #[test]
 fn drives_that_mean_nothing_are_refused() {
@@ -84,7 +85,11 @@ fn rods_that_are_no_beam_are_refused_naming_the_rod() {
         assert_eq!(o.status.code(), Some(2), "{rod}: {err}");
         assert!(err.contains("--rod"), "{rod}: {err}");
         assert!(!err.contains("--modes"), "{rod}: {err}");
-        assert!(o.stdout.is_empty(), "{rod}: printed {}", String::from_utf8_lossy(&o.stdout));
+        assert!(
+            o.stdout.is_empty(),
+            "{rod}: printed {}",
+            String::from_utf8_lossy(&o.stdout)
+        );
     }
 }
 
@@ -122,7 +127,10 @@ fn plot_names_a_damaged_run_directory() {
     let o = common::run_in(dir.path(), &["plot", "run", "--out", "plots"]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(err.contains("run.json") && err.contains("woodpile simulate"), "{err}");
+    assert!(
+        err.contains("run.json") && err.contains("woodpile simulate"),
+        "{err}"
+    );
     assert!(!err.contains("optimize output"), "{err}");
 }
 

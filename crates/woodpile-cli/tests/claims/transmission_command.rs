@@ -119,7 +119,10 @@ fn a_lossless_chain_gets_stated_damping_and_a_like_with_like_edge_table() {
         "lossless.toml",
         "[chain]\nrods_mm = [40, 40, 40, 40, 40, 40, 40, 40, 40, 40]\n[preload]\nforce_n = 10.0\n[run]\ntime_step_s = 5e-7\n",
     );
-    let o = common::run_in(dir.path(), &["transmission", "lossless.toml", "--out", "tx"]);
+    let o = common::run_in(
+        dir.path(),
+        &["transmission", "lossless.toml", "--out", "tx"],
+    );
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(stdout.contains("on-site τ = 0.02 s added"), "{stdout}");
@@ -139,7 +142,14 @@ fn a_lossless_chain_gets_stated_damping_and_a_like_with_like_edge_table() {
     );
     let o = common::run_in(
         dir.path(),
-        &["transmission", "damped.toml", "--out", "tx2", "--damping-time-s", "0.01"],
+        &[
+            "transmission",
+            "damped.toml",
+            "--out",
+            "tx2",
+            "--damping-time-s",
+            "0.01",
+        ],
     );
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");

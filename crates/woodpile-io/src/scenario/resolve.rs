@@ -15,7 +15,6 @@ use woodpile::{
     Signal, Striker, UnitCell, Wall,
 };
 
-
 /// Largest spherical-cap radius of a wall \[mm\]: beyond it the cap is a flat in all but name.
 const MAX_CAP_RADIUS_MM: f64 = 1e6;
 /// A scenario turned into what the library runs.
@@ -315,11 +314,9 @@ fn rod_cell(
                 let key = field(key);
                 let length_key = field("length_mm");
                 move |e| match e {
-                    woodpile::Error::InvalidParameter { field: f, reason, .. }
-                        if f == "rod.length_m" =>
-                    {
-                        Error::invalid(length_key, length, reason)
-                    }
+                    woodpile::Error::InvalidParameter {
+                        field: f, reason, ..
+                    } if f == "rod.length_m" => Error::invalid(length_key, length, reason),
                     woodpile::Error::InvalidParameter { value, reason, .. } => {
                         Error::invalid(key, value, reason)
                     }

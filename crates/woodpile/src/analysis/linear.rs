@@ -144,9 +144,8 @@ impl LinearChain {
         let omega = 2.0 * PI * frequency_hz;
         let iw = Complex64::new(0.0, omega);
         let n = self.primary_mass_kg.len();
-        let z = |c: usize| {
-            self.contact_stiffness_n_per_m[c] + iw * self.contact_damping_n_s_per_m[c]
-        };
+        let z =
+            |c: usize| self.contact_stiffness_n_per_m[c] + iw * self.contact_damping_n_s_per_m[c];
         // Elimination from the wall up with X_N = 1: (below, here) = (X_{i+1}, X_i).
         let mut wall = z(n - 1);
         let (mut below, mut here) = (Complex64::new(0.0, 0.0), Complex64::new(1.0, 0.0));

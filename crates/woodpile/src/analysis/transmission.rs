@@ -235,7 +235,9 @@ impl EdgeRow {
 
     /// measured / Bloch − 1.
     pub fn error_vs_bloch(&self) -> Option<f64> {
-        self.measured_hz.zip(self.bloch_hz).map(|(m, b)| m / b - 1.0)
+        self.measured_hz
+            .zip(self.bloch_hz)
+            .map(|(m, b)| m / b - 1.0)
     }
 }
 

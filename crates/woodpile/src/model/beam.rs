@@ -343,8 +343,8 @@ impl Rod {
 
     /// Refuses a rod that is no beam (shorter than its diameter: a disc, whose bending modes the
     /// scan cannot find) or so slender that its bending modes mean nothing to a chain (more than
-    /// [`crate::defaults::ROD_MAX_SLENDERNESS`] diameters: its cell's frequencies and springs fall
-    /// to the femtohertz and below at a kilometre of 5 mm rod). Named `rod.length_m`.
+    /// [`crate::defaults::ROD_MAX_SLENDERNESS`] diameters: its first frequency is 6.4 mHz at the
+    /// limit for a 5 mm fused-quartz rod, and falls as 1/L²). Named `rod.length_m`.
     pub fn check_slenderness(&self) -> Result<()> {
         let ratio = self.length_m / self.outer_diameter_m;
         let max = crate::defaults::ROD_MAX_SLENDERNESS;
@@ -359,7 +359,7 @@ impl Rod {
             return Err(Error::invalid(
                 "rod.length_m",
                 self.length_m,
-                format!("{ratio:.3e} diameters long (at most {max:e}): its bending frequencies scale as 1/length² and fall below any time scale of a chain run (its cell's springs underflow the printed precision); model it as rigid or shorten it"),
+                format!("{ratio:.1} diameters long (at most {max}): its bending frequencies fall as 1/length², below any time scale of a chain run (a 5 mm fused-quartz rod at the limit: 6.4 mHz); model it as rigid or shorten it"),
             ));
         }
         Ok(())

@@ -177,7 +177,10 @@ fn a_blast_beyond_the_contact_is_told_from_statics() {
             ..
         } => {
             assert_eq!(*contact, 1, "{err}");
-            let needed_m: f64 = needed.trim_end_matches(" m").parse().expect("a finite overlap");
+            let needed_m: f64 = needed
+                .trim_end_matches(" m")
+                .parse()
+                .expect("a finite overlap");
             assert!(needed_m > 100.0 * limit_m, "{err}");
         }
         other => panic!("expected a load beyond contact 1, got {other:?}"),

@@ -59,9 +59,15 @@ fn check(rod_mm: u32, expected_edges: usize) {
     assert_eq!(inner.len(), expected_edges, "{rod_mm} mm: {table:?}");
     for e in inner {
         let err = e.error_vs_linear().expect("a measured edge");
-        assert!(err.abs() < 0.01, "{rod_mm} mm: measured against linear {e:?}");
+        assert!(
+            err.abs() < 0.01,
+            "{rod_mm} mm: measured against linear {e:?}"
+        );
         let bloch = e.bloch_hz.expect("a homogeneous chain");
-        assert!((e.linear_hz / bloch - 1.0).abs() < 0.02, "{rod_mm} mm: linear against Bloch {e:?}");
+        assert!(
+            (e.linear_hz / bloch - 1.0).abs() < 0.02,
+            "{rod_mm} mm: linear against Bloch {e:?}"
+        );
     }
     let edges: Vec<f64> = measured.iter().flat_map(|&(lo, hi)| [lo, hi]).collect();
     let mut checked = 0;

@@ -41,14 +41,16 @@ fn chain() -> woodpile::Chain {
 fn solve(mut a: Vec<Vec<Complex64>>, mut b: Vec<Complex64>) -> Vec<Complex64> {
     let n = b.len();
     for k in 0..n {
-        let p = (k..n).max_by(|&i, &j| a[i][k].norm().total_cmp(&a[j][k].norm())).unwrap();
+        let p = (k..n)
+            .max_by(|&i, &j| a[i][k].norm().total_cmp(&a[j][k].norm()))
+            .unwrap();
         a.swap(k, p);
         b.swap(k, p);
+        let pivot_row = a[k].clone();
         for i in k + 1..n {
-            let f = a[i][k] / a[k][k];
-            for j in k..n {
-                let v = a[k][j];
-                a[i][j] -= f * v;
+            let f = a[i][k] / pivot_row[k];
+            for (x, &p) in a[i].iter_mut().zip(&pivot_row).skip(k) {
+                *x -= f * p;
             }
             let v = b[k];
             b[i] -= f * v;
@@ -111,15 +113,23 @@ fn dense(chain: &woodpile::Chain, f_hz: f64) -> Complex64 {
 fn the_condensed_solve_is_the_full_linear_system() {
     let chain = chain();
     let linear = LinearChain::new(&chain).unwrap();
-    for f in [50.0, 1500.0, 2700.0, 3300.0, 5200.0, 9650.0, 12000.0, 17000.0, 25000.0, 40000.0] {
+    for f in [
+        50.0, 1500.0, 2700.0, 3300.0, 5200.0, 9650.0, 12000.0, 17000.0, 25000.0, 40000.0,
+    ] {
         let (got, want) = (linear.wall_per_drive(f), dense(&chain, f));
         let err = (got - want).norm() / want.norm();
-        assert!(err < 1e-9, "{f} Hz: condensed {got}, dense {want}, relative {err:e}");
+        assert!(
+            err < 1e-9,
+            "{f} Hz: condensed {got}, dense {want}, relative {err:e}"
+        );
     }
 }
 
 #[test]
 fn far_below_the_first_mode_the_whole_force_reaches_the_wall() {
-    let t = LinearChain::new(&chain()).unwrap().wall_per_drive(1.0).norm();
+    let t = LinearChain::new(&chain())
+        .unwrap()
+        .wall_per_drive(1.0)
+        .norm();
     assert!((t - 1.0).abs() < 1e-4, "|T(1 Hz)| = {t}");
 }
