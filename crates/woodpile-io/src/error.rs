@@ -204,6 +204,7 @@ fn is_numerical(e: &woodpile::Error) -> bool {
         woodpile::Error::NonFiniteState { .. }
             | woodpile::Error::RunawayOverlap { .. }
             | woodpile::Error::LoadBeyondContact { .. }
+            | woodpile::Error::LoadExceedsContact { .. }
             | woodpile::Error::TooManySteps { .. }
             | woodpile::Error::StepSizeTooSmall { .. }
     )

@@ -314,10 +314,26 @@ pub fn write_npy(path: &Path, shape: &[u64], data: &[f64]) -> Result<(), Error> 
 /// `velocities_m_s.npy` (samples × N), `striker.npy` (impact: samples × \[position m, velocity
 /// m/s\]).
 pub fn write_run(dir: &Path, r: &RunRecord<'_>) -> Result<(), Error> {
+    write_run_reporting(dir, r, &mut |_| {})
+}
+
+/// Number of stages [`write_run_reporting`] reports.
+pub const WRITE_RUN_STAGES: u64 = 3;
+
+/// [`write_run`], telling `stage` what it writes next (the CSV files, the `.npy` files,
+/// `run.json`): a long run's files take a while.
+pub fn write_run_reporting(
+    dir: &Path,
+    r: &RunRecord<'_>,
+    stage: &mut dyn FnMut(&str),
+) -> Result<(), Error> {
     write_json(&dir.join("summary.json"), &SummaryJson::new(r))?;
+    stage("writing the CSV files");
     write_csvs(dir, r.trajectory)?;
+    stage("writing the .npy files");
     write_npys(dir, r.trajectory)?;
     // run.json last: its presence marks a complete run.
+    stage("writing run.json");
     write_json(&dir.join(RUN_MARKER), &run_json(r))
 }
 
@@ -732,6 +748,17 @@ fn read_npy(path: &Path, shape: &[Option<usize>]) -> Result<Vec<f64>, Error> {
             format!("array of shape {actual:?}, expected [{}]", want.join(", ")),
         ));
     }
+    if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+        // A run never writes a non-finite sample (a blow-up is an error, not a file).
+        let at = match actual.as_slice() {
+            [_, cols] if *cols > 0 => format!("row {}, column {}", k / cols, k % cols),
+            _ => format!("element {k}"),
+        };
+        return Err(read_error(
+            path,
+            format!("holds {} at {at}: woodpile never writes a non-finite sample, so the file was changed or damaged; re-run `woodpile simulate`", values[k]),
+        ));
+    }
     Ok(values)
 }
 
@@ -810,6 +837,17 @@ pub fn detect_dir(dir: &Path) -> Result<DirKind, Error> {
     }
     if dir.join(RUN_MARKER).is_file() {
         return Ok(DirKind::Run);
+    }
+    // Files only a simulate run writes (summary.json is written by both).
+    let run_only = RUN_FILES
+        .iter()
+        .filter(|f| **f != "summary.json" && **f != RUN_MARKER)
+        .find(|f| dir.join(f).is_file());
+    if let Some(found) = run_only {
+        return Err(bad_dir(
+            dir,
+            format!("looks like a `woodpile simulate` run (it holds {found}) but its {RUN_MARKER} is missing, and plotting a run needs it (its layout and settings): re-run `woodpile simulate` into this directory with --overwrite"),
+        ));
     }
     let history = dir.join("history.csv").is_file();
     let marker = OPT_MARKERS.iter().any(|m| dir.join(m).is_file());

@@ -1,6 +1,7 @@
 //! The output directory of `woodpile transmission` (docs/physics.md §15): the spectrum as CSV and
-//! `.npy`, and `transmission.json` with the settings, the Bloch prediction, the measured stop
-//! bands and the edge comparison. Written into a staged directory; `transmission.json` last.
+//! `.npy` beside the finite chain's linear response, and `transmission.json` with the settings,
+//! any damping added for the measurement, the Bloch prediction, the measured and linear stop bands
+//! and the edge table. Written into a staged directory; `transmission.json` last.
 
 use crate::atomic::io_err;
 use crate::error::Error;
@@ -17,6 +18,7 @@ pub const TRANSMISSION_FILES: &[&str] = &[
     "frequency_hz.npy",
     "transmission.npy",
     "transmission_db.npy",
+    "linear_transmission_db.npy",
     "transmission.png",
     "transmission.svg",
 ];
@@ -42,6 +44,22 @@ pub struct EdgeJson {
     pub measured_hz: Option<f64>,
     /// measured / predicted − 1.
     pub relative_error: Option<f64>,
+}
+
+/// One edge of the finite chain's linear stop bands against the measured and the Bloch edges.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct EdgeRowJson {
+    /// Edge of a stop band of the linear prediction (the finite preloaded chain, the same
+    /// damping, bins and level) \[Hz\].
+    pub linear_hz: f64,
+    /// Nearest measured stop-band edge \[Hz\].
+    pub measured_hz: Option<f64>,
+    /// Nearest Bloch gap edge of the infinite lattice \[Hz\] (homogeneous chains only).
+    pub bloch_hz: Option<f64>,
+    /// measured / linear − 1.
+    pub error_vs_linear: Option<f64>,
+    /// measured / Bloch − 1.
+    pub error_vs_bloch: Option<f64>,
 }
 
 /// `transmission.json`.
@@ -73,6 +91,13 @@ pub struct TransmissionJson {
     pub predicted_gaps: Option<Vec<BandJson>>,
     /// Predicted edges in range against the measured ones.
     pub edges: Vec<EdgeJson>,
+    /// On-site damping time τ added for the measurement to a chain without damping \[s\] (null:
+    /// the chain's own damping, or none).
+    pub added_damping_time_s: Option<f64>,
+    /// Stop bands of the finite chain's linear prediction \[Hz\].
+    pub linear_stop_bands: Vec<BandJson>,
+    /// Every edge of the linear prediction against the measured and the Bloch edges.
+    pub edge_table: Vec<EdgeRowJson>,
     /// Energy balance of the driven run (relative).
     pub energy_max_relative_error: f64,
     /// Wall-clock time of the run \[s\].
@@ -118,6 +143,19 @@ impl TransmissionJson {
                     relative_error: e.relative_error(),
                 })
                 .collect(),
+            added_damping_time_s: t.added_damping_time_s,
+            linear_stop_bands: bands(&t.linear_stop_bands_hz(threshold_db)),
+            edge_table: t
+                .edge_table(threshold_db)
+                .iter()
+                .map(|e| EdgeRowJson {
+                    linear_hz: e.linear_hz,
+                    measured_hz: e.measured_hz,
+                    bloch_hz: e.bloch_hz,
+                    error_vs_linear: e.error_vs_linear(),
+                    error_vs_bloch: e.error_vs_bloch(),
+                })
+                .collect(),
             energy_max_relative_error: t.run.energy.max_relative_error,
             wall_time_s: t.run.wall_time_s,
         }
@@ -158,29 +196,68 @@ impl TransmissionJson {
                 measured.join(", ")
             }
         ));
+        if let Some(tau) = self.added_damping_time_s {
+            o.push_str(&format!("damping      the chain has none: on-site τ = {tau} s added for the measurement and the prediction (--damping-time-s; 0 measures it lossless)\n"));
+        }
+        let linear: Vec<String> = self
+            .linear_stop_bands
+            .iter()
+            .map(|b| hz_band(b.lower_hz, b.upper_hz))
+            .collect();
+        o.push_str(&format!(
+            "linear       stop bands of the finite chain: {}\n",
+            if linear.is_empty() {
+                "none".into()
+            } else {
+                linear.join(", ")
+            }
+        ));
         match &self.predicted_gaps {
             Some(gaps) => {
                 let g: Vec<String> = gaps.iter().map(|b| hz_band(b.lower_hz, b.upper_hz)).collect();
-                o.push_str(&format!("predicted    gaps (Bloch): {}\n", g.join(", ")));
-                for e in &self.edges {
-                    o.push_str(&match (e.measured_hz, e.relative_error) {
-                        (Some(m), Some(err)) => format!(
-                            "edge         predicted {:.1} Hz, measured {m:.1} Hz ({:+.2} %)\n",
-                            e.predicted_hz,
-                            100.0 * err
-                        ),
-                        _ => format!("edge         predicted {:.1} Hz, no measured stop band\n", e.predicted_hz),
-                    });
-                }
+                o.push_str(&format!("predicted    gaps (Bloch, infinite chain): {}\n", g.join(", ")));
             }
-            None => o.push_str("predicted    none: the chain is not homogeneous (one cell, one beta, no gravity)\n"),
+            None => o.push_str("predicted    no Bloch gaps: the chain is not homogeneous (one cell, one beta, no gravity)\n"),
         }
+        o.push_str(&self.edge_table_text());
         o.push_str(&format!(
             "energy       max relative error {:.2e}; {:.2} s wall time\noutput       {}\n",
             self.energy_max_relative_error,
             self.wall_time_s,
             dir.display()
         ));
+        o
+    }
+}
+
+impl TransmissionJson {
+    /// The edge table: each linear edge, the measured one against it and the Bloch one, and a
+    /// warning with the fix when a measured edge is more than 1 % off its linear prediction.
+    fn edge_table_text(&self) -> String {
+        let pct = |e: Option<f64>| e.map_or("–".to_string(), |e| format!("{:+.2} %", 100.0 * e));
+        let hz = |f: Option<f64>| f.map_or("–".to_string(), |f| format!("{f:.1}"));
+        let mut o = String::new();
+        if !self.edge_table.is_empty() {
+            o.push_str("edges [Hz]   linear     measured   vs linear  Bloch      vs Bloch\n");
+        }
+        for e in &self.edge_table {
+            o.push_str(&format!(
+                "             {:<10.1} {:<10} {:<10} {:<10} {}\n",
+                e.linear_hz,
+                hz(e.measured_hz),
+                pct(e.error_vs_linear),
+                hz(e.bloch_hz),
+                pct(e.error_vs_bloch)
+            ));
+        }
+        let off = self
+            .edge_table
+            .iter()
+            .filter(|e| e.error_vs_linear.is_none_or(|x| x.abs() > 0.01))
+            .count();
+        if off > 0 {
+            o.push_str(&format!("warning      {off} measured edge(s) missing or more than 1 % off the linear prediction: the record (1/Δf = {:.3} s) is too short for the damping to end the response, or the bins too coarse; halve --resolution-hz, or damp a lossless chain (docs/physics.md §15)\n", 1.0 / self.resolution_hz));
+        }
         o
     }
 }
@@ -200,6 +277,7 @@ pub fn write_transmission(
         "wall_amplitude_n",
         "transmission",
         "transmission_db",
+        "linear_transmission_db",
     ])
     .map_err(csv_err)?;
     for k in 0..t.frequencies_hz.len() {
@@ -209,6 +287,7 @@ pub fn write_transmission(
             t.wall_amplitude_n[k],
             t.transmission[k],
             t.transmission_db[k],
+            t.linear_transmission_db[k],
         ];
         w.write_record(row.iter().map(|v| format!("{v:e}")))
             .map_err(csv_err)?;
@@ -218,6 +297,11 @@ pub fn write_transmission(
     write_npy(&dir.join("frequency_hz.npy"), &[n], &t.frequencies_hz)?;
     write_npy(&dir.join("transmission.npy"), &[n], &t.transmission)?;
     write_npy(&dir.join("transmission_db.npy"), &[n], &t.transmission_db)?;
+    write_npy(
+        &dir.join("linear_transmission_db.npy"),
+        &[n],
+        &t.linear_transmission_db,
+    )?;
     let path = dir.join(TRANSMISSION_MARKER);
     let mut file = std::io::BufWriter::new(std::fs::File::create(&path).map_err(io_err(&path))?);
     serde_json::to_writer_pretty(&mut file, record)

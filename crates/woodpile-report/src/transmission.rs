@@ -35,8 +35,10 @@ pub fn run(s: &Setup) -> Result<Transmission, Error> {
             ..Damping::default()
         })
         .build()?;
+    // 20 Hz bins: the figures docs/physics.md §15 quotes for this case.
     let settings = TransmissionSettings {
         method: Method::Rk4 { time_step_s: 2e-7 },
+        resolution_hz: 20.0,
         ..TransmissionSettings::standard()
     };
     let spectrum = transmission(&chain, &settings)?;

@@ -66,12 +66,19 @@ pub const ENERGY_ERROR_FAIL: f64 = 1e-2;
 pub const TRANSMISSION_START_HZ: f64 = 100.0;
 /// Highest frequency of the chirp \[Hz\].
 pub const TRANSMISSION_END_HZ: f64 = 30e3;
-/// Frequency resolution \[Hz\] (the record lasts its inverse: 50 ms).
-pub const TRANSMISSION_RESOLUTION_HZ: f64 = 20.0;
+/// Frequency resolution \[Hz\] (the record lasts its inverse: 100 ms; with the measurement damping
+/// every edge of 40-rod chains lands within 0.3 % of the linear prediction, docs/physics.md §15).
+pub const TRANSMISSION_RESOLUTION_HZ: f64 = 10.0;
 /// Chirp amplitude as a fraction of the static force on the top element: small enough that no
 /// contact opens and the chain stays linear about its equilibrium.
 pub const TRANSMISSION_RELATIVE_AMPLITUDE: f64 = 0.01;
 /// Sample interval of the recorded forces \[s\] (Nyquist 100 kHz).
 pub const TRANSMISSION_SAMPLE_INTERVAL_S: f64 = 5e-6;
+/// On-site damping time τ \[s\] a chain without damping gets for its transmission measurement.
+pub const TRANSMISSION_DAMPING_TIME_S: f64 = 0.02;
 /// A frequency where the transmission is below this level \[dB\] is in a measured stop band.
 pub const TRANSMISSION_STOP_DB: f64 = -20.0;
+
+/// Longest rod, in diameters, whose cell is derived from beam theory (docs/physics.md §13): at
+/// 10⁴ diameters a 5 mm fused-quartz rod (50 m) has its first bending mode at 6.4 mHz.
+pub const ROD_MAX_SLENDERNESS: f64 = 1e4;

@@ -88,6 +88,24 @@ pub enum Error {
         /// Simulation time reached \[s\] (0 for a run that never started).
         time_s: f64,
     },
+    /// The load asks more of a contact than its physical range, judged from statics and energy
+    /// alone: the load's peak force held statically, or the striker's whole kinetic energy of
+    /// relative motion stored in the contact, would compress it beyond 10 % of its smallest radius
+    /// of curvature. No time step will help.
+    #[error("the load exceeds what contact {contact} can take: {load} would compress it by {needed}, beyond its physical range {limit_m:.3e} m (10 % of the smallest radius of curvature); the run blew up at t = {time_s:.6e} s. Reduce the load, or model a stiffer or larger contact (beta, cap radius); a smaller time step will not help")]
+    LoadExceedsContact {
+        /// Simulation time of the blow-up \[s\].
+        time_s: f64,
+        /// Contact index in the paper's numbering.
+        contact: usize,
+        /// The load, in words with its numbers (e.g. "the blast's peak force 1.000e9 N held
+        /// statically").
+        load: String,
+        /// The overlap it needs, in words ("1.234e-3 m", or "more than any finite overlap").
+        needed: String,
+        /// Largest physical overlap \[m\].
+        limit_m: f64,
+    },
     /// The run needed more integration steps than allowed.
     #[error("the run stopped after {steps} integration steps at t = {time_s:.6e} s of run.duration_s = {duration_s:e} s (limit {steps}); shorten run.duration_s, use a larger run.time_step_s, or loosen rtol")]
     TooManySteps {

@@ -102,6 +102,17 @@ impl BlastProfile {
         Ok(p)
     }
 
+    /// The largest force of the profile \[N\] (F0 for Friedlander, whose decay b ≥ 0; the
+    /// largest |F_k| of a table).
+    pub fn peak_force_n(&self) -> f64 {
+        match self {
+            BlastProfile::Friedlander { peak_force_n, .. } => peak_force_n.abs(),
+            BlastProfile::Table { forces_n, .. } => {
+                forces_n.iter().fold(0.0, |m: f64, f| m.max(f.abs()))
+            }
+        }
+    }
+
     /// Force F(t) \[N\].
     #[inline]
     pub fn force_n(&self, t: f64) -> f64 {
@@ -201,6 +212,50 @@ impl Excitation {
             Excitation::Blast(b) => b.validate(),
             Excitation::Drive(d) => d.validate(),
             Excitation::Rest => Ok(()),
+        }
+    }
+
+    /// Whether a run of `duration_s` with a fixed step `fixed_step_s` (None: an adaptive method)
+    /// can mean anything under this excitation: a drive above the step's Nyquist frequency
+    /// 1/(2h) is aliased by the integrator, and a blast whose force decays within one step (Td/(1 + b) < h) acts
+    /// only at the stage evaluations of its first step: an impulse that does no work the energy
+    /// audit can see. Each is refused naming its key and the run's.
+    pub fn check_against_run(&self, fixed_step_s: Option<f64>) -> Result<()> {
+        match self {
+            Excitation::Drive(d) => {
+                if let (Some((key, f)), Some(h)) = (d.signal.highest_frequency_hz(), fixed_step_s) {
+                    if f * h >= 0.5 {
+                        return Err(Error::invalid(
+                            key,
+                            f,
+                            format!("above the Nyquist frequency 1/(2 run.time_step_s) = {:.4e} Hz of the step {h:e} s: the integrator cannot follow the drive; lower the frequency or the step (at least 20 steps a period: run.time_step_s ≤ {:.3e} s)", 0.5 / h, 0.05 / f),
+                        ));
+                    }
+                }
+                Ok(())
+            }
+            Excitation::Blast(BlastProfile::Friedlander {
+                duration_s: td,
+                decay,
+                ..
+            }) => match fixed_step_s {
+                Some(h) if td / (1.0 + decay) < h => Err(Error::invalid(
+                    "excitation.decay",
+                    decay,
+                    format!("the force would fall by 1/e within {:.3e} s, shorter than one step (run.time_step_s = {h:e} s): it would act only inside the first step, as an impulse whose work the energy balance cannot see; use decay ≤ {:.3e} or a smaller step", td / (1.0 + decay), (td / h - 1.0).max(0.0)),
+                )),
+                _ => Ok(()),
+            },
+            _ => Ok(()),
+        }
+    }
+
+    /// A drive's ramp when it is longer than a run of `duration_s` (the drive then never reaches
+    /// its amplitude: front ends warn, naming excitation.ramp_s).
+    pub fn ramp_longer_than(&self, duration_s: f64) -> Option<f64> {
+        match self {
+            Excitation::Drive(d) if d.ramp_s > duration_s => Some(d.ramp_s),
+            _ => None,
         }
     }
 
@@ -381,7 +436,7 @@ impl Signal {
                 amplitude,
                 frequency_hz,
             } => {
-                require_non_negative("excitation.amplitude", *amplitude)?;
+                require_drive_amplitude(*amplitude)?;
                 require_positive("excitation.frequency_hz", *frequency_hz)?;
             }
             Signal::Chirp {
@@ -391,7 +446,7 @@ impl Signal {
                 duration_s,
                 sweep,
             } => {
-                require_non_negative("excitation.amplitude", *amplitude)?;
+                require_drive_amplitude(*amplitude)?;
                 require_positive("excitation.start_hz", *start_hz)?;
                 require_positive("excitation.end_hz", *end_hz)?;
                 require_positive("excitation.sweep_duration_s", *duration_s)?;
@@ -409,10 +464,45 @@ impl Signal {
                     forces_n: values.clone(),
                 }
                 .validate()?;
+                if values.iter().all(|&v| v == 0.0) {
+                    return Err(Error::invalid(
+                        "excitation.table",
+                        "all values 0",
+                        NOTHING_DRIVEN,
+                    ));
+                }
             }
         }
         Ok(())
     }
+
+    /// The highest frequency of a harmonic signal or a chirp \[Hz\] (None for a table).
+    pub fn highest_frequency_hz(&self) -> Option<(&'static str, f64)> {
+        match self {
+            Signal::Harmonic { frequency_hz, .. } => {
+                Some(("excitation.frequency_hz", *frequency_hz))
+            }
+            Signal::Chirp {
+                start_hz, end_hz, ..
+            } if start_hz > end_hz => Some(("excitation.start_hz", *start_hz)),
+            Signal::Chirp { end_hz, .. } => Some(("excitation.end_hz", *end_hz)),
+            Signal::Table { .. } => None,
+        }
+    }
+}
+
+const NOTHING_DRIVEN: &str = "a drive of amplitude 0 moves nothing, and every dynamic force (and ratio) of the run would be rounding noise; give a positive amplitude, or excitation.kind = \"rest\" for a chain left at rest";
+
+fn require_drive_amplitude(amplitude: f64) -> Result<()> {
+    require_non_negative("excitation.amplitude", amplitude)?;
+    if amplitude == 0.0 {
+        return Err(Error::invalid(
+            "excitation.amplitude",
+            amplitude,
+            NOTHING_DRIVEN,
+        ));
+    }
+    Ok(())
 }
 
 /// What an actuator prescribes.

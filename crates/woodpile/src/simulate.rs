@@ -684,6 +684,11 @@ pub(crate) fn simulate_watching(
     stop_above_n: f64,
 ) -> Result<RunSummary> {
     settings.validate()?;
+    let fixed_step_s = match settings.method {
+        Method::Rk4 { time_step_s } => Some(time_step_s),
+        _ => None,
+    };
+    excitation.check_against_run(fixed_step_s)?;
     let started = std::time::Instant::now();
     let mut ode = ChainOde::new(chain, excitation)?;
     check_method_fits(&ode, settings.method)?;
@@ -821,6 +826,13 @@ fn diagnose_blow_up(
             };
         }
     }
+    let time_s = match coarse {
+        Error::RunawayOverlap { time_s, .. } | Error::NonFiniteState { time_s, .. } => time_s,
+        _ => t1,
+    };
+    if let Some(e) = load_beyond_reach(chain, &ode, excitation, time_s) {
+        return e;
+    }
     let coarse_contact = match coarse {
         Error::RunawayOverlap { contact, .. } | Error::NonFiniteState { contact, .. } => contact,
         _ => 0,
@@ -844,6 +856,64 @@ fn diagnose_blow_up(
             Error::NonFiniteState { time_s, contact }
         }
         other => other,
+    }
+}
+
+/// Whether the load asks more of a contact than its physical range, from statics and energy alone
+/// (no integration, so no number from a failed state): a blast's peak force held statically on top
+/// of the preload and gravity compresses contact i by (F/β_i)^{2/3}; a striker's kinetic energy of
+/// relative motion ½ μ v² (μ the reduced mass of striker and top primary) stored in its contact
+/// compresses it by (5 E / 2β)^{2/5}.
+fn load_beyond_reach(
+    chain: &Chain,
+    ode: &ChainOde,
+    excitation: &Excitation,
+    time_s: f64,
+) -> Option<Error> {
+    let (betas, limits) = (ode.contact_betas(), ode.overlap_limits_m());
+    let words = |m: f64| {
+        if m.is_finite() {
+            format!("{m:.3e} m")
+        } else {
+            "more than any finite overlap".to_string()
+        }
+    };
+    let exceeds = |need: f64, limit: f64| need.is_nan() || need > limit;
+    match excitation {
+        Excitation::Impact(striker) => {
+            let m_s = ode.striker_mass_kg()?;
+            let m_1 = chain.elements().first()?.cell.primary_mass_kg;
+            let (mu, v) = (m_s * m_1 / (m_s + m_1), striker.velocity_m_s);
+            let energy_j = 0.5 * mu * v * v;
+            let need = (2.5 * energy_j / betas[0]).powf(0.4);
+            let energy = if energy_j.is_finite() {
+                format!("{energy_j:.3e} J")
+            } else {
+                "more energy than a number holds".to_string()
+            };
+            exceeds(need, limits[0]).then(|| Error::LoadExceedsContact {
+                time_s,
+                contact: 0,
+                load: format!("the striker at {v:.3e} m/s (excitation.velocity_m_s, or drop_height_m), with {energy} of relative motion,"),
+                needed: words(need),
+                limit_m: limits[0],
+            })
+        }
+        Excitation::Blast(blast) => {
+            let peak_n = blast.peak_force_n();
+            let statics = chain.static_contact_forces_n();
+            (1..betas.len()).find_map(|c| {
+                let need = ((peak_n + statics[c - 1]) / betas[c]).powf(2.0 / 3.0);
+                exceeds(need, limits[c]).then(|| Error::LoadExceedsContact {
+                    time_s,
+                    contact: c,
+                    load: format!("the blast's peak force {peak_n:.3e} N (excitation.peak_force_n, or the table's largest force), held statically,"),
+                    needed: words(need),
+                    limit_m: limits[c],
+                })
+            })
+        }
+        _ => None,
     }
 }
 

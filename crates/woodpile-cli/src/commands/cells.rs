@@ -84,7 +84,15 @@ fn derived(args: &Args, length_mm: f64) -> Result<DerivedCell, CliError> {
 fn joined(values: impl IntoIterator<Item = f64>, scale: f64, digits: usize) -> String {
     let texts: Vec<String> = values
         .into_iter()
-        .map(|x| format!("{:.digits$}", x * scale))
+        .map(|x| {
+            // A value below the last printed decimal keeps its significant digits.
+            let v = x * scale;
+            if v != 0.0 && v.abs() < 0.5 * 10f64.powi(-(digits as i32)) {
+                format!("{v:.3e}")
+            } else {
+                format!("{v:.digits$}")
+            }
+        })
         .collect();
     texts.join(", ")
 }

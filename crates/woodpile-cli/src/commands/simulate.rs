@@ -8,7 +8,7 @@ use woodpile::record::{Layout, Recorder, Sample};
 use woodpile::{simulate, Trajectory};
 use woodpile_io::atomic::{Staging, RUN_MARKER};
 use woodpile_io::limits::RunSize;
-use woodpile_io::rundir::{write_run, RunRecord, SummaryJson, RUN_FILES};
+use woodpile_io::rundir::{RunRecord, SummaryJson, RUN_FILES};
 use woodpile_io::scenario::{resolve, Resolved, Scenario, DEFAULT_SCENARIO};
 
 /// Which scenario a command runs: a file or a built-in (shared by `simulate` and
@@ -118,6 +118,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         &mut watched,
     );
     watched.finish();
+    let watched_progress = watched.progress.is_some();
     let summary = summary?;
     let accuracy =
         woodpile_io::limits::check_accuracy(&summary, &resolved.excitation, args.allow_inaccurate)?;
@@ -129,10 +130,32 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         summary: &summary,
         trajectory: &trajectory,
     };
-    write_run(staging.path(), &record)?;
+    // Writing a long run's samples takes a while: shown as stages when the run showed progress
+    // or the samples are many.
+    let values = trajectory.len() * (2 * resolved.chain.len() + 4);
+    let writing = (!ctx.quiet && (watched_progress || values > WRITE_QUIET_BELOW))
+        .then(|| Progress::new("simulate", woodpile_io::rundir::WRITE_RUN_STAGES, ctx.quiet));
+    woodpile_io::rundir::write_run_reporting(staging.path(), &record, &mut |stage| {
+        if let Some(p) = &writing {
+            p.inc(1);
+            p.stage(format!("{stage} ({} samples)", trajectory.len()));
+        }
+    })?;
+    if let Some(p) = &writing {
+        p.finish();
+    }
     let dir = staging.commit(RUN_FILES, RUN_MARKER)?;
     if let Some(warning) = accuracy {
         crate::out::eprintln(format_args!("warning: {warning}"));
+    }
+    if let Some(ramp) = resolved
+        .excitation
+        .ramp_longer_than(resolved.settings.duration_s)
+    {
+        crate::out::eprintln(format_args!(
+            "warning: excitation.ramp_s = {ramp:e} s is longer than run.duration_s = {:e} s: the drive never reaches its amplitude, so its peaks and ratio describe the ramp (a harmonic drive's default ramp is three periods); shorten excitation.ramp_s or lengthen the run",
+            resolved.settings.duration_s
+        ));
     }
     if !summary.wave_arrived {
         crate::out::eprintln(format_args!(
@@ -147,6 +170,9 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     }
     Ok(())
 }
+
+/// Sampled values (samples × columns) below which writing a run's files shows no progress.
+const WRITE_QUIET_BELOW: usize = 2_000_000;
 
 /// Wall time after which a run shows its progress: shorter runs stay silent.
 const QUIET_FOR: std::time::Duration = std::time::Duration::from_secs(1);
@@ -222,12 +248,53 @@ fn simulated(time_s: f64, duration_s: f64) -> String {
     )
 }
 
+/// Most labels, or runs of equal labels, a `chain` line lists before it abbreviates.
+const CHAIN_RUNS_SHOWN: usize = 24;
+
+/// Element labels top to bottom; for a chain longer than [`CHAIN_RUNS_SHOWN`], runs of equal ones
+/// as `80mm×40`, and when still too many the first and last runs around `… (N more runs) …`: one
+/// line, however long the chain.
+fn abbreviated_labels(labels: &[String]) -> String {
+    if labels.len() <= CHAIN_RUNS_SHOWN {
+        return labels.join(" ");
+    }
+    let mut runs: Vec<(&str, usize)> = Vec::new();
+    for l in labels {
+        match runs.last_mut() {
+            Some((last, n)) if *last == l.as_str() => *n += 1,
+            _ => runs.push((l.as_str(), 1)),
+        }
+    }
+    let text = |r: &[(&str, usize)]| {
+        r.iter()
+            .map(|&(l, n)| {
+                if n == 1 {
+                    l.to_string()
+                } else {
+                    format!("{l}×{n}")
+                }
+            })
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    if runs.len() <= CHAIN_RUNS_SHOWN {
+        return text(&runs);
+    }
+    let (head, tail) = (CHAIN_RUNS_SHOWN * 2 / 3, CHAIN_RUNS_SHOWN / 3);
+    format!(
+        "{} … ({} more runs) … {}",
+        text(&runs[..head]),
+        runs.len() - head - tail,
+        text(&runs[runs.len() - tail..])
+    )
+}
+
 /// The short human-readable report printed after a run.
 pub fn terminal_summary(r: &RunRecord<'_>, dir: &Path) -> String {
     let s = SummaryJson::new(r);
     let chain = &r.resolved.chain;
     let mut o = String::new();
-    let labels = s.chain_labels.join(" ");
+    let labels = abbreviated_labels(&s.chain_labels);
     o.push_str(&format!("scenario     {}\n", r.name));
     o.push_str(&format!(
         "chain        {} elements: {labels}\n",

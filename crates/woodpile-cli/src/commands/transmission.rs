@@ -37,6 +37,11 @@ pub struct Args {
     /// Chirp amplitude as a fraction of the preload force.
     #[arg(long, default_value_t = defaults::TRANSMISSION_RELATIVE_AMPLITUDE)]
     pub relative_amplitude: f64,
+    /// On-site damping time τ (s) given for the measurement to a chain without damping, so that
+    /// its response ends within the record [default: 0.02]; 0 measures the lossless chain. A
+    /// chain with its own damping keeps it.
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
+    pub damping_time_s: Option<f64>,
     /// Level (dB) below which a frequency counts as in a measured stop band.
     #[arg(long, default_value_t = defaults::TRANSMISSION_STOP_DB, allow_negative_numbers = true)]
     pub threshold_db: f64,
@@ -55,8 +60,27 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     }
     let loaded = load(&args.source)?;
     let resolved = loaded.resolve()?;
-    if resolved.chain.damping().is_lossless() {
-        crate::out::eprintln(format_args!("warning: the chain has no damping: its response rings past the end of the record and leaks into the gaps; add e.g. [damping] on_site_time_s = 0.02 (docs/physics.md §15)"));
+    let lossless = resolved.chain.damping().is_lossless();
+    let measurement_damping_time_s = match args.damping_time_s {
+        None => Some(defaults::TRANSMISSION_DAMPING_TIME_S),
+        Some(tau) if !(tau.is_finite() && tau >= 0.0) => {
+            return Err(CliError::invalid(
+                "--damping-time-s",
+                tau,
+                "must be a damping time in seconds > 0 (e.g. 0.02), or 0 to measure the lossless chain",
+            ))
+        }
+        Some(_) if !lossless => {
+            return Err(CliError::invalid(
+                "--damping-time-s",
+                args.damping_time_s.unwrap_or_default(),
+                "applies to a chain without damping; this scenario's chain has its own [damping] (change damping.on_site_time_s there)",
+            ))
+        }
+        Some(tau) => (tau > 0.0).then_some(tau),
+    };
+    if lossless && measurement_damping_time_s.is_none() {
+        crate::out::eprintln(format_args!("warning: measuring the lossless chain (--damping-time-s 0): its response rings past the end of the record and leaks into the gaps (docs/physics.md §15)"));
     }
     let settings = TransmissionSettings {
         start_hz: args.start_hz,
@@ -64,6 +88,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         resolution_hz: args.resolution_hz,
         relative_amplitude: args.relative_amplitude,
         method: resolved.settings.method,
+        measurement_damping_time_s,
         ..TransmissionSettings::standard()
     };
     settings.validate()?;

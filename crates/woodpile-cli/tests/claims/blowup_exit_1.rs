@@ -36,3 +36,39 @@ fn numerical_blowup_exits_1_without_output() {
     assert!(!dir.path().join("out").exists());
     assert!(common::leftovers(dir.path()).is_empty());
 }
+
+/// An impossible load is told apart from a step that is too large, from the physics: a 1e300 N
+/// and a 1e9 N blast would compress contact 1 statically by (F/β)^{2/3} = 5e193 m and 0.55 m, a
+/// drop from 1e300 m stores enough energy to compress the striker's contact by 2e115 m, all
+/// beyond 10 % of a 2.5 mm radius: exit 1, "the load exceeds" naming the scenario key, "a smaller
+/// time step will not help", and no number that is not finite ("inf"/"NaN" never printed).
+#[test]
+fn an_impossible_load_is_not_blamed_on_the_step() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        ("blast", "peak_force_n = 1e300", "excitation.peak_force_n"),
+        ("blast", "peak_force_n = 1e9", "excitation.peak_force_n"),
+        ("impact", "drop_height_m = 1e300", "drop_height_m"),
+    ];
+    for (kind, line, key) in cases {
+        common::write(
+            dir.path(),
+            "s.toml",
+            &format!("[chain]\nrods_mm = [20, 20, 20]\n[excitation]\nkind = \"{kind}\"\n{line}\n[run]\nduration_s = 1e-4\n"),
+        );
+        let out = common::run_in(dir.path(), &["simulate", "s.toml", "--out", "out"]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{line}: {stderr}");
+        for e in ["the load exceeds", key, "a smaller time step will not help"] {
+            assert!(stderr.contains(e), "{line}: expected `{e}` in {stderr}");
+        }
+        assert!(
+            !stderr.contains("reduce run.time_step_s"),
+            "{line}: {stderr}"
+        );
+        for bad in ["inf", "NaN"] {
+            assert!(!stderr.contains(bad), "{line}: `{bad}` in {stderr}");
+        }
+        assert!(!dir.path().join("out").exists());
+    }
+}

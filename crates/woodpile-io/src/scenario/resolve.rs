@@ -15,6 +15,8 @@ use woodpile::{
     Signal, Striker, UnitCell, Wall,
 };
 
+/// Largest spherical-cap radius of a wall \[mm\]: beyond it the cap is a flat in all but name.
+const MAX_CAP_RADIUS_MM: f64 = 1e6;
 /// A scenario turned into what the library runs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Resolved {
@@ -306,10 +308,15 @@ fn rod_cell(
                 return Err(Error::invalid(field("cell.primary_mass_g"), "(missing)", "a given cell needs primary_mass_g with its resonators; or drop resonators to derive the cell from the rod"));
             }
             let rod = Rod::new(length * 1e-3, diameter * 1e-3, inner * 1e-3, mat.clone())?;
-            // The only invalid parameter left is the number of modes or of elements.
+            // What is left to refuse: the rod's slenderness (its length), or the number of modes
+            // or of elements.
             let at = |key: &str| {
                 let key = field(key);
+                let length_key = field("length_mm");
                 move |e| match e {
+                    woodpile::Error::InvalidParameter {
+                        field: f, reason, ..
+                    } if f == "rod.length_m" => Error::invalid(length_key, length, reason),
                     woodpile::Error::InvalidParameter { value, reason, .. } => {
                         Error::invalid(key, value, reason)
                     }
@@ -589,7 +596,15 @@ fn resolve_wall(w: &WallSpec, key: &str) -> Result<Wall, Error> {
             material: material_of(w)?,
             radius_m: {
                 let field = format!("{key}.cap_radius_mm");
-                positive(&field, completed(&field, w.cap_radius_mm.as_ref())?)? * 1e-3
+                let radius_mm = positive(&field, completed(&field, w.cap_radius_mm.as_ref())?)?;
+                if radius_mm > MAX_CAP_RADIUS_MM {
+                    return Err(Error::invalid(
+                        field,
+                        format!("{radius_mm:e}"),
+                        format!("at most {MAX_CAP_RADIUS_MM:e} mm (1 km): a cap this flat is a flat wall; use {key}.kind = \"flat\" (against a rod a line contact, so give {key}.beta)"),
+                    ));
+                }
+                radius_mm * 1e-3
             },
         },
         WallKind::Flat => Wall::Flat {

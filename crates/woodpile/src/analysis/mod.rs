@@ -12,7 +12,8 @@
 //! - [`layer_by_layer`] — the experimental protocol of paper §2 / Fig. 7: sub-chains of the
 //!   first k elements on the sensor, k = 1..N.
 //! - [`transmission()`] — the transmission spectrum of a preloaded chain driven by a small chirp,
-//!   with the Bloch prediction for a homogeneous chain ([`TransmissionSpectrum`]).
+//!   with the Bloch prediction for a homogeneous chain ([`TransmissionSpectrum`]) and the exact
+//!   linear response of the finite chain ([`LinearChain`]).
 //!
 //! ```
 //! use woodpile::analysis::{force_map, Spectrum, SpectrumSettings};
@@ -36,6 +37,7 @@
 //!   effective mass and band gaps of mass-in-mass chains.
 
 pub mod bands;
+pub mod linear;
 pub mod map;
 pub mod protocol;
 pub mod pulses;
@@ -46,6 +48,7 @@ pub use crate::record::sample_interval_s;
 pub use bands::{
     chain_bands_hz, contact_stiffness_n_per_m, linspace, BandStructure, EffectiveMassCurve,
 };
+pub use linear::{LinearChain, LinearResonator};
 pub use map::{energy_map, force_map, injected_energy_j, Axis, Map2};
 pub use protocol::{layer_by_layer, sub_chain, LayerByLayer};
 pub use pulses::{arrival_s, band_contrast, peak_layer_energy, separated_peaks, FirstTransit};
@@ -53,6 +56,6 @@ pub use spectrum::{
     contact_spectrum_map, Padding, Scaling, Spectrum, SpectrumPlan, SpectrumSettings, Window,
 };
 pub use transmission::{
-    homogeneous_prediction, transmission, EdgeComparison, TransmissionSettings,
+    homogeneous_prediction, transmission, EdgeComparison, EdgeRow, TransmissionSettings,
     TransmissionSpectrum,
 };

@@ -15,12 +15,13 @@
 //! the linearised Bloch relation 4 K_c sin²(qa/2) = ω² M_eff(ω) ([`BandStructure`]).
 
 use super::bands::BandStructure;
+use super::linear::LinearChain;
 use super::spectrum::{SpectrumPlan, SpectrumSettings};
 use crate::defaults;
 use crate::error::{require_positive, Error, Result};
 use crate::excitation::{Drive, DriveQuantity, Excitation, Signal, Sweep};
 use crate::integrate::Method;
-use crate::model::Chain;
+use crate::model::{Chain, Damping};
 use crate::record::EndForces;
 use crate::simulate::{simulate, RunSettings, RunSummary};
 
@@ -39,11 +40,16 @@ pub struct TransmissionSettings {
     pub method: Method,
     /// Sample interval of the recorded forces \[s\].
     pub sample_interval_s: f64,
+    /// On-site damping time τ \[s\] given for the measurement to a chain that has no damping
+    /// (docs/physics.md §15: a lossless response rings past the record and fills the gaps);
+    /// `None` measures such a chain as it is. A chain with any damping keeps its own.
+    pub measurement_damping_time_s: Option<f64>,
 }
 
 impl TransmissionSettings {
-    /// Defaults (docs/physics.md §15): 0.1–30 kHz at 20 Hz resolution (a 50 ms record), a chirp of
-    /// 1 % of the preload, the paper's RK4 step, samples every 5 µs (Nyquist 100 kHz).
+    /// Defaults (docs/physics.md §15): 0.1–30 kHz at 10 Hz resolution (a 100 ms record), a chirp of
+    /// 1 % of the preload, the paper's RK4 step, samples every 5 µs (Nyquist 100 kHz),
+    /// on-site damping τ = 20 ms for a chain without damping.
     pub fn standard() -> Self {
         TransmissionSettings {
             start_hz: defaults::TRANSMISSION_START_HZ,
@@ -52,6 +58,7 @@ impl TransmissionSettings {
             relative_amplitude: defaults::TRANSMISSION_RELATIVE_AMPLITUDE,
             method: Method::paper(),
             sample_interval_s: defaults::TRANSMISSION_SAMPLE_INTERVAL_S,
+            measurement_damping_time_s: Some(defaults::TRANSMISSION_DAMPING_TIME_S),
         }
     }
 
@@ -62,6 +69,9 @@ impl TransmissionSettings {
         require_positive("transmission.resolution_hz", self.resolution_hz)?;
         require_positive("transmission.relative_amplitude", self.relative_amplitude)?;
         require_positive("transmission.sample_interval_s", self.sample_interval_s)?;
+        if let Some(tau) = self.measurement_damping_time_s {
+            require_positive("transmission.damping_time_s", tau)?;
+        }
         if self.end_hz <= self.start_hz {
             return Err(Error::invalid(
                 "transmission.end_hz",
@@ -116,6 +126,14 @@ pub struct TransmissionSpectrum {
     pub amplitude_n: f64,
     /// The Bloch prediction for a homogeneous chain (None otherwise).
     pub prediction: Option<BandStructure>,
+    /// |F̂_wall/F̂_drive| of the finite chain linearised about its preload, with the damping of
+    /// the measurement, at `frequencies_hz` ([`LinearChain`]).
+    pub linear_transmission: Vec<f64>,
+    /// 20 log10 of `linear_transmission` \[dB\].
+    pub linear_transmission_db: Vec<f64>,
+    /// The on-site damping time τ \[s\] added for the measurement (None: the chain's own damping,
+    /// or none).
+    pub added_damping_time_s: Option<f64>,
     /// The run's figures of merit (energy balance included).
     pub run: RunSummary,
 }
@@ -126,39 +144,124 @@ impl TransmissionSpectrum {
     /// range ends there. Two runs apart by less than 1 % of their frequency are one band: such
     /// narrow peaks inside a gap are the record's finite length, not transmission.
     pub fn stop_bands_hz(&self, threshold_db: f64) -> Vec<(f64, f64)> {
-        let mut merged: Vec<(f64, f64)> = Vec::new();
-        for (lo, hi) in self.raw_stop_bands_hz(threshold_db) {
-            match merged.last_mut() {
-                Some(last) if lo - last.1 < 0.01 * lo => last.1 = hi,
-                _ => merged.push((lo, hi)),
-            }
-        }
-        merged
+        stop_bands_hz(&self.frequencies_hz, &self.transmission_db, threshold_db)
     }
 
-    fn raw_stop_bands_hz(&self, threshold_db: f64) -> Vec<(f64, f64)> {
-        let (f, t) = (&self.frequencies_hz, &self.transmission_db);
-        let crossing = |k: usize| {
-            // Between k and k+1, where t crosses the threshold.
-            let (t0, t1) = (t[k], t[k + 1]);
-            f[k] + (f[k + 1] - f[k]) * (threshold_db - t0) / (t1 - t0)
-        };
-        let mut bands = Vec::new();
-        let mut start: Option<f64> = (t.first().is_some_and(|&v| v < threshold_db)).then(|| f[0]);
-        for k in 0..t.len().saturating_sub(1) {
-            let (below0, below1) = (t[k] < threshold_db, t[k + 1] < threshold_db);
-            if !below0 && below1 {
-                start = Some(crossing(k));
-            } else if below0 && !below1 {
-                if let Some(s) = start.take() {
-                    bands.push((s, crossing(k)));
-                }
+    /// The stop bands of the linear prediction, found as [`TransmissionSpectrum::stop_bands_hz`]
+    /// finds the measured ones (the same bins, level and merging).
+    pub fn linear_stop_bands_hz(&self, threshold_db: f64) -> Vec<(f64, f64)> {
+        stop_bands_hz(
+            &self.frequencies_hz,
+            &self.linear_transmission_db,
+            threshold_db,
+        )
+    }
+}
+
+/// Runs of `t_db` below `threshold_db` over `f`, merged when closer than 1 % of their frequency.
+fn stop_bands_hz(f: &[f64], t: &[f64], threshold_db: f64) -> Vec<(f64, f64)> {
+    let mut merged: Vec<(f64, f64)> = Vec::new();
+    for (lo, hi) in raw_stop_bands_hz(f, t, threshold_db) {
+        match merged.last_mut() {
+            Some(last) if lo - last.1 < 0.01 * lo => last.1 = hi,
+            _ => merged.push((lo, hi)),
+        }
+    }
+    merged
+}
+
+fn raw_stop_bands_hz(f: &[f64], t: &[f64], threshold_db: f64) -> Vec<(f64, f64)> {
+    let crossing = |k: usize| {
+        // Between k and k+1, where t crosses the threshold.
+        let (t0, t1) = (t[k], t[k + 1]);
+        f[k] + (f[k + 1] - f[k]) * (threshold_db - t0) / (t1 - t0)
+    };
+    let mut bands = Vec::new();
+    let mut start: Option<f64> = (t.first().is_some_and(|&v| v < threshold_db)).then(|| f[0]);
+    for k in 0..t.len().saturating_sub(1) {
+        let (below0, below1) = (t[k] < threshold_db, t[k + 1] < threshold_db);
+        if !below0 && below1 {
+            start = Some(crossing(k));
+        } else if below0 && !below1 {
+            if let Some(s) = start.take() {
+                bands.push((s, crossing(k)));
             }
         }
-        if let (Some(s), Some(&last)) = (start, f.last()) {
-            bands.push((s, last));
-        }
-        bands
+    }
+    if let (Some(s), Some(&last)) = (start, f.last()) {
+        bands.push((s, last));
+    }
+    bands
+}
+
+/// The edges of stop bands, less the ends of the range `f` (a band touching an end is cut there,
+/// not bounded by an edge).
+fn inner_edges(bands: &[(f64, f64)], f: &[f64]) -> Vec<f64> {
+    let (lo, hi) = match (f.first(), f.last()) {
+        (Some(&a), Some(&b)) => (a, b),
+        _ => return Vec::new(),
+    };
+    bands
+        .iter()
+        .flat_map(|&(a, b)| [a, b])
+        .filter(|&e| e > lo && e < hi)
+        .collect()
+}
+
+fn nearest(candidates: &[f64], to: f64) -> Option<f64> {
+    candidates
+        .iter()
+        .copied()
+        .min_by(|a, b| (a - to).abs().total_cmp(&(b - to).abs()))
+}
+
+/// One edge of the finite chain's linear stop bands, with the nearest measured edge (found the
+/// same way on the same bins: like with like) and the nearest Bloch edge of the infinite lattice.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeRow {
+    /// Edge of a stop band of the linear prediction \[Hz\].
+    pub linear_hz: f64,
+    /// Nearest edge of a measured stop band \[Hz\] (None: no measured stop band).
+    pub measured_hz: Option<f64>,
+    /// Nearest Bloch gap edge \[Hz\] (None: no prediction for this chain).
+    pub bloch_hz: Option<f64>,
+}
+
+impl EdgeRow {
+    /// measured / linear − 1.
+    pub fn error_vs_linear(&self) -> Option<f64> {
+        self.measured_hz.map(|m| m / self.linear_hz - 1.0)
+    }
+
+    /// measured / Bloch − 1.
+    pub fn error_vs_bloch(&self) -> Option<f64> {
+        self.measured_hz
+            .zip(self.bloch_hz)
+            .map(|(m, b)| m / b - 1.0)
+    }
+}
+
+impl TransmissionSpectrum {
+    /// The edge table at `threshold_db`: every inner edge of the linear prediction's stop bands
+    /// against the nearest measured and Bloch edges.
+    pub fn edge_table(&self, threshold_db: f64) -> Vec<EdgeRow> {
+        let f = &self.frequencies_hz;
+        let measured = inner_edges(&self.stop_bands_hz(threshold_db), f);
+        let linear = inner_edges(&self.linear_stop_bands_hz(threshold_db), f);
+        let bloch: Vec<f64> = self
+            .prediction
+            .iter()
+            .flat_map(|p| p.gaps_hz.iter().flat_map(|&(a, b)| [a, b]))
+            .filter(|e| e.is_finite())
+            .collect();
+        linear
+            .into_iter()
+            .map(|linear_hz| EdgeRow {
+                linear_hz,
+                measured_hz: nearest(&measured, linear_hz),
+                bloch_hz: nearest(&bloch, linear_hz),
+            })
+            .collect()
     }
 }
 
@@ -214,6 +317,20 @@ pub fn transmission(
     settings: &TransmissionSettings,
 ) -> Result<TransmissionSpectrum> {
     settings.validate()?;
+    let added_damping_time_s = settings
+        .measurement_damping_time_s
+        .filter(|_| chain.damping().is_lossless());
+    let damped;
+    let chain = match added_damping_time_s {
+        Some(tau) => {
+            damped = chain.clone().with_damping(Damping {
+                on_site_time_s: Some(tau),
+                ..Damping::default()
+            })?;
+            &damped
+        }
+        None => chain,
+    };
     let preload_n = chain.preload().force_n;
     if preload_n <= 0.0 {
         return Err(Error::invalid(
@@ -270,6 +387,11 @@ pub fn transmission(
         .map(|(w, d)| w / d)
         .collect();
     let transmission_db = transmission.iter().map(|t| 20.0 * t.log10()).collect();
+    let linear_transmission = LinearChain::new(chain)?.transmission(&frequencies_hz);
+    let linear_transmission_db = linear_transmission
+        .iter()
+        .map(|t| 20.0 * t.log10())
+        .collect();
     Ok(TransmissionSpectrum {
         frequencies_hz,
         drive_amplitude_n,
@@ -279,6 +401,9 @@ pub fn transmission(
         preload_n,
         amplitude_n,
         prediction: homogeneous_prediction(chain)?,
+        linear_transmission,
+        linear_transmission_db,
+        added_damping_time_s,
         run,
     })
 }

@@ -341,6 +341,30 @@ impl Rod {
         below.len().max(1)
     }
 
+    /// Refuses a rod that is no beam (shorter than its diameter: a disc, whose bending modes the
+    /// scan cannot find) or so slender that its bending modes mean nothing to a chain (more than
+    /// [`crate::defaults::ROD_MAX_SLENDERNESS`] diameters: its first frequency is 6.4 mHz at the
+    /// limit for a 5 mm fused-quartz rod, and falls as 1/L²). Named `rod.length_m`.
+    pub fn check_slenderness(&self) -> Result<()> {
+        let ratio = self.length_m / self.outer_diameter_m;
+        let max = crate::defaults::ROD_MAX_SLENDERNESS;
+        if ratio < 1.0 {
+            return Err(Error::invalid(
+                "rod.length_m",
+                self.length_m,
+                format!("shorter than its diameter {:e} m (length/diameter = {ratio:.3e}): a disc, not a beam; beam theory needs a length of at least one diameter (the paper's rods: 4 to 16)", self.outer_diameter_m),
+            ));
+        }
+        if ratio > max {
+            return Err(Error::invalid(
+                "rod.length_m",
+                self.length_m,
+                format!("{ratio:.1} diameters long (at most {max}): its bending frequencies fall as 1/length², below any time scale of a chain run (a 5 mm fused-quartz rod at the limit: 6.4 mHz); model it as rigid or shorten it"),
+            ));
+        }
+        Ok(())
+    }
+
     /// The modal effective masses \[kg\] of the centre-blocked modes at `omegas` \[rad/s\] of the
     /// whole rod: (∫ρA W dx)² / ∫(ρA W² + ρI Ψ²) dx over both halves.
     fn modal_masses_kg(&self, theory: BeamTheory, omegas: &[f64]) -> Vec<f64> {
@@ -395,6 +419,7 @@ impl UnitCell {
     /// Timoshenko beam, reduced as `reduction` says. Errors if `modes` is not 1..=4 or the
     /// reduction gives a mass that is not positive.
     pub fn from_rod(rod: &Rod, modes: Option<usize>, reduction: Reduction) -> Result<Self> {
+        rod.check_slenderness()?;
         let l = match modes {
             Some(l) => l,
             None => rod.default_modes(),

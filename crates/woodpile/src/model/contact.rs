@@ -41,6 +41,17 @@ pub enum Surface {
     Flat,
 }
 
+/// A length in mm with three decimals, or three significant digits when that would print more
+/// than a dozen digits or none at all.
+fn millimetres(m: f64) -> String {
+    let mm = m * 1e3;
+    if mm.abs() >= 1e6 || (mm != 0.0 && mm.abs() < 1e-3) {
+        format!("{mm:.3e}")
+    } else {
+        format!("{mm:.3}")
+    }
+}
+
 impl std::fmt::Display for Surface {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match *self {
@@ -49,11 +60,13 @@ impl std::fmt::Display for Surface {
                 axis_angle_rad,
             } => write!(
                 f,
-                "cylinder of radius {:.3} mm (axis at {:.1} deg)",
-                radius_m * 1e3,
+                "cylinder of radius {} mm (axis at {:.1} deg)",
+                millimetres(radius_m),
                 axis_angle_rad.to_degrees()
             ),
-            Surface::Sphere { radius_m } => write!(f, "sphere of radius {:.3} mm", radius_m * 1e3),
+            Surface::Sphere { radius_m } => {
+                write!(f, "sphere of radius {} mm", millimetres(radius_m))
+            }
             Surface::Flat => write!(f, "flat"),
         }
     }

@@ -103,6 +103,21 @@ impl ContactLaw {
         )
     }
 
+    /// The damping coefficient ∂F/∂δ̇ \[N s/m\] of the law linearised about a closed contact at
+    /// rest at overlap δ > 0 (docs/physics.md §15): restitution coef δ^{1/4}, Hunt–Crossley
+    /// β δ^{3/2} coef, viscoelastic coef δ^{1/2}; 0 while open or elastic.
+    pub fn linear_damping_n_s_per_m(self, coef: f64, beta: f64, overlap_m: f64) -> f64 {
+        if overlap_m <= 0.0 {
+            return 0.0;
+        }
+        match self {
+            ContactLaw::Elastic => 0.0,
+            ContactLaw::Restitution => coef * overlap_m.sqrt().sqrt(),
+            ContactLaw::HuntCrossley => beta * overlap_m * overlap_m.sqrt() * coef,
+            ContactLaw::Viscoelastic => coef * overlap_m.sqrt(),
+        }
+    }
+
     /// The elastic potential (2/5) β δ₊^{5/2} \[J\].
     #[inline]
     pub(crate) fn potential_j(beta: f64, overlap_m: f64) -> f64 {

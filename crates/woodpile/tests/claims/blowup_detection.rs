@@ -14,9 +14,14 @@
 //! - A striker at 1000 m/s carries 654 J; the 1-2 mm overlap it would need is beyond the physical
 //!   range of the striker contact (10 % of the 2.5 mm rod radius) at any step size: reported as a
 //!   load the contact cannot take, at contact 0, with "a smaller time step will not help".
+//! - A blast of 1e9 N would compress contact 1 (between crossed 20 mm rods, β ≈ 2.5e9 N/m^1.5)
+//!   statically by (F/β)^{2/3} ≈ 0.55 m, two thousand times its 0.25 mm range: when it blows up it
+//!   is reported as a load beyond contact 1 from that static overlap (`LoadExceedsContact`),
+//!   every number printed finite, and not as a step problem.
 
 use woodpile::{
-    simulate, CellModel, ChainBuilder, Error, Excitation, Method, RunSettings, Striker,
+    simulate, BlastProfile, CellModel, ChainBuilder, Error, Excitation, Method, RunSettings,
+    Striker,
 };
 
 /// Δt of the rigid run: about the striker's contact time, so RK4 cannot resolve the contact.
@@ -150,4 +155,37 @@ fn time_step_not_smaller_than_duration_is_invalid() {
     )
     .unwrap_err();
     assert!(err.to_string().contains("run.time_step_s"), "{err}");
+}
+
+#[test]
+fn a_blast_beyond_the_contact_is_told_from_statics() {
+    let chain = ChainBuilder::table1_rods(&[20; 3], CellModel::Resonant)
+        .unwrap()
+        .build()
+        .unwrap();
+    let blast = Excitation::Blast(BlastProfile::Friedlander {
+        peak_force_n: 1e9,
+        duration_s: 2e-4,
+        decay: 1.0,
+    });
+    let err = simulate(&chain, &blast, &short(1e-7), &mut ()).unwrap_err();
+    match &err {
+        Error::LoadExceedsContact {
+            contact,
+            limit_m,
+            needed,
+            ..
+        } => {
+            assert_eq!(*contact, 1, "{err}");
+            let needed_m: f64 = needed
+                .trim_end_matches(" m")
+                .parse()
+                .expect("a finite overlap");
+            assert!(needed_m > 100.0 * limit_m, "{err}");
+        }
+        other => panic!("expected a load beyond contact 1, got {other:?}"),
+    }
+    let text = err.to_string();
+    assert!(text.contains("a smaller time step will not help"), "{text}");
+    assert!(!text.contains("inf") && !text.contains("NaN"), "{text}");
 }

@@ -52,4 +52,5 @@ mod run_limits;
 mod simd_step_bit_identical;
 mod table_load_peak;
 mod transmission_band_edges;
+mod transmission_linear_response;
 mod two_body_hertz_impact;
