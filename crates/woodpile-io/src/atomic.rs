@@ -89,12 +89,12 @@ fn remove_abandoned_staging(parent: &Path, name: &str) {
 }
 
 /// What an existing output directory holds, and whether this run may write into it.
-fn check_target(target: &Path, overwrite: bool) -> Result<(), Error> {
+fn check_target(target: &Path, overwrite: bool, marker: &'static str) -> Result<(), Error> {
     match fs::read_dir(target) {
         Ok(mut entries) => {
             if entries.next().is_none() {
                 Ok(())
-            } else if target.join(RUN_MARKER).is_file() {
+            } else if target.join(marker).is_file() {
                 if overwrite {
                     Ok(())
                 } else {
@@ -105,7 +105,7 @@ fn check_target(target: &Path, overwrite: bool) -> Result<(), Error> {
             } else {
                 Err(Error::OutputNotEmpty {
                     path: target.to_path_buf(),
-                    marker: RUN_MARKER,
+                    marker,
                 })
             }
         }
@@ -131,6 +131,7 @@ pub struct Staging {
     dir: PathBuf,
     target: PathBuf,
     overwrite: bool,
+    marker: &'static str,
     committed: bool,
 }
 
@@ -138,7 +139,17 @@ impl Staging {
     /// Checks that `target` may be written, removes staging directories of killed earlier runs
     /// into the same place, and creates this run's staging directory (and missing parents).
     pub fn prepare(target: &Path, overwrite: bool) -> Result<Self, Error> {
-        check_target(target, overwrite)?;
+        Self::prepare_marked(target, overwrite, RUN_MARKER)
+    }
+
+    /// [`Staging::prepare`] for an output whose complete directory is marked by `marker` (e.g.
+    /// `transmission.json`) instead of `run.json`.
+    pub fn prepare_marked(
+        target: &Path,
+        overwrite: bool,
+        marker: &'static str,
+    ) -> Result<Self, Error> {
+        check_target(target, overwrite, marker)?;
         let name = target
             .file_name()
             .ok_or_else(|| Error::Output {
@@ -166,6 +177,7 @@ impl Staging {
             dir,
             target: target.to_path_buf(),
             overwrite,
+            marker,
             committed: false,
         })
     }
@@ -184,7 +196,7 @@ impl Staging {
     /// or over an earlier run, each of `own_files` is moved in (or, when this run did not write
     /// it, an earlier run's copy is removed), `marker` last; nothing else in the target is touched.
     pub fn commit(mut self, own_files: &[&str], marker: &str) -> Result<PathBuf, Error> {
-        check_target(&self.target, self.overwrite)?;
+        check_target(&self.target, self.overwrite, self.marker)?;
         if !self.target.exists() {
             fs::rename(&self.dir, &self.target).map_err(io_err(&self.target))?;
         } else {

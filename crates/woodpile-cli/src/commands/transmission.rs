@@ -109,7 +109,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         .out
         .clone()
         .unwrap_or_else(|| Path::new("runs").join(format!("{}-transmission", loaded.name)));
-    let staging = Staging::prepare(&out, args.overwrite)?;
+    let staging = Staging::prepare_marked(&out, args.overwrite, TRANSMISSION_MARKER)?;
     let spectrum = transmission(&resolved.chain, &settings)?;
     let record = TransmissionJson::new(&loaded.name, &spectrum, &settings, args.threshold_db);
     write_transmission(staging.path(), &record, &spectrum)?;

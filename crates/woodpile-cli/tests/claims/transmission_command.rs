@@ -74,9 +74,15 @@ fn writes_the_spectrum_and_compares_the_edges() {
     assert!(err.abs() < 0.05, "first edge off by {err}: {edge}");
     // 100 Hz to 20 kHz in 50 Hz bins.
     assert!((398..=400).contains(&rows), "{rows} rows");
-    // Again into the same directory only with --overwrite.
+    // Again into the same directory only with --overwrite (it was refused even with it, as a
+    // directory holding no run.json).
     let o = common::run_in(dir.path(), &args);
-    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("--overwrite"), "{err}");
+    let again: Vec<&str> = args.iter().copied().chain(["--overwrite"]).collect();
+    let o = common::run_in(dir.path(), &again);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 #[test]
