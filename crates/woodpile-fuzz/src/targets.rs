@@ -58,12 +58,9 @@ pub fn fuzz_npy(data: &[u8]) {
     let _ = woodpile_io::npy::read(data);
 }
 
-/// A blast table (CSV `time_s, force_n`), read from a file as the scenario's `excitation.file`.
+/// A blast table (CSV `time_s, force_n`), as the scenario's `excitation.file` is read.
 pub fn fuzz_table(data: &[u8]) {
-    let path = scratch().join("fuzzed-table.csv");
-    if std::fs::write(&path, data).is_ok() {
-        let _ = woodpile_io::table::load_blast_table(&path);
-    }
+    let _ = woodpile_io::table::read_blast_table(data, std::path::Path::new("fuzzed.csv"));
 }
 
 /// An optimisation checkpoint. The bytes are the JSON; a checkpoint that parses gets this

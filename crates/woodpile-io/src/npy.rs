@@ -100,12 +100,15 @@ pub fn read(bytes: &[u8]) -> Result<(Vec<u64>, Vec<f64>), String> {
         .filter(|s| !s.is_empty())
         .map(|s| s.parse::<u64>().map_err(|_| format!("bad dimension `{s}`")))
         .collect::<Result<Vec<u64>, String>>()?;
-    let count = shape.iter().product::<u64>() as usize;
+    // The bytes the shape needs, unless that overflows (a shape no file can hold).
+    let needed = shape
+        .iter()
+        .try_fold(8u64, |bytes, &d| bytes.checked_mul(d))
+        .ok_or_else(|| format!("shape {shape:?} is larger than any file"))?;
     let data = &bytes[start + len..];
-    if data.len() != 8 * count {
+    if data.len() as u64 != needed {
         return Err(format!(
-            "shape {shape:?} needs {} bytes of data, the file has {}",
-            8 * count,
+            "shape {shape:?} needs {needed} bytes of data, the file has {}",
             data.len()
         ));
     }

@@ -11,6 +11,12 @@ pub fn load_blast_table(path: &Path) -> Result<BlastProfile, Error> {
     Ok(BlastProfile::table(times, forces)?)
 }
 
+/// [`load_blast_table`] of a reader's bytes; errors name `path` as the table's file.
+pub fn read_blast_table(bytes: impl std::io::Read, path: &Path) -> Result<BlastProfile, Error> {
+    let (times, forces) = read_table(bytes, path, "force_n")?;
+    Ok(BlastProfile::table(times, forces)?)
+}
+
 /// Reads a table of (time_s, `column`) rows: (times, values). Errors name the file and the line:
 /// a missing file, a header that is not `time_s, COLUMN`, a row that is not two finite numbers,
 /// times that do not increase strictly, fewer than two rows.
@@ -19,6 +25,15 @@ pub fn load_table(path: &Path, column: &str) -> Result<(Vec<f64>, Vec<f64>), Err
         path: path.to_path_buf(),
         source: e,
     })?;
+    read_table(file, path, column)
+}
+
+/// [`load_table`] of a reader's bytes; errors name `path` as the table's file.
+pub fn read_table(
+    bytes: impl std::io::Read,
+    path: &Path,
+    column: &str,
+) -> Result<(Vec<f64>, Vec<f64>), Error> {
     let table_err = |line: u64, message: String| Error::Table {
         path: path.to_path_buf(),
         line,
@@ -29,7 +44,7 @@ pub fn load_table(path: &Path, column: &str) -> Result<(Vec<f64>, Vec<f64>), Err
         .trim(csv::Trim::All)
         .comment(Some(b'#'))
         .flexible(true)
-        .from_reader(file);
+        .from_reader(bytes);
     let headers = reader
         .headers()
         .map_err(|e| table_err(1, format!("cannot read the header row: {e}")))?

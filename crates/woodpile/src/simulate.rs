@@ -29,6 +29,18 @@ impl RunSettings {
         Ok(self.method.resolve(ode.second_order().is_some()))
     }
 
+    /// Checks these settings ([`RunSettings::validate`]) and the excitation against them (a drive
+    /// above the fixed step's Nyquist frequency, a blast that decays within one step): what both
+    /// [`simulate`] and the lanes check before a run.
+    pub fn check_run_of(&self, excitation: &Excitation) -> Result<()> {
+        self.validate()?;
+        let fixed_step_s = match self.method {
+            Method::Rk4 { time_step_s } => Some(time_step_s),
+            _ => None,
+        };
+        excitation.check_against_run(fixed_step_s)
+    }
+
     /// docs/physics.md §8 for an impact: 2 ms, RK4 at 0.1 µs, samples every 1 µs.
     pub fn paper_impact() -> Self {
         RunSettings {
@@ -683,12 +695,7 @@ pub(crate) fn simulate_watching(
     peak_watch: PeakWatch,
     stop_above_n: f64,
 ) -> Result<RunSummary> {
-    settings.validate()?;
-    let fixed_step_s = match settings.method {
-        Method::Rk4 { time_step_s } => Some(time_step_s),
-        _ => None,
-    };
-    excitation.check_against_run(fixed_step_s)?;
+    settings.check_run_of(excitation)?;
     let started = std::time::Instant::now();
     let mut ode = ChainOde::new(chain, excitation)?;
     check_method_fits(&ode, settings.method)?;

@@ -91,7 +91,19 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         measurement_damping_time_s,
         ..TransmissionSettings::standard()
     };
-    settings.validate()?;
+    // The settings' keys are this command's options (`transmission.resolution_hz` is
+    // `--resolution-hz`).
+    settings.validate().map_err(|e| match e {
+        woodpile::Error::InvalidParameter {
+            field,
+            value,
+            reason,
+        } => match field.strip_prefix("transmission.") {
+            Some(key) => CliError::invalid(format!("--{}", key.replace('_', "-")), value, reason),
+            None => CliError::invalid(field, value, reason),
+        },
+        other => other.into(),
+    })?;
     // The driven run lasts 1/Δf: refused up front when it would exceed the step limit.
     let run = woodpile::RunSettings {
         duration_s: settings.duration_s(),

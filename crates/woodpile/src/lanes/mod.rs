@@ -246,7 +246,7 @@ struct GroupKey {
 /// Checks a job as [`simulate`](crate::simulate()) does (same errors, same order) and compiles it; `None` when it
 /// is not for the lanes.
 fn lane_ready(job: &Job<'_>) -> Result<Option<(GroupKey, ChainOde)>> {
-    job.settings.validate()?;
+    job.settings.check_run_of(job.excitation)?;
     let ode = ChainOde::new(job.chain, job.excitation)?;
     check_method_fits(&ode, job.settings.method)?;
     if job.settings.sample_interval_s != job.settings.duration_s {
