@@ -39,6 +39,7 @@ mod no_tension;
 mod optimize_cache_transparent;
 mod optimize_common;
 mod optimize_exhaustive_tiny;
+mod optimize_nsga2_exhaustive;
 mod optimize_operators_feasible;
 mod optimize_resume;
 mod optimize_screening;
