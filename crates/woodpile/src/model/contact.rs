@@ -144,7 +144,9 @@ impl HertzContact {
         if force_n <= 0.0 || force_n.is_nan() {
             return 0.0;
         }
-        let complement = (1.0 - self.eccentricity * self.eccentricity).max(0.0).sqrt();
+        let complement = (1.0 - self.eccentricity * self.eccentricity)
+            .max(0.0)
+            .sqrt();
         let (k, s) = agm_k_sigma(complement);
         let approach_m = (force_n / self.beta).powf(2.0 / 3.0);
         let semi_major_m = (approach_m * s / self.a_per_m).sqrt();

@@ -118,7 +118,12 @@ pub fn contact_peak_pressures_pa(chain: &Chain, summary: &RunSummary) -> Result<
     }
     let last = &elements[n - 1];
     let wall = match chain.wall() {
-        Wall::Cap { material, radius_m } => Some((Surface::Sphere { radius_m: *radius_m }, material)),
+        Wall::Cap { material, radius_m } => Some((
+            Surface::Sphere {
+                radius_m: *radius_m,
+            },
+            material,
+        )),
         Wall::Flat { material } => Some((Surface::Flat, material)),
         Wall::Free | Wall::Beta(_) => None,
     };
@@ -181,7 +186,10 @@ fn fill_run_figures(
 ) {
     use rayon::prelude::*;
     let chains: Vec<Result<Chain>> = genomes.par_iter().map(|g| space.chain(g)).collect();
-    let built: Vec<Chain> = chains.iter().filter_map(|c| c.as_ref().ok().cloned()).collect();
+    let built: Vec<Chain> = chains
+        .iter()
+        .filter_map(|c| c.as_ref().ok().cloned())
+        .collect();
     let forces = figures.iter().any(|f| {
         matches!(
             f,
@@ -214,7 +222,10 @@ fn fill_run_figures(
         .filter_map(|f| match f {
             DesignFigure::Run(
                 o @ (StandardObjective::TransmittedEnergy | StandardObjective::TransmittedImpulse),
-            ) => Some((*f, o.evaluate_many(&built, &space.excitation, settings, lanes))),
+            ) => Some((
+                *f,
+                o.evaluate_many(&built, &space.excitation, settings, lanes),
+            )),
             _ => None,
         })
         .collect();
@@ -259,7 +270,10 @@ fn design_values(
     for &f in figures {
         let v = match f {
             DesignFigure::Run(StandardObjective::TransmittedForce) => {
-                summary.as_ref().expect("forces run").transmitted_peak_force_n
+                summary
+                    .as_ref()
+                    .expect("forces run")
+                    .transmitted_peak_force_n
             }
             DesignFigure::Run(StandardObjective::TransmissionRatio) => summary
                 .as_ref()

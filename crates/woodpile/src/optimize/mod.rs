@@ -42,15 +42,15 @@ mod figures;
 mod ga;
 mod nsga2;
 mod objective;
-pub mod pareto;
 pub mod operators;
+pub mod pareto;
 mod space;
 
+pub use figures::{contact_peak_pressures_pa, element_height_m, figures_many, DesignFigure};
 pub use ga::{
     BreederGa, GaSettings, GaState, GenerationStats, Individual, Ledger, Outcome, StopReason,
     STOP_EARLY_MARGIN,
 };
-pub use figures::{contact_peak_pressures_pa, element_height_m, figures_many, DesignFigure};
 pub use nsga2::{MoIndividual, Nsga2, Nsga2Settings, Nsga2State, Nsga2Stats};
 pub use objective::{ContactImpulse, LayerEnergyPeak, Objective, StandardObjective, Valued};
 pub use space::{Constraints, DesignSpace, FeasibleSet, Genome, MAX_CATALOGUE_LEN};

@@ -180,10 +180,11 @@ impl Nsga2 {
         settings: Nsga2Settings,
     ) -> Result<Self, OptimizeError> {
         if objectives.is_empty() {
-            return Err(Error::invalid("ga.objectives", "[]", "give at least one objective").into());
+            return Err(
+                Error::invalid("ga.objectives", "[]", "give at least one objective").into(),
+            );
         }
-        if let Some(k) = (1..objectives.len()).find(|&k| objectives[..k].contains(&objectives[k]))
-        {
+        if let Some(k) = (1..objectives.len()).find(|&k| objectives[..k].contains(&objectives[k])) {
             return Err(Error::invalid(
                 format!("ga.objectives[{k}]"),
                 objectives[k].as_str(),
@@ -211,7 +212,10 @@ impl Nsga2 {
                 return Err(Error::invalid(
                     "ga.reference_point",
                     format!("{r:?}"),
-                    format!("give {} finite numbers, one per objective", objectives.len()),
+                    format!(
+                        "give {} finite numbers, one per objective",
+                        objectives.len()
+                    ),
                 )
                 .into());
             }
@@ -281,7 +285,13 @@ impl Nsga2 {
         let figures = self.evaluated_figures();
         let refs: Vec<&[u8]> = genomes.iter().map(|g| g.as_ref()).collect();
         let values = self.pool.install(|| {
-            figures_many(&self.space, &figures, &refs, &self.space.settings, self.lanes)
+            figures_many(
+                &self.space,
+                &figures,
+                &refs,
+                &self.space.settings,
+                self.lanes,
+            )
         });
         let pressure_at = figures
             .iter()
@@ -368,8 +378,14 @@ impl Nsga2 {
         };
         (0..self.objectives.len())
             .map(|k| {
-                let hi = pool.iter().map(|i| i.objectives[k]).fold(f64::NEG_INFINITY, f64::max);
-                let lo = pool.iter().map(|i| i.objectives[k]).fold(f64::INFINITY, f64::min);
+                let hi = pool
+                    .iter()
+                    .map(|i| i.objectives[k])
+                    .fold(f64::NEG_INFINITY, f64::max);
+                let lo = pool
+                    .iter()
+                    .map(|i| i.objectives[k])
+                    .fold(f64::INFINITY, f64::min);
                 let margin = if hi > lo {
                     0.1 * (hi - lo)
                 } else if hi != 0.0 {
@@ -400,7 +416,11 @@ impl Nsga2 {
             population,
             history: Vec::new(),
             reference_point,
-            cache: if self.settings.cache { cache } else { HashMap::new() },
+            cache: if self.settings.cache {
+                cache
+            } else {
+                HashMap::new()
+            },
             evaluations,
             cache_hits,
             stalled: 0,
@@ -415,9 +435,10 @@ impl Nsga2 {
     pub fn offspring(&self, state: &Nsga2State) -> Vec<Genome> {
         let mut rng = self.rng(state.generation + 1);
         let keys = rank_and_crowding(&state.population);
-        let range = self.settings.mutation_range.unwrap_or(
-            ((self.set.catalogue_len() - 1) as f64).max(1.0),
-        );
+        let range = self
+            .settings
+            .mutation_range
+            .unwrap_or(((self.set.catalogue_len() - 1) as f64).max(1.0));
         let n = state.population.len();
         let tournament = |rng: &mut ChaCha8Rng| {
             let a = rng.random_range(0..n);
@@ -460,7 +481,10 @@ impl Nsga2 {
         let points: Vec<Vec<f64>> = distinct.iter().map(|i| i.objectives.clone()).collect();
         let violations: Vec<f64> = distinct.iter().map(|i| i.violation).collect();
         let mut chosen: Vec<(usize, f64, usize)> = Vec::with_capacity(mu);
-        for (rank, front) in non_dominated_fronts(&points, &violations).iter().enumerate() {
+        for (rank, front) in non_dominated_fronts(&points, &violations)
+            .iter()
+            .enumerate()
+        {
             let refs: Vec<&[f64]> = front.iter().map(|&k| points[k].as_slice()).collect();
             let crowding = crowding_distances(&refs);
             let mut members: Vec<(usize, f64, usize)> = front
@@ -484,7 +508,10 @@ impl Nsga2 {
             crowded_order((a.0, a.1), (b.0, b.1))
                 .then_with(|| distinct[a.2].genome.cmp(&distinct[b.2].genome))
         });
-        chosen.into_iter().map(|(_, _, k)| distinct[k].clone()).collect()
+        chosen
+            .into_iter()
+            .map(|(_, _, k)| distinct[k].clone())
+            .collect()
     }
 
     fn stats(&self, state: &Nsga2State) -> Nsga2Stats {
@@ -494,7 +521,11 @@ impl Nsga2 {
             generation: state.generation,
             hypervolume: hypervolume(&points, &state.reference_point),
             front_size: front.len(),
-            feasible: state.population.iter().filter(|i| i.violation == 0.0).count(),
+            feasible: state
+                .population
+                .iter()
+                .filter(|i| i.violation == 0.0)
+                .count(),
             evaluations: state.evaluations,
             cache_hits: state.cache_hits,
             elapsed_s: state.elapsed_s,
@@ -520,7 +551,11 @@ impl Nsga2 {
         all.extend(children);
         let previous = state.history.last().map_or(0.0, |h| h.hypervolume);
         state.population = self.select(all);
-        state.cache = if self.settings.cache { cache } else { HashMap::new() };
+        state.cache = if self.settings.cache {
+            cache
+        } else {
+            HashMap::new()
+        };
         state.generation += 1;
         state.evaluations = evaluations;
         state.cache_hits = cache_hits;
@@ -574,7 +609,12 @@ impl Nsga2 {
                 state.reference_point.len()
             ));
         }
-        for (k, ind) in state.population.iter().chain(state.cache.values()).enumerate() {
+        for (k, ind) in state
+            .population
+            .iter()
+            .chain(state.cache.values())
+            .enumerate()
+        {
             if !self.set.contains(&ind.genome) {
                 return mismatch(format!(
                     "individual {k} ({:?}) is not a feasible design of this problem",
@@ -582,7 +622,10 @@ impl Nsga2 {
                 ));
             }
             if ind.objectives.len() != m || ind.objectives.iter().any(|x| x.is_nan()) {
-                return mismatch(format!("individual {k} has objectives {:?}", ind.objectives));
+                return mismatch(format!(
+                    "individual {k} has objectives {:?}",
+                    ind.objectives
+                ));
             }
         }
         Ok(())
@@ -631,7 +674,10 @@ fn rank_and_crowding(population: &[MoIndividual]) -> Vec<(usize, f64)> {
     let points: Vec<Vec<f64>> = population.iter().map(|i| i.objectives.clone()).collect();
     let violations: Vec<f64> = population.iter().map(|i| i.violation).collect();
     let mut keys = vec![(0, 0.0); population.len()];
-    for (rank, front) in non_dominated_fronts(&points, &violations).iter().enumerate() {
+    for (rank, front) in non_dominated_fronts(&points, &violations)
+        .iter()
+        .enumerate()
+    {
         let refs: Vec<&[f64]> = front.iter().map(|&k| points[k].as_slice()).collect();
         for (&k, d) in front.iter().zip(crowding_distances(&refs)) {
             keys[k] = (rank, d);

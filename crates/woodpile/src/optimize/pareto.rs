@@ -51,8 +51,7 @@ pub fn non_dominated_fronts(points: &[Vec<f64>], violations: &[f64]) -> Vec<Vec<
             if constrained_dominates(&points[i], violations[i], &points[j], violations[j]) {
                 dominates_list[i].push(j);
                 dominated_by_count[j] += 1;
-            } else if constrained_dominates(&points[j], violations[j], &points[i], violations[i])
-            {
+            } else if constrained_dominates(&points[j], violations[j], &points[i], violations[i]) {
                 dominates_list[j].push(i);
                 dominated_by_count[i] += 1;
             }

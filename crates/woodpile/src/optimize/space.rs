@@ -229,24 +229,36 @@ impl FeasibleSet {
                     lowest: space.labels(&lowest).join(" "),
                 });
             }
-            // The witness must meet both limits: the lightest design if it is low enough, else
-            // the lowest if it is light enough.
+            // The witness must meet both limits: the lightest design if it is low enough,
+            // else one lightened from the lowest without exceeding the height, else one
+            // lowered from the lightest without exceeding the mass.
             if light > max * (1.0 + MASS_SLACK) {
-                if set.contains(&lowest) {
-                    set.lightest = lowest;
-                } else {
-                    return Err(OptimizeError::Infeasible {
-                        reason: format!(
-                            "the lightest design ({}) is {} m high, above max_stack_height = {max} m, \
-                             and the lowest ({}, {} m) weighs {} kg, above max_total_mass = {} kg",
-                            space.labels(&set.lightest).join(" "),
-                            light,
-                            space.labels(&lowest).join(" "),
-                            low,
-                            space.mass_kg(&lowest),
-                            max_mass_kg.unwrap_or(f64::INFINITY)
-                        ),
-                    });
+                let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(0);
+                let mut found = None;
+                for start in [lowest.clone(), set.lightest.clone()] {
+                    let mut g = start;
+                    let mut counts = set.counts(&g);
+                    set.shrink_both(&mut g, &mut counts, &mut rng);
+                    if set.contains(&g) {
+                        found = Some(g);
+                        break;
+                    }
+                }
+                match found {
+                    Some(g) => set.lightest = g,
+                    None => {
+                        return Err(OptimizeError::Infeasible {
+                            reason: format!(
+                                "found no design meeting max_stack_height = {max} m and \
+                                 max_total_mass = {} kg together: the lightest ({}) stands {light} m, \
+                                 the lowest ({}, {low} m) weighs {} kg",
+                                max_mass_kg.unwrap_or(f64::INFINITY),
+                                space.labels(&set.lightest).join(" "),
+                                space.labels(&lowest).join(" "),
+                                space.mass_kg(&lowest),
+                            ),
+                        })
+                    }
                 }
             }
         }
@@ -551,16 +563,26 @@ impl FeasibleSet {
             }
             return;
         }
-        // Height, then mass, a few rounds (a lighter entry may be taller); the checked witness
-        // where they do not settle.
+        // Height, then mass, each move keeping the other limit where it can; the checked
+        // witness where they do not settle.
+        if !self.shrink_both(genome, &mut counts, rng) {
+            genome.copy_from_slice(&self.lightest);
+        }
+    }
+
+    /// Height, then mass, a few rounds, each move keeping the other sum within its limit where
+    /// one can; whether the genome ends within both.
+    fn shrink_both(&self, genome: &mut [u8], counts: &mut [usize], rng: &mut impl Rng) -> bool {
+        let height = (&self.heights_m[..], self.max_height_m);
+        let mass = (&self.masses_kg[..], self.max_mass_kg);
         for _ in 0..4 {
-            let low = self.shrink(genome, &mut counts, &self.heights_m, self.max_height_m, rng);
-            let light = self.shrink(genome, &mut counts, &self.masses_kg, self.max_mass_kg, rng);
-            if low && light && self.contains(genome) {
-                return;
+            self.shrink_within(genome, counts, height, Some(mass), rng);
+            self.shrink_within(genome, counts, mass, Some(height), rng);
+            if self.contains(genome) {
+                return true;
             }
         }
-        genome.copy_from_slice(&self.lightest);
+        false
     }
 
     /// While the sum of `resource` over the genome exceeds `limit`, moves a random free position
@@ -574,33 +596,61 @@ impl FeasibleSet {
         limit: Option<f64>,
         rng: &mut impl Rng,
     ) -> bool {
+        self.shrink_within(genome, counts, (resource, limit), None, rng)
+    }
+
+    /// [`FeasibleSet::shrink`], moves restricted to those that keep the sum of `keep`'s
+    /// resource within its limit (a move that breaks it is taken only when no other is left).
+    fn shrink_within(
+        &self,
+        genome: &mut [u8],
+        counts: &mut [usize],
+        (resource, limit): (&[f64], Option<f64>),
+        keep: Option<(&[f64], Option<f64>)>,
+        rng: &mut impl Rng,
+    ) -> bool {
         let Some(max) = limit else { return true };
         let n = resource.len();
         let limit = max * (1.0 + MASS_SLACK);
-        let total = |genome: &[u8]| -> f64 { genome.iter().map(|&g| resource[usize::from(g)]).sum() };
-        let mut sum = total(genome);
+        let total =
+            |genome: &[u8], r: &[f64]| -> f64 { genome.iter().map(|&g| r[usize::from(g)]).sum() };
+        let kept = keep.and_then(|(r, l)| l.map(|l| (r, l * (1.0 + MASS_SLACK))));
+        let mut sum = total(genome, resource);
         while sum > limit {
-            let smaller = |p: &usize, counts: &[usize]| {
-                let m = resource[usize::from(genome[*p])];
+            let other = kept.map(|(r, _)| total(genome, r));
+            let smaller = |p: &usize, counts: &[usize], strict: bool| {
+                let g = usize::from(genome[*p]);
+                let m = resource[g];
                 (0..n)
                     .filter(|&j| resource[j] < m && counts[j] < self.caps[j])
+                    .filter(|&j| match (strict, kept, other) {
+                        (true, Some((r, l)), Some(o)) => o - r[g] + r[j] <= l,
+                        _ => true,
+                    })
                     .max_by(|&a, &b| resource[a].total_cmp(&resource[b]))
             };
-            let movable: Vec<usize> = self
-                .free
-                .iter()
-                .copied()
-                .filter(|p| smaller(p, counts).is_some())
-                .collect();
+            let pick = |strict: bool, counts: &[usize]| -> Vec<usize> {
+                self.free
+                    .iter()
+                    .copied()
+                    .filter(|p| smaller(p, counts, strict).is_some())
+                    .collect()
+            };
+            let mut strict = kept.is_some();
+            let mut movable = pick(strict, counts);
+            if movable.is_empty() && strict {
+                strict = false;
+                movable = pick(false, counts);
+            }
             if movable.is_empty() {
                 return false;
             }
             let p = movable[rng.random_range(0..movable.len())];
-            let to = smaller(&p, counts).expect("movable");
+            let to = smaller(&p, counts, strict).expect("movable");
             counts[usize::from(genome[p])] -= 1;
             counts[to] += 1;
             genome[p] = to as u8;
-            sum = total(genome);
+            sum = total(genome, resource);
         }
         true
     }

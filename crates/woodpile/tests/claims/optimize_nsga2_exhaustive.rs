@@ -14,9 +14,7 @@
 use std::ops::ControlFlow;
 use std::sync::atomic::AtomicBool;
 use woodpile::optimize::pareto::{hypervolume, non_dominated_fronts};
-use woodpile::optimize::{
-    DesignFigure, DesignSpace, Nsga2, Nsga2Settings, StandardObjective,
-};
+use woodpile::optimize::{DesignFigure, DesignSpace, Nsga2, Nsga2Settings, StandardObjective};
 use woodpile::{CellModel, Element, Method, RunSettings};
 
 fn space() -> DesignSpace {
@@ -84,7 +82,9 @@ fn nsga2_front_holds_99_percent_of_the_exhaustive_hypervolume() {
         )
         .unwrap();
         let (state, _) = ga
-            .run(None, &AtomicBool::new(false), &mut |_| ControlFlow::Continue(()))
+            .run(None, &AtomicBool::new(false), &mut |_| {
+                ControlFlow::Continue(())
+            })
             .unwrap();
         let front: Vec<Vec<f64>> = state.front().iter().map(|i| i.objectives.clone()).collect();
         let hv = hypervolume(&front, &reference);
