@@ -7,7 +7,7 @@ use crate::CliError;
 use std::fs;
 use std::ops::ControlFlow;
 use std::path::PathBuf;
-use woodpile::optimize::{BreederGa, GaState, Objective, StopReason};
+use woodpile::optimize::{BreederGa, GaState, Nsga2, Nsga2State, Objective, StopReason};
 use woodpile_io::atomic::io_err;
 use woodpile_io::optimize::*;
 use woodpile_io::scenario::ModelSpec;
@@ -90,6 +90,9 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let (cfg, name, base_dir) = load_config(args)?;
     let threads = args.workers.checked()?;
     let problem = Problem::new(&cfg, &base_dir, threads)?;
+    if problem.algorithm == Algorithm::Nsga2 {
+        return run_nsga2(args, ctx, &problem, &name);
+    }
     let out = &args.out;
     let initial = prepare_output(out, args.resume, &problem.config)?;
     let ga = BreederGa::new(
@@ -211,4 +214,100 @@ fn screened_text(ledger: &woodpile::optimize::Ledger) -> String {
         text.push_str(&format!("{} stopped early, ", ledger.stopped.len()));
     }
     text
+}
+
+/// Runs NSGA-II (`ga.algorithm = "nsga2"`): a checkpoint and `history.csv` after every
+/// generation, then `pareto.csv`, `pareto/NNN.toml` and `summary.json`.
+fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Result<(), CliError> {
+    let out = &args.out;
+    let initial = woodpile_io::pareto::prepare_output(out, args.resume, &problem.config)?;
+    let ga = Nsga2::new(
+        problem.space.clone(),
+        problem.objectives.clone(),
+        problem.nsga2.clone(),
+    )
+    .map_err(optimize_error)?;
+    if let Some(state) = &initial {
+        ga.check_state(state).map_err(optimize_error)?;
+    }
+    fs::create_dir_all(out).map_err(io_err(out))?;
+    crate::interrupt::cooperative();
+    let stop = crate::interrupt::stop_flag();
+    let bar = Progress::new("optimize", problem.nsga2.generations as u64, ctx.quiet);
+    let mut write_error: Option<CliError> = None;
+    let mut last = initial
+        .as_ref()
+        .map_or((0.0, 0), |s| (s.elapsed_s, s.evaluations));
+    let mut observer = |s: &Nsga2State| {
+        if let Err(e) = woodpile_io::pareto::write_generation(out, &problem.config, s) {
+            write_error = Some(e);
+            return ControlFlow::Break(());
+        }
+        let dt = s.elapsed_s - last.0;
+        let rate = if dt > 0.0 {
+            (s.evaluations - last.1) as f64 / dt
+        } else {
+            0.0
+        };
+        last = (s.elapsed_s, s.evaluations);
+        let h = s.history.last().expect("a generation's line");
+        bar.set_position(s.generation as u64);
+        bar.detail(format!(
+            "generation {}: hypervolume {:.6e} | front {} | {rate:.0} sim/s | {} evaluations, {} cache hits",
+            s.generation, h.hypervolume, h.front_size, s.evaluations, s.cache_hits
+        ));
+        ControlFlow::Continue(())
+    };
+    let outcome = ga.run(initial, stop, &mut observer);
+    bar.finish();
+    if let Some(e) = write_error {
+        return Err(e);
+    }
+    let (state, reason) = outcome.map_err(optimize_error)?;
+    let summary = woodpile_io::pareto::write_final_outputs(problem, name, &state, reason, out)?;
+    if !ctx.quiet {
+        let names: Vec<String> = summary
+            .objectives
+            .iter()
+            .map(|o| format!("{} [{}]", o.name, o.unit))
+            .collect();
+        let front = if summary.front.is_empty() {
+            "no feasible design in the final population: loosen design.constraints.max_contact_pressure_pa or run longer".to_string()
+        } else {
+            format!(
+                "{} designs (pareto.csv, pareto/001.toml ...)",
+                summary.front.len()
+            )
+        };
+        crate::out::print(format_args!(
+            "problem      {name} ({} positions, {} catalogue entries, seed {}, NSGA-II)\n\
+             stopped      {} after generation {}: {} evaluations, {} cache hits, {:.1} s\n\
+             objectives   {}\n\
+             front        {front}\n\
+             hypervolume  {:.6e} (reference point {:?})\n\
+             output       {}\n",
+            problem.space.positions,
+            problem.space.catalogue.len(),
+            problem.nsga2.seed,
+            stop_text(reason),
+            state.generation,
+            state.evaluations,
+            state.cache_hits,
+            state.elapsed_s,
+            names.join(", "),
+            summary.hypervolume,
+            summary.reference_point,
+            out.display()
+        ))?;
+    }
+    if reason == StopReason::Interrupted {
+        return Err(CliError::Interrupted {
+            saved: format!(
+                "generation {} is saved in {}; continue with the same command and --resume",
+                state.generation,
+                out.join(CHECKPOINT_FILE).display()
+            ),
+        });
+    }
+    Ok(())
 }
