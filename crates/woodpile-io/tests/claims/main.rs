@@ -7,6 +7,7 @@ mod checkpoint_screened_resume;
 mod element_angles_and_mass_in_mass;
 mod errors_speak_no_front_end;
 mod lab_scenario_keys;
+mod pareto_checkpoint_resume;
 mod peak_tolerance_key;
 mod rod_range_catalogue;
 mod run_directory_roundtrip;
