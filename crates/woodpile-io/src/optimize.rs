@@ -283,6 +283,10 @@ pub struct GaSpec {
     /// `breeder` (one objective; the default for one) or `nsga2` (the default for several).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub algorithm: Option<String>,
+    /// The paper's integration (RK4 at 0.1 µs, every design simulated whole) instead of a design
+    /// study's accuracy-targeted defaults ([`OptimizeConfig::accuracy_targeted`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub paper_settings: Option<bool>,
     /// NSGA-II: the hypervolume's reference point, one value per objective in SI units
     /// (default: from generation 0, stated in `summary.json`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -333,6 +337,75 @@ impl OptimizeConfig {
             },
             ..OptimizeConfig::default()
         })
+    }
+
+    /// The config a design study runs by default: unless `ga.paper_settings = true` or `[run]`
+    /// names an integrator or a peak tolerance, every contact peak within
+    /// [`woodpile::defaults::STUDY_PEAK_TOLERANCE`]; for the breeder GA on a force objective also
+    /// screening at [`woodpile::defaults::STUDY_SCREEN_PEAK_TOLERANCE`] and, on the transmitted
+    /// force, early stopping (unless set). Both keep every choice of the GA (docs/physics.md §11).
+    pub fn accuracy_targeted(&self) -> Self {
+        let mut c = self.clone();
+        let r = &c.run;
+        let stated = r.peak_tolerance.is_some()
+            || r.integrator.is_some()
+            || r.time_step_s.is_some()
+            || r.rtol.is_some()
+            || r.atol.is_some();
+        if c.ga.paper_settings == Some(true) || stated {
+            return c;
+        }
+        c.run.peak_tolerance = Some(woodpile::defaults::STUDY_PEAK_TOLERANCE);
+        let g = &mut c.ga;
+        let several = g.objectives.as_ref().is_some_and(|o| o.len() > 1)
+            || g.algorithm.as_deref() == Some("nsga2");
+        if several {
+            return c;
+        }
+        let objective = g
+            .objectives
+            .as_ref()
+            .and_then(|o| o.first().cloned())
+            .or_else(|| g.objective.clone())
+            .unwrap_or_else(|| StandardObjective::default().as_str().to_string());
+        if matches!(
+            objective.as_str(),
+            "transmitted-force" | "transmission-ratio"
+        ) {
+            g.screen_peak_tolerance
+                .get_or_insert(woodpile::defaults::STUDY_SCREEN_PEAK_TOLERANCE);
+        }
+        if objective == "transmitted-force" {
+            g.stop_early.get_or_insert(true);
+        }
+        c
+    }
+
+    /// In words: how accurately the designs of a completed config are simulated.
+    pub fn accuracy_text(&self) -> String {
+        let r = &self.run;
+        let mut text = match (r.peak_tolerance, r.integrator, r.time_step_s) {
+            (Some(t), _, _) => format!("every contact peak within {t:e} (relative)"),
+            (None, Some(crate::scenario::IntegratorKind::Dopri5), _) => format!(
+                "dopri5, rtol {:e}, atol {:e} m",
+                r.rtol.unwrap_or(woodpile::defaults::RTOL),
+                r.atol.unwrap_or(woodpile::defaults::ATOL)
+            ),
+            (None, _, dt) => format!(
+                "rk4 at {:e} s",
+                dt.unwrap_or(woodpile::defaults::TIME_STEP_S)
+            ),
+        };
+        if let Some(t) = self.ga.screen_peak_tolerance {
+            text.push_str(&format!(", screened at {t:e}"));
+        }
+        if self.ga.stop_early == Some(true) {
+            text.push_str(", runs stopped early");
+        }
+        if self.ga.paper_settings != Some(true) && r.peak_tolerance.is_some() {
+            text.push_str(" (--paper-settings: the paper's rk4 at 1e-7 s)");
+        }
+        text
     }
 
     /// Whether two configs pose the same problem: equal in everything but descriptive text.

@@ -75,3 +75,11 @@ pub const TRANSMISSION_RELATIVE_AMPLITUDE: f64 = 0.01;
 pub const TRANSMISSION_SAMPLE_INTERVAL_S: f64 = 5e-6;
 /// A frequency where the transmission is below this level \[dB\] is in a measured stop band.
 pub const TRANSMISSION_STOP_DB: f64 = -20.0;
+
+/// Design studies (`woodpile optimize` without `--paper-settings`): every contact peak within
+/// this relative tolerance (bench/README.md: the paper's GA makes the same choices as at RK4
+/// 0.1 µs, several times faster).
+pub const STUDY_PEAK_TOLERANCE: f64 = 1e-5;
+/// Design studies: the breeder GA screens new designs at this looser peak tolerance first
+/// (docs/physics.md §11; a force objective).
+pub const STUDY_SCREEN_PEAK_TOLERANCE: f64 = 3e-4;

@@ -12,3 +12,4 @@ mod peak_tolerance_key;
 mod rod_range_catalogue;
 mod run_directory_roundtrip;
 mod scenario_keys_table;
+mod study_defaults_same_choices;
