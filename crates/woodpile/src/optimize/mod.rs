@@ -7,6 +7,10 @@
 //! - [`Objective`]: what is minimised; [`StandardObjective`] holds the transmitted peak force
 //!   (the paper's), the transmission ratio, the peak energy of the last layer and the impulse
 //!   delivered to the wall. Every evaluation runs the full window (no early stopping).
+//! - [`DesignFigure`]: objectives as data (the run's figures, total mass, stack height, layers,
+//!   the worst contact's Hertz peak pressure), evaluated together by [`figures_many`] (no run
+//!   for the figures that need none); [`Nsga2`]: NSGA-II over the same genomes, operators and
+//!   repair, with [`pareto`]'s sorting, crowding distance and hypervolume.
 //! - [`operators`]: truncation selection, discrete recombination, BGA mutation, as plain
 //!   functions of (population, rng).
 //! - [`BreederGa`]: one generation at a time ([`BreederGa::next_generation`]) on a detachable
