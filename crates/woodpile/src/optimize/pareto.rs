@@ -80,6 +80,8 @@ pub fn non_dominated_fronts(points: &[Vec<f64>], violations: &[f64]) -> Vec<Vec<
 /// order: per objective, the points sorted by value (ties by index) get the normalised distance
 /// between their neighbours; the two ends of any objective's range are infinite. An objective
 /// with no range adds nothing.
+// `k` indexes an objective within every point, not the list of points.
+#[allow(clippy::needless_range_loop)]
 pub fn crowding_distances(points: &[&[f64]]) -> Vec<f64> {
     let n = points.len();
     let mut distance = vec![0.0; n];
