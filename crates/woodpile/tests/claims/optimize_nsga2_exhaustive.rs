@@ -6,9 +6,9 @@
 //! NSGA-II: μ = 40, 60 generations; it simulates 576–619 of the 1,024 designs (measured), so
 //! the claim is about the front it keeps, not about saving runs on so small a space.
 //!
-//! Tolerance: 1 % of the hypervolume (the acceptance figure of the design-study requirements). NSGA-II evaluates designs
-//! with the same deterministic simulation as the enumeration, so the comparison is of search,
-//! not of numerics. Reference point: 10 % beyond the worst force and mass of all 1,024 designs,
+//! Tolerance: 1 % of the hypervolume (the design studies' acceptance figure). NSGA-II
+//! evaluates designs with the same deterministic simulation as the enumeration, so the
+//! comparison is of search, not of numerics. Reference point: 10 % beyond the worst force and mass of all 1,024 designs,
 //! the same for both fronts.
 
 use std::ops::ControlFlow;
