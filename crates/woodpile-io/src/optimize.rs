@@ -1375,6 +1375,13 @@ pub fn read_history(path: &Path) -> Result<Vec<HistoryPoint>, Error> {
     let csv_err = |e: csv::Error| read_error(path, e.to_string());
     let mut r = csv::Reader::from_path(path).map_err(csv_err)?;
     let header = r.headers().map_err(csv_err)?.clone();
+    if header.iter().any(|h| h == "hypervolume") {
+        return Err(read_error(
+            path,
+            "the history of an NSGA-II run (a hypervolume per generation): its figures are not \
+             drawn yet; the front is in pareto.csv and pareto/NNN.toml",
+        ));
+    }
     let index = |name: &str| {
         header.iter().position(|h| h == name).ok_or_else(|| {
             read_error(

@@ -3,7 +3,8 @@
 //! `layer_N` (rod lengths in mm); no row dominates another; row k is `pareto/00k.toml`, a
 //! scenario `woodpile simulate` re-runs to the same transmitted force (bit for bit) and whose
 //! mass is the row's total-mass; `history.csv` holds the hypervolume of every generation and
-//! `summary.json` its reference point. Bad input — an unknown objective, both `objective` and
+//! `summary.json` its reference point; `woodpile plot` of the directory says the figures of an
+//! NSGA-II run are not drawn yet and points to `pareto.csv`. Bad input — an unknown objective, both `objective` and
 //! `objectives`, two objectives for the breeder GA, a pressure limit for the breeder GA, a
 //! height no design meets (refused before any simulation, with both heights in mm) — exits
 //! with code 2 naming the key, and creates no output directory.
@@ -52,6 +53,12 @@ fn nsga2_writes_a_front_that_reruns() {
     let history = std::fs::read_to_string(o.join("history.csv")).unwrap();
     assert!(history.starts_with("generation,hypervolume,"));
     assert_eq!(history.lines().count(), 1 + 5, "generations 0..=4");
+    let plot = common::run_in(dir.path(), &["plot", "o"]);
+    let stderr = String::from_utf8_lossy(&plot.stderr);
+    assert!(
+        !plot.status.success() && stderr.contains("NSGA-II") && stderr.contains("pareto.csv"),
+        "plot says what an NSGA-II directory holds: {stderr}"
+    );
     for (k, row) in rows.iter().enumerate() {
         let scenario = format!("o/pareto/{:03}.toml", k + 1);
         let run_dir = format!("run{k}");
