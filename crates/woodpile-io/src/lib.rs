@@ -19,7 +19,8 @@
 //!    overwrite policy), [`rundir`] (`summary.json`, `run.json`, CSV and [`npy`] arrays),
 //!    [`transmission`] (a transmission spectrum's directory).
 //! 4. **Optimise** — [`optimize`]: the optimisation config, the problem it defines, its
-//!    checksummed checkpoint and outputs.
+//!    checksummed checkpoint and outputs; [`pareto`]: NSGA-II's checkpoint and its Pareto
+//!    outputs (`pareto.csv`, `pareto/NNN.toml`, hypervolume history).
 //! 5. **Say what went wrong** — [`Error`]: typed, naming the field, the value and what is valid
 //!    ([`Error::field`], [`Error::value`], [`Error::reason`]); [`Error::kind`] sorts it for a
 //!    front end, which words its own options (no exit codes or flag names here).
@@ -52,6 +53,7 @@ pub mod error;
 pub mod limits;
 pub mod npy;
 pub mod optimize;
+pub mod pareto;
 pub mod rundir;
 pub mod scenario;
 pub mod table;

@@ -43,7 +43,7 @@ use woodpile::optimize::{
     Constraints, DesignSpace, GaSettings, GaState, GenerationStats, Individual, Ledger,
     OptimizeError, StandardObjective, StopReason,
 };
-use woodpile::optimize::{Objective, Outcome};
+use woodpile::optimize::{DesignFigure, Nsga2Settings, Objective, Outcome};
 use woodpile::{simulate, TABLE1_LENGTHS_MM};
 
 /// Names of the built-in problems.
@@ -212,6 +212,13 @@ pub struct ConstraintsSpec {
     /// Largest number of copies of a catalogue entry.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub max_count: Vec<CountSpec>,
+    /// Largest height of the stack \[mm\] (the sum of the elements' diameters).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_stack_height_mm: Option<f64>,
+    /// Largest Hertz peak pressure of any contact of the structure \[Pa\] (known after a run:
+    /// needs `ga.algorithm = "nsga2"`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_contact_pressure_pa: Option<f64>,
 }
 
 /// `{ layer = 1, rod_mm = 80 }` or `{ layer = 1, element = 0 }`.
@@ -270,6 +277,20 @@ pub struct GaSpec {
     /// Objective (default `transmitted-force`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub objective: Option<String>,
+    /// Objectives, one or more of the names of [`DesignFigure`] (instead of `objective`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub objectives: Option<Vec<String>>,
+    /// `breeder` (one objective; the default for one) or `nsga2` (the default for several).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub algorithm: Option<String>,
+    /// The paper's integration (RK4 at 0.1 µs, every design simulated whole) instead of a design
+    /// study's accuracy-targeted defaults ([`OptimizeConfig::accuracy_targeted`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub paper_settings: Option<bool>,
+    /// NSGA-II: the hypervolume's reference point, one value per objective in SI units
+    /// (default: from generation 0, stated in `summary.json`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference_point: Option<Vec<f64>>,
     /// Fitness cache on (default true); off changes only the run time.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cache: Option<bool>,
@@ -320,6 +341,75 @@ impl OptimizeConfig {
             },
             ..OptimizeConfig::default()
         })
+    }
+
+    /// The config a design study runs by default: unless `ga.paper_settings = true` or `[run]`
+    /// names an integrator or a peak tolerance, every contact peak within
+    /// [`woodpile::defaults::STUDY_PEAK_TOLERANCE`]; for the breeder GA on a force objective also
+    /// screening at [`woodpile::defaults::STUDY_SCREEN_PEAK_TOLERANCE`] and, on the transmitted
+    /// force, early stopping (unless set). Both keep every choice of the GA (docs/physics.md §11).
+    pub fn accuracy_targeted(&self) -> Self {
+        let mut c = self.clone();
+        let r = &c.run;
+        let stated = r.peak_tolerance.is_some()
+            || r.integrator.is_some()
+            || r.time_step_s.is_some()
+            || r.rtol.is_some()
+            || r.atol.is_some();
+        if c.ga.paper_settings == Some(true) || stated {
+            return c;
+        }
+        c.run.peak_tolerance = Some(woodpile::defaults::STUDY_PEAK_TOLERANCE);
+        let g = &mut c.ga;
+        let several = g.objectives.as_ref().is_some_and(|o| o.len() > 1)
+            || g.algorithm.as_deref() == Some("nsga2");
+        if several {
+            return c;
+        }
+        let objective = g
+            .objectives
+            .as_ref()
+            .and_then(|o| o.first().cloned())
+            .or_else(|| g.objective.clone())
+            .unwrap_or_else(|| StandardObjective::default().as_str().to_string());
+        if matches!(
+            objective.as_str(),
+            "transmitted-force" | "transmission-ratio"
+        ) {
+            g.screen_peak_tolerance
+                .get_or_insert(woodpile::defaults::STUDY_SCREEN_PEAK_TOLERANCE);
+        }
+        if objective == "transmitted-force" {
+            g.stop_early.get_or_insert(true);
+        }
+        c
+    }
+
+    /// In words: how accurately the designs of a completed config are simulated.
+    pub fn accuracy_text(&self) -> String {
+        let r = &self.run;
+        let mut text = match (r.peak_tolerance, r.integrator, r.time_step_s) {
+            (Some(t), _, _) => format!("every contact peak within {t:e} (relative)"),
+            (None, Some(crate::scenario::IntegratorKind::Dopri5), _) => format!(
+                "dopri5, rtol {:e}, atol {:e} m",
+                r.rtol.unwrap_or(woodpile::defaults::RTOL),
+                r.atol.unwrap_or(woodpile::defaults::ATOL)
+            ),
+            (None, _, dt) => format!(
+                "rk4 at {:e} s",
+                dt.unwrap_or(woodpile::defaults::TIME_STEP_S)
+            ),
+        };
+        if let Some(t) = self.ga.screen_peak_tolerance {
+            text.push_str(&format!(", screened at {t:e}"));
+        }
+        if self.ga.stop_early == Some(true) {
+            text.push_str(", runs stopped early");
+        }
+        if self.ga.paper_settings != Some(true) && r.peak_tolerance.is_some() {
+            text.push_str(" (--paper-settings: the paper's rk4 at 1e-7 s)");
+        }
+        text
     }
 
     /// Whether two configs pose the same problem: equal in everything but descriptive text.
@@ -380,14 +470,33 @@ impl OptimizeConfig {
         let defaults = GaSettings::default();
         g.population.get_or_insert(defaults.population);
         g.generations.get_or_insert(defaults.generations);
-        g.truncation.get_or_insert(defaults.truncation);
-        g.elites.get_or_insert(defaults.elites);
         g.stall_generations
             .get_or_insert(defaults.stall_generations.unwrap_or(0));
         g.seed.get_or_insert(defaults.seed);
-        g.objective
-            .get_or_insert_with(|| StandardObjective::default().as_str().to_string());
         g.cache.get_or_insert(true);
+        if g.objectives.is_some() || g.algorithm.is_some() {
+            // A study written with the list form: the objectives and the algorithm stated.
+            let objectives = g.objectives.get_or_insert_with(|| {
+                vec![g
+                    .objective
+                    .take()
+                    .unwrap_or_else(|| StandardObjective::default().as_str().to_string())]
+            });
+            let algorithm = if objectives.len() > 1 {
+                "nsga2"
+            } else {
+                "breeder"
+            };
+            let algorithm = g.algorithm.get_or_insert_with(|| algorithm.to_string());
+            if algorithm == "nsga2" {
+                return c;
+            }
+        } else {
+            g.objective
+                .get_or_insert_with(|| StandardObjective::default().as_str().to_string());
+        }
+        g.truncation.get_or_insert(defaults.truncation);
+        g.elites.get_or_insert(defaults.elites);
         c
     }
 
@@ -424,6 +533,15 @@ impl OptimizeConfig {
     }
 }
 
+/// Which search a config asks for (`ga.algorithm`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Algorithm {
+    /// The breeder GA: one objective of a run.
+    Breeder,
+    /// NSGA-II: a Pareto front of one or more objectives.
+    Nsga2,
+}
+
 /// A config turned into what the library runs.
 pub struct Problem {
     /// The completed config.
@@ -432,8 +550,15 @@ pub struct Problem {
     pub space: DesignSpace,
     /// The GA's settings.
     pub settings: GaSettings,
-    /// The objective.
+    /// The objective (the breeder GA's; for NSGA-II, the first objective of a run, else the
+    /// default).
     pub objective: StandardObjective,
+    /// The search.
+    pub algorithm: Algorithm,
+    /// The objectives, in order (one for the breeder GA).
+    pub objectives: Vec<DesignFigure>,
+    /// NSGA-II's settings (meaningful for [`Algorithm::Nsga2`]).
+    pub nsga2: Nsga2Settings,
     /// Directory relative to which the config's files are found.
     pub base_dir: PathBuf,
 }
@@ -538,8 +663,22 @@ fn constraints(cfg: &OptimizeConfig, positions: usize) -> Result<Constraints, Er
     let c = &cfg.design.constraints;
     let mut constraints = Constraints {
         max_total_mass_kg: c.max_total_mass_g.map(|g| g * 1e-3),
+        max_stack_height_m: c.max_stack_height_mm.map(|mm| mm * 1e-3),
+        max_contact_pressure_pa: c.max_contact_pressure_pa,
         ..Constraints::default()
     };
+    for (key, value) in [
+        ("max_stack_height_mm", c.max_stack_height_mm),
+        ("max_contact_pressure_pa", c.max_contact_pressure_pa),
+    ] {
+        if let Some(v) = value.filter(|v| !(v.is_finite() && *v > 0.0)) {
+            return Err(Error::invalid(
+                format!("design.constraints.{key}"),
+                v,
+                "must be a finite number > 0",
+            ));
+        }
+    }
     for (k, f) in c.fixed.iter().enumerate() {
         let field = format!("design.constraints.fixed[{k}]");
         if f.layer == 0 || f.layer > positions {
@@ -632,17 +771,30 @@ impl Problem {
             settings: resolved.settings,
             constraints,
         };
-        let objective_name = cfg.ga.objective.clone().unwrap_or_default();
-        let objective =
-            StandardObjective::from_name(&objective_name).map_err(Error::at("ga.objective"))?;
+        let (algorithm, objectives, objective) = study(config, &cfg)?;
         let settings = ga_settings(&cfg.ga, threads);
-        settings.validate()?;
+        if algorithm == Algorithm::Breeder {
+            settings.validate()?;
+        }
         woodpile::optimize::FeasibleSet::new(&space).map_err(optimize_error)?;
+        let nsga2 = Nsga2Settings {
+            population: settings.population,
+            generations: settings.generations,
+            stall_generations: settings.stall_generations,
+            seed: settings.seed,
+            mutation_range: settings.mutation_range,
+            threads,
+            cache: settings.cache,
+            reference_point: cfg.ga.reference_point.clone(),
+        };
         Ok(Problem {
             config: cfg,
             space,
             settings,
             objective,
+            algorithm,
+            objectives,
+            nsga2,
             base_dir: base_dir.to_path_buf(),
         })
     }
@@ -660,6 +812,133 @@ impl Problem {
         }
         s
     }
+}
+
+/// The algorithm, the objectives and the breeder's objective of a config (`user`: as written,
+/// `cfg`: completed), every combination that cannot run refused with the key to change.
+fn study(
+    user: &OptimizeConfig,
+    cfg: &OptimizeConfig,
+) -> Result<(Algorithm, Vec<DesignFigure>, StandardObjective), Error> {
+    let g = &user.ga;
+    if g.objective.is_some() && g.objectives.is_some() {
+        return Err(Error::invalid(
+            "ga.objectives",
+            format!("{:?}", g.objectives.as_deref().unwrap_or_default()),
+            "give ga.objective (one) or ga.objectives (a list), not both",
+        ));
+    }
+    let names = match (&cfg.ga.objectives, &cfg.ga.objective) {
+        (Some(list), _) => list.clone(),
+        (None, Some(one)) => vec![one.clone()],
+        (None, None) => vec![StandardObjective::default().as_str().to_string()],
+    };
+    let key = if cfg.ga.objectives.is_some() {
+        "ga.objectives"
+    } else {
+        "ga.objective"
+    };
+    if names.is_empty() {
+        return Err(Error::invalid(
+            key,
+            "[]",
+            "give at least one objective, e.g. [\"transmitted-force\", \"total-mass\"]",
+        ));
+    }
+    let mut objectives = Vec::with_capacity(names.len());
+    for (k, name) in names.iter().enumerate() {
+        let field = if cfg.ga.objectives.is_some() {
+            format!("{key}[{k}]")
+        } else {
+            key.to_string()
+        };
+        let f = DesignFigure::from_name(name).map_err(Error::at(&field))?;
+        if objectives.contains(&f) {
+            return Err(Error::invalid(
+                field,
+                name,
+                "is listed twice; list each objective once",
+            ));
+        }
+        objectives.push(f);
+    }
+    let algorithm = match cfg.ga.algorithm.as_deref() {
+        None | Some("breeder") if objectives.len() == 1 => Algorithm::Breeder,
+        None => Algorithm::Nsga2,
+        Some("nsga2") => Algorithm::Nsga2,
+        Some("breeder") => {
+            return Err(Error::invalid(
+                "ga.algorithm",
+                "breeder",
+                format!(
+                    "the breeder GA minimises one objective, {} are given: use \"nsga2\"",
+                    objectives.len()
+                ),
+            ))
+        }
+        Some(other) => {
+            return Err(Error::invalid(
+                "ga.algorithm",
+                other,
+                "must be \"breeder\" or \"nsga2\"",
+            ))
+        }
+    };
+    let first_run = objectives.iter().find_map(|f| match f {
+        DesignFigure::Run(o) => Some(*o),
+        _ => None,
+    });
+    if algorithm == Algorithm::Breeder {
+        let Some(DesignFigure::Run(o)) = objectives.first().copied() else {
+            return Err(Error::invalid(
+                if cfg.ga.objectives.is_some() { "ga.objectives[0]" } else { "ga.objective" },
+                objectives[0].as_str(),
+                "the breeder GA minimises a figure of a run (transmitted-force, transmission-ratio, transmitted-energy, transmitted-impulse); use ga.algorithm = \"nsga2\" for the others",
+            ));
+        };
+        if let Some(p) = cfg.design.constraints.max_contact_pressure_pa {
+            return Err(Error::invalid(
+                "design.constraints.max_contact_pressure_pa",
+                p,
+                "is known only after a run: set ga.algorithm = \"nsga2\", whose constraint domination handles it",
+            ));
+        }
+        return Ok((algorithm, objectives, o));
+    }
+    for (k, given) in [
+        ("truncation", g.truncation.is_some()),
+        ("elites", g.elites.is_some()),
+        ("screen_peak_tolerance", g.screen_peak_tolerance.is_some()),
+        ("stop_early", g.stop_early == Some(true)),
+    ] {
+        if given {
+            return Err(Error::invalid(
+                format!("ga.{k}"),
+                "(given)",
+                "is a setting of the breeder GA; NSGA-II has none (remove it, or set ga.algorithm = \"breeder\" with one objective)",
+            ));
+        }
+    }
+    if cfg.ga.population.is_some_and(|p| p < 4) {
+        return Err(Error::invalid(
+            "ga.population",
+            cfg.ga.population.unwrap_or(0),
+            "NSGA-II needs at least 4",
+        ));
+    }
+    if let Some(r) = &cfg.ga.reference_point {
+        if r.len() != objectives.len() || r.iter().any(|x| !x.is_finite()) {
+            return Err(Error::invalid(
+                "ga.reference_point",
+                format!("{r:?}"),
+                format!(
+                    "give {} finite numbers, one per objective, in SI units",
+                    objectives.len()
+                ),
+            ));
+        }
+    }
+    Ok((algorithm, objectives, first_run.unwrap_or_default()))
 }
 
 /// Where the catalogue of an optimisation config lives: errors of its elements name these keys.
@@ -691,6 +970,18 @@ pub fn optimize_error(e: OptimizeError) -> Error {
                 grams(lightest_kg)
             ),
         ),
+        OptimizeError::TooTall {
+            max_stack_height_m,
+            lowest_m,
+            lowest,
+        } => Error::invalid(
+            "design.constraints.max_stack_height_mm",
+            millimetres(max_stack_height_m),
+            format!(
+                "no design meets it: the lowest design meeting the other constraints stands {} mm ({lowest})",
+                millimetres(lowest_m)
+            ),
+        ),
         OptimizeError::Simulation { design, source } => Error::Evaluation { design, source },
         OptimizeError::NotANumber { objective, design } => Error::invalid(
             "ga.objective",
@@ -709,6 +1000,11 @@ pub fn optimize_error(e: OptimizeError) -> Error {
 fn grams(kg: f64) -> String {
     let text = format!("{:.9}", kg * 1e3);
     text.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// A length \[m\] in millimetres, to nine significant decimals.
+fn millimetres(m: f64) -> String {
+    grams(m)
 }
 
 /// The first pair (i, j), i < j, of equal entries.
@@ -980,6 +1276,12 @@ pub fn prepare_output(
         }
         return read_checkpoint(out, config).map(Some);
     }
+    require_empty(out).map(|()| None)
+}
+
+/// A new run's output directory must be absent or empty (an earlier run there is
+/// [`Error::CheckpointExists`]: resuming continues it).
+pub(crate) fn require_empty(out: &Path) -> Result<(), Error> {
     match fs::read_dir(out) {
         Ok(mut entries) => {
             if entries.next().is_some() {
@@ -993,9 +1295,9 @@ pub fn prepare_output(
                     }
                 });
             }
-            Ok(None)
+            Ok(())
         }
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
         Err(e) => Err(io_err(out)(e)),
     }
 }
@@ -1089,6 +1391,13 @@ pub fn read_history(path: &Path) -> Result<Vec<HistoryPoint>, Error> {
     let csv_err = |e: csv::Error| read_error(path, e.to_string());
     let mut r = csv::Reader::from_path(path).map_err(csv_err)?;
     let header = r.headers().map_err(csv_err)?.clone();
+    if header.iter().any(|h| h == "hypervolume") {
+        return Err(read_error(
+            path,
+            "the history of an NSGA-II run (a hypervolume per generation): its figures are not \
+             drawn yet; the front is in pareto.csv and pareto/NNN.toml",
+        ));
+    }
     let index = |name: &str| {
         header.iter().position(|h| h == name).ok_or_else(|| {
             read_error(

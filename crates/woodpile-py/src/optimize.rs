@@ -6,7 +6,7 @@ use pyo3::prelude::*;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use woodpile::optimize::{BreederGa, GaState, Ledger};
-use woodpile_io::optimize::{Checkpoint, OptimizeConfig, Problem};
+use woodpile_io::optimize::{Algorithm, Checkpoint, OptimizeConfig, Problem};
 
 /// One optimisation: the problem of a config and the GA's state between generations.
 #[pyclass(module = "woodpile._core")]
@@ -22,6 +22,13 @@ struct GaSession {
 impl GaSession {
     fn build(config: OptimizeConfig, base_dir: &Path, threads: usize) -> PyResult<Self> {
         let problem = Problem::new(&config, base_dir, threads).map_err(py_err)?;
+        if problem.algorithm != Algorithm::Breeder {
+            return Err(py_err(woodpile_io::Error::invalid(
+                "ga.algorithm",
+                "nsga2",
+                "woodpile.optimize runs the breeder GA (one objective); run NSGA-II with `woodpile optimize CONFIG.toml --out DIR`",
+            )));
+        }
         let ga = BreederGa::new(
             problem.space.clone(),
             Box::new(problem.objective),

@@ -82,3 +82,10 @@ pub const TRANSMISSION_STOP_DB: f64 = -20.0;
 /// Longest rod, in diameters, whose cell is derived from beam theory (docs/physics.md §13): at
 /// 10⁴ diameters a 5 mm fused-quartz rod (50 m) has its first bending mode at 6.4 mHz.
 pub const ROD_MAX_SLENDERNESS: f64 = 1e4;
+/// Design studies (`woodpile optimize` without `--paper-settings`): every contact peak within
+/// this relative tolerance (bench/README.md: the paper's GA makes the same choices as at RK4
+/// 0.1 µs, several times faster).
+pub const STUDY_PEAK_TOLERANCE: f64 = 1e-5;
+/// Design studies: the breeder GA screens new designs at this looser peak tolerance first
+/// (docs/physics.md §11; a force objective).
+pub const STUDY_SCREEN_PEAK_TOLERANCE: f64 = 3e-4;

@@ -29,7 +29,8 @@
 //!    ([`Map2`]), effective-mass curves and band gaps ([`BandStructure`]), and the paper's
 //!    layer-by-layer experimental protocol ([`LayerByLayer`]).
 //! 6. **Optimise** — [`optimize`]: the breeder genetic algorithm ([`BreederGa`]) over a
-//!    [`DesignSpace`] of catalogue elements, with a user-extensible [`Objective`].
+//!    [`DesignSpace`] of catalogue elements, with a user-extensible [`Objective`]; NSGA-II
+//!    ([`optimize::Nsga2`]) for the Pareto front of several [`optimize::DesignFigure`]s.
 //!
 //! Every long loop polls one process-wide stop request ([`interrupt`]), which front ends set on
 //! Ctrl-C, SIGTERM or Python's `KeyboardInterrupt`.

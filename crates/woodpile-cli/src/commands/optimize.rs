@@ -7,7 +7,7 @@ use crate::CliError;
 use std::fs;
 use std::ops::ControlFlow;
 use std::path::PathBuf;
-use woodpile::optimize::{BreederGa, GaState, Objective, StopReason};
+use woodpile::optimize::{BreederGa, GaState, Nsga2, Nsga2State, Objective, StopReason};
 use woodpile_io::atomic::io_err;
 use woodpile_io::optimize::*;
 use woodpile_io::scenario::ModelSpec;
@@ -40,6 +40,11 @@ pub struct Args {
     /// generation (sets ga.allow_large).
     #[arg(long)]
     pub allow_large: bool,
+    /// The paper's integration (RK4 at 0.1 µs, every design simulated whole) instead of the
+    /// accuracy-targeted default (every contact peak within 1e-5, screening, early stopping);
+    /// the same as `[ga] paper_settings = true`.
+    #[arg(long)]
+    pub paper_settings: bool,
 }
 
 /// Loads the config the arguments name, with the command line's overrides.
@@ -89,7 +94,10 @@ pub fn load_config(args: &Args) -> Result<(OptimizeConfig, String, PathBuf), Cli
     if args.allow_large {
         cfg.ga.allow_large = Some(true);
     }
-    Ok((cfg, name, base))
+    if args.paper_settings {
+        cfg.ga.paper_settings = Some(true);
+    }
+    Ok((cfg.accuracy_targeted(), name, base))
 }
 
 /// Runs `woodpile optimize`.
@@ -97,6 +105,9 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let (cfg, name, base_dir) = load_config(args)?;
     let threads = args.workers.checked()?;
     let problem = Problem::new(&cfg, &base_dir, threads)?;
+    if problem.algorithm == Algorithm::Nsga2 {
+        return run_nsga2(args, ctx, &problem, &name);
+    }
     let out = &args.out;
     let initial = prepare_output(out, args.resume, &problem.config)?;
     let ga = BreederGa::new(
@@ -151,11 +162,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         return Err(e);
     }
     let outcome = match outcome {
-        Err(e) if e.is_interrupted() => {
-            return Err(CliError::Interrupted {
-                saved: "during generation 0, before its checkpoint: nothing to resume; run the same command again to start over".into(),
-            })
-        }
+        Err(e) if e.is_interrupted() => return Err(interrupted_in_generation_zero()),
         other => other.map_err(optimize_error)?,
     };
     let state = &outcome.state;
@@ -179,6 +186,13 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     Ok(())
 }
 
+/// An interrupt before generation 0 was complete: no checkpoint exists yet.
+fn interrupted_in_generation_zero() -> CliError {
+    CliError::Interrupted {
+        saved: "during generation 0, before its checkpoint: nothing to resume; run the same command again to start over".into(),
+    }
+}
+
 /// What `woodpile optimize` prints when it stops.
 fn terminal_summary(
     problem: &Problem,
@@ -196,6 +210,7 @@ fn terminal_summary(
         "problem      {name} ({} positions, {} catalogue entries, seed {})\n\
          stopped      {} after generation {}: {} evaluations, {}{} cache hits, {:.1} s\n\
          best         {}\n\
+         accuracy     {}\n\
          objective    {} = {:.6e} {}\n\
          forces       incident {:.4} N, transmitted {:.4} N, ratio {ratio}\n\
          output       {}\n",
@@ -209,6 +224,7 @@ fn terminal_summary(
         state.ledger.cache_hits,
         state.elapsed_s,
         problem.space.labels(&best.genome).join(" "),
+        problem.config.accuracy_text(),
         problem.objective.as_str(),
         best.objective,
         problem.objective.unit(),
@@ -228,4 +244,106 @@ fn screened_text(ledger: &woodpile::optimize::Ledger) -> String {
         text.push_str(&format!("{} stopped early, ", ledger.stopped.len()));
     }
     text
+}
+
+/// Runs NSGA-II (`ga.algorithm = "nsga2"`): a checkpoint and `history.csv` after every
+/// generation, then `pareto.csv`, `pareto/NNN.toml` and `summary.json`.
+fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Result<(), CliError> {
+    let out = &args.out;
+    let initial = woodpile_io::pareto::prepare_output(out, args.resume, &problem.config)?;
+    let ga = Nsga2::new(
+        problem.space.clone(),
+        problem.objectives.clone(),
+        problem.nsga2.clone(),
+    )
+    .map_err(optimize_error)?;
+    if let Some(state) = &initial {
+        ga.check_state(state).map_err(optimize_error)?;
+    }
+    fs::create_dir_all(out).map_err(io_err(out))?;
+    crate::interrupt::cooperative();
+    let stop = crate::interrupt::stop_flag();
+    let bar = Progress::new("optimize", problem.nsga2.generations as u64, ctx.quiet);
+    let mut write_error: Option<CliError> = None;
+    let mut last = initial
+        .as_ref()
+        .map_or((0.0, 0), |s| (s.elapsed_s, s.evaluations));
+    let mut observer = |s: &Nsga2State| {
+        if let Err(e) = woodpile_io::pareto::write_generation(out, &problem.config, s) {
+            write_error = Some(e);
+            return ControlFlow::Break(());
+        }
+        let dt = s.elapsed_s - last.0;
+        let rate = if dt > 0.0 {
+            (s.evaluations - last.1) as f64 / dt
+        } else {
+            0.0
+        };
+        last = (s.elapsed_s, s.evaluations);
+        let h = s.history.last().expect("a generation's line");
+        bar.set_position(s.generation as u64);
+        bar.detail(format!(
+            "generation {}: hypervolume {:.6e} | front {} | {rate:.0} sim/s | {} evaluations, {} cache hits",
+            s.generation, h.hypervolume, h.front_size, s.evaluations, s.cache_hits
+        ));
+        ControlFlow::Continue(())
+    };
+    let outcome = ga.run(initial, stop, &mut observer);
+    bar.finish();
+    woodpile::interrupt::clear();
+    if let Some(e) = write_error {
+        return Err(e);
+    }
+    let (state, reason) = match outcome {
+        Err(e) if e.is_interrupted() => return Err(interrupted_in_generation_zero()),
+        other => other.map_err(optimize_error)?,
+    };
+    let summary = woodpile_io::pareto::write_final_outputs(problem, name, &state, reason, out)?;
+    if !ctx.quiet {
+        let names: Vec<String> = summary
+            .objectives
+            .iter()
+            .map(|o| format!("{} [{}]", o.name, o.unit))
+            .collect();
+        let front = if summary.front.is_empty() {
+            "no feasible design in the final population: loosen design.constraints.max_contact_pressure_pa or run longer".to_string()
+        } else {
+            format!(
+                "{} designs (pareto.csv, pareto/001.toml ...)",
+                summary.front.len()
+            )
+        };
+        crate::out::print(format_args!(
+            "problem      {name} ({} positions, {} catalogue entries, seed {}, NSGA-II)\n\
+             stopped      {} after generation {}: {} evaluations, {} cache hits, {:.1} s\n\
+             accuracy     {}\n\
+             objectives   {}\n\
+             front        {front}\n\
+             hypervolume  {:.6e} (reference point {:?})\n\
+             output       {}\n",
+            problem.space.positions,
+            problem.space.catalogue.len(),
+            problem.nsga2.seed,
+            stop_text(reason),
+            state.generation,
+            state.evaluations,
+            state.cache_hits,
+            state.elapsed_s,
+            problem.config.accuracy_text(),
+            names.join(", "),
+            summary.hypervolume,
+            summary.reference_point,
+            out.display()
+        ))?;
+    }
+    if reason == StopReason::Interrupted {
+        return Err(CliError::Interrupted {
+            saved: format!(
+                "generation {} is saved in {}; continue with the same command and --resume",
+                state.generation,
+                out.join(CHECKPOINT_FILE).display()
+            ),
+        });
+    }
+    Ok(())
 }

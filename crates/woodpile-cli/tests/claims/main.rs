@@ -20,6 +20,7 @@ mod optimize_bad_input;
 mod optimize_best_reruns;
 #[cfg(unix)]
 mod optimize_interrupt_resume;
+mod optimize_pareto;
 mod output_files;
 mod paper_values_stated_once;
 mod plot_opt_dir;

@@ -11,7 +11,7 @@ use crate::common;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-const CONFIG: &str = "[design]\npositions = 8\n[run]\nduration_s = 1e-3\n[ga]\npopulation = 16\ngenerations = 40\nstall_generations = 0\nseed = 5\n";
+const CONFIG: &str = "[design]\npositions = 8\n[run]\nduration_s = 1e-3\n[ga]\npopulation = 16\ngenerations = 40\nstall_generations = 0\nseed = 5\npaper_settings = true\n";
 
 /// The checkpoint without its wall-clock times (and so without the checksum over them).
 fn without_elapsed(mut v: serde_json::Value) -> serde_json::Value {

@@ -147,6 +147,26 @@ pub struct HertzContact {
     pub beta: f64,
 }
 
+impl HertzContact {
+    /// The Hertz peak pressure p₀ \[Pa\] at the centre of the contact ellipse under a normal
+    /// force F \[N\] (0 for F ≤ 0). With the approach δ = (F/β)^{2/3}, the ellipse's semi-axes
+    /// a = sqrt(δ S/A) and b = a sqrt(1 − e²) and p₀ = E* δ / (b K(e)) (Johnson 1985 §4.2:
+    /// δ = p₀ b K(e)/E*, F = (2/3)π a b p₀), S as in the module's AGM identity K − E = K e² S.
+    /// For a circular contact this is (2E*/π) sqrt(δ/R).
+    pub fn peak_pressure_pa(&self, force_n: f64) -> f64 {
+        if force_n <= 0.0 || force_n.is_nan() {
+            return 0.0;
+        }
+        let complement = (1.0 - self.eccentricity * self.eccentricity)
+            .max(0.0)
+            .sqrt();
+        let (k, s) = agm_k_sigma(complement);
+        let approach_m = (force_n / self.beta).powf(2.0 / 3.0);
+        let semi_major_m = (approach_m * s / self.a_per_m).sqrt();
+        self.effective_modulus_pa * approach_m / (complement * semi_major_m * k)
+    }
+}
+
 /// How the ellipse's shape is found from B/A.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum EllipseSolution {

@@ -395,6 +395,15 @@ impl BreederGa {
         settings: GaSettings,
     ) -> Result<Self, OptimizeError> {
         settings.validate()?;
+        if let Some(p) = space.constraints.max_contact_pressure_pa {
+            return Err(Error::invalid(
+                "design.constraints.max_contact_pressure_pa",
+                p,
+                "is known only after a run: set ga.algorithm = \"nsga2\", whose constraint \
+                 domination handles it",
+            )
+            .into());
+        }
         let set = FeasibleSet::new(&space)?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(settings.threads)

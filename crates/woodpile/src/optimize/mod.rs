@@ -7,6 +7,10 @@
 //! - [`Objective`]: what is minimised; [`StandardObjective`] holds the transmitted peak force
 //!   (the paper's), the transmission ratio, the peak energy of the last layer and the impulse
 //!   delivered to the wall. Every evaluation runs the full window (no early stopping).
+//! - [`DesignFigure`]: objectives as data (the run's figures, total mass, stack height, layers,
+//!   the worst contact's Hertz peak pressure), evaluated together by [`figures_many`] (no run
+//!   for the figures that need none); [`Nsga2`]: NSGA-II over the same genomes, operators and
+//!   repair, with [`pareto`]'s sorting, crowding distance and hypervolume.
 //! - [`operators`]: truncation selection, discrete recombination, BGA mutation, as plain
 //!   functions of (population, rng).
 //! - [`BreederGa`]: one generation at a time ([`BreederGa::next_generation`]) on a detachable
@@ -38,15 +42,20 @@
 //!   I. Continuous parameter optimization", Evolutionary Computation 1 (1993) 25–49.
 //! - Kim, Yang et al., Int. J. Impact Eng. 2017, §4.
 
+mod figures;
 mod ga;
+mod nsga2;
 mod objective;
 pub mod operators;
+pub mod pareto;
 mod space;
 
+pub use figures::{contact_peak_pressures_pa, element_height_m, figures_many, DesignFigure};
 pub use ga::{
     BreederGa, GaSettings, GaState, GenerationStats, Individual, Ledger, Outcome, StopReason,
     STOP_EARLY_MARGIN,
 };
+pub use nsga2::{MoIndividual, Nsga2, Nsga2Settings, Nsga2State, Nsga2Stats};
 pub use objective::{ContactImpulse, LayerEnergyPeak, Objective, StandardObjective, Valued};
 pub use space::{Constraints, DesignSpace, FeasibleSet, Genome, MAX_CATALOGUE_LEN};
 
@@ -71,6 +80,16 @@ pub enum OptimizeError {
         lightest_kg: f64,
         /// Its element labels, top to bottom.
         lightest: String,
+    },
+    /// Even the lowest design that meets the other constraints is above the height limit.
+    #[error("infeasible constraints: design.constraints.max_stack_height_m = {max_stack_height_m} m, but the lowest design meeting the other constraints stands {lowest_m} m high ({lowest})")]
+    TooTall {
+        /// The limit \[m\].
+        max_stack_height_m: f64,
+        /// The lowest design's height \[m\].
+        lowest_m: f64,
+        /// Its element labels, top to bottom.
+        lowest: String,
     },
     /// Simulating a candidate failed.
     #[error("evaluating design [{design}] failed: {source}")]

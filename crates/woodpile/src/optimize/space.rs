@@ -28,6 +28,12 @@ pub struct Constraints {
     pub fixed: Vec<(usize, usize)>,
     /// Largest number of copies of a catalogue entry: (catalogue index, count).
     pub max_count: Vec<(usize, usize)>,
+    /// Largest height of the stack \[m\] (the sum of the elements' diameters).
+    pub max_stack_height_m: Option<f64>,
+    /// Largest Hertz peak pressure of any contact of the structure \[Pa\]
+    /// ([`super::DesignFigure::MaxContactPressure`]). Known only after a run: NSGA-II's
+    /// constraint domination handles it; the breeder GA refuses it.
+    pub max_contact_pressure_pa: Option<f64>,
 }
 
 /// The design space of an optimisation: N positions, a catalogue, how the chain is held and
@@ -112,6 +118,14 @@ impl DesignSpace {
             .sum()
     }
 
+    /// Height of a genome's stack \[m\]: the sum of its elements' diameters, top to bottom.
+    pub fn height_m(&self, genome: &[u8]) -> f64 {
+        genome
+            .iter()
+            .map(|&g| super::figures::element_height_m(&self.catalogue[usize::from(g)]))
+            .sum()
+    }
+
     /// Checks every field and that some design meets the constraints.
     pub fn validate(&self) -> std::result::Result<(), OptimizeError> {
         FeasibleSet::new(self).map(|_| ())
@@ -136,6 +150,8 @@ pub struct FeasibleSet {
     fixed: Vec<Option<u8>>,
     free: Vec<usize>,
     max_mass_kg: Option<f64>,
+    heights_m: Vec<f64>,
+    max_height_m: Option<f64>,
     lightest: Genome,
 }
 
@@ -168,7 +184,7 @@ impl FeasibleSet {
             .filter(|&p| fixed[p].is_none())
             .collect();
         let room = Self::room_left(space, &fixed, &caps, free.len())?;
-        let lightest = Self::lightest_design(&masses_kg, &fixed, &free, room);
+        let lightest = Self::lightest_design(&masses_kg, &fixed, &free, room.clone());
         if let Some(max) = max_mass_kg {
             let min = space.mass_kg(&lightest);
             if min > max * (1.0 + MASS_SLACK) {
@@ -179,15 +195,87 @@ impl FeasibleSet {
                 });
             }
         }
-        Ok(FeasibleSet {
+        let heights_m: Vec<f64> = space
+            .catalogue
+            .iter()
+            .map(super::figures::element_height_m)
+            .collect();
+        let max_height_m = Self::positive_limit(
+            "design.constraints.max_stack_height_m",
+            space.constraints.max_stack_height_m,
+        )?;
+        Self::positive_limit(
+            "design.constraints.max_contact_pressure_pa",
+            space.constraints.max_contact_pressure_pa,
+        )?;
+        let mut set = FeasibleSet {
             positions: space.positions,
             masses_kg,
             caps,
             fixed,
             free,
             max_mass_kg,
+            heights_m,
+            max_height_m,
             lightest,
-        })
+        };
+        if let Some(max) = max_height_m {
+            let lowest = Self::lightest_design(&set.heights_m, &set.fixed, &set.free, room);
+            let (low, light) = (set.height_m(&lowest), set.height_m(&set.lightest));
+            if low > max * (1.0 + MASS_SLACK) {
+                return Err(OptimizeError::TooTall {
+                    max_stack_height_m: max,
+                    lowest_m: low,
+                    lowest: space.labels(&lowest).join(" "),
+                });
+            }
+            // The witness must meet both limits: the lightest design if it is low enough,
+            // else one lightened from the lowest without exceeding the height, else one
+            // lowered from the lightest without exceeding the mass.
+            if light > max * (1.0 + MASS_SLACK) {
+                let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(0);
+                let mut found = None;
+                for start in [lowest.clone(), set.lightest.clone()] {
+                    let mut g = start;
+                    let mut counts = set.counts(&g);
+                    set.shrink_both(&mut g, &mut counts, &mut rng);
+                    if set.contains(&g) {
+                        found = Some(g);
+                        break;
+                    }
+                }
+                match found {
+                    Some(g) => set.lightest = g,
+                    None => {
+                        return Err(OptimizeError::Infeasible {
+                            reason: format!(
+                                "found no design meeting max_stack_height = {max} m and \
+                                 max_total_mass = {} kg together: the lightest ({}) stands {light} m, \
+                                 the lowest ({}, {low} m) weighs {} kg",
+                                max_mass_kg.unwrap_or(f64::INFINITY),
+                                space.labels(&set.lightest).join(" "),
+                                space.labels(&lowest).join(" "),
+                                space.mass_kg(&lowest),
+                            ),
+                        })
+                    }
+                }
+            }
+        }
+        Ok(set)
+    }
+
+    /// A limit that must be a finite number > 0 when given.
+    fn positive_limit(
+        field: &str,
+        limit: Option<f64>,
+    ) -> std::result::Result<Option<f64>, OptimizeError> {
+        match limit {
+            Some(m) if !(m.is_finite() && m > 0.0) => {
+                Err(Error::invalid(field, m, "must be a finite number > 0").into())
+            }
+            other => Ok(other),
+        }
     }
 
     /// The design space's own fields: positions, the catalogue (each entry on the wall), the
@@ -413,10 +501,16 @@ impl FeasibleSet {
         {
             return false;
         }
-        match self.max_mass_kg {
-            Some(max) => self.mass_kg(genome) <= max * (1.0 + MASS_SLACK),
-            None => true,
-        }
+        let within = |limit: Option<f64>, total: f64| {
+            limit.is_none_or(|max| total <= max * (1.0 + MASS_SLACK))
+        };
+        within(self.max_mass_kg, self.mass_kg(genome))
+            && within(self.max_height_m, self.height_m(genome))
+    }
+
+    /// Height of a genome's stack \[m\].
+    fn height_m(&self, genome: &[u8]) -> f64 {
+        genome.iter().map(|&g| self.heights_m[usize::from(g)]).sum()
     }
 
     /// A random feasible genome: each free gene uniform over the catalogue, then repaired.
@@ -461,35 +555,104 @@ impl FeasibleSet {
                 counts[to] += 1;
             }
         }
-        let Some(max) = self.max_mass_kg else { return };
-        let limit = max * (1.0 + MASS_SLACK);
-        let mut mass = self.mass_kg(genome);
-        while mass > limit {
-            let lighter = |p: &usize| {
-                let m = self.masses_kg[usize::from(genome[*p])];
-                (0..n)
-                    .filter(|&j| self.masses_kg[j] < m && counts[j] < self.caps[j])
-                    .max_by(|&a, &b| self.masses_kg[a].total_cmp(&self.masses_kg[b]))
-            };
-            let movable: Vec<usize> = self
-                .free
-                .iter()
-                .copied()
-                .filter(|p| lighter(p).is_some())
-                .collect();
-            if movable.is_empty() {
+        if self.max_height_m.is_none() {
+            if !self.shrink(genome, &mut counts, &self.masses_kg, self.max_mass_kg, rng) {
                 // A lightest multiset summed in another order: cannot exceed the limit unless
                 // rounding differs; fall back on the checked witness.
                 genome.copy_from_slice(&self.lightest);
-                return;
+            }
+            return;
+        }
+        // Height, then mass, each move keeping the other limit where it can; the checked
+        // witness where they do not settle.
+        if !self.shrink_both(genome, &mut counts, rng) {
+            genome.copy_from_slice(&self.lightest);
+        }
+    }
+
+    /// Height, then mass, a few rounds, each move keeping the other sum within its limit where
+    /// one can; whether the genome ends within both.
+    fn shrink_both(&self, genome: &mut [u8], counts: &mut [usize], rng: &mut impl Rng) -> bool {
+        let height = (&self.heights_m[..], self.max_height_m);
+        let mass = (&self.masses_kg[..], self.max_mass_kg);
+        for _ in 0..4 {
+            self.shrink_within(genome, counts, height, Some(mass), rng);
+            self.shrink_within(genome, counts, mass, Some(height), rng);
+            if self.contains(genome) {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// While the sum of `resource` over the genome exceeds `limit`, moves a random free position
+    /// to the largest smaller entry with room (each move strictly lowers the sum). False when no
+    /// move is left and the sum is still above the limit.
+    fn shrink(
+        &self,
+        genome: &mut [u8],
+        counts: &mut [usize],
+        resource: &[f64],
+        limit: Option<f64>,
+        rng: &mut impl Rng,
+    ) -> bool {
+        self.shrink_within(genome, counts, (resource, limit), None, rng)
+    }
+
+    /// [`FeasibleSet::shrink`], moves restricted to those that keep the sum of `keep`'s
+    /// resource within its limit (a move that breaks it is taken only when no other is left).
+    fn shrink_within(
+        &self,
+        genome: &mut [u8],
+        counts: &mut [usize],
+        (resource, limit): (&[f64], Option<f64>),
+        keep: Option<(&[f64], Option<f64>)>,
+        rng: &mut impl Rng,
+    ) -> bool {
+        let Some(max) = limit else { return true };
+        let n = resource.len();
+        let limit = max * (1.0 + MASS_SLACK);
+        let total =
+            |genome: &[u8], r: &[f64]| -> f64 { genome.iter().map(|&g| r[usize::from(g)]).sum() };
+        let kept = keep.and_then(|(r, l)| l.map(|l| (r, l * (1.0 + MASS_SLACK))));
+        let mut sum = total(genome, resource);
+        while sum > limit {
+            let other = kept.map(|(r, _)| total(genome, r));
+            let smaller = |p: &usize, counts: &[usize], strict: bool| {
+                let g = usize::from(genome[*p]);
+                let m = resource[g];
+                (0..n)
+                    .filter(|&j| resource[j] < m && counts[j] < self.caps[j])
+                    .filter(|&j| match (strict, kept, other) {
+                        (true, Some((r, l)), Some(o)) => o - r[g] + r[j] <= l,
+                        _ => true,
+                    })
+                    .max_by(|&a, &b| resource[a].total_cmp(&resource[b]))
+            };
+            let pick = |strict: bool, counts: &[usize]| -> Vec<usize> {
+                self.free
+                    .iter()
+                    .copied()
+                    .filter(|p| smaller(p, counts, strict).is_some())
+                    .collect()
+            };
+            let mut strict = kept.is_some();
+            let mut movable = pick(strict, counts);
+            if movable.is_empty() && strict {
+                strict = false;
+                movable = pick(false, counts);
+            }
+            if movable.is_empty() {
+                return false;
             }
             let p = movable[rng.random_range(0..movable.len())];
-            let to = lighter(&p).expect("movable");
+            let to = smaller(&p, counts, strict).expect("movable");
             counts[usize::from(genome[p])] -= 1;
             counts[to] += 1;
             genome[p] = to as u8;
-            mass = self.mass_kg(genome);
+            sum = total(genome, resource);
         }
+        true
     }
 }
 

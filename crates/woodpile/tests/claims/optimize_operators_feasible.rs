@@ -71,6 +71,7 @@ fn constraints(positions: usize) -> impl Strategy<Value = Constraints> {
             max_total_mass_kg: mass,
             fixed,
             max_count,
+            ..Constraints::default()
         })
 }
 

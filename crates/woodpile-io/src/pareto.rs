@@ -1,0 +1,394 @@
+//! NSGA-II's files (`ga.algorithm = "nsga2"`): its checksummed checkpoint, `history.csv` with the
+//! hypervolume per generation, `pareto.csv` (one row per non-dominated design: one column per
+//! objective, named as in `ga.objectives`, in SI units, then `layer_1` … `layer_N`, the element
+//! of each layer top to bottom — a rod's length in mm, another element's label), `pareto/NNN.toml`
+//! (row NNN of `pareto.csv` as a scenario `woodpile simulate` re-runs) and `summary.json` (the
+//! objectives, their units, the hypervolume's reference point, the front).
+
+use crate::atomic::{io_err, write_atomic};
+use crate::error::Error;
+use crate::optimize::{
+    fnv1a64, require_empty, stop_text, OptimizeConfig, Problem, CHECKPOINT_FILE,
+};
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use std::fs;
+use std::path::Path;
+use woodpile::optimize::{MoIndividual, Nsga2State, Nsga2Stats, StopReason};
+use woodpile::Body;
+
+/// The NSGA-II checkpoint's format tag.
+pub const PARETO_CHECKPOINT_FORMAT: &str = "woodpile-optimize-nsga2-checkpoint/1";
+
+/// `checkpoint.json` of an NSGA-II run: the completed config and the whole state, floats in
+/// shortest round-trip digits, with the version that wrote it and an FNV-1a 64 checksum of its
+/// compact JSON with `checksum` empty (as the breeder's checkpoint).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParetoCheckpoint {
+    /// [`PARETO_CHECKPOINT_FORMAT`].
+    pub format: String,
+    /// Version of woodpile that wrote it.
+    pub tool_version: String,
+    /// FNV-1a 64 of the content, 16 hex digits.
+    pub checksum: String,
+    /// The completed config.
+    pub config: OptimizeConfig,
+    /// Generations completed.
+    pub generation: usize,
+    /// Generations since the hypervolume grew.
+    pub stalled: usize,
+    /// Designs simulated so far.
+    pub evaluations: u64,
+    /// Cache hits so far.
+    pub cache_hits: u64,
+    /// Wall-clock seconds so far.
+    pub elapsed_s: f64,
+    /// The hypervolume's reference point.
+    pub reference_point: Vec<f64>,
+    /// The population, in NSGA-II's order.
+    pub population: Vec<MoIndividual>,
+    /// One line per generation.
+    pub history: Vec<Nsga2Stats>,
+    /// Every design evaluated, sorted by genome.
+    pub cache: Vec<MoIndividual>,
+}
+
+impl ParetoCheckpoint {
+    /// The checkpoint of a state for `config`, its checksum computed.
+    pub fn new(config: &OptimizeConfig, s: &Nsga2State) -> Self {
+        let mut cache: Vec<MoIndividual> = s.cache.values().cloned().collect();
+        cache.sort_by(|a, b| a.genome.cmp(&b.genome));
+        let mut cp = ParetoCheckpoint {
+            format: PARETO_CHECKPOINT_FORMAT.into(),
+            tool_version: env!("CARGO_PKG_VERSION").into(),
+            checksum: String::new(),
+            config: config.clone(),
+            generation: s.generation,
+            stalled: s.stalled,
+            evaluations: s.evaluations,
+            cache_hits: s.cache_hits,
+            elapsed_s: s.elapsed_s,
+            reference_point: s.reference_point.clone(),
+            population: s.population.clone(),
+            history: s.history.clone(),
+            cache,
+        };
+        cp.checksum = cp.content_checksum();
+        cp
+    }
+
+    /// The checksum of the content (see the type's documentation).
+    pub fn content_checksum(&self) -> String {
+        let unsigned = ParetoCheckpoint {
+            checksum: String::new(),
+            ..self.clone()
+        };
+        let json = serde_json::to_vec(&unsigned).unwrap_or_default();
+        format!("{:016x}", fnv1a64(&json))
+    }
+
+    /// The state it holds.
+    pub fn into_state(self) -> Nsga2State {
+        Nsga2State {
+            generation: self.generation,
+            population: self.population,
+            history: self.history,
+            reference_point: self.reference_point,
+            cache: self
+                .cache
+                .into_iter()
+                .map(|i| (i.genome.clone(), i))
+                .collect::<HashMap<_, _>>(),
+            evaluations: self.evaluations,
+            cache_hits: self.cache_hits,
+            stalled: self.stalled,
+            elapsed_s: self.elapsed_s,
+        }
+    }
+}
+
+/// The output directory policy of an NSGA-II run: with `resume`, the checkpoint in `out`
+/// checked against `config`; without, `out` must be absent or empty. Nothing is written.
+pub fn prepare_output(
+    out: &Path,
+    resume: bool,
+    config: &OptimizeConfig,
+) -> Result<Option<Nsga2State>, Error> {
+    if !resume {
+        return require_empty(out).map(|()| None);
+    }
+    let path = out.join(CHECKPOINT_FILE);
+    if !path.is_file() {
+        return Err(Error::NothingToResume {
+            path: out.to_path_buf(),
+            file: CHECKPOINT_FILE,
+        });
+    }
+    let text = fs::read_to_string(&path).map_err(|e| Error::Read {
+        path: path.clone(),
+        source: e,
+    })?;
+    let corrupt = |message: String| {
+        Error::Parse {
+        source_name: path.display().to_string(),
+        message: format!(
+            "{message}; not an NSGA-II checkpoint of this version: restore it or start a new run in another output directory"
+        ),
+    }
+    };
+    let cp: ParetoCheckpoint = serde_json::from_str(&text).map_err(|e| corrupt(e.to_string()))?;
+    let refuse = |reason: String| Error::ResumeRefused {
+        path: path.clone(),
+        reason,
+    };
+    if cp.format != PARETO_CHECKPOINT_FORMAT {
+        return Err(corrupt(format!("format `{}`", cp.format)));
+    }
+    let ours = env!("CARGO_PKG_VERSION");
+    if cp.tool_version != ours {
+        return Err(refuse(format!(
+            "the checkpoint was written by woodpile {}, this is woodpile {ours}: finish it with that version or start a new run",
+            cp.tool_version
+        )));
+    }
+    if cp.checksum != cp.content_checksum() {
+        return Err(refuse(format!(
+            "the checkpoint's checksum is {} but its content hashes to {}: it was modified after woodpile wrote it",
+            cp.checksum,
+            cp.content_checksum()
+        )));
+    }
+    if !cp.config.same_problem(config) {
+        return Err(refuse(
+            "the checkpoint belongs to a different problem (config, model or seed differ); resume with the same ones".into(),
+        ));
+    }
+    Ok(Some(cp.into_state()))
+}
+
+/// `history.csv` of an NSGA-II run: one line per generation.
+pub fn history_csv(history: &[Nsga2Stats]) -> String {
+    let mut s = String::from(
+        "generation,hypervolume,front_size,feasible,evaluations,cache_hits,elapsed_s\n",
+    );
+    for h in history {
+        s.push_str(&format!(
+            "{},{},{},{},{},{},{:.3}\n",
+            h.generation,
+            h.hypervolume,
+            h.front_size,
+            h.feasible,
+            h.evaluations,
+            h.cache_hits,
+            h.elapsed_s
+        ));
+    }
+    s
+}
+
+/// Writes what changes after every generation, atomically: the checkpoint and `history.csv`.
+pub fn write_generation(
+    out: &Path,
+    config: &OptimizeConfig,
+    state: &Nsga2State,
+) -> Result<(), Error> {
+    let cp = ParetoCheckpoint::new(config, state);
+    let json = serde_json::to_vec(&cp)
+        .map_err(|e| io_err(&out.join(CHECKPOINT_FILE))(std::io::Error::other(e)))?;
+    write_atomic(out, CHECKPOINT_FILE, &json)?;
+    write_atomic(out, "history.csv", history_csv(&state.history).as_bytes())
+}
+
+/// The element of each layer as `pareto.csv` writes it: a rod's length in mm, else the label.
+fn layer_text(problem: &Problem, g: u8) -> String {
+    let e = &problem.space.catalogue[usize::from(g)];
+    match e.body {
+        Body::Rod { length_m, .. } => {
+            let mm = (length_m * 1e3 * 1e9).round() / 1e9;
+            format!("{mm}")
+        }
+        Body::Sphere { .. } => e.label.clone(),
+    }
+}
+
+/// `pareto.csv` of a front (see the module documentation).
+pub fn pareto_csv(problem: &Problem, front: &[&MoIndividual]) -> String {
+    let mut s: Vec<String> = problem
+        .objectives
+        .iter()
+        .map(|f| f.as_str().to_string())
+        .collect();
+    let n = front.iter().map(|i| i.genome.len()).max().unwrap_or(0);
+    s.extend((1..=n).map(|l| format!("layer_{l}")));
+    let mut text = s.join(",") + "\n";
+    for ind in front {
+        let mut row: Vec<String> = ind.objectives.iter().map(|v| format!("{v}")).collect();
+        row.extend(ind.genome.iter().map(|&g| layer_text(problem, g)));
+        row.resize(problem.objectives.len() + n, String::new());
+        text.push_str(&row.join(","));
+        text.push('\n');
+    }
+    text
+}
+
+/// One design of the front in `summary.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FrontDesign {
+    /// `pareto/NNN.toml`.
+    pub file: String,
+    /// One value per objective, SI units.
+    pub objectives: Vec<f64>,
+    /// Element labels, top to bottom.
+    pub labels: Vec<String>,
+    /// Catalogue indices.
+    pub genome: Vec<u8>,
+}
+
+/// An objective's name and unit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ObjectiveSpec {
+    /// As in `ga.objectives`.
+    pub name: String,
+    /// SI unit of its column.
+    pub unit: String,
+}
+
+/// `summary.json` of an NSGA-II run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ParetoSummary {
+    /// `woodpile optimize`.
+    pub tool: String,
+    /// Version of woodpile.
+    pub version: String,
+    /// Problem name.
+    pub problem: String,
+    /// `nsga2`.
+    pub algorithm: String,
+    /// `finished` or `interrupted`.
+    pub status: String,
+    /// Why it stopped.
+    pub stop_reason: String,
+    /// The objectives, in column order.
+    pub objectives: Vec<ObjectiveSpec>,
+    /// The hypervolume's reference point (one value per objective, SI units): `ga.reference_point`,
+    /// or by default from generation 0 (the worst feasible value of each objective plus a tenth
+    /// of its range).
+    pub reference_point: Vec<f64>,
+    /// Hypervolume of the final front.
+    pub hypervolume: f64,
+    /// Feasible designs in the final population (a pressure limit can leave none).
+    pub feasible: usize,
+    /// Seed.
+    pub seed: u64,
+    /// Generations completed.
+    pub generations_completed: usize,
+    /// Designs simulated.
+    pub evaluations: u64,
+    /// Designs found in the cache.
+    pub cache_hits: u64,
+    /// Wall-clock time \[s\].
+    pub elapsed_s: f64,
+    /// Designs simulated per second.
+    pub evaluations_per_s: f64,
+    /// The front, in the rows of `pareto.csv`.
+    pub front: Vec<FrontDesign>,
+    /// The completed config.
+    pub config: OptimizeConfig,
+}
+
+/// Writes `pareto.csv`, `pareto/NNN.toml` and `summary.json`; returns the summary.
+pub fn write_final_outputs(
+    problem: &Problem,
+    name: &str,
+    state: &Nsga2State,
+    reason: StopReason,
+    out: &Path,
+) -> Result<ParetoSummary, Error> {
+    let front = state.front();
+    write_atomic(out, "pareto.csv", pareto_csv(problem, &front).as_bytes())?;
+    let dir = out.join("pareto");
+    fs::create_dir_all(&dir).map_err(io_err(&dir))?;
+    remove_stale_scenarios(&dir, front.len())?;
+    let mut designs = Vec::with_capacity(front.len());
+    for (k, ind) in front.iter().enumerate() {
+        let file = format!("{:03}.toml", k + 1);
+        let values: Vec<String> = problem
+            .objectives
+            .iter()
+            .zip(&ind.objectives)
+            .map(|(f, v)| format!("{} = {v} {}", f.as_str(), f.unit()))
+            .collect();
+        let description = format!(
+            "Pareto design {} of `woodpile optimize` ({name}, NSGA-II, seed {}): {}",
+            k + 1,
+            problem.nsga2.seed,
+            values.join(", ")
+        );
+        let scenario = problem.scenario(&ind.genome, Some(description));
+        write_atomic(&dir, &file, scenario.to_toml().as_bytes())?;
+        designs.push(FrontDesign {
+            file: format!("pareto/{file}"),
+            objectives: ind.objectives.clone(),
+            labels: problem.space.labels(&ind.genome),
+            genome: ind.genome.clone(),
+        });
+    }
+    let last = state.history.last();
+    let summary = ParetoSummary {
+        tool: "woodpile optimize".into(),
+        version: env!("CARGO_PKG_VERSION").into(),
+        problem: name.into(),
+        algorithm: "nsga2".into(),
+        status: if reason == StopReason::Interrupted {
+            "interrupted"
+        } else {
+            "finished"
+        }
+        .into(),
+        stop_reason: stop_text(reason).into(),
+        objectives: problem
+            .objectives
+            .iter()
+            .map(|f| ObjectiveSpec {
+                name: f.as_str().into(),
+                unit: f.unit().into(),
+            })
+            .collect(),
+        reference_point: state.reference_point.clone(),
+        hypervolume: last.map_or(0.0, |h| h.hypervolume),
+        feasible: last.map_or(0, |h| h.feasible),
+        seed: problem.nsga2.seed,
+        generations_completed: state.generation,
+        evaluations: state.evaluations,
+        cache_hits: state.cache_hits,
+        elapsed_s: state.elapsed_s,
+        evaluations_per_s: if state.elapsed_s > 0.0 {
+            state.evaluations as f64 / state.elapsed_s
+        } else {
+            0.0
+        },
+        front: designs,
+        config: problem.config.clone(),
+    };
+    let json = serde_json::to_vec_pretty(&summary)
+        .map_err(|e| io_err(&out.join("summary.json"))(std::io::Error::other(e)))?;
+    write_atomic(out, "summary.json", &json)?;
+    Ok(summary)
+}
+
+/// Removes `pareto/NNN.toml` files beyond the new front's `count` (written by an earlier
+/// stop of the same run); other files are left alone.
+fn remove_stale_scenarios(dir: &Path, count: usize) -> Result<(), Error> {
+    for entry in fs::read_dir(dir).map_err(io_err(dir))? {
+        let path = entry.map_err(io_err(dir))?.path();
+        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+        let ours = path.extension().is_some_and(|e| e == "toml")
+            && stem.len() >= 3
+            && stem.bytes().all(|b| b.is_ascii_digit());
+        if ours && stem.parse::<usize>().is_ok_and(|k| k > count) {
+            fs::remove_file(&path).map_err(io_err(&path))?;
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,301 @@
+//! Objectives as data: the figures a design study can minimise ([`DesignFigure`]), evaluated for
+//! many designs at once ([`figures_many`]). Figures that need no simulation (mass, height,
+//! layers) cost none; those of a run share one run per design where they can (the transmitted
+//! force, the ratio and the contact pressure come from one run in SIMD lanes).
+
+use super::objective::{Objective, StandardObjective};
+use super::space::DesignSpace;
+use crate::error::{Error, Result};
+use crate::lanes::{simulate_many_watching, Job, LaneWidth};
+use crate::model::{hertz_contact, Body, Chain, Element, EllipseSolution, Surface, Wall};
+use crate::simulate::{PeakWatch, RunSettings, RunSummary};
+
+/// A figure of a design to minimise (`[ga] objectives`), by its name in config files.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DesignFigure {
+    /// A figure of one run ([`StandardObjective`]).
+    Run(StandardObjective),
+    /// Total mass of the chain \[kg\] (no simulation).
+    TotalMass,
+    /// Height of the stack \[m\]: the sum of the elements' heights along the chain axis (a rod's
+    /// and a sphere's diameter; no simulation).
+    StackHeight,
+    /// Number of layers (elements) of the design (no simulation).
+    Layers,
+    /// The Hertz peak pressure \[Pa\] of the worst contact of the structure (contacts 1..=N:
+    /// element–element and element–wall; the striker's or load's contact 0 is the load's, not
+    /// the design's), from each contact's geometry and its peak force over the run
+    /// ([`crate::model::HertzContact::peak_pressure_pa`]).
+    MaxContactPressure,
+}
+
+impl DesignFigure {
+    /// Every figure, in the order the names are listed.
+    pub const ALL: [DesignFigure; 8] = [
+        DesignFigure::Run(StandardObjective::TransmittedForce),
+        DesignFigure::Run(StandardObjective::TransmissionRatio),
+        DesignFigure::Run(StandardObjective::TransmittedEnergy),
+        DesignFigure::Run(StandardObjective::TransmittedImpulse),
+        DesignFigure::TotalMass,
+        DesignFigure::StackHeight,
+        DesignFigure::Layers,
+        DesignFigure::MaxContactPressure,
+    ];
+
+    /// The name used in config files and column headers.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            DesignFigure::Run(o) => o.as_str(),
+            DesignFigure::TotalMass => "total-mass",
+            DesignFigure::StackHeight => "stack-height",
+            DesignFigure::Layers => "layers",
+            DesignFigure::MaxContactPressure => "max-contact-pressure",
+        }
+    }
+
+    /// The figure with this name.
+    pub fn from_name(name: &str) -> Result<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|f| f.as_str() == name)
+            .ok_or_else(|| Error::Unknown {
+                what: "objective",
+                name: name.to_string(),
+                valid: Self::ALL.map(DesignFigure::as_str).join(", "),
+            })
+    }
+
+    /// SI unit of the value.
+    pub fn unit(self) -> &'static str {
+        match self {
+            DesignFigure::Run(o) => match o {
+                StandardObjective::TransmittedForce => "N",
+                StandardObjective::TransmissionRatio => "1",
+                StandardObjective::TransmittedEnergy => "J",
+                StandardObjective::TransmittedImpulse => "N s",
+            },
+            DesignFigure::TotalMass => "kg",
+            DesignFigure::StackHeight => "m",
+            DesignFigure::Layers => "1",
+            DesignFigure::MaxContactPressure => "Pa",
+        }
+    }
+
+    /// Whether the value needs a simulation of the design.
+    pub fn needs_run(self) -> bool {
+        matches!(
+            self,
+            DesignFigure::Run(_) | DesignFigure::MaxContactPressure
+        )
+    }
+}
+
+/// Height of one element along the chain axis \[m\]: its diameter.
+pub fn element_height_m(element: &Element) -> f64 {
+    match element.body {
+        Body::Rod { diameter_m, .. } | Body::Sphere { diameter_m } => diameter_m,
+    }
+}
+
+/// The Hertz peak pressures \[Pa\] of contacts 1..=N of `chain` (N = the wall; absent for a free
+/// end or a wall given by β alone, whose geometry is unknown) under the contact peak forces of
+/// `summary` (every contact tracked, [`PeakWatch::Every`]).
+pub fn contact_peak_pressures_pa(chain: &Chain, summary: &RunSummary) -> Result<Vec<f64>> {
+    let elements = chain.elements();
+    let n = elements.len();
+    let angle = chain.crossing_angle_rad();
+    let mut pressures = Vec::with_capacity(n);
+    for c in 1..n {
+        let (a, b) = (&elements[c - 1], &elements[c]);
+        let geometry = hertz_contact(
+            a.surface(0.0),
+            &a.material,
+            b.surface(angle),
+            &b.material,
+            EllipseSolution::Exact,
+        )?;
+        pressures.push(geometry.peak_pressure_pa(summary.contact_peak_forces_n[c]));
+    }
+    let last = &elements[n - 1];
+    let wall = match chain.wall() {
+        Wall::Cap { material, radius_m } => Some((
+            Surface::Sphere {
+                radius_m: *radius_m,
+            },
+            material,
+        )),
+        Wall::Flat { material } => Some((Surface::Flat, material)),
+        Wall::Free | Wall::Beta(_) => None,
+    };
+    if let Some((surface, material)) = wall {
+        let geometry = hertz_contact(
+            last.surface(angle * (n - 1) as f64),
+            &last.material,
+            surface,
+            material,
+            EllipseSolution::Exact,
+        )?;
+        pressures.push(geometry.peak_pressure_pa(summary.contact_peak_forces_n[n]));
+    }
+    Ok(pressures)
+}
+
+/// The values of `figures` for each genome, in order: simulation-free figures from the
+/// catalogue, the others from runs under `settings` on the current rayon pool (force, ratio
+/// and pressure from one run per design in SIMD lanes `lanes` wide; energy and impulse one
+/// run each). A design whose chain does not build, or whose run fails, has its error.
+pub fn figures_many(
+    space: &DesignSpace,
+    figures: &[DesignFigure],
+    genomes: &[&[u8]],
+    settings: &RunSettings,
+    lanes: LaneWidth,
+) -> Vec<Result<Vec<f64>>> {
+    let mut out: Vec<Result<Vec<f64>>> = genomes
+        .iter()
+        .map(|_| Ok(Vec::with_capacity(figures.len())))
+        .collect();
+    if figures.iter().any(|f| f.needs_run()) {
+        fill_run_figures(space, figures, genomes, settings, lanes, &mut out);
+    } else {
+        for (slot, g) in out.iter_mut().zip(genomes) {
+            *slot = Ok(figures.iter().map(|f| static_value(space, *f, g)).collect());
+        }
+    }
+    out
+}
+
+/// The value of a simulation-free figure.
+fn static_value(space: &DesignSpace, figure: DesignFigure, genome: &[u8]) -> f64 {
+    match figure {
+        DesignFigure::TotalMass => space.mass_kg(genome),
+        DesignFigure::StackHeight => space.height_m(genome),
+        DesignFigure::Layers => genome.len() as f64,
+        DesignFigure::Run(_) | DesignFigure::MaxContactPressure => f64::NAN,
+    }
+}
+
+/// [`figures_many`] where some figure needs a run.
+fn fill_run_figures(
+    space: &DesignSpace,
+    figures: &[DesignFigure],
+    genomes: &[&[u8]],
+    settings: &RunSettings,
+    lanes: LaneWidth,
+    out: &mut [Result<Vec<f64>>],
+) {
+    use rayon::prelude::*;
+    let chains: Vec<Result<Chain>> = genomes.par_iter().map(|g| space.chain(g)).collect();
+    let built: Vec<Chain> = chains
+        .iter()
+        .filter_map(|c| c.as_ref().ok().cloned())
+        .collect();
+    let forces = figures.iter().any(|f| {
+        matches!(
+            f,
+            DesignFigure::MaxContactPressure
+                | DesignFigure::Run(StandardObjective::TransmittedForce)
+                | DesignFigure::Run(StandardObjective::TransmissionRatio)
+        )
+    });
+    let watch = if figures.contains(&DesignFigure::MaxContactPressure) {
+        PeakWatch::Every
+    } else {
+        PeakWatch::FiguresOfMerit
+    };
+    let peaks_only = RunSettings {
+        sample_interval_s: settings.duration_s,
+        ..*settings
+    };
+    let summaries: Vec<Option<Result<RunSummary>>> = if forces {
+        let jobs = Job::for_each_chain(&built, &space.excitation, &peaks_only);
+        simulate_many_watching(&jobs, lanes, watch)
+            .into_iter()
+            .map(Some)
+            .collect()
+    } else {
+        built.iter().map(|_| None).collect()
+    };
+    // Energy and impulse: recorders on the sample grid, one run per design and figure.
+    let recorded: Vec<(DesignFigure, Vec<Result<f64>>)> = figures
+        .iter()
+        .filter_map(|f| match f {
+            DesignFigure::Run(
+                o @ (StandardObjective::TransmittedEnergy | StandardObjective::TransmittedImpulse),
+            ) => Some((
+                *f,
+                o.evaluate_many(&built, &space.excitation, settings, lanes),
+            )),
+            _ => None,
+        })
+        .collect();
+    let mut k = 0;
+    for ((slot, chain), g) in out.iter_mut().zip(chains).zip(genomes) {
+        let chain = match chain {
+            Ok(c) => c,
+            Err(e) => {
+                *slot = Err(e);
+                continue;
+            }
+        };
+        let summary = summaries[k].clone();
+        *slot = design_values(space, figures, g, &chain, summary, &recorded, k, settings);
+        k += 1;
+    }
+}
+
+/// The figures of one built design (the `k`-th built) from its run summary and recorded values.
+#[allow(clippy::too_many_arguments)]
+fn design_values(
+    space: &DesignSpace,
+    figures: &[DesignFigure],
+    genome: &[u8],
+    chain: &Chain,
+    summary: Option<Result<RunSummary>>,
+    recorded: &[(DesignFigure, Vec<Result<f64>>)],
+    k: usize,
+    settings: &RunSettings,
+) -> Result<Vec<f64>> {
+    let summary = summary.transpose()?;
+    if let Some(s) = &summary {
+        if !s.wave_arrived {
+            return Err(Error::WaveNotArrived {
+                duration_s: settings.duration_s,
+                transmitted_n: s.transmitted_peak_force_n,
+                incident_n: s.incident_peak_force_n,
+            });
+        }
+    }
+    let mut values = Vec::with_capacity(figures.len());
+    for &f in figures {
+        let v = match f {
+            DesignFigure::Run(StandardObjective::TransmittedForce) => {
+                summary
+                    .as_ref()
+                    .expect("forces run")
+                    .transmitted_peak_force_n
+            }
+            DesignFigure::Run(StandardObjective::TransmissionRatio) => summary
+                .as_ref()
+                .expect("forces run")
+                .transmission_ratio
+                .unwrap_or(f64::NAN),
+            DesignFigure::MaxContactPressure => {
+                let s = summary.as_ref().expect("forces run");
+                contact_peak_pressures_pa(chain, s)?
+                    .into_iter()
+                    .fold(0.0, f64::max)
+            }
+            DesignFigure::Run(_) => {
+                let (_, list) = recorded
+                    .iter()
+                    .find(|(r, _)| *r == f)
+                    .expect("recorded figure");
+                list[k].clone()?
+            }
+            other => static_value(space, other, genome),
+        };
+        values.push(v);
+    }
+    Ok(values)
+}
