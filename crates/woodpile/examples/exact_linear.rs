@@ -50,6 +50,12 @@ fn main() -> woodpile::Result<()> {
     let cell = &fe.elements()[0].cell;
     let top = cell.resonators.iter().map(|r| r.angular_frequency()).fold(0.0, f64::max);
     println!("FE cell: {} resonators, primary {:.3e} kg, top {:.3} MHz", cell.resonators.len(), cell.primary_mass_kg, top / std::f64::consts::TAU / 1e6);
+    if std::env::var("PROFILE").is_ok() {
+        for _ in 0..300 {
+            run(&fe, Method::ExactModes { rtol: 1e-5, atol: 1e-11 })?;
+        }
+        return Ok(());
+    }
     let tight = Method::Rkn64 { rtol: 1e-12, atol: 1e-18 };
     let args: Vec<String> = std::env::args().collect();
     let rtols: Vec<f64> = args.iter().skip(1).filter_map(|a| a.parse().ok()).collect();

@@ -28,14 +28,14 @@
 //!   (φ-functions, exponential collocation).
 
 /// The Lobatto nodes of the force interpolant, σ = 0, (5 − √5)/10, (5 + √5)/10, 1.
-pub(crate) fn nodes() -> [f64; 4] {
+pub fn nodes() -> [f64; 4] {
     let r5 = 5f64.sqrt();
     [0.0, (5.0 - r5) / 10.0, (5.0 + r5) / 10.0, 1.0]
 }
 
 /// Monomial coefficients of the Lagrange basis on [`nodes`]: the cubic through values F_i at the
 /// nodes is Σ_n a_n σⁿ with a_n = Σ_i L\[n\]\[i\] F_i.
-pub(crate) fn lagrange() -> [[f64; 4]; 4] {
+pub fn lagrange() -> [[f64; 4]; 4] {
     let c = nodes();
     let mut l = [[0.0; 4]; 4];
     for i in 0..4 {
@@ -63,11 +63,16 @@ pub(crate) fn lagrange() -> [[f64; 4]; 4] {
 /// What the variation-of-constants formula needs of one mode at one point θ of a step, for
 /// z = hΩ: cos(θz), sin(θz)/z (θ at z = 0), z sin(θz), and the kernels S_n, C_n, n = 0..3.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub(crate) struct Kernel {
+pub struct Kernel {
+    /// cos(θz).
     pub cos: f64,
+    /// sin(θz)/z (θ at z = 0).
     pub sinc: f64,
+    /// z sin(θz).
     pub zsin: f64,
+    /// S_n(θ, z) = ∫₀^θ sin(z(θ−σ))/z σⁿ dσ, n = 0..3.
     pub s: [f64; 4],
+    /// C_n(θ, z) = ∫₀^θ cos(z(θ−σ)) σⁿ dσ, n = 0..3.
     pub c: [f64; 4],
 }
 
@@ -75,7 +80,7 @@ pub(crate) struct Kernel {
 /// ∫₀^θ e^{iz(θ−σ)} σⁿ dσ = n! θ^{n+1} φ_{n+1}(ix): C_n its real part, S_n its imaginary part
 /// over z. Series below |x| = 2, the recurrence φ_{k+1} = (φ_k − 1/k!)/(ix) from φ_0 = e^{ix}
 /// above (where it loses no digits).
-pub(crate) fn kernel(theta: f64, z: f64) -> Kernel {
+pub fn kernel(theta: f64, z: f64) -> Kernel {
     let x = theta * z;
     // re[k] = Re φ_k(ix), imx[k] = Im φ_k(ix)/x, k = 0..=4.
     let (mut re, mut imx) = ([0.0; 5], [0.0; 5]);

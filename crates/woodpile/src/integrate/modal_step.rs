@@ -381,11 +381,6 @@ impl ModalIntegrator {
         self.t += h;
     }
 
-    /// The chain's state y = [x | w | v | ẇ] now.
-    pub fn state_into(&self, y: &mut [f64]) {
-        self.modal.to_state(&self.c, &self.cdot, y);
-    }
-
     /// The primaries' positions and velocities now into y (the rest of y is left).
     pub fn primaries_into(&self, y: &mut [f64]) {
         self.modal.primaries_to_state(&self.c, &self.cdot, y);

@@ -101,18 +101,6 @@ impl ElementModes {
             c[k + 1] = (m0 + s) / self.modal_mass[k + 1];
         }
     }
-
-    /// The primary's value x0 = Σ c_k and the resonators' w_j = x0 + Σ_k (u_jk − 1) c_k from
-    /// the modal amplitudes `c`.
-    pub fn expand(&self, c: &[f64], w: &mut [f64]) -> f64 {
-        let r = self.res_mass.len();
-        let x0: f64 = c.iter().sum();
-        for (j, wj) in w.iter_mut().enumerate() {
-            let row = &self.extension[j * r..(j + 1) * r];
-            *wj = x0 + row.iter().zip(&c[1..]).map(|(e, c)| e * c).sum::<f64>();
-        }
-        x0
-    }
 }
 
 /// τ = Ω² − ω_s² of the mode above pole s (`above`: the gap to the next pole, None for the last).
@@ -248,18 +236,6 @@ impl ModalChain {
             let (ra, rb) = (p + res.start, p + res.end);
             e.project(y[i], &y[ra..rb], &mut c[modes.clone()]);
             e.project(y[nd + i], &y[nd + ra..nd + rb], &mut cdot[modes]);
-        }
-    }
-
-    /// The chain's state y = [x | w | v | ẇ] of the modal amplitudes and rates.
-    pub fn to_state(&self, c: &[f64], cdot: &[f64], y: &mut [f64]) {
-        let p = self.ranges.len();
-        let nd = y.len() / 2;
-        for (i, e) in self.elements.iter().enumerate() {
-            let (modes, res) = (self.ranges[i].clone(), self.res_ranges[i].clone());
-            let (ra, rb) = (p + res.start, p + res.end);
-            y[i] = e.expand(&c[modes.clone()], &mut y[ra..rb]);
-            y[nd + i] = e.expand(&cdot[modes], &mut y[nd + ra..nd + rb]);
         }
     }
 
