@@ -4,7 +4,7 @@
 //! Run: `cargo run --release -p woodpile --example exact_linear`
 
 use woodpile::{
-    simulate, CellModel, ChainBuilder, Chain, Element, Excitation, Material, Method, Rod,
+    simulate, CellModel, Chain, ChainBuilder, Element, Excitation, Material, Method, Rod,
     RunSettings, RunSummary, Striker, UnitCell,
 };
 
@@ -27,7 +27,12 @@ fn run(chain: &Chain, method: Method) -> woodpile::Result<RunSummary> {
         method,
         sample_interval_s: if sparse { 5e-4 } else { 1e-6 },
     };
-    simulate(chain, &Excitation::Impact(Striker::paper()), &settings, &mut ())
+    simulate(
+        chain,
+        &Excitation::Impact(Striker::paper()),
+        &settings,
+        &mut (),
+    )
 }
 
 fn worst(a: &RunSummary, b: &RunSummary) -> f64 {
@@ -39,7 +44,9 @@ fn worst(a: &RunSummary, b: &RunSummary) -> f64 {
 }
 
 fn median_run(chain: &Chain, method: Method) -> woodpile::Result<RunSummary> {
-    let mut runs: Vec<RunSummary> = (0..7).map(|_| run(chain, method)).collect::<woodpile::Result<_>>()?;
+    let mut runs: Vec<RunSummary> = (0..7)
+        .map(|_| run(chain, method))
+        .collect::<woodpile::Result<_>>()?;
     runs.sort_by(|a, b| a.wall_time_s.total_cmp(&b.wall_time_s));
     Ok(runs.swap_remove(3))
 }
@@ -48,24 +55,59 @@ fn main() -> woodpile::Result<()> {
     let table1 = ChainBuilder::table1_rods(&[80; 5], CellModel::Resonant)?.build()?;
     let fe = fe_chain(16)?;
     let cell = &fe.elements()[0].cell;
-    let top = cell.resonators.iter().map(|r| r.angular_frequency()).fold(0.0, f64::max);
-    println!("FE cell: {} resonators, primary {:.3e} kg, top {:.3} MHz", cell.resonators.len(), cell.primary_mass_kg, top / std::f64::consts::TAU / 1e6);
+    let top = cell
+        .resonators
+        .iter()
+        .map(|r| r.angular_frequency())
+        .fold(0.0, f64::max);
+    println!(
+        "FE cell: {} resonators, primary {:.3e} kg, top {:.3} MHz",
+        cell.resonators.len(),
+        cell.primary_mass_kg,
+        top / std::f64::consts::TAU / 1e6
+    );
     if std::env::var("PROFILE").is_ok() {
         for _ in 0..300 {
-            run(&fe, Method::ExactModes { rtol: 1e-5, atol: 1e-11 })?;
+            run(
+                &fe,
+                Method::ExactModes {
+                    rtol: 1e-5,
+                    atol: 1e-11,
+                },
+            )?;
         }
         return Ok(());
     }
-    let tight = Method::Rkn64 { rtol: 1e-12, atol: 1e-18 };
+    let tight = Method::Rkn64 {
+        rtol: 1e-12,
+        atol: 1e-18,
+    };
     let args: Vec<String> = std::env::args().collect();
     let rtols: Vec<f64> = args.iter().skip(1).filter_map(|a| a.parse().ok()).collect();
     for (name, chain) in [("table1", &table1), ("fe16", &fe)] {
         let reference = run(chain, tight)?;
-        let exact_ref = run(chain, Method::ExactModes { rtol: 1e-12, atol: 1e-18 })?;
+        let exact_ref = run(
+            chain,
+            Method::ExactModes {
+                rtol: 1e-12,
+                atol: 1e-18,
+            },
+        )?;
         println!("{name}: exact-modes at rtol 1e-12 against rkn64 at 1e-12: worst peak {:.2e} ({} steps)", worst(&exact_ref, &reference), exact_ref.stats.steps);
-        let mut methods = vec![("peak_tolerance 1e-5".to_string(), Method::PeakTolerance { peak_tolerance: 1e-5 })];
+        let mut methods = vec![(
+            "peak_tolerance 1e-5".to_string(),
+            Method::PeakTolerance {
+                peak_tolerance: 1e-5,
+            },
+        )];
         for &r in &rtols {
-            methods.push((format!("exact-modes rtol {r:e}"), Method::ExactModes { rtol: r, atol: r * 1e-6 }));
+            methods.push((
+                format!("exact-modes rtol {r:e}"),
+                Method::ExactModes {
+                    rtol: r,
+                    atol: r * 1e-6,
+                },
+            ));
         }
         for (label, method) in methods {
             let s = median_run(chain, method)?;

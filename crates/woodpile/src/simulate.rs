@@ -707,7 +707,14 @@ pub(crate) fn simulate_watching(
     let method = resolve_method(&ode, settings.method);
     if let Method::ExactModes { .. } = method {
         return modal::simulate_modal(
-            ode, method, excitation, settings, recorder, peak_watch, stop_above_n, started,
+            ode,
+            method,
+            excitation,
+            settings,
+            recorder,
+            peak_watch,
+            stop_above_n,
+            started,
         );
     }
     let dim = ode.dimension();

@@ -115,19 +115,17 @@ pub fn kernel(theta: f64, z: f64) -> Kernel {
         }
     } else {
         let (s, c) = x.sin_cos();
+        let inv_x = 1.0 / x;
         let (mut r, mut i) = (c, s);
         re[0] = r;
-        imx[0] = i / x;
-        let mut inv_fact = 1.0;
-        for k in 0..4 {
-            if k > 0 {
-                inv_fact /= k as f64;
-            }
-            let (r1, i1) = (i / x, (inv_fact - r) / x);
+        imx[0] = i * inv_x;
+        const INV_FACT: [f64; 4] = [1.0, 1.0, 0.5, 1.0 / 6.0];
+        for (k, inv_fact) in INV_FACT.iter().enumerate() {
+            let (r1, i1) = (i * inv_x, (inv_fact - r) * inv_x);
             r = r1;
             i = i1;
             re[k + 1] = r;
-            imx[k + 1] = i / x;
+            imx[k + 1] = i * inv_x;
         }
     }
     let mut kern = Kernel {

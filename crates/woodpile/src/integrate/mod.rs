@@ -416,7 +416,8 @@ impl Method {
             Method::PeakTolerance { peak_tolerance }
                 if second_order && stiffest_mode_rad_s > EXACT_MODES_ABOVE_RAD_S =>
             {
-                let rtol = (peak_tolerance / (PEAK_SAFETY_FACTOR * EXACT_MODES_PEAK_ERROR_PREFACTOR))
+                let rtol = (peak_tolerance
+                    / (PEAK_SAFETY_FACTOR * EXACT_MODES_PEAK_ERROR_PREFACTOR))
                     .max(1e-13);
                 Method::ExactModes {
                     rtol,

@@ -175,7 +175,11 @@ impl ModalChain {
         let mut res_ranges = Vec::with_capacity(p);
         let mut start = 0;
         for i in 0..p {
-            let end = start + eq.res_owner[start..].iter().take_while(|&&o| o == i).count();
+            let end = start
+                + eq.res_owner[start..]
+                    .iter()
+                    .take_while(|&&o| o == i)
+                    .count();
             let cell: Vec<(f64, f64)> = (start..end)
                 .map(|j| (ode.res_mass_kg[j], ode.res_stiffness[j]))
                 .collect();

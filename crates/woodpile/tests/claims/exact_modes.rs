@@ -33,7 +33,13 @@ fn run(chain: &Chain, method: Method, duration_s: f64) -> RunSummary {
         method,
         ..RunSettings::paper_impact()
     };
-    simulate(chain, &Excitation::Impact(Striker::paper()), &settings, &mut ()).unwrap()
+    simulate(
+        chain,
+        &Excitation::Impact(Striker::paper()),
+        &settings,
+        &mut (),
+    )
+    .unwrap()
 }
 
 /// (1) The free flow: the step's matrix [[cos z, sin z / z], [−z sin z, cos z]] applied N times
@@ -62,7 +68,10 @@ fn free_modes_rotate_exactly() {
         }
         let phase = (n as f64 * h * omega) % std::f64::consts::TAU;
         let err = ((c - phase.cos()).powi(2) + (w + phase.sin()).powi(2)).sqrt();
-        assert!(err < 1e-8, "mode at {f:.0} Hz: state error {err:.2e} after 10⁶ periods");
+        assert!(
+            err < 1e-8,
+            "mode at {f:.0} Hz: state error {err:.2e} after 10⁶ periods"
+        );
     }
 }
 
@@ -70,7 +79,9 @@ fn free_modes_rotate_exactly() {
 fn forced_step(c: f64, cd: f64, t: f64, h: f64, omega: f64, f: &dyn Fn(f64) -> f64) -> (f64, f64) {
     let (nodes, l) = (nodes(), lagrange());
     let values: Vec<f64> = nodes.iter().map(|s| f(t + s * h)).collect();
-    let a: Vec<f64> = (0..4).map(|n| (0..4).map(|i| l[n][i] * values[i]).sum()).collect();
+    let a: Vec<f64> = (0..4)
+        .map(|n| (0..4).map(|i| l[n][i] * values[i]).sum())
+        .collect();
     let k = kernel(1.0, h * omega);
     let fs: f64 = (0..4).map(|n| k.s[n] * a[n]).sum();
     let fc: f64 = (0..4).map(|n| k.c[n] * a[n]).sum();
@@ -109,7 +120,10 @@ fn sixth_order_on_a_forced_oscillator() {
     }
     for (&n, &e_slow) in [8, 16, 32].iter().zip(&slow) {
         let e_fast = error(300.0, n);
-        assert!(e_fast < e_slow, "fast mode at n = {n}: {e_fast:.2e} ≥ slow {e_slow:.2e}");
+        assert!(
+            e_fast < e_slow,
+            "fast mode at n = {n}: {e_fast:.2e} ≥ slow {e_slow:.2e}"
+        );
     }
 }
 
