@@ -1,5 +1,5 @@
 //! Exponential Lobatto collocation for x'' = −Ω² x + g(x) in modal form
-//! ([`crate::ode::ModalChain`], docs/physics.md §8 "Exact linear vibrations"): the linear
+//! (the chain's cells in their free–free modes, docs/physics.md §8 "Exact linear vibrations"): the linear
 //! vibrations are integrated exactly, only the contact forces are approximated.
 //!
 //! Over a step [t₀, t₀ + h] the net contact force on every primary is replaced by its cubic
@@ -192,8 +192,8 @@ impl StepWeights {
                 let k = &kernels[frequency_index[m]];
                 let inv_mu = inv_modal_mass[m];
                 for (row, kj) in g.iter_mut().zip(k) {
-                    for n in 0..4 {
-                        row[n] += kj.s[n] * inv_mu;
+                    for (r, s) in row.iter_mut().zip(&kj.s) {
+                        *r += s * inv_mu;
                     }
                 }
                 let end = &k[2];

@@ -85,7 +85,7 @@ impl ModalIntegrator {
         let modal = ModalChain::new(ode)?;
         let (p, n) = (ode.eq.p, modal.n_modes());
         let (mut c, mut cdot) = (vec![0.0; n], vec![0.0; n]);
-        modal.from_state(y0, &mut c, &mut cdot);
+        modal.project_state(y0, &mut c, &mut cdot);
         let mut me = ModalIntegrator {
             beta: ode.eq.beta.clone(),
             rtol,
@@ -318,12 +318,13 @@ impl ModalIntegrator {
                 for n in 0..4 {
                     sc.coef[i][n] = (0..4).map(|j| self.lagrange[n][j] * f[j]).sum();
                 }
-                let g = &weights.response[i];
-                for j in 0..3 {
-                    let a = &sc.coef[i];
-                    sc.node_x[i][j] = sc.free[i][j]
-                        + h * h
-                            * (g[j][0] * a[0] + g[j][1] * a[1] + g[j][2] * a[2] + g[j][3] * a[3]);
+                let a = &sc.coef[i];
+                for ((x, free), g) in sc.node_x[i]
+                    .iter_mut()
+                    .zip(&sc.free[i])
+                    .zip(&weights.response[i])
+                {
+                    *x = free + h * h * (g[0] * a[0] + g[1] * a[1] + g[2] * a[2] + g[3] * a[3]);
                 }
             }
             let (mut change, mut scale) = (0.0_f64, 0.0_f64);

@@ -232,7 +232,7 @@ impl ModalChain {
     }
 
     /// Modal amplitudes and rates (c, ċ) of the chain's state y = [x | w | v | ẇ].
-    pub fn from_state(&self, y: &[f64], c: &mut [f64], cdot: &mut [f64]) {
+    pub fn project_state(&self, y: &[f64], c: &mut [f64], cdot: &mut [f64]) {
         let p = self.ranges.len();
         let nd = y.len() / 2;
         for (i, e) in self.elements.iter().enumerate() {
