@@ -428,6 +428,26 @@ impl ChainOde {
         0.5 * potential(p)
     }
 
+    /// The force cache (each slot's force and overlap) at the primaries' positions of `y` alone,
+    /// for the paper's model under an impact (nothing above the striker): what
+    /// [`OdeSystem::rhs`] leaves there, without the accelerations (the exact modal method's
+    /// state holds only the primaries, docs/physics.md §8).
+    pub(crate) fn set_contacts_from_primaries(&mut self, y: &[f64]) {
+        debug_assert!(self.lab.is_none() && self.has_striker());
+        let p = self.eq.p;
+        self.force_n[0] = 0.0;
+        self.overlap_m[0] = 0.0;
+        for slot in 1..=p {
+            let d = if slot < p {
+                y[slot - 1] - y[slot]
+            } else {
+                y[p - 1]
+            };
+            self.overlap_m[slot] = d;
+            self.force_n[slot] = ContactLaw::elastic_force(self.eq.beta[slot], d);
+        }
+    }
+
     /// Work done by the external forces so far \[J\]: the load (0 for an impact without lab
     /// physics), an actuator, a preload and gravity.
     pub fn input_work_j(&self, y: &[f64]) -> f64 {
