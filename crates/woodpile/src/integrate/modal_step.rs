@@ -17,8 +17,9 @@ const CONTROL_ORDER: f64 = 5.0;
 const LADDER_PER_OCTAVE: f64 = 8.0;
 const LADDER_BASE_S: f64 = 1e-12;
 /// The fixed-point iteration of the node forces stops when no node force changes by more than
-/// this fraction of the largest contact force (or after [`MAX_ITERATIONS`], a rejection).
-const FIXED_POINT_TOLERANCE: f64 = 1e-13;
+/// this fraction of rtol times the largest contact force (at least 1e-13 of it), or after
+/// [`MAX_ITERATIONS`] (a rejection): its error then stays a thousandth of the step's.
+const FIXED_POINT_TOLERANCE: f64 = 1e-3;
 const MAX_ITERATIONS: usize = 30;
 /// Velocity units of the error norm, as [`ChainOde::tolerance_units`]: 1/τ with τ = 1 µs.
 const VELOCITY_UNIT: f64 = 1e6;
@@ -351,7 +352,7 @@ impl ModalIntegrator {
                 sc.slot_overlap = overlap;
             }
             self.stats.rhs_evaluations += 3;
-            if change <= FIXED_POINT_TOLERANCE * scale || scale == 0.0 {
+            if change <= (FIXED_POINT_TOLERANCE * self.rtol).max(1e-13) * scale || scale == 0.0 {
                 for i in 0..p {
                     let f = &sc.node_force[i];
                     for n in 0..4 {
