@@ -147,14 +147,20 @@ pub fn kernel(theta: f64, z: f64) -> Kernel {
     kern
 }
 
-/// The weights of one step size h for a chain: per distinct frequency, the kernels at the three
-/// nodes after the first; per primary, its response to the force polynomial summed over its
-/// modes.
+/// The weights of one step size h for a chain, per mode (contiguous, so that the passes over the
+/// modes are plain vector loops): the free motion at the nodes, the end-of-step update, and per
+/// primary its response to the force polynomial summed over its modes.
 #[derive(Debug, Clone)]
 pub(crate) struct StepWeights {
     pub h: f64,
-    /// Per distinct frequency: [`Kernel`] at σ = c₁, c₂, 1.
-    pub kernels: Vec<[Kernel; 3]>,
+    /// Per node σ = c₁, c₂, 1 and mode: cos(σz) and h sin(σz)/z.
+    pub cos: [Vec<f64>; 3],
+    pub hsinc: [Vec<f64>; 3],
+    /// Per mode: −(z/h) sin z, the velocity's part of the position.
+    pub vel_of_pos: Vec<f64>,
+    /// Per n = 0..3 and mode: h² S_n(1, z)/μ and h C_n(1, z)/μ, the end state's response to σⁿ.
+    pub pos_force: [Vec<f64>; 4],
+    pub vel_force: [Vec<f64>; 4],
     /// Per primary: Σ_k S_n(c_j, z_k)/μ_k, node j = 1..3 (rows), n = 0..3.
     pub response: Vec<[[f64; 4]; 3]>,
     /// Per primary: the position and velocity error weights, Σ_k W(z_k)/μ_k with W the kernels
@@ -183,6 +189,18 @@ impl StepWeights {
                 [kernel(c[1], z), kernel(c[2], z), kernel(1.0, z)]
             })
             .collect();
+        let per_mode = |f: &dyn Fn(&[Kernel; 3], f64) -> f64| -> Vec<f64> {
+            frequency_index
+                .iter()
+                .zip(inv_modal_mass)
+                .map(|(&u, &inv_mu)| f(&kernels[u], inv_mu))
+                .collect()
+        };
+        let cos = [0, 1, 2].map(|j| per_mode(&|k, _| k[j].cos));
+        let hsinc = [0, 1, 2].map(|j| per_mode(&|k, _| h * k[j].sinc));
+        let vel_of_pos = per_mode(&|k, _| -k[2].zsin / h);
+        let pos_force = [0, 1, 2, 3].map(|n| per_mode(&|k, inv_mu| h * h * k[2].s[n] * inv_mu));
+        let vel_force = [0, 1, 2, 3].map(|n| per_mode(&|k, inv_mu| h * k[2].c[n] * inv_mu));
         let mut response = Vec::with_capacity(ranges.len());
         let mut error = Vec::with_capacity(ranges.len());
         for range in ranges {
@@ -205,36 +223,70 @@ impl StepWeights {
         }
         StepWeights {
             h,
-            kernels,
+            cos,
+            hsinc,
+            vel_of_pos,
+            pos_force,
+            vel_force,
             response,
             error,
         }
     }
-}
 
-/// Advances modal amplitudes and rates (c, ċ) over θh of a step of size h with kernels `kern`
-/// (per distinct frequency, at θ) under the per-primary force polynomials `coef` (monomials in
-/// σ, [N]) into (c1, ċ1).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn advance_modes(
-    h: f64,
-    kern: &[Kernel],
-    frequency_index: &[usize],
-    inv_modal_mass: &[f64],
-    ranges: &[std::ops::Range<usize>],
-    coef: &[[f64; 4]],
-    (c, cdot): (&[f64], &[f64]),
-    (c1, cdot1): (&mut [f64], &mut [f64]),
-) {
-    for (range, a) in ranges.iter().zip(coef) {
-        for m in range.clone() {
-            let k = &kern[frequency_index[m]];
-            let inv_mu = inv_modal_mass[m];
-            let fs = k.s[0] * a[0] + k.s[1] * a[1] + k.s[2] * a[2] + k.s[3] * a[3];
-            let fc = k.c[0] * a[0] + k.c[1] * a[1] + k.c[2] * a[2] + k.c[3] * a[3];
-            let (q, qd) = (c[m], cdot[m]);
-            c1[m] = k.cos * q + h * k.sinc * qd + h * h * inv_mu * fs;
-            cdot1[m] = -(k.zsin / h) * q + k.cos * qd + h * inv_mu * fc;
+    /// Σ over the modes `range` of cos(σ_j z) c + h sin(σ_j z)/z ċ: a primary's free position at
+    /// node j (four partial sums, so that the loop runs in vectors).
+    pub fn free_position(
+        &self,
+        j: usize,
+        range: std::ops::Range<usize>,
+        c: &[f64],
+        cdot: &[f64],
+    ) -> f64 {
+        let (cos, hsinc) = (&self.cos[j][range.clone()], &self.hsinc[j][range.clone()]);
+        let (c, cdot) = (&c[range.clone()], &cdot[range]);
+        let mut acc = [0.0; 4];
+        let mut chunks = cos
+            .chunks_exact(4)
+            .zip(hsinc.chunks_exact(4))
+            .zip(c.chunks_exact(4).zip(cdot.chunks_exact(4)));
+        for ((a, b), (x, v)) in chunks.by_ref() {
+            for l in 0..4 {
+                acc[l] += a[l] * x[l] + b[l] * v[l];
+            }
+        }
+        let done = cos.len() / 4 * 4;
+        let tail: f64 = (done..cos.len())
+            .map(|m| cos[m] * c[m] + hsinc[m] * cdot[m])
+            .sum();
+        (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+    }
+
+    /// Advances the modes `range` of one primary over the step under its force polynomial `a`
+    /// (monomials in σ, \[N\]): (c, ċ) into (c1, ċ1).
+    pub fn advance(
+        &self,
+        range: std::ops::Range<usize>,
+        a: &[f64; 4],
+        (c, cdot): (&[f64], &[f64]),
+        (c1, cdot1): (&mut [f64], &mut [f64]),
+    ) {
+        let r = range;
+        let (cos, hsinc, vp) = (
+            &self.cos[2][r.clone()],
+            &self.hsinc[2][r.clone()],
+            &self.vel_of_pos[r.clone()],
+        );
+        let [p0, p1, p2, p3] = [0, 1, 2, 3].map(|n| &self.pos_force[n][r.clone()]);
+        let [v0, v1, v2, v3] = [0, 1, 2, 3].map(|n| &self.vel_force[n][r.clone()]);
+        let (c, cdot) = (&c[r.clone()], &cdot[r.clone()]);
+        let (c1, cdot1) = (&mut c1[r.clone()], &mut cdot1[r]);
+        for m in 0..c.len() {
+            c1[m] = cos[m] * c[m]
+                + hsinc[m] * cdot[m]
+                + (p0[m] * a[0] + p1[m] * a[1] + p2[m] * a[2] + p3[m] * a[3]);
+            cdot1[m] = vp[m] * c[m]
+                + cos[m] * cdot[m]
+                + (v0[m] * a[0] + v1[m] * a[1] + v2[m] * a[2] + v3[m] * a[3]);
         }
     }
 }

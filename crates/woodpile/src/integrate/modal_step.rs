@@ -3,7 +3,7 @@
 //! on the primaries, steps from a geometric ladder (so that the weights of a step size are
 //! computed once), and steps retaken to end where a contact opens or closes.
 
-use super::exponential::{advance_modes, lagrange, nodes, Kernel, StepWeights};
+use super::exponential::{lagrange, nodes, StepWeights};
 use super::{IntegratorStats, StepControl, Verdict, EVENT_LANDING_FRACTION, NYSTROM_LANDING_END};
 use crate::error::{Error, Result};
 use crate::model::ContactLaw;
@@ -67,7 +67,6 @@ struct Scratch {
     /// Per slot: overlap at nodes 0..3.
     node_overlap: Vec<[f64; 4]>,
     coef: Vec<[f64; 4]>,
-    kernels: Vec<Kernel>,
     slot_force: Vec<f64>,
     slot_overlap: Vec<f64>,
     x: Vec<f64>,
@@ -112,7 +111,6 @@ impl ModalIntegrator {
                 node_x: vec![[0.0; 3]; p],
                 node_overlap: vec![[0.0; 4]; p + 1],
                 coef: vec![[0.0; 4]; p],
-                kernels: vec![Kernel::default(); modal.frequencies.len()],
                 slot_force: vec![0.0; p + 1],
                 slot_overlap: vec![0.0; p + 1],
                 x: vec![0.0; p],
@@ -244,14 +242,8 @@ impl ModalIntegrator {
         self.weights(h, rung);
         let (m, weights) = (&self.modal, self.ladder_or_off(rung));
         for (i, range) in m.ranges.iter().enumerate() {
-            let mut free = [0.0; 3];
-            for k in range.clone() {
-                let kern = &weights.kernels[m.frequency_index[k]];
-                for j in 0..3 {
-                    free[j] += kern[j].cos * self.c[k] + h * kern[j].sinc * self.cdot[k];
-                }
-            }
-            sc.free[i] = free;
+            sc.free[i] =
+                [0, 1, 2].map(|j| weights.free_position(j, range.clone(), &self.c, &self.cdot));
             let f = &mut sc.node_force[i];
             f[0] = self.force_net[i];
             for j in 1..4 {
@@ -291,17 +283,7 @@ impl ModalIntegrator {
     }
 
     fn ladder_or_off(&self, rung: Option<i64>) -> &StepWeights {
-        match rung {
-            Some(k) => {
-                &self
-                    .ladder
-                    .iter()
-                    .find(|(r, _)| *r == k)
-                    .expect("computed by weights()")
-                    .1
-            }
-            None => self.off_ladder.as_ref().expect("computed by weights()"),
-        }
+        pick(&self.ladder, &self.off_ladder, rung)
     }
 
     /// The fixed-point iteration of the collocation conditions: node forces → cubic → node
@@ -370,21 +352,15 @@ impl ModalIntegrator {
         std::mem::swap(&mut self.c, &mut self.c_prev);
         std::mem::swap(&mut self.cdot, &mut self.cdot_prev);
         let sc = std::mem::replace(&mut self.scratch, Scratch::empty());
-        let mut kern = sc.kernels;
-        for (k, node) in kern.iter_mut().zip(&self.ladder_or_off(rung).kernels) {
-            *k = node[2];
+        let weights = pick(&self.ladder, &self.off_ladder, rung);
+        for (range, a) in self.modal.ranges.iter().zip(&sc.coef) {
+            weights.advance(
+                range.clone(),
+                a,
+                (&self.c_prev, &self.cdot_prev),
+                (&mut self.c, &mut self.cdot),
+            );
         }
-        let m = &self.modal;
-        advance_modes(
-            h,
-            &kern,
-            &m.frequency_index,
-            &m.inv_modal_mass,
-            &m.ranges,
-            &sc.coef,
-            (&self.c_prev, &self.cdot_prev),
-            (&mut self.c, &mut self.cdot),
-        );
         self.coef.copy_from_slice(&sc.coef);
         for (i, f) in sc.node_force.iter().enumerate() {
             self.force_net[i] = f[3];
@@ -392,10 +368,7 @@ impl ModalIntegrator {
         for (s, d) in sc.node_overlap.iter().enumerate() {
             self.overlap[s] = d[3];
         }
-        self.scratch = Scratch {
-            kernels: kern,
-            ..sc
-        };
+        self.scratch = sc;
         self.h_last = h;
         self.t_prev = self.t;
         self.t += h;
@@ -482,11 +455,22 @@ impl Scratch {
             node_x: Vec::new(),
             node_overlap: Vec::new(),
             coef: Vec::new(),
-            kernels: Vec::new(),
             slot_force: Vec::new(),
             slot_overlap: Vec::new(),
             x: Vec::new(),
         }
+    }
+}
+
+/// The weights of a rung of the ladder, or the off-ladder ones (computed by `weights()`).
+fn pick<'a>(
+    ladder: &'a [(i64, StepWeights)],
+    off_ladder: &'a Option<StepWeights>,
+    rung: Option<i64>,
+) -> &'a StepWeights {
+    match rung {
+        Some(k) => &ladder.iter().find(|(r, _)| *r == k).expect("computed").1,
+        None => off_ladder.as_ref().expect("computed"),
     }
 }
 
