@@ -422,14 +422,19 @@ impl ModalIntegrator {
         let m = &self.modal;
         for (i, range) in m.ranges.iter().enumerate() {
             let f = self.force_net[i];
+            let r = range.clone();
+            let (c, cd) = (&self.c[r.clone()], &self.cdot[r.clone()]);
+            let (w2, mu, inv_mu) = (
+                &m.omega2[r.clone()],
+                &m.modal_mass[r.clone()],
+                &m.inv_modal_mass[r],
+            );
             let mut e = PrimaryEnd::default();
-            for k in range.clone() {
-                let w = m.frequencies[m.frequency_index[k]];
-                let (c, cd, inv_mu) = (self.c[k], self.cdot[k], m.inv_modal_mass[k]);
-                e.x += c;
-                e.v += cd;
-                e.a += f * inv_mu - w * w * c;
-                e.energy += 0.5 * (cd * cd + w * w * c * c) / inv_mu;
+            for k in 0..c.len() {
+                e.x += c[k];
+                e.v += cd[k];
+                e.a += f * inv_mu[k] - w2[k] * c[k];
+                e.energy += 0.5 * mu[k] * (cd[k] * cd[k] + w2[k] * c[k] * c[k]);
             }
             e.power = f * e.v;
             out[i] = e;

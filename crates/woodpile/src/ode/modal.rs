@@ -165,6 +165,9 @@ pub(crate) struct ModalChain {
     pub frequencies: Vec<f64>,
     /// Per mode: 1/μ_k \[1/kg\].
     pub inv_modal_mass: Vec<f64>,
+    /// Per mode: μ_k \[kg\] and Ω_k² \[1/s²\].
+    pub modal_mass: Vec<f64>,
+    pub omega2: Vec<f64>,
 }
 
 impl ModalChain {
@@ -216,7 +219,14 @@ impl ModalChain {
                 inv_modal_mass.push(1.0 / mu);
             }
         }
+        let modal_mass = inv_modal_mass.iter().map(|m| 1.0 / m).collect();
+        let omega2 = frequency_index
+            .iter()
+            .map(|&u| frequencies[u] * frequencies[u])
+            .collect();
         Ok(ModalChain {
+            modal_mass,
+            omega2,
             elements,
             ranges,
             res_ranges,
