@@ -6,7 +6,8 @@
 //! small and no worse where hΩ is large; (3) on five 80 mm quartz rods as finite-element beams
 //! under the default impact, a stated peak tolerance of 1e-5 chooses it and every contact peak
 //! lies within 1e-5 of a converged RKN 6(4) run in at most 1/8 of RKN 6(4)'s steps (5,008);
-//! (4) its energy error stays bounded over a run 40 times longer.
+//! (4) its energy error stays bounded over a run 40 times longer; (5) the lanes, which run it on
+//! the scalar path, give each run `simulate`'s bits.
 
 use woodpile::integrate::exponential::{kernel, lagrange, nodes};
 use woodpile::{
@@ -186,4 +187,36 @@ fn energy_error_bounded_over_a_long_run() {
         "energy error {:.2e}",
         s.energy.max_relative_error
     );
+}
+
+/// (5) The lanes: a design study mixing Table 1 chains (RKN 6(4) in lanes) and finite-element
+/// chains (the exact modal method, run on the scalar path) gives every run bit for bit what
+/// `simulate` gives it (peaks, their times, the energy balance and the step counts), at the
+/// default settings of a study (one sample at the end).
+#[test]
+fn lanes_give_simulate_s_bits() {
+    let fe = fe_rods(2);
+    let table1 = ChainBuilder::table1_rods(&[80, 40], CellModel::Resonant)
+        .unwrap()
+        .build()
+        .unwrap();
+    let chains = vec![fe.clone(), table1.clone(), fe, table1];
+    let settings = RunSettings {
+        duration_s: 2e-4,
+        method: Method::PeakTolerance {
+            peak_tolerance: 1e-5,
+        },
+        sample_interval_s: 2e-4,
+    };
+    let impact = Excitation::Impact(Striker::paper());
+    let jobs = woodpile::Job::for_each_chain(&chains, &impact, &settings);
+    let many = woodpile::simulate_many(&jobs, woodpile::LaneWidth::Four);
+    for (chain, got) in chains.iter().zip(many) {
+        let got = got.unwrap();
+        let alone = simulate(chain, &impact, &settings, &mut ()).unwrap();
+        assert_eq!(got.contact_peak_forces_n, alone.contact_peak_forces_n);
+        assert_eq!(got.contact_peak_times_s, alone.contact_peak_times_s);
+        assert_eq!(got.energy, alone.energy);
+        assert_eq!(got.stats, alone.stats);
+    }
 }
