@@ -73,8 +73,9 @@ pub struct EnergyJson {
 /// Integrator work in `summary.json` / `run.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct IntegratorJson {
-    /// `rk4`, `dopri5`, `dopri5-events` (`run.peak_tolerance`, blast or lab physics) or `rkn64`
-    /// (`run.peak_tolerance`, an impact of the paper's physics).
+    /// `rk4`, `dopri5`, `dopri5-events` (`run.peak_tolerance`, blast or lab physics), `rkn64`
+    /// (`run.peak_tolerance`, an impact of the paper's physics) or `exact-modes`
+    /// (`run.peak_tolerance`, such an impact with finite-element rods: docs/physics.md §8).
     pub method: String,
     /// Accepted steps.
     pub steps: u64,
@@ -147,6 +148,7 @@ fn method_name(r: &Resolved) -> &'static str {
         Method::Dopri5 { .. } => "dopri5",
         Method::Dopri5Events { .. } => "dopri5-events",
         Method::Rkn64 { .. } => "rkn64",
+        Method::ExactModes { .. } => "exact-modes",
         Method::PeakTolerance { .. } => "peak-tolerance",
     }
 }

@@ -145,7 +145,8 @@ fn rtol_of(method: &Method) -> f64 {
     match method {
         Method::Dopri5 { rtol, .. }
         | Method::Dopri5Events { rtol, .. }
-        | Method::Rkn64 { rtol, .. } => *rtol,
+        | Method::Rkn64 { rtol, .. }
+        | Method::ExactModes { rtol, .. } => *rtol,
         Method::Rk4 { .. } | Method::PeakTolerance { .. } => f64::NAN,
     }
 }

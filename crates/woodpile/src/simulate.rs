@@ -9,6 +9,8 @@ use crate::model::Chain;
 use crate::ode::ChainOde;
 use crate::record::{Layout, Recorder, Sample};
 
+mod modal;
+
 /// How long, how and how often to sample.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunSettings {
@@ -26,7 +28,7 @@ impl RunSettings {
     /// DOPRI5).
     pub fn method_for(&self, chain: &Chain, excitation: &Excitation) -> Result<Method> {
         let ode = ChainOde::new(chain, excitation)?;
-        Ok(self.method.resolve(ode.second_order().is_some()))
+        Ok(resolve_method(&ode, self.method))
     }
 
     /// Checks these settings ([`RunSettings::validate`]) and the excitation against them (a drive
@@ -120,6 +122,7 @@ impl RunSettings {
             Method::Dopri5 { .. }
             | Method::Dopri5Events { .. }
             | Method::Rkn64 { .. }
+            | Method::ExactModes { .. }
             | Method::PeakTolerance { .. } => None,
         }
     }
@@ -489,7 +492,7 @@ impl<'a> Watch<'a> {
         };
         ode.contact_force_rates(y0, &mut peaks.rate);
         peaks.start(ode.contact_forces_n());
-        let initial_energy = observe(ode, 0.0, y0, true, &mut obs, recorder);
+        let initial_energy = observe(ode, (0.0, y0), true, None, &mut obs, recorder);
         let reference_energy = if ode.has_striker() || ode.has_lab_physics() {
             initial_energy.total
         } else {
@@ -585,7 +588,21 @@ impl<'a> Watch<'a> {
         cached: bool,
         recorder: &mut dyn Recorder,
     ) -> Result<()> {
-        let last = observe(ode, ts, y, cached, &mut self.obs, recorder);
+        self.record_with(ode, ts, y, cached, None, recorder)
+    }
+
+    /// [`Watch::record`] with each primary's internal energy given (`internal`, the exact modal
+    /// method's: its state holds only the primaries).
+    pub(crate) fn record_with(
+        &mut self,
+        ode: &mut ChainOde,
+        ts: f64,
+        y: &[f64],
+        cached: bool,
+        internal: Option<&[f64]>,
+        recorder: &mut dyn Recorder,
+    ) -> Result<()> {
+        let last = observe(ode, (ts, y), cached, internal, &mut self.obs, recorder);
         if !last.total.is_finite() {
             return Err(Error::NonFiniteState {
                 time_s: ts,
@@ -699,6 +716,19 @@ pub(crate) fn simulate_watching(
     let started = std::time::Instant::now();
     let mut ode = ChainOde::new(chain, excitation)?;
     check_method_fits(&ode, settings.method)?;
+    let method = resolve_method(&ode, settings.method);
+    if let Method::ExactModes { .. } = method {
+        return modal::simulate_modal(
+            ode,
+            method,
+            excitation,
+            settings,
+            recorder,
+            peak_watch,
+            stop_above_n,
+            started,
+        );
+    }
     let dim = ode.dimension();
     let (mut integrator, _) = start_integrator(&mut ode, settings);
     recorder.start(&Layout {
@@ -755,6 +785,13 @@ pub(crate) fn simulate_watching(
         recent.keep(t0, &mut integrator);
     }
     Ok(watch.finish(&ode, integrator.y(), integrator.stats()))
+}
+
+/// The method a run of `ode` steps with: `method` resolved for its system and its stiffest
+/// internal frequency ([`Method::resolve_for_modes`]).
+pub(crate) fn resolve_method(ode: &ChainOde, method: Method) -> Method {
+    let stiffest = ode.stiffest_resonator().map_or(0.0, |s| s.2);
+    method.resolve_for_modes(ode.second_order().is_some(), stiffest)
 }
 
 /// The error of a run that took more than [`defaults::MAX_STEPS`] steps, ending at t1.
@@ -1039,19 +1076,23 @@ pub(crate) struct Energies {
 
 /// Computes the observables at (t, y) and hands them to the recorder. `cached` says the ODE's
 /// force cache is already at y (the state of the last step); otherwise it is evaluated here
-/// (an observation, not counted in the integrator's statistics).
+/// (an observation, not counted in the integrator's statistics). `internal`: each primary's
+/// internal energy, when y holds only the primaries ([`Watch::record_with`]).
 fn observe(
     ode: &mut ChainOde,
-    t: f64,
-    y: &[f64],
+    (t, y): (f64, &[f64]),
     cached: bool,
+    internal: Option<&[f64]>,
     obs: &mut Observer,
     recorder: &mut dyn Recorder,
 ) -> Energies {
     if !cached {
         ode.rhs(t, y, &mut obs.scratch);
     }
-    let wall = ode.layer_energies_j(y, &mut obs.energies);
+    let wall = match internal {
+        None => ode.layer_energies_j(y, &mut obs.energies),
+        Some(internal) => ode.layer_energies_with_internal_j(y, internal, &mut obs.energies),
+    };
     let work = ode.input_work_j(y);
     let dissipated = ode.dissipated_j(y);
     let sample = Sample {

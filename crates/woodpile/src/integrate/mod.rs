@@ -13,7 +13,9 @@
 //!   formulae", IMA J. Numer. Anal. 7 (1987) 235–250 (RKN6(4)6FM, [`Tableau::rkn64`]).
 
 mod control;
+pub mod exponential;
 mod kernels;
+pub(crate) mod modal_step;
 
 pub(crate) use control::{StepControl, Verdict};
 
@@ -275,6 +277,16 @@ const NYSTROM_PEAK_ERROR_PREFACTOR: f64 = 1.5;
 /// estimate does not see the last stage, so a kink late in a step goes unnoticed; bench/README.md).
 pub(crate) const NYSTROM_LANDING_END: f64 = 0.999;
 
+/// Envelope prefactor of [`Method::ExactModes`], e ≤ EXACT_MODES_PEAK_ERROR_PREFACTOR · rtol
+/// (docs/physics.md §8; measured at most 1.12 rtol on the five-rod finite-element chain at rtol
+/// 1e-5 … 1e-8, examples/exact_linear.rs; its error falls with rtol, not with rtol^0.75).
+const EXACT_MODES_PEAK_ERROR_PREFACTOR: f64 = 1.3;
+/// A stated peak tolerance chooses [`Method::ExactModes`] for an impact whose stiffest internal
+/// frequency ([`crate::ode::ChainOde::stiffest_resonator`]) is above this \[rad/s\]
+/// (docs/physics.md §8: there RKN 6(4)'s step is set by that mode's stability, not by the
+/// contacts; below it RKN 6(4) is as fast).
+pub const EXACT_MODES_ABOVE_RAD_S: f64 = 2.0 * std::f64::consts::PI * 300e3;
+
 /// [`Method::Dopri5Events`] shortens a step to a predicted crossing only when it lies at least
 /// this fraction of the step from either end: a kink that close to a step's end costs little
 /// (its leading error term is δ^{3/2}), and a landed step's end, whose overlap is about zero,
@@ -318,6 +330,22 @@ pub enum Method {
     /// retaken to end there. Its error estimate does not use the last stage, so without these a
     /// contact closing late in a step would go unnoticed.
     Rkn64 {
+        /// Relative tolerance.
+        rtol: f64,
+        /// Absolute tolerance [m for displacements].
+        atol: f64,
+    },
+    /// The linear vibrations integrated exactly (docs/physics.md §8, "Exact linear
+    /// vibrations"): every element in its free–free modes ([`crate::ode::ChainOde`]'s cells
+    /// diagonalised), advanced by the variation-of-constants formula with the contact forces
+    /// replaced by their cubic through four Lobatto nodes, the collocation conditions solved on
+    /// the primaries by fixed-point iteration; an embedded estimate (the cubic against its
+    /// quadratic) on the primaries' positions and velocities controls the step, and a step in
+    /// which a contact opens or closes is retaken to end there. Steps are set by the contacts,
+    /// not by the stiffest mode. Impacts of the paper's model only (as [`Method::Rkn64`], and no
+    /// blast); run by [`crate::simulate()`] (the lanes run it on the scalar path; an
+    /// [`Integrator`] given it steps with [`Method::Rkn64`] at its tolerances).
+    ExactModes {
         /// Relative tolerance.
         rtol: f64,
         /// Absolute tolerance [m for displacements].
@@ -378,9 +406,31 @@ impl Method {
         }
     }
 
+    /// [`Method::resolve`] knowing the chain's stiffest internal frequency
+    /// `stiffest_mode_rad_s` ([`crate::ode::ChainOde::stiffest_resonator`]; 0 without
+    /// resonators): a stated peak tolerance on an impact whose cells vibrate above
+    /// [`EXACT_MODES_ABOVE_RAD_S`] (finite-element rods) becomes [`Method::ExactModes`] at the
+    /// rtol of its calibrated envelope; otherwise as [`Method::resolve`].
+    pub fn resolve_for_modes(self, second_order: bool, stiffest_mode_rad_s: f64) -> Self {
+        match self {
+            Method::PeakTolerance { peak_tolerance }
+                if second_order && stiffest_mode_rad_s > EXACT_MODES_ABOVE_RAD_S =>
+            {
+                let rtol = (peak_tolerance
+                    / (PEAK_SAFETY_FACTOR * EXACT_MODES_PEAK_ERROR_PREFACTOR))
+                    .max(1e-13);
+                Method::ExactModes {
+                    rtol,
+                    atol: rtol * 1e-6,
+                }
+            }
+            _ => self.resolve(second_order),
+        }
+    }
+
     /// Whether the method needs x'' = a(t, x) ([`OdeSystem::second_order`]).
     pub fn needs_second_order(&self) -> bool {
-        matches!(self, Method::Rkn64 { .. })
+        matches!(self, Method::Rkn64 { .. } | Method::ExactModes { .. })
     }
 
     /// The relative accuracy of every contact peak this method is calibrated to meet: the stated
@@ -395,6 +445,9 @@ impl Method {
             Method::PeakTolerance { peak_tolerance } => Some(peak_tolerance),
             Method::Dopri5Events { rtol, .. } => Some(envelope(PEAK_ERROR_PREFACTOR, rtol)),
             Method::Rkn64 { rtol, .. } => Some(envelope(NYSTROM_PEAK_ERROR_PREFACTOR, rtol)),
+            Method::ExactModes { rtol, .. } => {
+                Some(PEAK_SAFETY_FACTOR * EXACT_MODES_PEAK_ERROR_PREFACTOR * rtol)
+            }
             Method::Rk4 { .. } | Method::Dopri5 { .. } => None,
         }
     }
@@ -407,13 +460,16 @@ impl Method {
             Method::Dopri5 { .. } | Method::Dopri5Events { .. } | Method::PeakTolerance { .. } => {
                 Tableau::dopri5()
             }
-            Method::Rkn64 { .. } => Tableau::rkn64(),
+            Method::Rkn64 { .. } | Method::ExactModes { .. } => Tableau::rkn64(),
         }
     }
 
     /// Whether the method steps with event landing ([`Method::Dopri5Events`], [`Method::Rkn64`]).
     pub fn event_aware(&self) -> bool {
-        matches!(self, Method::Dopri5Events { .. } | Method::Rkn64 { .. })
+        matches!(
+            self,
+            Method::Dopri5Events { .. } | Method::Rkn64 { .. } | Method::ExactModes { .. }
+        )
     }
 
     /// Whether the method controls its step by an error estimate.
@@ -437,7 +493,8 @@ impl Method {
             Method::PeakTolerance { peak_tolerance } => check_peak_tolerance(peak_tolerance)?,
             Method::Dopri5 { rtol, atol }
             | Method::Dopri5Events { rtol, atol }
-            | Method::Rkn64 { rtol, atol } => {
+            | Method::Rkn64 { rtol, atol }
+            | Method::ExactModes { rtol, atol } => {
                 require_positive("run.rtol", rtol)?;
                 require_positive("run.atol", atol)?;
                 if rtol < 1e-14 {
@@ -561,7 +618,10 @@ impl Integrator {
         tolerance_units: &[f64],
         max_step_s: f64,
     ) -> Self {
-        let method = method.resolve(system.second_order().is_some());
+        let method = match method.resolve(system.second_order().is_some()) {
+            Method::ExactModes { rtol, atol } => Method::Rkn64 { rtol, atol },
+            other => other,
+        };
         assert!(
             !method.needs_second_order() || system.second_order().is_some(),
             "{method:?} needs a system x'' = a(t, x)"
@@ -571,7 +631,9 @@ impl Integrator {
         system.rhs(t0, &y0, &mut f_now);
         let control = match method {
             Method::Rk4 { time_step_s } => Control::Fixed { h: time_step_s },
-            Method::PeakTolerance { .. } => unreachable!("resolved above"),
+            Method::PeakTolerance { .. } | Method::ExactModes { .. } => {
+                unreachable!("resolved above")
+            }
             Method::Dopri5 { rtol, atol }
             | Method::Dopri5Events { rtol, atol }
             | Method::Rkn64 { rtol, atol } => {

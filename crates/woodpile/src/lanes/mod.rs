@@ -252,6 +252,13 @@ fn lane_ready(job: &Job<'_>) -> Result<Option<(GroupKey, ChainOde)>> {
     if job.settings.sample_interval_s != job.settings.duration_s {
         return Ok(None);
     }
+    // The exact modal method has no lane kernels: its runs take the scalar path.
+    if matches!(
+        crate::simulate::resolve_method(&ode, job.settings.method),
+        Method::ExactModes { .. }
+    ) {
+        return Ok(None);
+    }
     let method = job.settings.method.resolve(ode.second_order().is_some());
     let lab = ode.eq.lab.as_ref();
     let key = GroupKey {

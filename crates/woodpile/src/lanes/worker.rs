@@ -214,7 +214,9 @@ impl<'a, const L: usize> Lanes<'a, L> {
                 (step, rtol, atol)
             }
             Method::Rk4 { time_step_s } => (StepControl::new(time_step_s), 0.0, 0.0),
-            Method::PeakTolerance { .. } => unreachable!("resolved"),
+            Method::PeakTolerance { .. } | Method::ExactModes { .. } => {
+                unreachable!("resolved; the exact modal method runs on the scalar path")
+            }
         };
         // Where each of the run's components sits in the lanes.
         let (p, nd) = (self.eq.p, self.eq.nd);

@@ -22,8 +22,10 @@
 
 mod equations;
 mod lab;
+mod modal;
 
 pub(crate) use equations::{Equations, LabEquations, LabShape, Load};
+pub(crate) use modal::ModalChain;
 
 use crate::error::{Error, Result};
 use crate::excitation::{BlastProfile, Drive, Excitation};
@@ -364,6 +366,39 @@ impl ChainOde {
     pub fn layer_energies_j(&self, y: &[f64], out: &mut [f64]) -> f64 {
         let (p, nd) = (self.eq.p, self.eq.nd);
         let (x, v) = (&y[..nd], &y[nd..2 * nd]);
+        out.fill(0.0);
+        for i in 0..p {
+            out[i + self.shift] = 0.5 * self.mass_kg[i] * v[i] * v[i];
+        }
+        let wall = self.add_contact_potentials(y, out);
+        for j in 0..self.eq.res_owner.len() {
+            let o = self.eq.res_owner[j];
+            let ext = x[p + j] - x[o];
+            out[o + self.shift] += 0.5 * self.res_mass_kg[j] * v[p + j] * v[p + j]
+                + 0.5 * self.res_stiffness[j] * ext * ext;
+        }
+        wall
+    }
+
+    /// [`ChainOde::layer_energies_j`] with each primary's internal energy (kinetic energy of
+    /// its cell and its springs, `internal` \[J\], e.g. from its modes) given; only the
+    /// primaries' positions of `y` are read.
+    pub(crate) fn layer_energies_with_internal_j(
+        &self,
+        y: &[f64],
+        internal: &[f64],
+        out: &mut [f64],
+    ) -> f64 {
+        out.fill(0.0);
+        out[self.shift..self.shift + self.eq.p].copy_from_slice(internal);
+        self.add_contact_potentials(y, out)
+    }
+
+    /// Adds half of every contact's Hertz potential to the layers it joins (an actuator's half
+    /// to layer 0); returns the wall's half of contact N.
+    fn add_contact_potentials(&self, y: &[f64], out: &mut [f64]) -> f64 {
+        let p = self.eq.p;
+        let x = &y[..p];
         let actuator = self.eq.lab.as_ref().is_some_and(|l| l.shape.actuator);
         let potential = |slot: usize| {
             let d = if slot == 0 {
@@ -378,12 +413,6 @@ impl ChainOde {
             };
             ContactLaw::potential_j(self.eq.beta[slot], d)
         };
-        out.fill(0.0);
-        for i in 0..p {
-            out[i + self.shift] = 0.5 * self.mass_kg[i] * v[i] * v[i];
-        }
-        // Contact potentials, split half–half between the two bodies (an actuator's half goes to
-        // layer 0).
         if self.shift == 1 {
             let u = potential(0);
             out[0] += 0.5 * u;
@@ -396,13 +425,27 @@ impl ChainOde {
                 out[slot + self.shift] += 0.5 * u;
             }
         }
-        for j in 0..self.eq.res_owner.len() {
-            let o = self.eq.res_owner[j];
-            let ext = x[p + j] - x[o];
-            out[o + self.shift] += 0.5 * self.res_mass_kg[j] * v[p + j] * v[p + j]
-                + 0.5 * self.res_stiffness[j] * ext * ext;
-        }
         0.5 * potential(p)
+    }
+
+    /// The force cache (each slot's force and overlap) at the primaries' positions of `y` alone,
+    /// for the paper's model under an impact (nothing above the striker): what
+    /// [`OdeSystem::rhs`] leaves there, without the accelerations (the exact modal method's
+    /// state holds only the primaries, docs/physics.md §8).
+    pub(crate) fn set_contacts_from_primaries(&mut self, y: &[f64]) {
+        debug_assert!(self.lab.is_none() && self.has_striker());
+        let p = self.eq.p;
+        self.force_n[0] = 0.0;
+        self.overlap_m[0] = 0.0;
+        for slot in 1..=p {
+            let d = if slot < p {
+                y[slot - 1] - y[slot]
+            } else {
+                y[p - 1]
+            };
+            self.overlap_m[slot] = d;
+            self.force_n[slot] = ContactLaw::elastic_force(self.eq.beta[slot], d);
+        }
     }
 
     /// Work done by the external forces so far \[J\]: the load (0 for an impact without lab

@@ -29,6 +29,7 @@ mod damping_restitution;
 mod damping_zero_bit_identical;
 mod energy_conservation_impact;
 mod event_stepping_accuracy;
+mod exact_modes;
 mod fe_rod_frequencies;
 mod lab_energy_balance;
 mod lanes_bit_identical;

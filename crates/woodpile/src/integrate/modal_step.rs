@@ -1,0 +1,547 @@
+//! The adaptive stepper of [`Method::ExactModes`](super::Method::ExactModes): exponential Lobatto
+//! collocation ([`super::exponential`]) on a chain in modal form, with an embedded error estimate
+//! on the primaries, steps from a geometric ladder (so that the weights of a step size are
+//! computed once), and steps retaken to end where a contact opens or closes.
+
+use super::exponential::{lagrange, nodes, StepWeights};
+use super::{IntegratorStats, StepControl, Verdict, EVENT_LANDING_FRACTION, NYSTROM_LANDING_END};
+use crate::error::{Error, Result};
+use crate::model::ContactLaw;
+use crate::ode::{ChainOde, ModalChain};
+
+/// The order that sets the step control: that of the embedded estimate's leading term (the
+/// cubic's σ³ part times h², h⁵), as for RKN 6(4).
+const CONTROL_ORDER: f64 = 5.0;
+/// Steps are taken from the ladder h_k = LADDER_BASE_S · 2^{k/LADDER_PER_OCTAVE} (rounded down):
+/// the weights of each rung are computed once per run.
+const LADDER_PER_OCTAVE: f64 = 8.0;
+const LADDER_BASE_S: f64 = 1e-12;
+/// The fixed-point iteration of the node forces stops when no node force changes by more than
+/// this fraction of rtol times the largest contact force (at least 1e-13 of it), or after
+/// [`MAX_ITERATIONS`] (a rejection): its error then stays a thousandth of the step's.
+const FIXED_POINT_TOLERANCE: f64 = 1e-3;
+const MAX_ITERATIONS: usize = 30;
+/// Velocity units of the error norm, as [`ChainOde::tolerance_units`]: 1/τ with τ = 1 µs.
+const VELOCITY_UNIT: f64 = 1e6;
+
+/// One run's stepper state.
+#[derive(Debug, Clone)]
+pub(crate) struct ModalIntegrator {
+    modal: ModalChain,
+    /// β per contact slot 0..=P (slot 0 unused: nothing above a striker).
+    beta: Vec<f64>,
+    rtol: f64,
+    atol: f64,
+    t: f64,
+    t_prev: f64,
+    c: Vec<f64>,
+    cdot: Vec<f64>,
+    c_prev: Vec<f64>,
+    cdot_prev: Vec<f64>,
+    /// Per primary: the net force's cubic over the last step (monomials in σ) \[N\].
+    coef: Vec<[f64; 4]>,
+    h_last: f64,
+    /// Per primary: the net force at the current point \[N\].
+    force_net: Vec<f64>,
+    /// Per slot: the overlap at the current point \[m\].
+    overlap: Vec<f64>,
+    control: StepControl,
+    ladder: Vec<(i64, StepWeights)>,
+    off_ladder: Option<StepWeights>,
+    lagrange: [[f64; 4]; 4],
+    stats: IntegratorStats,
+    scratch: Scratch,
+    /// Each primary at the start and the end of the last step.
+    ends: [Vec<PrimaryEnd>; 2],
+}
+
+/// Buffers of an attempt.
+#[derive(Debug, Clone)]
+struct Scratch {
+    /// Per primary: the free (force-less) positions at nodes 1..3.
+    free: Vec<[f64; 3]>,
+    /// Per primary: net force at nodes 0..3.
+    node_force: Vec<[f64; 4]>,
+    /// Per primary: positions at nodes 1..3.
+    node_x: Vec<[f64; 3]>,
+    /// Per slot: overlap at nodes 0..3.
+    node_overlap: Vec<[f64; 4]>,
+    coef: Vec<[f64; 4]>,
+    slot_force: Vec<f64>,
+    slot_overlap: Vec<f64>,
+    x: Vec<f64>,
+}
+
+/// An attempt's outcome.
+struct Attempt {
+    err: f64,
+    missed: Option<f64>,
+}
+
+impl ModalIntegrator {
+    /// A stepper for the impact run `ode` (the paper's model) at rest state `y0`, with
+    /// tolerances rtol and atol \[m\] and a first step `h0`.
+    pub fn new(ode: &ChainOde, y0: &[f64], rtol: f64, atol: f64, h0: f64) -> Result<Self> {
+        let modal = ModalChain::new(ode)?;
+        let (p, n) = (ode.eq.p, modal.n_modes());
+        let (mut c, mut cdot) = (vec![0.0; n], vec![0.0; n]);
+        modal.project_state(y0, &mut c, &mut cdot);
+        let mut me = ModalIntegrator {
+            beta: ode.eq.beta.clone(),
+            rtol,
+            atol,
+            t: 0.0,
+            t_prev: 0.0,
+            c_prev: c.clone(),
+            cdot_prev: cdot.clone(),
+            c,
+            cdot,
+            coef: vec![[0.0; 4]; p],
+            h_last: 0.0,
+            force_net: vec![0.0; p],
+            overlap: vec![0.0; p + 1],
+            control: StepControl::new(h0),
+            ladder: Vec::new(),
+            off_ladder: None,
+            lagrange: lagrange(),
+            stats: IntegratorStats::default(),
+            scratch: Scratch {
+                free: vec![[0.0; 3]; p],
+                node_force: vec![[0.0; 4]; p],
+                node_x: vec![[0.0; 3]; p],
+                node_overlap: vec![[0.0; 4]; p + 1],
+                coef: vec![[0.0; 4]; p],
+                slot_force: vec![0.0; p + 1],
+                slot_overlap: vec![0.0; p + 1],
+                x: vec![0.0; p],
+            },
+            ends: [
+                vec![PrimaryEnd::default(); p],
+                vec![PrimaryEnd::default(); p],
+            ],
+            modal,
+        };
+        let x: Vec<f64> = me
+            .modal
+            .ranges
+            .iter()
+            .map(|r| me.c[r.clone()].iter().sum())
+            .collect();
+        let (mut f, mut d) = (vec![0.0; p + 1], vec![0.0; p + 1]);
+        me.contacts(&x, &mut f, &mut d);
+        for i in 0..p {
+            me.force_net[i] = f[i] - f[i + 1];
+        }
+        me.overlap = d;
+        me.stats.rhs_evaluations = 1;
+        let mut ends = std::mem::take(&mut me.ends[1]);
+        me.primary_ends(&mut ends);
+        me.ends = [ends.clone(), ends];
+        Ok(me)
+    }
+
+    /// Contact forces and overlaps per slot for primary positions `x` (slot 0: nothing above
+    /// a striker).
+    fn contacts(&self, x: &[f64], force: &mut [f64], overlap: &mut [f64]) {
+        let p = x.len();
+        force[0] = 0.0;
+        overlap[0] = 0.0;
+        for s in 1..=p {
+            let d = if s < p { x[s - 1] - x[s] } else { x[p - 1] };
+            overlap[s] = d;
+            force[s] = ContactLaw::elastic_force(self.beta[s], d);
+        }
+    }
+
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+
+    pub fn t_prev(&self) -> f64 {
+        self.t_prev
+    }
+
+    pub fn stats(&self) -> IntegratorStats {
+        self.stats
+    }
+
+    /// Makes sure the weights of step h are at hand: in the ladder's cache when h is a rung,
+    /// else computed as the off-ladder weights.
+    fn weights(&mut self, h: f64, rung: Option<i64>) {
+        let m = &self.modal;
+        let make = || {
+            StepWeights::new(
+                h,
+                &m.frequencies,
+                &m.frequency_index,
+                &m.inv_modal_mass,
+                &m.ranges,
+            )
+        };
+        match rung {
+            Some(k) => {
+                if !self.ladder.iter().any(|(r, _)| *r == k) {
+                    let w = make();
+                    self.ladder.push((k, w));
+                }
+            }
+            None => {
+                if self.off_ladder.as_ref().is_none_or(|w| w.h != h) {
+                    let w = make();
+                    self.off_ladder = Some(w);
+                }
+            }
+        }
+    }
+
+    /// One accepted step toward t_end; returns its size.
+    pub fn step(&mut self, t_end: f64) -> Result<f64> {
+        loop {
+            let remaining = t_end - self.t;
+            let h_try = self.control.propose(self.t, t_end)?;
+            // A rung of the ladder below the proposal, unless the step ends the run.
+            let (h_try, rung) = if h_try < remaining {
+                ladder_floor(h_try)
+            } else {
+                (h_try, None)
+            };
+            let h = self.control.land(h_try, None);
+            // A retake ends exactly on the crossing, with weights of its own (ending it on the
+            // rung below instead, the kink then early in the next step, was measured worse:
+            // energy errors up to 2.6e-3 on Table 1 cells, bench/README.md).
+            let rung = if self.control.landing { None } else { rung };
+            let attempt = self.attempt(h, rung);
+            let missed = if self.control.landing {
+                None
+            } else {
+                attempt.missed
+            };
+            match self
+                .control
+                .judge(h, attempt.err, missed, CONTROL_ORDER, &mut self.stats)
+            {
+                Verdict::Retry => continue,
+                Verdict::Accept => {
+                    self.commit(h, rung);
+                    self.control.accepted(h, attempt.err, CONTROL_ORDER);
+                    self.stats.steps += 1;
+                    return Ok(h);
+                }
+            }
+        }
+    }
+
+    /// Tries a step of size h: solves the collocation conditions, returns the error norm
+    /// (infinite when the iteration does not converge) and the first crossing inside.
+    fn attempt(&mut self, h: f64, rung: Option<i64>) -> Attempt {
+        let p = self.force_net.len();
+        let c_nodes = nodes();
+        // The free motion of each primary at the nodes, and the first guess of the node forces:
+        // the last step's cubic continued (constant at the start).
+        let mut sc = std::mem::replace(&mut self.scratch, Scratch::empty());
+        self.weights(h, rung);
+        let (m, weights) = (&self.modal, self.ladder_or_off(rung));
+        for (i, range) in m.ranges.iter().enumerate() {
+            sc.free[i] =
+                [0, 1, 2].map(|j| weights.free_position(j, range.clone(), &self.c, &self.cdot));
+            let f = &mut sc.node_force[i];
+            f[0] = self.force_net[i];
+            for j in 1..4 {
+                f[j] = if self.h_last > 0.0 {
+                    let s = 1.0 + c_nodes[j] * h / self.h_last;
+                    let a = &self.coef[i];
+                    ((a[3] * s + a[2]) * s + a[1]) * s + a[0]
+                } else {
+                    self.force_net[i]
+                };
+            }
+        }
+        let converged = self.solve_nodes(h, rung, &mut sc);
+        let (m, weights) = (&self.modal, self.ladder_or_off(rung));
+        let mut sum = 0.0;
+        for i in 0..p {
+            let a3 = sc.coef[i][3];
+            let (ex, ev) = weights.error[i];
+            let x = sc.node_x[i][2];
+            let v: f64 = self.cdot[m.ranges[i].clone()].iter().sum();
+            let sx = self.atol + self.rtol * x.abs();
+            let sv = self.atol * VELOCITY_UNIT + self.rtol * v.abs();
+            sum += (h * h * a3 * ex / sx).powi(2) + (h * a3 * ev / sv).powi(2);
+        }
+        let err = if converged {
+            (sum / (2 * p) as f64).sqrt()
+        } else {
+            f64::INFINITY
+        };
+        let missed = if err <= 1.0 {
+            first_crossing(&sc.node_overlap, &self.beta, &c_nodes).map(|theta| theta * h)
+        } else {
+            None
+        };
+        self.scratch = sc;
+        Attempt { err, missed }
+    }
+
+    fn ladder_or_off(&self, rung: Option<i64>) -> &StepWeights {
+        pick(&self.ladder, &self.off_ladder, rung)
+    }
+
+    /// The fixed-point iteration of the collocation conditions: node forces → cubic → node
+    /// positions → node forces. Leaves the cubic in `sc.coef`, the positions in `sc.node_x` and
+    /// the overlaps in `sc.node_overlap`. False when it did not converge.
+    fn solve_nodes(&mut self, h: f64, rung: Option<i64>, sc: &mut Scratch) -> bool {
+        let p = self.force_net.len();
+        for (s, d) in sc.node_overlap.iter_mut().enumerate() {
+            d[0] = self.overlap[s];
+        }
+        for _ in 0..MAX_ITERATIONS {
+            let weights = self.ladder_or_off(rung);
+            for i in 0..p {
+                let f = &sc.node_force[i];
+                for n in 0..4 {
+                    sc.coef[i][n] = (0..4).map(|j| self.lagrange[n][j] * f[j]).sum();
+                }
+                let a = &sc.coef[i];
+                for ((x, free), g) in sc.node_x[i]
+                    .iter_mut()
+                    .zip(&sc.free[i])
+                    .zip(&weights.response[i])
+                {
+                    *x = free + h * h * (g[0] * a[0] + g[1] * a[1] + g[2] * a[2] + g[3] * a[3]);
+                }
+            }
+            let (mut change, mut scale) = (0.0_f64, 0.0_f64);
+            for j in 0..3 {
+                for i in 0..p {
+                    sc.x[i] = sc.node_x[i][j];
+                }
+                let (mut force, mut overlap) = (
+                    std::mem::take(&mut sc.slot_force),
+                    std::mem::take(&mut sc.slot_overlap),
+                );
+                self.contacts(&sc.x, &mut force, &mut overlap);
+                for (s, d) in overlap.iter().enumerate() {
+                    sc.node_overlap[s][j + 1] = *d;
+                }
+                for i in 0..p {
+                    let f = force[i] - force[i + 1];
+                    change = change.max((f - sc.node_force[i][j + 1]).abs());
+                    scale = scale.max(force[i].abs());
+                    sc.node_force[i][j + 1] = f;
+                }
+                scale = scale.max(force[p].abs());
+                sc.slot_force = force;
+                sc.slot_overlap = overlap;
+            }
+            self.stats.rhs_evaluations += 3;
+            if change <= (FIXED_POINT_TOLERANCE * self.rtol).max(1e-13) * scale || scale == 0.0 {
+                for i in 0..p {
+                    let f = &sc.node_force[i];
+                    for n in 0..4 {
+                        sc.coef[i][n] = (0..4).map(|j| self.lagrange[n][j] * f[j]).sum();
+                    }
+                }
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Advances the state over the attempt just made (step h).
+    fn commit(&mut self, h: f64, rung: Option<i64>) {
+        std::mem::swap(&mut self.c, &mut self.c_prev);
+        std::mem::swap(&mut self.cdot, &mut self.cdot_prev);
+        let sc = std::mem::replace(&mut self.scratch, Scratch::empty());
+        let weights = pick(&self.ladder, &self.off_ladder, rung);
+        for (range, a) in self.modal.ranges.iter().zip(&sc.coef) {
+            weights.advance(
+                range.clone(),
+                a,
+                (&self.c_prev, &self.cdot_prev),
+                (&mut self.c, &mut self.cdot),
+            );
+        }
+        self.coef.copy_from_slice(&sc.coef);
+        for (i, f) in sc.node_force.iter().enumerate() {
+            self.force_net[i] = f[3];
+        }
+        for (s, d) in sc.node_overlap.iter().enumerate() {
+            self.overlap[s] = d[3];
+        }
+        self.scratch = sc;
+        self.h_last = h;
+        self.t_prev = self.t;
+        self.t += h;
+        self.ends.swap(0, 1);
+        let mut ends = std::mem::take(&mut self.ends[1]);
+        self.primary_ends(&mut ends);
+        self.ends[1] = ends;
+    }
+
+    /// The primaries' positions and velocities now into y (the rest of y is left).
+    pub fn primaries_into(&self, y: &mut [f64]) {
+        self.modal.primaries_to_state(&self.c, &self.cdot, y);
+    }
+
+    /// The primaries' positions and velocities at ts within the last step into y (the rest of
+    /// y is left) and each primary's internal energy Σ_k ½ μ_k (ċ_k² + Ω_k² c_k²) \[J\] into
+    /// `internal`. At the step's end: the state itself. Inside: cubic Hermite interpolation of
+    /// each primary's position (from its velocity), velocity (from its acceleration) and internal
+    /// energy (from its rate, the net contact force's power F_net·v), as RKN 6(4)'s samples; the
+    /// exact formula at θ would cost a kernel per frequency and a pass over every mode per sample.
+    pub fn observe_at(&mut self, ts: f64, y: &mut [f64], internal: &mut [f64]) {
+        let nd = y.len() / 2;
+        let (now, before) = (&self.ends[1], &self.ends[0]);
+        let h = self.h_last;
+        if ts >= self.t || h == 0.0 {
+            for (i, e) in now.iter().enumerate() {
+                y[i] = e.x;
+                y[nd + i] = e.v;
+                internal[i] = e.energy;
+            }
+            return;
+        }
+        let s = ((ts - self.t_prev) / h).clamp(0.0, 1.0);
+        let (h00, h10, h01, h11) = (
+            (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s),
+            s * (1.0 - s) * (1.0 - s),
+            s * s * (3.0 - 2.0 * s),
+            s * s * (s - 1.0),
+        );
+        let hermite =
+            |f0: f64, d0: f64, f1: f64, d1: f64| h00 * f0 + h10 * h * d0 + h01 * f1 + h11 * h * d1;
+        for (i, (a, b)) in before.iter().zip(now).enumerate() {
+            y[i] = hermite(a.x, a.v, b.x, b.v);
+            y[nd + i] = hermite(a.v, a.a, b.v, b.a);
+            internal[i] = hermite(a.energy, a.power, b.energy, b.power);
+        }
+    }
+
+    /// Each primary's position, velocity, acceleration, internal energy and its rate now.
+    fn primary_ends(&self, out: &mut [PrimaryEnd]) {
+        let m = &self.modal;
+        for (i, range) in m.ranges.iter().enumerate() {
+            let f = self.force_net[i];
+            let r = range.clone();
+            let (c, cd) = (&self.c[r.clone()], &self.cdot[r.clone()]);
+            let (w2, mu, inv_mu) = (
+                &m.omega2[r.clone()],
+                &m.modal_mass[r.clone()],
+                &m.inv_modal_mass[r],
+            );
+            let mut e = PrimaryEnd::default();
+            for k in 0..c.len() {
+                e.x += c[k];
+                e.v += cd[k];
+                e.a += f * inv_mu[k] - w2[k] * c[k];
+                e.energy += 0.5 * mu[k] * (cd[k] * cd[k] + w2[k] * c[k] * c[k]);
+            }
+            e.power = f * e.v;
+            out[i] = e;
+        }
+    }
+}
+
+/// A primary at a step's end: what the samples inside the step are interpolated from.
+#[derive(Debug, Clone, Copy, Default)]
+struct PrimaryEnd {
+    x: f64,
+    v: f64,
+    a: f64,
+    energy: f64,
+    power: f64,
+}
+
+impl Scratch {
+    fn empty() -> Self {
+        Scratch {
+            free: Vec::new(),
+            node_force: Vec::new(),
+            node_x: Vec::new(),
+            node_overlap: Vec::new(),
+            coef: Vec::new(),
+            slot_force: Vec::new(),
+            slot_overlap: Vec::new(),
+            x: Vec::new(),
+        }
+    }
+}
+
+/// The weights of a rung of the ladder, or the off-ladder ones (computed by `weights()`).
+fn pick<'a>(
+    ladder: &'a [(i64, StepWeights)],
+    off_ladder: &'a Option<StepWeights>,
+    rung: Option<i64>,
+) -> &'a StepWeights {
+    match rung {
+        Some(k) => &ladder.iter().find(|(r, _)| *r == k).expect("computed").1,
+        None => off_ladder.as_ref().expect("computed"),
+    }
+}
+
+/// The rung of the step ladder at or below h, and its index.
+fn ladder_floor(h: f64) -> (f64, Option<i64>) {
+    let k = (LADDER_PER_OCTAVE * (h / LADDER_BASE_S).log2()).floor();
+    (
+        LADDER_BASE_S * (k / LADDER_PER_OCTAVE).exp2(),
+        Some(k as i64),
+    )
+}
+
+/// The first point θ ∈ (EVENT_LANDING_FRACTION, NYSTROM_LANDING_END) of a step where a contact
+/// (β > 0) opens or closes, from its overlaps at the four nodes (the cubic through them, bisected
+/// in the first node interval whose ends differ in sign).
+fn first_crossing(overlaps: &[[f64; 4]], beta: &[f64], c: &[f64; 4]) -> Option<f64> {
+    let mut first: Option<f64> = None;
+    for (s, d) in overlaps.iter().enumerate().skip(1) {
+        if beta[s] == 0.0 {
+            continue;
+        }
+        let Some(j) = (0..3).find(|&j| (d[j] > 0.0) != (d[j + 1] > 0.0)) else {
+            continue;
+        };
+        let cubic = |x: f64| -> f64 {
+            (0..4)
+                .map(|i| {
+                    let li: f64 = (0..4)
+                        .filter(|&k| k != i)
+                        .map(|k| (x - c[k]) / (c[i] - c[k]))
+                        .product();
+                    li * d[i]
+                })
+                .sum()
+        };
+        let (mut lo, mut hi) = (c[j], c[j + 1]);
+        let closed_lo = d[j] > 0.0;
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if (cubic(mid) > 0.0) == closed_lo {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let theta = 0.5 * (lo + hi);
+        if theta > EVENT_LANDING_FRACTION
+            && theta < NYSTROM_LANDING_END
+            && first.is_none_or(|f| theta < f)
+        {
+            first = Some(theta);
+        }
+    }
+    first
+}
+
+/// Refuses a chain the exact modal method cannot run.
+pub(crate) fn check_fits(ode: &ChainOde) -> Result<()> {
+    use super::OdeSystem;
+    if ode.second_order().is_none() || !ode.has_striker() {
+        return Err(Error::invalid(
+            "run.method",
+            "exact-modes",
+            "advances only an impact of the paper's model (no blast, damping, static load or \
+             drive); use dopri5, or run.peak_tolerance (which chooses the method for the run)",
+        ));
+    }
+    Ok(())
+}

@@ -1,0 +1,264 @@
+//! The linear part of the chain in modal form (docs/physics.md §8, "Exact linear vibrations"):
+//! each element — a primary mass M carrying resonators (m_j, k_j), a Table 1 cell or a
+//! finite-element rod's Craig–Bampton cell — decomposed into its free–free modes, so that the
+//! equations of motion read, per element,
+//!
+//! ```text
+//! μ_k (c_k'' + Ω_k² c_k) = F_net(t),      x_primary = Σ_k c_k,
+//! ```
+//!
+//! k = 0 the rigid mode (Ω_0 = 0, μ_0 = M + Σ m_j), k ≥ 1 the free cell's resonances Ω_k (the
+//! zeros of M_eff, [`crate::UnitCell::free_resonances_hz`]), each mode scaled to unit amplitude
+//! at the primary, with modal mass μ_k = M + Σ_j m_j u_jk² where u_jk = ω_j²/(ω_j² − Ω_k²) is
+//! resonator j's amplitude in mode k. The contact forces act on the primaries only, so F_net is
+//! all that couples the modes: the linear part is diagonal and can be integrated exactly.
+//!
+//! Ω_k² is found as ω_s² + τ with τ ∈ (0, ω_{s+1}² − ω_s²) the root of the secular equation
+//! M + Σ_i m_i ω_i² / ((ω_i² − ω_s²) − τ) = 0 (one root above each pole ω_s², the function
+//! increasing from −∞ to +∞ between poles), so that every gap ω_i² − Ω_k² is computed without
+//! cancellation, however close a mode of tiny effective mass lies to its pole.
+
+use super::ChainOde;
+use crate::error::{Error, Result};
+
+/// One element's modes: rigid first, then the flexible ones in ascending frequency.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ElementModes {
+    /// Ω_k \[rad/s\] (0 for the rigid mode).
+    pub omega: Vec<f64>,
+    /// μ_k \[kg\], the modal mass of mode k scaled to unit primary amplitude.
+    pub modal_mass: Vec<f64>,
+    /// Primary mass M \[kg\].
+    primary_mass: f64,
+    /// Resonator masses m_j \[kg\], in the chain's order.
+    res_mass: Vec<f64>,
+    /// u_jk − 1 = Ω_k² / (ω_j² − Ω_k²): resonator j's extension per unit primary amplitude of
+    /// flexible mode k (row j, R × R).
+    extension: Vec<f64>,
+}
+
+impl ElementModes {
+    /// The modes of a primary mass `primary_mass` carrying resonators (m_j, k_j). Resonators of
+    /// equal frequency are refused (a mode then leaves the primary at rest: not coupled to the
+    /// contacts, it needs no modal treatment, but its resonators cannot be told apart).
+    pub fn new(primary_mass: f64, resonators: &[(f64, f64)]) -> Result<Self> {
+        let r = resonators.len();
+        let total = primary_mass + resonators.iter().map(|&(m, _)| m).sum::<f64>();
+        let w2: Vec<f64> = resonators.iter().map(|&(m, k)| k / m).collect();
+        let mut order: Vec<usize> = (0..r).collect();
+        order.sort_by(|&a, &b| w2[a].total_cmp(&w2[b]));
+        if let Some(pair) = order.windows(2).find(|p| w2[p[0]] == w2[p[1]]) {
+            return Err(Error::invalid(
+                "cell.resonators",
+                format!("{} and {}", pair[0], pair[1]),
+                "two resonators of one cell have the same frequency: the exact modal method needs \
+                 distinct ones (merge them into one resonator of their summed mass and stiffness)",
+            ));
+        }
+        let mut omega = vec![0.0];
+        let mut modal_mass = vec![total];
+        let mut extension = vec![0.0; r * r];
+        for (k, &s) in order.iter().enumerate() {
+            let above = order.get(k + 1).map(|&n| w2[n] - w2[s]);
+            let tau = secular_root(primary_mass, resonators, &w2, s, above);
+            let omega2 = w2[s] + tau;
+            let mut mu = primary_mass;
+            for (j, &(m, _)) in resonators.iter().enumerate() {
+                let gap = (w2[j] - w2[s]) - tau; // ω_j² − Ω_k²
+                let u = w2[j] / gap;
+                mu += m * u * u;
+                extension[j * r + k] = omega2 / gap;
+            }
+            omega.push(omega2.sqrt());
+            modal_mass.push(mu);
+        }
+        Ok(ElementModes {
+            omega,
+            modal_mass,
+            primary_mass,
+            res_mass: resonators.iter().map(|&(m, _)| m).collect(),
+            extension,
+        })
+    }
+
+    /// Number of modes (rigid included).
+    pub fn len(&self) -> usize {
+        self.omega.len()
+    }
+
+    /// Modal amplitudes c (rigid first) of the primary's value `x0` and the resonators' `w`
+    /// (positions or velocities): c_k = (M x0 + Σ m_j u_jk w_j) / μ_k, the mass-weighted
+    /// projection.
+    pub fn project(&self, x0: f64, w: &[f64], c: &mut [f64]) {
+        let r = self.res_mass.len();
+        let m0 = self.primary_mass * x0;
+        c[0] = (m0 + self.res_mass.iter().zip(w).map(|(m, w)| m * w).sum::<f64>())
+            / self.modal_mass[0];
+        for k in 0..r {
+            let s: f64 = (0..r)
+                .map(|j| self.res_mass[j] * (1.0 + self.extension[j * r + k]) * w[j])
+                .sum();
+            c[k + 1] = (m0 + s) / self.modal_mass[k + 1];
+        }
+    }
+}
+
+/// τ = Ω² − ω_s² of the mode above pole s (`above`: the gap to the next pole, None for the last).
+fn secular_root(
+    primary_mass: f64,
+    resonators: &[(f64, f64)],
+    w2: &[f64],
+    s: usize,
+    above: Option<f64>,
+) -> f64 {
+    let meff = |tau: f64| {
+        primary_mass
+            + resonators
+                .iter()
+                .zip(w2)
+                .map(|(&(m, _), &wi)| m * wi / ((wi - w2[s]) - tau))
+                .sum::<f64>()
+    };
+    let mut hi = match above {
+        Some(gap) => gap,
+        None => {
+            let mut hi = w2[s].max(f64::MIN_POSITIVE);
+            while meff(hi) < 0.0 {
+                hi *= 2.0;
+            }
+            hi
+        }
+    };
+    let mut lo = 0.0_f64;
+    loop {
+        // Geometric bisection while the bracket spans decades (a mode of tiny effective mass
+        // lies very close to its pole), arithmetic once it is narrow.
+        let mid = if hi > 16.0 * lo {
+            (lo.max(hi * 1e-30) * hi).sqrt()
+        } else {
+            0.5 * (lo + hi)
+        };
+        if mid <= lo || mid >= hi {
+            return 0.5 * (lo + hi);
+        }
+        if meff(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+}
+
+/// The whole chain in modal form: every primary's modes (a striker: its rigid mode only), in
+/// one flat list, with the conversions to and from the chain's state.
+#[derive(Debug, Clone)]
+pub(crate) struct ModalChain {
+    /// Per primary: its modes (shared by primaries of equal cells).
+    pub elements: Vec<std::sync::Arc<ElementModes>>,
+    /// Per primary: the range of its modes in the flat list.
+    pub ranges: Vec<std::ops::Range<usize>>,
+    /// Per primary: the range of its resonators in the chain's state.
+    res_ranges: Vec<std::ops::Range<usize>>,
+    /// Per mode: the index of its frequency in [`ModalChain::frequencies`].
+    pub frequency_index: Vec<usize>,
+    /// The distinct Ω \[rad/s\] of the chain (equal cells share theirs).
+    pub frequencies: Vec<f64>,
+    /// Per mode: 1/μ_k \[1/kg\].
+    pub inv_modal_mass: Vec<f64>,
+    /// Per mode: μ_k \[kg\] and Ω_k² \[1/s²\].
+    pub modal_mass: Vec<f64>,
+    pub omega2: Vec<f64>,
+}
+
+impl ModalChain {
+    /// The modal form of a compiled chain (the paper's model: no lab physics).
+    pub fn new(ode: &ChainOde) -> Result<Self> {
+        let (p, eq) = (ode.eq.p, &ode.eq);
+        let mut elements: Vec<std::sync::Arc<ElementModes>> = Vec::with_capacity(p);
+        let mut res_ranges = Vec::with_capacity(p);
+        let mut start = 0;
+        for i in 0..p {
+            let end = start
+                + eq.res_owner[start..]
+                    .iter()
+                    .take_while(|&&o| o == i)
+                    .count();
+            let cell: Vec<(f64, f64)> = (start..end)
+                .map(|j| (ode.res_mass_kg[j], ode.res_stiffness[j]))
+                .collect();
+            let known = elements.iter().zip(&res_ranges).find(|(e, range)| {
+                let range: &std::ops::Range<usize> = range;
+                e.primary_mass == ode.mass_kg[i]
+                    && range.len() == cell.len()
+                    && range
+                        .clone()
+                        .zip(&cell)
+                        .all(|(j, c)| (ode.res_mass_kg[j], ode.res_stiffness[j]) == *c)
+            });
+            let modes = match known {
+                Some((e, _)) => e.clone(),
+                None => std::sync::Arc::new(ElementModes::new(ode.mass_kg[i], &cell)?),
+            };
+            elements.push(modes);
+            res_ranges.push(start..end);
+            start = end;
+        }
+        let mut ranges = Vec::with_capacity(p);
+        let (mut frequencies, mut frequency_index, mut inv_modal_mass) =
+            (Vec::<f64>::new(), Vec::new(), Vec::new());
+        let mut n = 0;
+        for e in &elements {
+            ranges.push(n..n + e.len());
+            n += e.len();
+            for (&w, &mu) in e.omega.iter().zip(&e.modal_mass) {
+                let index = frequencies.iter().position(|&f| f == w).unwrap_or_else(|| {
+                    frequencies.push(w);
+                    frequencies.len() - 1
+                });
+                frequency_index.push(index);
+                inv_modal_mass.push(1.0 / mu);
+            }
+        }
+        let modal_mass = inv_modal_mass.iter().map(|m| 1.0 / m).collect();
+        let omega2 = frequency_index
+            .iter()
+            .map(|&u| frequencies[u] * frequencies[u])
+            .collect();
+        Ok(ModalChain {
+            modal_mass,
+            omega2,
+            elements,
+            ranges,
+            res_ranges,
+            frequency_index,
+            frequencies,
+            inv_modal_mass,
+        })
+    }
+
+    /// Number of modes of the chain.
+    pub fn n_modes(&self) -> usize {
+        self.frequency_index.len()
+    }
+
+    /// Modal amplitudes and rates (c, ċ) of the chain's state y = [x | w | v | ẇ].
+    pub fn project_state(&self, y: &[f64], c: &mut [f64], cdot: &mut [f64]) {
+        let p = self.ranges.len();
+        let nd = y.len() / 2;
+        for (i, e) in self.elements.iter().enumerate() {
+            let (modes, res) = (self.ranges[i].clone(), self.res_ranges[i].clone());
+            let (ra, rb) = (p + res.start, p + res.end);
+            e.project(y[i], &y[ra..rb], &mut c[modes.clone()]);
+            e.project(y[nd + i], &y[nd + ra..nd + rb], &mut cdot[modes]);
+        }
+    }
+
+    /// The primaries' positions and velocities only (the rest of y is left as it is).
+    pub fn primaries_to_state(&self, c: &[f64], cdot: &[f64], y: &mut [f64]) {
+        let nd = y.len() / 2;
+        for (i, modes) in self.ranges.iter().enumerate() {
+            y[i] = c[modes.clone()].iter().sum();
+            y[nd + i] = cdot[modes.clone()].iter().sum();
+        }
+    }
+}
