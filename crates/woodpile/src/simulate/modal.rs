@@ -59,6 +59,9 @@ pub(super) fn simulate_modal(
         if stepper.stats().steps > crate::defaults::MAX_STEPS {
             return Err(super::too_many_steps(t1, settings));
         }
+        if crate::interrupt::requested() {
+            return Err(crate::Error::Interrupted { time_s: t1 });
+        }
         watch.after_step(&ode, t0, t1, &y);
         while let Some((ts, at_step)) = watch.sample_due(t1) {
             let at = if at_step { t1 } else { ts };
