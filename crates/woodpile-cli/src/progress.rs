@@ -48,6 +48,8 @@ pub struct Progress {
     display: Display,
     bar: ProgressBar,
     started: Instant,
+    /// The ETA is an upper bound ([`Progress::ending_early`]).
+    ending_early: bool,
     lines: Mutex<Lines>,
 }
 
@@ -56,6 +58,8 @@ struct Lines {
     position: u64,
     stage: String,
     last_detail: Option<Instant>,
+    /// Where the ETA's rate is measured from (see [`Progress::rate_from_here`]).
+    eta_origin: Option<(Instant, u64)>,
 }
 
 impl Progress {
@@ -93,6 +97,7 @@ impl Progress {
             display,
             bar,
             started: Instant::now(),
+            ending_early: false,
             lines: Mutex::new(Lines::default()),
         }
     }
@@ -143,6 +148,31 @@ impl Progress {
         self.lock().position = position;
     }
 
+    /// The work may end before its last step (a GA that stalls): the ETA is shown as an upper
+    /// bound, "at most 36 s left".
+    pub fn ending_early(mut self) -> Self {
+        self.ending_early = true;
+        if self.display == Display::Bar {
+            let template = format!(
+                "{} {{pos}}/{{len}} [{{bar:25}}] {{elapsed}}, at most {{eta}} left | {{msg}}",
+                self.label
+            );
+            if let Ok(style) = ProgressStyle::with_template(&template) {
+                self.bar.set_style(style.progress_chars("=> "));
+            }
+        }
+        self
+    }
+
+    /// Measures the ETA's rate from now on: the steps so far are not like the rest (a GA's
+    /// generation 0 simulates every design of its population, later ones mostly hit the cache
+    /// or stop runs early), so an ETA from their pace overestimates the time left several-fold.
+    pub fn rate_from_here(&self) {
+        self.bar.reset_eta();
+        let mut lines = self.lock();
+        lines.eta_origin = Some((Instant::now(), lines.position));
+    }
+
     /// Steps done so far.
     pub fn position(&self) -> u64 {
         self.lock().position
@@ -164,11 +194,20 @@ impl Progress {
     }
 
     fn print(&self, lines: &Lines, detail: Option<&str>) {
-        let text = line(
+        let (since, done) = lines.eta_origin.map_or((self.started, 0), |(t, p)| {
+            (t, lines.position - p.min(lines.position))
+        });
+        let eta = (done > 0 && lines.position < self.len).then(|| {
+            since
+                .elapsed()
+                .mul_f64((self.len - lines.position) as f64 / done as f64)
+        });
+        let text = line_with_eta(
             self.label,
             lines.position,
             self.len,
             self.elapsed(),
+            eta.map(|e| (e, self.ending_early)),
             &lines.stage,
             detail,
         );
@@ -186,14 +225,35 @@ pub fn line(
     stage: &str,
     detail: Option<&str>,
 ) -> String {
+    let eta = (position > 0 && position < len)
+        .then(|| elapsed.mul_f64((len - position) as f64 / position as f64));
+    line_with_eta(
+        label,
+        position,
+        len,
+        elapsed,
+        eta.map(|e| (e, false)),
+        stage,
+        detail,
+    )
+}
+
+/// [`line`] with the ETA given (None: none shown), and whether it is an upper bound (shown as
+/// "at most 36 s left").
+pub fn line_with_eta(
+    label: &str,
+    position: u64,
+    len: u64,
+    elapsed: Duration,
+    eta: Option<(Duration, bool)>,
+    stage: &str,
+    detail: Option<&str>,
+) -> String {
     let secs = elapsed.as_secs_f64();
-    let eta = if position > 0 && position < len {
-        format!(
-            ", ETA {:.0} s",
-            secs / position as f64 * (len - position) as f64
-        )
-    } else {
-        String::new()
+    let eta = match eta {
+        None => String::new(),
+        Some((e, false)) => format!(", ETA {:.0} s", e.as_secs_f64()),
+        Some((e, true)) => format!(", at most {:.0} s left", e.as_secs_f64()),
     };
     let what = match (stage, detail) {
         ("", Some(d)) => d.to_string(),

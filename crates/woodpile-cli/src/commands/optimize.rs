@@ -123,7 +123,14 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
 
     crate::interrupt::cooperative();
     let stop = crate::interrupt::stop_flag();
-    let bar = Progress::new("optimize", problem.settings.generations as u64, ctx.quiet);
+    // The GA stops sooner when it stalls: its ETA is the time to the generation limit.
+    let bar =
+        Progress::new("optimize", problem.settings.generations as u64, ctx.quiet).ending_early();
+    if let Some(s) = &initial {
+        // Resumed: the ETA counts the generations run here.
+        bar.set_position(s.generation as u64);
+        bar.rate_from_here();
+    }
     let unit = problem.objective.unit().to_string();
     let mut write_error: Option<CliError> = None;
     let mut last_elapsed = initial.as_ref().map_or(0.0, |s| s.elapsed_s);
@@ -143,6 +150,10 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         };
         (last_elapsed, last_evals) = (s.elapsed_s, simulations(s));
         bar.set_position(s.generation as u64);
+        if s.generation == 0 {
+            // Generation 0 simulates its whole population: the ETA is measured from the next.
+            bar.rate_from_here();
+        }
         bar.detail(format!(
             "generation {}: best {:.6e} {unit} | {rate:.0} sim/s | {} evaluations, {}{} cache hits",
             s.generation,
@@ -263,7 +274,11 @@ fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Resul
     fs::create_dir_all(out).map_err(io_err(out))?;
     crate::interrupt::cooperative();
     let stop = crate::interrupt::stop_flag();
-    let bar = Progress::new("optimize", problem.nsga2.generations as u64, ctx.quiet);
+    let bar = Progress::new("optimize", problem.nsga2.generations as u64, ctx.quiet).ending_early();
+    if let Some(s) = &initial {
+        bar.set_position(s.generation as u64);
+        bar.rate_from_here();
+    }
     let mut write_error: Option<CliError> = None;
     let mut last = initial
         .as_ref()
@@ -282,6 +297,10 @@ fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Resul
         last = (s.elapsed_s, s.evaluations);
         let h = s.history.last().expect("a generation's line");
         bar.set_position(s.generation as u64);
+        if s.generation == 0 {
+            // Generation 0 simulates its whole population: the ETA is measured from the next.
+            bar.rate_from_here();
+        }
         bar.detail(format!(
             "generation {}: hypervolume {:.6e} | front {} | {rate:.0} sim/s | {} evaluations, {} cache hits",
             s.generation, h.hypervolume, h.front_size, s.evaluations, s.cache_hits
