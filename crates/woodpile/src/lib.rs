@@ -30,6 +30,9 @@
 //!    layer-by-layer experimental protocol ([`LayerByLayer`]).
 //! 6. **Optimise** — [`optimize`]: the breeder genetic algorithm ([`BreederGa`]) over a
 //!    [`DesignSpace`] of catalogue elements, with a user-extensible [`Objective`].
+//! 7. **Calibrate** — [`fit`]: the parameters that best explain measured signals (bounded
+//!    least squares from several starts), with standard errors, correlations and warnings for
+//!    what the data cannot determine.
 //!
 //! ```
 //! use woodpile::{simulate, CellModel, ChainBuilder, Excitation, RunSettings, Striker, Trajectory};
@@ -55,6 +58,7 @@ pub mod analysis;
 pub mod defaults;
 pub mod error;
 pub mod excitation;
+pub mod fit;
 pub mod integrate;
 pub mod lanes;
 pub mod model;
