@@ -83,9 +83,8 @@ impl Output {
         if name == "striker_m_s" {
             return Some(Output::StrikerVelocity);
         }
-        let number = |rest: &str, suffix: &str| -> Option<usize> {
-            rest.strip_suffix(suffix)?.parse().ok()
-        };
+        let number =
+            |rest: &str, suffix: &str| -> Option<usize> { rest.strip_suffix(suffix)?.parse().ok() };
         if let Some(rest) = name.strip_prefix("contact_") {
             return number(rest, "_n").map(|contact| Output::ContactForce { contact });
         }

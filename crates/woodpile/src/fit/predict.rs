@@ -101,7 +101,6 @@ pub(super) fn run_model(
     built: &Built,
     shift_s: f64,
 ) -> Result<Prediction> {
-    require_fixed_step(&built.settings)?;
     let mut recorder = SignalRecorder {
         outputs: problem.measurements.iter().map(|m| m.output).collect(),
         values: vec![Vec::new(); problem.measurements.len()],
@@ -139,9 +138,11 @@ fn on_measured_times(m: &Measurement, model: &[f64], interval_s: f64, shift_s: f
     }
 }
 
-/// Cubic Hermite interpolation with central-difference slopes (Catmull–Rom) of uniformly
-/// sampled `y` at fractional index `s`; C¹ in `s`. Before the first sample the signal is its
-/// initial value (the run starts from rest, or at the striker's speed); after the last, the last.
+/// Cubic Hermite interpolation of uniformly sampled `y` at fractional index `s`, with
+/// central-difference slopes (Catmull–Rom) inside and zero slopes at both ends, where the
+/// signal continues as a constant (before the run: its initial value, the chain at rest or the
+/// striker at its speed; after: its last): C¹ in `s` everywhere, so the residuals are smooth in
+/// the time shift (a one-sided slope at the start made a kink there).
 fn catmull_rom(y: &[f64], s: f64) -> f64 {
     let n = y.len();
     if s <= 0.0 || n < 2 {
@@ -152,10 +153,14 @@ fn catmull_rom(y: &[f64], s: f64) -> f64 {
     }
     let k = s.floor() as usize;
     let u = s - k as f64;
-    let at = |i: isize| y[i.clamp(0, n as isize - 1) as usize];
-    let k = k as isize;
-    let (p0, p1, p2, p3) = (at(k - 1), at(k), at(k + 1), at(k + 2));
-    let (m1, m2) = (0.5 * (p2 - p0), 0.5 * (p3 - p1));
+    let slope = |i: usize| {
+        if i == 0 || i == n - 1 {
+            0.0
+        } else {
+            0.5 * (y[i + 1] - y[i - 1])
+        }
+    };
+    let (p1, p2, m1, m2) = (y[k], y[k + 1], slope(k), slope(k + 1));
     let (u2, u3) = (u * u, u * u * u);
     (2.0 * u3 - 3.0 * u2 + 1.0) * p1
         + (u3 - 2.0 * u2 + u) * m1

@@ -44,7 +44,11 @@ impl Coordinate {
             },
             None => {
                 let u0 = u(p.initial);
-                let width = if p.log_scale || u0 == 0.0 { 1.0 } else { u0.abs() };
+                let width = if p.log_scale || u0 == 0.0 {
+                    1.0
+                } else {
+                    u0.abs()
+                };
                 Coordinate {
                     origin: u0,
                     width,
@@ -118,16 +122,24 @@ struct Evaluator<'p, 'a> {
 }
 
 impl<'p, 'a> Evaluator<'p, 'a> {
+    /// `step`: of the Jacobian (0: none is computed); the fit and the Jacobian need a fixed
+    /// integration step, a prediction does not.
     fn new(problem: &'p Problem<'a>, step: f64) -> Result<Self> {
         if problem.measurements.is_empty() {
-            return Err(Error::invalid("data", "(none)", "give at least one measured signal"));
+            return Err(Error::invalid(
+                "data",
+                "(none)",
+                "give at least one measured signal",
+            ));
         }
         for p in problem.all_parameters() {
             p.validate()?;
         }
         let n_model = problem.parameters.len();
         let built = (problem.model)(&problem.initial_values()[..n_model])?;
-        super::predict::require_fixed_step(&built.settings)?;
+        if step > 0.0 {
+            super::predict::require_fixed_step(&built.settings)?;
+        }
         let grid = Grid::for_problem(problem, built.settings.sample_interval_s)?;
         let all = problem.all_parameters();
         Ok(Evaluator {
@@ -396,10 +408,7 @@ pub fn fit(problem: &Problem<'_>, settings: &FitSettings<'_>) -> Result<FitResul
         ev.start.store(k, Ordering::Relaxed);
         ev.best.lock().unwrap_or_else(|e| e.into_inner())[1] = (f64::INFINITY, Vec::new());
         let before = ev.evaluations.load(Ordering::Relaxed);
-        let z0 = x0
-            .iter()
-            .zip(&ev.coordinates)
-            .map(|(&x, c)| c.z_of_x(x));
+        let z0 = x0.iter().zip(&ev.coordinates).map(|(&x, c)| c.z_of_x(x));
         let mut start = Start {
             ev: &ev,
             z: DVector::from_iterator(n, z0),

@@ -34,7 +34,12 @@ pub struct Uncertainty {
 impl Uncertainty {
     /// From the Jacobian columns `ju` (∂r/∂u, u = p or ln p as `logs` says), the residuals `r`
     /// and the estimates.
-    pub(super) fn new(ju: &[Vec<f64>], r: &[f64], estimates: &[f64], logs: &[bool]) -> Result<Self> {
+    pub(super) fn new(
+        ju: &[Vec<f64>],
+        r: &[f64],
+        estimates: &[f64],
+        logs: &[bool],
+    ) -> Result<Self> {
         let (m, n) = (r.len(), ju.len());
         if m <= n {
             return Err(Error::invalid(
@@ -60,7 +65,11 @@ impl Uncertainty {
         let s = &svd.singular_values;
         let s_max = s.max();
         let s_min = s.min();
-        let condition_number = if s_min > 0.0 { s_max / s_min } else { f64::INFINITY };
+        let condition_number = if s_min > 0.0 {
+            s_max / s_min
+        } else {
+            f64::INFINITY
+        };
         let dof = m - n;
         let sigma = (r.iter().map(|r| r * r).sum::<f64>() / dof as f64).sqrt();
         // (JnᵀJn)⁻¹ = V S⁻² Vᵀ, the numerically zero singular values floored so that the

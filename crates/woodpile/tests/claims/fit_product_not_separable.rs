@@ -43,7 +43,11 @@ fn two_scales_of_one_beta_are_reported_inseparable() {
         .warnings
         .iter()
         .find(|w| w.contains("contact_beta_scale.wall") && w.contains("wall_beta_scale_again"));
-    assert!(pair.is_some(), "no warning names the pair: {:?}", result.warnings);
+    assert!(
+        pair.is_some(),
+        "no warning names the pair: {:?}",
+        result.warnings
+    );
     let u = result.uncertainty.as_ref().unwrap();
     for k in [1, 3] {
         let (lo, hi) = problem.parameters[k].bounds.unwrap();

@@ -18,7 +18,11 @@ fn noise_free_data_are_recovered_to_1e_6() {
     };
     let result = fit(&problem, &settings).unwrap();
     for (k, name) in result.names.iter().enumerate() {
-        let scale = if name == "time_shift_s" { 1e-5 } else { TRUTH[k] };
+        let scale = if name == "time_shift_s" {
+            1e-5
+        } else {
+            TRUTH[k]
+        };
         let error = (result.estimates[k] - TRUTH[k]).abs() / scale;
         assert!(
             error < 1e-6,
