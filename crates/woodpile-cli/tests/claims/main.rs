@@ -13,6 +13,8 @@ mod cells_table;
 mod checkpoint_integrity;
 mod common;
 mod default_job;
+mod fit_bad_input;
+mod fit_command;
 mod meaningless_results;
 mod optimize_bad_input;
 mod optimize_best_reruns;
