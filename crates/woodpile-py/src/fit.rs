@@ -36,7 +36,9 @@ fn fit_file(
             seed: setup.seed,
             ..FitSettings::default()
         };
-        let result = pool.install(|| fit(&problem, &settings)).map_err(core_err)?;
+        let result = pool
+            .install(|| fit(&problem, &settings))
+            .map_err(core_err)?;
         let prediction = predict(&problem, &result.estimates).map_err(core_err)?;
         if let Some(dir) = &out {
             write_outputs(dir, overwrite, &setup, &result, &prediction).map_err(py_err)?;

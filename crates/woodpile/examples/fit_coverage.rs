@@ -13,7 +13,9 @@ use std::time::Instant;
 use woodpile::fit::{fit, FitSettings};
 
 fn main() {
-    let seeds: u64 = std::env::args().nth(1).map_or(50, |s| s.parse().expect("a number of seeds"));
+    let seeds: u64 = std::env::args()
+        .nth(1)
+        .map_or(50, |s| s.parse().expect("a number of seeds"));
     let mut covered = [0usize; 4];
     let mut runs = Vec::new();
     let mut seconds = Vec::new();
@@ -45,10 +47,18 @@ fn main() {
         v.sort_by(f64::total_cmp);
         v[v.len() / 2]
     };
-    let names = ["damping.restitution", "contact_beta_scale.wall", "excitation.velocity_m_s", "time_shift_s"];
+    let names = [
+        "damping.restitution",
+        "contact_beta_scale.wall",
+        "excitation.velocity_m_s",
+        "time_shift_s",
+    ];
     println!("95 % interval coverage over {seeds} noise seeds (1 % noise):");
     for (name, c) in names.iter().zip(covered) {
-        println!("  {name:<26} {c}/{seeds} = {:.0} %", 100.0 * c as f64 / seeds as f64);
+        println!(
+            "  {name:<26} {c}/{seeds} = {:.0} %",
+            100.0 * c as f64 / seeds as f64
+        );
     }
     println!(
         "residual RMS / noise level: median {:.3}, range {:.3}..{:.3}",

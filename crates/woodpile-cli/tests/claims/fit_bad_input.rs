@@ -37,13 +37,33 @@ const GOOD_PARAMETER: &str = "{ key = \"excitation.velocity_m_s\", bounds = [1.5
 fn bad_rows_name_the_file_and_the_line() {
     let backwards = "time_s,sensor_n\n0,0\n2e-6,0.5\n1e-6,1.0\n";
     let fit = fit_file(GOOD_SIGNALS, GOOD_PARAMETER);
-    case("time", backwards, &fit, &["measured.csv, line 4", "does not increase"]);
+    case(
+        "time",
+        backwards,
+        &fit,
+        &["measured.csv, line 4", "does not increase"],
+    );
     let nan = "time_s,sensor_n\n0,0\n1e-6,NaN\n2e-6,1.0\n";
-    case("nan", nan, &fit, &["measured.csv, line 3", "sensor_n is NaN", "gap"]);
+    case(
+        "nan",
+        nan,
+        &fit,
+        &["measured.csv, line 3", "sensor_n is NaN", "gap"],
+    );
     let gap = "time_s,sensor_n\n0,0\n1e-6,\n2e-6,1.0\n";
-    case("gap", gap, &fit, &["measured.csv, line 3", "sensor_n is empty"]);
+    case(
+        "gap",
+        gap,
+        &fit,
+        &["measured.csv, line 3", "sensor_n is empty"],
+    );
     let text = "time_s,sensor_n\n0,0\n1e-6,high\n2e-6,1.0\n";
-    case("text", text, &fit, &["measured.csv, line 3", "`high` is not a finite number"]);
+    case(
+        "text",
+        text,
+        &fit,
+        &["measured.csv, line 3", "`high` is not a finite number"],
+    );
 }
 
 #[test]

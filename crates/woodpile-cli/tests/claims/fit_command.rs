@@ -32,7 +32,12 @@ starts = 1
 fn column(path: &std::path::Path, name: &str) -> Vec<f64> {
     let text = std::fs::read_to_string(path).unwrap();
     let mut lines = text.lines();
-    let k = lines.next().unwrap().split(',').position(|c| c == name).unwrap();
+    let k = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .position(|c| c == name)
+        .unwrap();
     lines
         .map(|l| l.split(',').nth(k).unwrap().parse().unwrap())
         .collect()
@@ -46,9 +51,17 @@ fn fit_recovers_a_simulated_scenario_and_fitted_toml_reproduces_it() {
     common::write(d, "model.toml", MODEL);
     common::write(d, "fit.toml", FIT);
     let sim = common::run_in(d, &["simulate", "truth.toml", "--out", "truth", "-q"]);
-    assert!(sim.status.success(), "{}", String::from_utf8_lossy(&sim.stderr));
+    assert!(
+        sim.status.success(),
+        "{}",
+        String::from_utf8_lossy(&sim.stderr)
+    );
     let fit = common::run_in(d, &["fit", "fit.toml", "--out", "out"]);
-    assert!(fit.status.success(), "{}", String::from_utf8_lossy(&fit.stderr));
+    assert!(
+        fit.status.success(),
+        "{}",
+        String::from_utf8_lossy(&fit.stderr)
+    );
     let json = common::json(&d.join("out/fit.json"));
     for (k, truth) in [0.85, 1.0, 1.98].iter().enumerate() {
         let p = &json["parameters"][k];
@@ -61,10 +74,18 @@ fn fit_recovers_a_simulated_scenario_and_fitted_toml_reproduces_it() {
         assert!(p["ci95"][0].as_f64().is_some() && p["std_error"].as_f64().is_some());
     }
     assert_eq!(json["residual_rms"].as_array().unwrap().len(), 2);
-    assert!(json["warnings"].as_array().unwrap().is_empty(), "{}", json["warnings"]);
+    assert!(
+        json["warnings"].as_array().unwrap().is_empty(),
+        "{}",
+        json["warnings"]
+    );
     // simulate fitted.toml: its wall force at the measured times is the fit's model curve.
     let rerun = common::run_in(d, &["simulate", "out/fitted.toml", "--out", "rerun", "-q"]);
-    assert!(rerun.status.success(), "{}", String::from_utf8_lossy(&rerun.stderr));
+    assert!(
+        rerun.status.success(),
+        "{}",
+        String::from_utf8_lossy(&rerun.stderr)
+    );
     let simulated = column(&d.join("rerun/forces.csv"), "contact_3_n");
     let text = std::fs::read_to_string(d.join("out/residuals.csv")).unwrap();
     let fitted: Vec<f64> = text
@@ -79,5 +100,8 @@ fn fit_recovers_a_simulated_scenario_and_fitted_toml_reproduces_it() {
         .iter()
         .zip(&fitted)
         .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
-    assert!(worst < 1e-9 * peak, "fitted.toml differs by {worst:e} N (peak {peak:e} N)");
+    assert!(
+        worst < 1e-9 * peak,
+        "fitted.toml differs by {worst:e} N (peak {peak:e} N)"
+    );
 }

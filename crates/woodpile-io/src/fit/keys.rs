@@ -42,7 +42,10 @@ pub enum Target {
 impl Target {
     /// Parses the `key` of a parameter entry; `field` names it in errors.
     pub fn parse(name: &str, field: &str) -> Result<Self, Error> {
-        if let Some(rest) = name.strip_prefix(SCALE_PREFIX).and_then(|r| r.strip_prefix('.')) {
+        if let Some(rest) = name
+            .strip_prefix(SCALE_PREFIX)
+            .and_then(|r| r.strip_prefix('.'))
+        {
             let scale = match rest {
                 "striker" => Scale::Striker,
                 "inner" => Scale::Inner,
@@ -65,7 +68,11 @@ impl Target {
                         .strip_suffix(']')
                         .and_then(|i| i.parse::<usize>().ok())
                         .ok_or_else(|| {
-                            Error::invalid(field, name, "a list entry is written LIST[INDEX], from 0")
+                            Error::invalid(
+                                field,
+                                name,
+                                "a list entry is written LIST[INDEX], from 0",
+                            )
                         })?;
                     (k, Some(i))
                 }
@@ -75,7 +82,13 @@ impl Target {
         }
         let generic: Vec<String> = path
             .iter()
-            .map(|(k, i)| if i.is_some() { format!("{k}[]") } else { k.clone() })
+            .map(|(k, i)| {
+                if i.is_some() {
+                    format!("{k}[]")
+                } else {
+                    k.clone()
+                }
+            })
             .collect();
         let Some(k) = key(&generic.join(".")) else {
             return Err(Error::invalid(
@@ -128,7 +141,8 @@ pub(super) fn apply(
     targets: &[Target],
     values: &[f64],
 ) -> Result<Scenario, Error> {
-    let mut doc = Value::try_from(scenario).map_err(|e| Error::invalid("scenario", "", e.to_string()))?;
+    let mut doc =
+        Value::try_from(scenario).map_err(|e| Error::invalid("scenario", "", e.to_string()))?;
     for (target, &v) in targets.iter().zip(values) {
         if let Target::Key {
             name,
@@ -184,7 +198,11 @@ fn set(doc: &mut Value, path: &[(String, Option<usize>)], v: f64, name: &str) ->
         if let Some(i) = i {
             let len = at.as_array().map_or(0, Vec::len);
             at = at.get_mut(*i).ok_or_else(|| {
-                Error::invalid(name, v, format!("the scenario's `{k}` has {len} entries (indices 0..{len})"))
+                Error::invalid(
+                    name,
+                    v,
+                    format!("the scenario's `{k}` has {len} entries (indices 0..{len})"),
+                )
             })?;
         }
     }
@@ -207,16 +225,27 @@ fn remove(doc: &mut Value, name: &str) {
 }
 
 /// Writes s × β (β as the scenario `r` has it) into the document for one type of contact.
-fn scale_beta(doc: &mut Value, scale: Scale, s: f64, r: &crate::scenario::Resolved) -> Result<(), Error> {
+fn scale_beta(
+    doc: &mut Value,
+    scale: Scale,
+    s: f64,
+    r: &crate::scenario::Resolved,
+) -> Result<(), Error> {
     let key = |what: &str| format!("{SCALE_PREFIX}.{what}");
     let table = doc.as_table_mut().expect("a scenario is a table");
     let n = r.chain.len();
     match scale {
         Scale::Striker => {
             let woodpile::Excitation::Impact(striker) = &r.excitation else {
-                return Err(Error::invalid(key("striker"), s, "the scenario's excitation has no striker"));
+                return Err(Error::invalid(
+                    key("striker"),
+                    s,
+                    "the scenario's excitation has no striker",
+                ));
             };
-            let beta = striker.contact_beta(&r.chain).map_err(Error::at(key("striker")))?;
+            let beta = striker
+                .contact_beta(&r.chain)
+                .map_err(Error::at(key("striker")))?;
             let excitation = table
                 .entry("excitation")
                 .or_insert_with(|| Value::Table(Default::default()));
@@ -233,7 +262,11 @@ fn scale_beta(doc: &mut Value, scale: Scale, s: f64, r: &crate::scenario::Resolv
         }
         Scale::Wall => {
             let beta = r.chain.wall_beta().ok_or_else(|| {
-                Error::invalid(key("wall"), s, "the scenario's chain has no wall (wall.kind = \"free\")")
+                Error::invalid(
+                    key("wall"),
+                    s,
+                    "the scenario's chain has no wall (wall.kind = \"free\")",
+                )
             })?;
             let mut entries = contact_entries(table, |c| c < n);
             let had_entry = entries.len() < contact_entries(table, |_| true).len();

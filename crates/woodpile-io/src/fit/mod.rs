@@ -26,7 +26,7 @@ mod keys;
 mod output;
 
 pub use data::read_signals;
-pub use keys::{Scale, SCALE_PREFIX};
+pub use keys::{Scale, Target, SCALE_PREFIX};
 pub use output::{check_output, fit_json, residuals_csv, write_outputs, FIT_MARKER};
 
 use crate::error::Error;
@@ -120,7 +120,7 @@ pub struct FitSetup {
     /// The model's parameters (the time shift is [`FitSetup::time_shift_s`]).
     pub parameters: Vec<Parameter>,
     /// How each parameter is applied to the scenario, in the same order.
-    pub targets: Vec<keys::Target>,
+    pub targets: Vec<Target>,
     /// The fitted time shift.
     pub time_shift_s: Option<Parameter>,
     /// The measured signals.
@@ -279,16 +279,14 @@ fn parameter(spec: &ParameterSpec, field: &str, current: Option<f64>) -> Result<
         (Some(v), _, _) => v,
         (None, Some(v), _) if inside(v) => v,
         (None, _, Some(m)) => m,
-        (None, _, None) => {
-            return Err(Error::invalid(
-                format!("{field}.initial"),
-                "(missing)",
-                format!(
-                    "{} has no value in the scenario and no bounds: give an initial value or bounds",
-                    spec.key
-                ),
-            ))
-        }
+        (None, _, None) => return Err(Error::invalid(
+            format!("{field}.initial"),
+            "(missing)",
+            format!(
+                "{} has no value in the scenario and no bounds: give an initial value or bounds",
+                spec.key
+            ),
+        )),
     };
     let p = Parameter {
         name: spec.key.clone(),

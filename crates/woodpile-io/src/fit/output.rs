@@ -143,9 +143,7 @@ pub fn fit_json(setup: &FitSetup, result: &FitResult) -> Value {
 /// `residuals.csv`: one row per measured row: file, signal, time_s, measured, model,
 /// residual = model − measured (the signal's unit), in_window (1 or 0).
 pub fn residuals_csv(setup: &FitSetup, prediction: &Prediction) -> String {
-    let (t0, t1) = setup
-        .window_s
-        .unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+    let (t0, t1) = setup.window_s.unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
     let mut out = String::from("file,signal,time_s,measured,model,residual,in_window\n");
     for ((m, (file, column)), model) in setup
         .measurements

@@ -455,7 +455,7 @@ fn finish(ev: &Evaluator<'_, '_>, starts: Vec<StartResult>) -> Result<FitResult>
         .coordinates
         .iter()
         .zip(&x)
-        .map(|(c, &x)| c.bounded && (x < 1e-3 || x > 1.0 - 1e-3))
+        .map(|(c, &x)| c.bounded && !(1e-3..=1.0 - 1e-3).contains(&x))
         .collect();
     let prediction = ev.prediction(&estimates)?;
     let r = residual_vector(problem, &prediction);
