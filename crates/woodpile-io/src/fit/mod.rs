@@ -279,14 +279,16 @@ fn parameter(spec: &ParameterSpec, field: &str, current: Option<f64>) -> Result<
         (Some(v), _, _) => v,
         (None, Some(v), _) if inside(v) => v,
         (None, _, Some(m)) => m,
-        (None, _, None) => return Err(Error::invalid(
-            format!("{field}.initial"),
-            "(missing)",
-            format!(
+        (None, _, None) => {
+            return Err(Error::invalid(
+                format!("{field}.initial"),
+                "(missing)",
+                format!(
                 "{} has no value in the scenario and no bounds: give an initial value or bounds",
                 spec.key
             ),
-        )),
+            ))
+        }
     };
     let p = Parameter {
         name: spec.key.clone(),

@@ -84,9 +84,15 @@ impl Grid {
 /// finite-difference Jacobian noisy (docs/fit.md).
 pub(super) fn require_fixed_step(settings: &RunSettings) -> Result<()> {
     if settings.method.adaptive() {
+        let value = match settings.method {
+            crate::Method::PeakTolerance { peak_tolerance } => {
+                format!("adaptive (run.peak_tolerance = {peak_tolerance})")
+            }
+            _ => "dopri5".into(),
+        };
         return Err(Error::invalid(
             "run.integrator",
-            format!("{:?}", settings.method),
+            value,
             "a fit needs a fixed step (rk4, the default): an adaptive step sequence changes with the parameters and makes the Jacobian noisy (docs/fit.md)",
         ));
     }
