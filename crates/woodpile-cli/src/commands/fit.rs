@@ -1,12 +1,12 @@
 //! `woodpile fit`: calibrate a scenario's parameters to measured signals (docs/fit.md) and write
-//! `fit.json`, `fitted.toml` and `residuals.csv`. Ctrl-C stops the fit and writes the best point
+//! `fit.json`, `fitted.toml`, `residuals.csv` and a figure per signal in `plots/`. Ctrl-C stops the fit and writes the best point
 //! so far (without uncertainties), then exits 130.
 
 use super::Context;
 use crate::progress::Progress;
 use crate::{interrupt, out, CliError};
-use std::path::PathBuf;
-use woodpile::fit::{fit, predict, FitProgress, FitResult, FitSettings};
+use std::path::{Path, PathBuf};
+use woodpile::fit::{fit, predict, FitProgress, FitResult, FitSettings, Prediction};
 use woodpile_io::fit::{check_output, load, write_outputs, FitSetup};
 
 /// Arguments of `woodpile fit`.
@@ -67,6 +67,9 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let result = result?;
     let prediction = predict(&problem, &result.estimates)?;
     write_outputs(&dir, args.overwrite, &setup, &result, &prediction)?;
+    if let Err(e) = draw(&setup, &prediction, &dir.join("plots")) {
+        out::eprintln(format_args!("warning: the figures were not drawn: {e}"));
+    }
     if !ctx.quiet {
         print_summary(&setup, &result, &dir)?;
     }
@@ -77,6 +80,47 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
                 dir.display()
             ),
         });
+    }
+    Ok(())
+}
+
+/// One figure per signal in `plots`: `fit_COLUMN.png` and `.svg` (measured, model, residual).
+fn draw(setup: &FitSetup, prediction: &Prediction, plots: &Path) -> Result<(), String> {
+    std::fs::create_dir_all(plots).map_err(|e| format!("{}: {e}", plots.display()))?;
+    let mut used = std::collections::BTreeSet::new();
+    for (k, (m, model)) in setup
+        .measurements
+        .iter()
+        .zip(&prediction.values)
+        .enumerate()
+    {
+        let clean: String = m
+            .label
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        let mut name = format!("fit_{clean}");
+        if !used.insert(name.clone()) {
+            name = format!("{name}_{k}");
+        }
+        let (file, column) = &setup.sources[k];
+        let title = format!("{file}: {column} against {}", m.output.name());
+        let y_label = format!("{} [{}]", m.output.name(), m.output.unit());
+        woodpile_plot::fit_signal(
+            &m.times_s,
+            &m.values,
+            model,
+            &title,
+            &y_label,
+            &plots.join(name),
+        )
+        .map_err(|e| e.to_string())?;
     }
     Ok(())
 }

@@ -2,7 +2,7 @@
 //! known scenario (restitution 0.85, impact speed 1.98 m/s, the wall's β as computed), the
 //! restitution, the speed and a wall-β scale of 1 to 1e-6 relative, starting from 0.8, 2.0 m/s
 //! and the bounds' middle; and `woodpile simulate fitted.toml` reproduces the fitted model
-//! curve of residuals.csv to 1e-9 of the signal's peak.
+//! curve of residuals.csv to 1e-9 of the signal's peak. A figure per signal is drawn.
 //!
 //! Tolerance: the data are the model itself on the same RK4 steps, so the optimum is the truth
 //! (the optimiser stops at a relative tolerance of 1e-10); fitted.toml holds the estimates with
@@ -74,6 +74,16 @@ fn fit_recovers_a_simulated_scenario_and_fitted_toml_reproduces_it() {
         assert!(p["ci95"][0].as_f64().is_some() && p["std_error"].as_f64().is_some());
     }
     assert_eq!(json["residual_rms"].as_array().unwrap().len(), 2);
+    for figure in [
+        "fit_contact_3_n.png",
+        "fit_contact_3_n.svg",
+        "fit_element_1_m_s.png",
+    ] {
+        assert!(
+            d.join("out/plots").join(figure).is_file(),
+            "no figure {figure}"
+        );
+    }
     assert!(
         json["warnings"].as_array().unwrap().is_empty(),
         "{}",
