@@ -15,6 +15,7 @@ mod common;
 mod default_job;
 mod fit_bad_input;
 mod fit_command;
+mod fit_interrupt;
 mod meaningless_results;
 mod optimize_bad_input;
 mod optimize_best_reruns;
