@@ -13,6 +13,7 @@ One module per domain, everything public re-exported here:
   :func:`spectrum`, :func:`transmission`
 - :mod:`woodpile.optimize`: :class:`BreederGA`, :func:`optimize`, :class:`OptimizeResult`,
   :class:`GenerationStats`
+- :mod:`woodpile.calibration`: :func:`fit`, :class:`FitResult`
 - :mod:`woodpile.errors`: :class:`WoodpileError` and its subclasses
 - :mod:`woodpile.plot`: matplotlib figures (imported on demand)
 
@@ -26,6 +27,7 @@ from __future__ import annotations
 
 from . import _core
 from .analysis import Cell, band_gaps, cells, effective_mass, spectrum, transmission
+from .calibration import FitResult, fit
 from .errors import (
     FileError,
     InaccurateRunError,
@@ -73,6 +75,8 @@ __all__ = [
     "BestDesign",
     "optimize",
     "OptimizeResult",
+    "fit",
+    "FitResult",
 ]
 __version__: str = _core.__version__
 

@@ -115,3 +115,9 @@ class GaSession:
     def run_to_end(self) -> None: ...
 
 def evaluate_designs(config_json: str, base_dir: str, designs: list[list[int]], threads: int) -> list[float]: ...
+
+# fit.rs -----------------------------------------------------------------------------------
+
+def fit_file(
+    path: str, out: Optional[str] = None, overwrite: bool = False, threads: Optional[int] = None
+) -> tuple[str, str]: ...

@@ -13,15 +13,19 @@ pub const EXIT_INTERRUPTED: u8 = 130;
 
 static STOP: AtomicBool = AtomicBool::new(false);
 static COOPERATIVE: AtomicBool = AtomicBool::new(false);
+static STOP_RUNS: AtomicBool = AtomicBool::new(false);
 
-/// Installs the handler (once per process; later calls do nothing). The first interrupt also
-/// asks the library to stop every run at its next step ([`woodpile::interrupt`]), so a
-/// cooperative command stops within a step rather than at the end of its current stage; a
-/// second interrupt ends even a cooperative command at once, its unfinished outputs removed.
+/// Installs the handler (once per process; later calls do nothing). For a command that
+/// declared [`cooperative`] with `stop_runs`, the first interrupt also asks the library to stop
+/// every run at its next step ([`woodpile::interrupt`]), so it stops within a step rather than
+/// at the end of its current stage; a second interrupt ends even a cooperative command at once,
+/// its unfinished outputs removed.
 pub fn install() {
     let _ = ctrlc::set_handler(|| {
         let again = STOP.swap(true, Ordering::SeqCst);
-        woodpile::interrupt::request();
+        if STOP_RUNS.load(Ordering::SeqCst) {
+            woodpile::interrupt::request();
+        }
         if again || !COOPERATIVE.load(Ordering::SeqCst) {
             woodpile_io::atomic::remove_active_staging();
             crate::out::eprintln(if again {
@@ -34,8 +38,11 @@ pub fn install() {
     });
 }
 
-/// Declares that the running command polls [`stop_flag`] and stops cleanly by itself.
-pub fn cooperative() {
+/// Declares that the running command polls [`stop_flag`] and stops cleanly by itself;
+/// `stop_runs`: the runs under way are stopped too (a GA abandons its generation), rather than
+/// finished (a fit, whose runs are short and whose best point is simulated once more).
+pub fn cooperative(stop_runs: bool) {
+    STOP_RUNS.store(stop_runs, Ordering::SeqCst);
     COOPERATIVE.store(true, Ordering::SeqCst);
 }
 

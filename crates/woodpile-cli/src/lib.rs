@@ -12,6 +12,7 @@
 //! - [`commands::simulate`]: one run of a scenario into its run directory;
 //! - [`commands::transmission`]: a preloaded chain's transmission spectrum;
 //! - [`commands::optimize`]: the breeder GA, checkpointed and resumable;
+//! - [`commands::fit`]: calibration of a scenario's parameters to measured signals;
 //! - [`commands::plot`]: the figures of a run or optimisation directory;
 //! - [`commands::report`]: everything the paper's figures need, as report.md and report.html,
 //!   one module per section.

@@ -32,6 +32,8 @@ enum Command {
     /// Measure the transmission spectrum of a preloaded chain and compare its gaps with the
     /// Bloch prediction (docs/physics.md §15).
     Transmission(commands::transmission::Args),
+    /// Calibrate a scenario's parameters to measured signals, with uncertainties (docs/fit.md).
+    Fit(commands::fit::Args),
     /// Draw the figures of a `simulate` or `optimize` output directory into DIR/plots (PNG, SVG).
     Plot(commands::plot::Args),
     /// Run everything the paper's figures need; write the figures, report.md and report.html.
@@ -46,6 +48,7 @@ fn dispatch(command: &Command, ctx: &Context) -> Result<(), CliError> {
         Command::Cells(args) => commands::cells::run(args, ctx),
         Command::Optimize(args) => commands::optimize::run(args, ctx),
         Command::Transmission(args) => commands::transmission::run(args, ctx),
+        Command::Fit(args) => commands::fit::run(args, ctx),
         Command::Plot(args) => commands::plot::run(args, ctx),
         Command::Report(args) => commands::report::run(args, ctx),
     }

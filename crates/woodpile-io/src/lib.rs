@@ -21,7 +21,9 @@
 //! 4. **Optimise** — [`optimize`]: the optimisation config, the problem it defines, its
 //!    checksummed checkpoint and outputs; [`pareto`]: NSGA-II's checkpoint and its Pareto
 //!    outputs (`pareto.csv`, `pareto/NNN.toml`, hypervolume history).
-//! 5. **Say what went wrong** — [`Error`]: typed, naming the field, the value and what is valid
+//! 5. **Calibrate** — [`fit`]: the fit file (a scenario, measured CSV files mapped to model
+//!    outputs, the fitted parameters) and the outputs of a fit.
+//! 6. **Say what went wrong** — [`Error`]: typed, naming the field, the value and what is valid
 //!    ([`Error::field`], [`Error::value`], [`Error::reason`]); [`Error::kind`] sorts it for a
 //!    front end, which words its own options (no exit codes or flag names here).
 //!
@@ -50,6 +52,7 @@ pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 pub mod atomic;
 pub mod cells;
 pub mod error;
+pub mod fit;
 pub mod limits;
 pub mod npy;
 pub mod optimize;

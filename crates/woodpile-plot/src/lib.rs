@@ -15,6 +15,7 @@
 //! | [`effective_mass`] | M_eff/M_total vs frequency with bands shaded | Fig. 3 |
 //! | [`transmission`] | transmission spectrum (dB) with the predicted gaps shaded | – |
 //! | [`convergence`] | best and mean objective per GA generation | – |
+//! | [`fit_signal`] | a fitted signal: measured, model and residual vs time | – |
 //! | [`chain_picture`] | rods to scale, top to bottom | Fig. 5 d, e (right) |
 //!
 //! Every function takes a file *stem* (`dir/force_map`) and writes `stem.png` and `stem.svg`
@@ -52,8 +53,9 @@ pub use heatmap::{
     spectrum_map, Heatmap, MapColours,
 };
 pub use lines::{
-    convergence, effective_mass, force_histories, force_histories_between, onset_window_s,
-    peaks_per_layer, spectra, spectra_between, transmission, ConvergencePoint, Series,
+    convergence, effective_mass, fit_signal, force_histories, force_histories_between,
+    onset_window_s, peaks_per_layer, spectra, spectra_between, transmission, ConvergencePoint,
+    Series,
 };
 pub use output::{with_output, Format, Output};
 

@@ -758,3 +758,57 @@ pub fn transmission(
     }
     .write(stem)
 }
+
+/// A fitted signal: the measurement, the fitted model and the residual (model − measured) against
+/// time in ms, one axis in the signal's unit (`y_label`), over the rows of `times_s`. Writes
+/// `stem.png` and `stem.svg`.
+pub fn fit_signal(
+    times_s: &[f64],
+    measured: &[f64],
+    model: &[f64],
+    title: &str,
+    y_label: &str,
+    stem: &Path,
+) -> Result<Vec<PathBuf>> {
+    if times_s.len() < 2 || measured.len() != times_s.len() || model.len() != times_s.len() {
+        return Err(bad(
+            title,
+            "needs at least 2 times and one value of each curve per time",
+        ));
+    }
+    let residual: Vec<f64> = model.iter().zip(measured).map(|(a, b)| a - b).collect();
+    let curves = [
+        ("measured", measured),
+        ("model", model),
+        ("residual (model − measured)", &residual[..]),
+    ];
+    let (lo, hi) = finite_range(title, curves.iter().flat_map(|c| c.1.iter().copied()))?;
+    let (y0, y1) = padded(lo, hi);
+    let pad = 0.05 * (y1 - y0);
+    LinePlot {
+        title: title.to_string(),
+        x_label: "time [ms]".into(),
+        y_label: y_label.to_string(),
+        series: curves
+            .iter()
+            .map(|(label, values)| {
+                let pts = times_s
+                    .iter()
+                    .zip(values.iter())
+                    .map(|(t, v)| (t * 1e3, *v))
+                    .filter(|p| p.1.is_finite())
+                    .collect();
+                (label.to_string(), vec![pts])
+            })
+            .collect(),
+        bands: Vec::new(),
+        x_range: (times_s[0] * 1e3, times_s[times_s.len() - 1] * 1e3),
+        y_range: (y0 - pad, y1 + pad),
+        log_y: false,
+        markers: false,
+        integer_x: false,
+        zero_line: true,
+        size: (1100, 600),
+    }
+    .write(stem)
+}

@@ -12,12 +12,14 @@
 //! | [`study`] | `woodpile.study` | many scenarios at once (rayon, SIMD lanes) |
 //! | [`analysis`] | `woodpile.analysis` | cells, effective mass, band gaps, spectra |
 //! | [`optimize`] | `woodpile.optimize` | the breeder GA as ask/tell |
+//! | [`fit`] | `woodpile.fit` | calibration to measured signals, with uncertainties |
 //! | [`errors`] | `woodpile.errors` | every error as a `WoodpileError` subclass |
 //!
 //! The GIL is released while Rust simulates, and Ctrl-C stops it within a step ([`interrupt`]).
 
 mod analysis;
 mod errors;
+mod fit;
 mod interrupt;
 mod optimize;
 mod run;
@@ -35,5 +37,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     study::register(m)?;
     analysis::register(m)?;
     optimize::register(m)?;
+    fit::register(m)?;
     Ok(())
 }

@@ -89,3 +89,18 @@ pub const STUDY_PEAK_TOLERANCE: f64 = 1e-5;
 /// Design studies: the breeder GA screens new designs at this looser peak tolerance first
 /// (docs/physics.md §11; a force objective).
 pub const STUDY_SCREEN_PEAK_TOLERANCE: f64 = 3e-4;
+/// Calibration (`fit`, docs/fit.md): number of starts (the initial values, then Sobol' points).
+pub const FIT_STARTS: usize = 8;
+/// Most residual evaluations of one start of a fit.
+pub const FIT_MAX_EVALUATIONS: usize = 200;
+/// Forward-difference step of the fit's Jacobian as a fraction of a parameter's range: with a
+/// fixed integration step the model is smooth, and this step balances truncation (∝ h) against
+/// rounding (∝ ε/h) (measured in docs/fit.md).
+pub const FIT_JACOBIAN_STEP: f64 = 1e-7;
+/// Relative tolerance of a fit on the cost and the parameters (MINPACK's ftol, xtol).
+pub const FIT_TOLERANCE: f64 = 1e-10;
+/// |correlation| above which two fitted parameters are reported as not separable by the data.
+pub const FIT_CORRELATION_WARN: f64 = 0.95;
+/// The model is sampled this many times finer than the measurement's smallest time step and
+/// interpolated onto the measured times.
+pub const FIT_OVERSAMPLING: f64 = 4.0;

@@ -33,6 +33,9 @@
 //! 6. **Optimise** — [`optimize`]: the breeder genetic algorithm ([`BreederGa`]) over a
 //!    [`DesignSpace`] of catalogue elements, with a user-extensible [`Objective`]; NSGA-II
 //!    ([`optimize::Nsga2`]) for the Pareto front of several [`optimize::DesignFigure`]s.
+//! 7. **Calibrate** — [`fit`]: the parameters that best explain measured signals (bounded
+//!    least squares from several starts), with standard errors, correlations and warnings for
+//!    what the data cannot determine.
 //!
 //! Every long loop polls one process-wide stop request ([`interrupt`]), which front ends set on
 //! Ctrl-C, SIGTERM or Python's `KeyboardInterrupt`.
@@ -61,6 +64,7 @@ pub mod analysis;
 pub mod defaults;
 pub mod error;
 pub mod excitation;
+pub mod fit;
 pub mod integrate;
 pub mod interrupt;
 pub mod lanes;

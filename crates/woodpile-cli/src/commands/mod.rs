@@ -8,6 +8,7 @@ use crate::CliError;
 use std::path::{Path, PathBuf};
 
 pub mod cells;
+pub mod fit;
 pub mod optimize;
 pub mod plot;
 pub mod report;

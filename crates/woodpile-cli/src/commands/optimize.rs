@@ -121,7 +121,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     }
     fs::create_dir_all(out).map_err(io_err(out))?;
 
-    crate::interrupt::cooperative();
+    crate::interrupt::cooperative(true);
     let stop = crate::interrupt::stop_flag();
     // The GA stops sooner when it stalls: its ETA is the time to the generation limit.
     let bar =
@@ -272,7 +272,7 @@ fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Resul
         ga.check_state(state).map_err(optimize_error)?;
     }
     fs::create_dir_all(out).map_err(io_err(out))?;
-    crate::interrupt::cooperative();
+    crate::interrupt::cooperative(true);
     let stop = crate::interrupt::stop_flag();
     let bar = Progress::new("optimize", problem.nsga2.generations as u64, ctx.quiet).ending_early();
     if let Some(s) = &initial {
