@@ -1,8 +1,11 @@
 // The fuzz targets, shared by the AFL binaries (crates/woodpile-fuzz/src/bin) and the replay
 // claim (crates/woodpile-io/tests/claims/fuzz_corpus.rs). Plain functions of bytes.
 
+/// A fuzz target: its name (the folder of its corpus) and the function of bytes it runs.
+pub type Target = (&'static str, fn(&[u8]));
+
 /// The readers under test; the corpus of each lives in `crates/woodpile-fuzz/corpus/<name>/`.
-pub const TARGETS: [(&str, fn(&[u8])); 5] = [
+pub const TARGETS: [Target; 5] = [
     ("scenario", fuzz_scenario),
     ("optimize_config", fuzz_optimize_config),
     ("npy", fuzz_npy),

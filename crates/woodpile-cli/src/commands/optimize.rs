@@ -6,7 +6,7 @@ use crate::progress::Progress;
 use crate::CliError;
 use std::fs;
 use std::ops::ControlFlow;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use woodpile::optimize::{BreederGa, GaState, Nsga2, Nsga2State, Objective, StopReason};
 use woodpile_io::atomic::io_err;
 use woodpile_io::optimize::*;
@@ -186,15 +186,19 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         ))?;
     }
     if interrupted {
-        return Err(CliError::Interrupted {
-            saved: format!(
-                "generation {} is saved in {}; continue with the same command and --resume",
-                state.generation,
-                out.join(CHECKPOINT_FILE).display()
-            ),
-        });
+        return Err(interrupted_at(state.generation, out));
     }
     Ok(())
+}
+
+/// An interrupt after `generation` was saved in `out`'s checkpoint.
+fn interrupted_at(generation: usize, out: &Path) -> CliError {
+    CliError::Interrupted {
+        saved: format!(
+            "generation {generation} is saved in {}; continue with the same command and --resume",
+            out.join(CHECKPOINT_FILE).display()
+        ),
+    }
 }
 
 /// An interrupt before generation 0 was complete: no checkpoint exists yet.
@@ -356,13 +360,7 @@ fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Resul
         ))?;
     }
     if reason == StopReason::Interrupted {
-        return Err(CliError::Interrupted {
-            saved: format!(
-                "generation {} is saved in {}; continue with the same command and --resume",
-                state.generation,
-                out.join(CHECKPOINT_FILE).display()
-            ),
-        });
+        return Err(interrupted_at(state.generation, out));
     }
     Ok(())
 }

@@ -935,20 +935,12 @@ impl BreederGa {
     /// size, genome length, catalogue indices, constraints, history length.
     pub fn check_state(&self, state: &GaState) -> Result<(), OptimizeError> {
         let mismatch = |reason: String| Err(OptimizeError::StateMismatch { reason });
-        if state.population.len() != self.settings.population {
-            return mismatch(format!(
-                "population has {} individuals, the settings ask for {}",
-                state.population.len(),
-                self.settings.population
-            ));
-        }
-        if state.history.len() != state.generation + 1 {
-            return mismatch(format!(
-                "history has {} lines for generation {}",
-                state.history.len(),
-                state.generation
-            ));
-        }
+        super::check_counts(
+            state.population.len(),
+            self.settings.population,
+            state.history.len(),
+            state.generation,
+        )?;
         for (k, ind) in state.population.iter().enumerate() {
             if !self.set.contains(&ind.genome) {
                 return mismatch(format!(

@@ -123,6 +123,28 @@ pub enum OptimizeError {
     },
 }
 
+/// The checks every algorithm's saved state starts with: its population size against the
+/// settings', and one history line per generation (0 included).
+pub(crate) fn check_counts(
+    population: usize,
+    settings_population: usize,
+    history: usize,
+    generation: usize,
+) -> Result<(), OptimizeError> {
+    let mismatch = |reason: String| Err(OptimizeError::StateMismatch { reason });
+    if population != settings_population {
+        return mismatch(format!(
+            "population has {population} individuals, the settings ask for {settings_population}"
+        ));
+    }
+    if history != generation + 1 {
+        return mismatch(format!(
+            "history has {history} lines for generation {generation}"
+        ));
+    }
+    Ok(())
+}
+
 impl OptimizeError {
     /// Whether a stop request ([`crate::interrupt`]) ended the evaluation.
     pub fn is_interrupted(&self) -> bool {

@@ -588,20 +588,12 @@ impl Nsga2 {
     /// Checks that a saved state belongs to this problem.
     pub fn check_state(&self, state: &Nsga2State) -> Result<(), OptimizeError> {
         let mismatch = |reason: String| Err(OptimizeError::StateMismatch { reason });
-        if state.population.len() != self.settings.population {
-            return mismatch(format!(
-                "population has {} individuals, the settings ask for {}",
-                state.population.len(),
-                self.settings.population
-            ));
-        }
-        if state.history.len() != state.generation + 1 {
-            return mismatch(format!(
-                "history has {} lines for generation {}",
-                state.history.len(),
-                state.generation
-            ));
-        }
+        super::check_counts(
+            state.population.len(),
+            self.settings.population,
+            state.history.len(),
+            state.generation,
+        )?;
         let m = self.objectives.len();
         if state.reference_point.len() != m {
             return mismatch(format!(
