@@ -292,3 +292,16 @@ def test_transmission_matches_the_command_lines_record():
     with pytest.raises(WoodpileError) as info:
         woodpile.transmission(short())
     assert info.value.args[1] == "preload.force_n"
+
+
+def test_transmission_damping_is_a_keyword_refused_for_a_damped_chain():
+    """``damping_time_s`` is ``--damping-time-s``: the built-in transmission chain has its own
+    damping, so a measurement damping is refused naming the keyword; an invalid resolution names
+    ``resolution_hz`` (the keyword), not the library's ``transmission.resolution_hz``."""
+    s = Scenario.builtin("transmission-80mm")
+    with pytest.raises(WoodpileError) as info:
+        woodpile.transmission(s, damping_time_s=0.05)
+    assert info.value.field == "damping_time_s"
+    with pytest.raises(WoodpileError) as info:
+        woodpile.transmission(s, resolution_hz=-1.0)
+    assert info.value.field == "resolution_hz"

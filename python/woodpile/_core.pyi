@@ -91,7 +91,8 @@ def transmission(
     resolution_hz: Optional[float] = None,
     relative_amplitude: Optional[float] = None,
     threshold_db: Optional[float] = None,
-) -> tuple[tuple[_F, _F], _F, str]: ...
+    damping_time_s: Optional[float] = None,
+) -> tuple[tuple[_F, _F], tuple[_F, _F], str]: ...
 
 # optimize.rs (a design: catalogue indices, returned as bytes) -------------------------------
 

@@ -117,13 +117,17 @@ def transmission(
     resolution_hz: float | None = None,
     relative_amplitude: float | None = None,
     threshold_db: float | None = None,
+    damping_time_s: float | None = None,
 ) -> tuple[pd.DataFrame, dict[str, Any]]:
     """The transmission spectrum of a scenario's preloaded chain (as ``woodpile transmission``):
-    a DataFrame indexed by ``frequency_hz`` with ``transmission`` and ``transmission_db``, and
-    the record of ``transmission.json`` (measured stop bands, predicted gaps, edges compared).
+    a DataFrame indexed by ``frequency_hz`` with ``transmission``, ``transmission_db`` and
+    ``linear_transmission_db`` (the exact linear response of the finite preloaded chain), and
+    the record of ``transmission.json`` (measured stop bands, predicted gaps, the edge table).
 
     Settings left None take ``woodpile transmission``'s defaults (the library's
-    ``woodpile::defaults::TRANSMISSION_*``, applied by the extension).
+    ``woodpile::defaults::TRANSMISSION_*``, applied by the extension); ``damping_time_s`` is
+    the on-site damping time added to a chain without damping for the measurement (None: 20 ms;
+    0: the lossless chain), refused for a chain with damping of its own.
     """
     import pandas as pd
 
@@ -133,7 +137,7 @@ def transmission(
     def opt(x: float | None) -> float | None:
         return None if x is None else float(x)
 
-    (f, t), db, record = _core.transmission(
+    (f, t), (db, linear_db), record = _core.transmission(
         scenario.to_toml(),
         str(scenario.base_dir),
         scenario.name,
@@ -142,7 +146,11 @@ def transmission(
         opt(resolution_hz),
         opt(relative_amplitude),
         opt(threshold_db),
+        opt(damping_time_s),
     )
-    table = pd.DataFrame({"transmission": t, "transmission_db": db}, index=pd.Index(f, name="frequency_hz"))
+    table = pd.DataFrame(
+        {"transmission": t, "transmission_db": db, "linear_transmission_db": linear_db},
+        index=pd.Index(f, name="frequency_hz"),
+    )
     parsed: dict[str, Any] = json.loads(record)
     return table, parsed

@@ -144,11 +144,13 @@ fn spectrum<'py>(
 }
 
 /// The transmission spectrum of a scenario's preloaded chain (docs/physics.md §15), GIL
-/// released: ((frequencies [Hz], T), T [dB], `transmission.json` as JSON text).
+/// released: ((frequencies [Hz], T), (T [dB], the finite chain's linear T [dB]),
+/// `transmission.json` as JSON text). `damping_time_s`: as `woodpile transmission
+/// --damping-time-s` (None: τ = 20 ms added to a chain without damping; 0: none).
 /// Each setting left None takes the library's default (`TransmissionSettings::standard()`,
 /// `woodpile::defaults::TRANSMISSION_STOP_DB`).
 #[pyfunction]
-#[pyo3(signature = (text, base_dir, name, start_hz=None, end_hz=None, resolution_hz=None, relative_amplitude=None, threshold_db=None))]
+#[pyo3(signature = (text, base_dir, name, start_hz=None, end_hz=None, resolution_hz=None, relative_amplitude=None, threshold_db=None, damping_time_s=None))]
 #[allow(clippy::too_many_arguments)]
 fn transmission<'py>(
     py: Python<'py>,
@@ -160,18 +162,26 @@ fn transmission<'py>(
     resolution_hz: Option<f64>,
     relative_amplitude: Option<f64>,
     threshold_db: Option<f64>,
-) -> PyResult<(ArrayPair<'py>, Bound<'py, PyArray1<f64>>, String)> {
+    damping_time_s: Option<f64>,
+) -> PyResult<(ArrayPair<'py>, ArrayPair<'py>, String)> {
+    use woodpile::analysis::TransmissionSettings;
     let scenario = Scenario::parse(text).map_err(py_err)?;
     let resolved = resolve(&scenario, &base_dir).map_err(py_err)?;
-    let standard = woodpile::analysis::TransmissionSettings::standard();
-    let settings = woodpile::analysis::TransmissionSettings {
+    let standard = TransmissionSettings::standard();
+    let settings = TransmissionSettings {
         start_hz: start_hz.unwrap_or(standard.start_hz),
         end_hz: end_hz.unwrap_or(standard.end_hz),
         resolution_hz: resolution_hz.unwrap_or(standard.resolution_hz),
         relative_amplitude: relative_amplitude.unwrap_or(standard.relative_amplitude),
         method: resolved.settings.method,
+        measurement_damping_time_s: TransmissionSettings::measurement_damping_for(
+            &resolved.chain,
+            damping_time_s,
+        )
+        .map_err(keyword_error)?,
         ..standard
     };
+    settings.validate().map_err(keyword_error)?;
     let threshold_db = threshold_db.unwrap_or(woodpile::defaults::TRANSMISSION_STOP_DB);
     let (t, record) = crate::interrupt::detach_interruptibly(py, || {
         let t = woodpile::analysis::transmission(&resolved.chain, &settings).map_err(core_err)?;
@@ -186,9 +196,27 @@ fn transmission<'py>(
             PyArray1::from_vec(py, t.frequencies_hz),
             PyArray1::from_vec(py, t.transmission),
         ),
-        PyArray1::from_vec(py, t.transmission_db),
+        (
+            PyArray1::from_vec(py, t.transmission_db),
+            PyArray1::from_vec(py, t.linear_transmission_db),
+        ),
         json,
     ))
+}
+
+/// A transmission setting's error under its keyword (`transmission.resolution_hz` is the
+/// argument `resolution_hz`).
+fn keyword_error(e: woodpile::Error) -> PyErr {
+    match e {
+        woodpile::Error::InvalidParameter {
+            field,
+            value,
+            reason,
+        } if field.starts_with("transmission.") => {
+            Failure::invalid(&field["transmission.".len()..], value, reason).into()
+        }
+        other => core_err(other),
+    }
 }
 
 /// Adds this module's functions to the extension.

@@ -61,24 +61,9 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let loaded = load(&args.source)?;
     let resolved = loaded.resolve()?;
     let lossless = resolved.chain.damping().is_lossless();
-    let measurement_damping_time_s = match args.damping_time_s {
-        None => Some(defaults::TRANSMISSION_DAMPING_TIME_S),
-        Some(tau) if !(tau.is_finite() && tau >= 0.0) => {
-            return Err(CliError::invalid(
-                "--damping-time-s",
-                tau,
-                "must be a damping time in seconds > 0 (e.g. 0.02), or 0 to measure the lossless chain",
-            ))
-        }
-        Some(_) if !lossless => {
-            return Err(CliError::invalid(
-                "--damping-time-s",
-                args.damping_time_s.unwrap_or_default(),
-                "applies to a chain without damping; this scenario's chain has its own [damping] (change damping.on_site_time_s there)",
-            ))
-        }
-        Some(tau) => (tau > 0.0).then_some(tau),
-    };
+    let measurement_damping_time_s =
+        TransmissionSettings::measurement_damping_for(&resolved.chain, args.damping_time_s)
+            .map_err(option_error)?;
     if lossless && measurement_damping_time_s.is_none() {
         crate::out::eprintln(format_args!("warning: measuring the lossless chain (--damping-time-s 0): its response rings past the end of the record and leaks into the gaps (docs/physics.md §15)"));
     }
@@ -91,19 +76,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         measurement_damping_time_s,
         ..TransmissionSettings::standard()
     };
-    // The settings' keys are this command's options (`transmission.resolution_hz` is
-    // `--resolution-hz`).
-    settings.validate().map_err(|e| match e {
-        woodpile::Error::InvalidParameter {
-            field,
-            value,
-            reason,
-        } => match field.strip_prefix("transmission.") {
-            Some(key) => CliError::invalid(format!("--{}", key.replace('_', "-")), value, reason),
-            None => CliError::invalid(field, value, reason),
-        },
-        other => other.into(),
-    })?;
+    settings.validate().map_err(option_error)?;
     // The driven run lasts 1/Δf: refused up front when it would exceed the step limit.
     let run = woodpile::RunSettings {
         duration_s: settings.duration_s(),
@@ -141,4 +114,20 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         crate::out::print(record.summary_text(&dir))?;
     }
     Ok(())
+}
+
+/// The settings' errors in this command's words: `transmission.resolution_hz` is the option
+/// `--resolution-hz`.
+fn option_error(e: woodpile::Error) -> CliError {
+    match e {
+        woodpile::Error::InvalidParameter {
+            field,
+            value,
+            reason,
+        } => match field.strip_prefix("transmission.") {
+            Some(key) => CliError::invalid(format!("--{}", key.replace('_', "-")), value, reason),
+            None => CliError::invalid(field, value, reason),
+        },
+        other => other.into(),
+    }
 }

@@ -47,6 +47,30 @@ pub struct TransmissionSettings {
 }
 
 impl TransmissionSettings {
+    /// The on-site damping time added for the measurement (`measurement_damping_time_s`) when
+    /// the user asked for `requested` (None: the default τ; 0: none, the lossless chain): a
+    /// damping time is for a chain without damping of its own, and must be ≥ 0.
+    pub fn measurement_damping_for(
+        chain: &Chain,
+        requested: Option<f64>,
+    ) -> Result<Option<f64>> {
+        let field = "transmission.damping_time_s";
+        match requested {
+            None => Ok(Some(defaults::TRANSMISSION_DAMPING_TIME_S)),
+            Some(tau) if !(tau.is_finite() && tau >= 0.0) => Err(Error::invalid(
+                field,
+                tau,
+                "must be a damping time in seconds > 0 (e.g. 0.02), or 0 to measure the lossless chain",
+            )),
+            Some(tau) if !chain.damping().is_lossless() => Err(Error::invalid(
+                field,
+                tau,
+                "applies to a chain without damping; this scenario's chain has its own [damping] (change damping.on_site_time_s there)",
+            )),
+            Some(tau) => Ok((tau > 0.0).then_some(tau)),
+        }
+    }
+
     /// Defaults (docs/physics.md §15): 0.1–30 kHz at 10 Hz resolution (a 100 ms record), a chirp of
     /// 1 % of the preload, the paper's RK4 step, samples every 5 µs (Nyquist 100 kHz),
     /// on-site damping τ = 20 ms for a chain without damping.
