@@ -89,3 +89,9 @@ pub const STUDY_PEAK_TOLERANCE: f64 = 1e-5;
 /// Design studies: the breeder GA screens new designs at this looser peak tolerance first
 /// (docs/physics.md §11; a force objective).
 pub const STUDY_SCREEN_PEAK_TOLERANCE: f64 = 3e-4;
+
+/// Samples of a scenario's `[uncertainty]` when `samples` is not given (the example).
+pub const UNCERTAINTY_SAMPLES: usize = 32;
+
+/// Seed of the scrambled Sobol' points of `[uncertainty]` when `seed` is not given.
+pub const UNCERTAINTY_SEED: u32 = 0;

@@ -60,6 +60,9 @@ pub struct Scenario {
     /// Duration, integrator and sampling (`[run]`).
     #[serde(default)]
     pub run: RunSpec,
+    /// Manufacturing scatter (`[uncertainty]`, default: none; used by `--samples` studies).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uncertainty: Option<crate::uncertainty::UncertaintySpec>,
 }
 
 /// Resonant (Table 1 cell with its resonators) or rigid (one body of the total mass).
