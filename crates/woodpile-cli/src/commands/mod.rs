@@ -11,6 +11,7 @@ pub mod cells;
 pub mod optimize;
 pub mod plot;
 pub mod report;
+pub mod samples;
 pub mod scenarios;
 pub mod simulate;
 pub mod transmission;

@@ -30,6 +30,7 @@ pub use builtin::{
     all as builtins, builtin, builtin_names, BuiltinScenario, DEFAULT_SCENARIO, OPTIMIZED_CHAIN_MM,
 };
 pub use keys::{key, keys, Key, KeyDefault, KeyType};
+pub(crate) use resolve::material as material_of;
 pub use resolve::{resolve, resolve_element, resolve_with_keys, ChainKeys, Resolved};
 
 use crate::error::Error;
