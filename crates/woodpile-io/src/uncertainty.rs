@@ -359,12 +359,7 @@ fn apply(
 ) -> Result<f64, Error> {
     use crate::scenario::{CustomMaterial, ElementKind, MaterialSpec};
     let chain_angle = s.chain.crossing_angle_deg;
-    let elements = s
-        .chain
-        .elements
-        .as_mut()
-        .map(Vec::as_mut_slice)
-        .unwrap_or(&mut []);
+    let elements = s.chain.elements.as_deref_mut().unwrap_or(&mut []);
     let needs = |what: &str| {
         Error::invalid(
             key,
