@@ -47,7 +47,7 @@ pub struct Args {
     /// Allow an output directory larger than 2 GB.
     #[arg(long)]
     pub allow_large: bool,
-    /// Run K samples of the scenario's [uncertainty] (overriding its `samples`) in SIMD lanes and
+    /// Run K samples of the scenario's `[uncertainty]` (overriding its `samples`) in SIMD lanes and
     /// write DIR/samples.csv, DIR/samples/NNN.toml and DIR/summary.json (default DIR:
     /// ./runs/NAME-samples).
     #[arg(long, value_name = "K")]
