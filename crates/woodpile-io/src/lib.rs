@@ -20,7 +20,8 @@
 //!    [`transmission`] (a transmission spectrum's directory).
 //! 4. **Optimise** — [`optimize`]: the optimisation config, the problem it defines, its
 //!    checksummed checkpoint and outputs; [`pareto`]: NSGA-II's checkpoint and its Pareto
-//!    outputs (`pareto.csv`, `pareto/NNN.toml`, hypervolume history).
+//!    outputs (`pareto.csv`, `pareto/NNN.toml`, hypervolume history); [`uncertainty`]: a
+//!    scenario's `[uncertainty]` (manufacturing scatter as per-parameter distributions).
 //! 5. **Calibrate** — [`fit`]: the fit file (a scenario, measured CSV files mapped to model
 //!    outputs, the fitted parameters) and the outputs of a fit.
 //! 6. **Say what went wrong** — [`Error`]: typed, naming the field, the value and what is valid
@@ -61,5 +62,6 @@ pub mod rundir;
 pub mod scenario;
 pub mod table;
 pub mod transmission;
+pub mod uncertainty;
 
 pub use error::Error;

@@ -104,3 +104,9 @@ pub const FIT_CORRELATION_WARN: f64 = 0.95;
 /// The model is sampled this many times finer than the measurement's smallest time step and
 /// interpolated onto the measured times.
 pub const FIT_OVERSAMPLING: f64 = 4.0;
+
+/// Samples of a scenario's `[uncertainty]` when `samples` is not given (the example).
+pub const UNCERTAINTY_SAMPLES: usize = 32;
+
+/// Seed of the scrambled Sobol' points of `[uncertainty]` when `seed` is not given.
+pub const UNCERTAINTY_SEED: u32 = 0;

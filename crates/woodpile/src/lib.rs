@@ -33,6 +33,8 @@
 //! 6. **Optimise** — [`optimize`]: the breeder genetic algorithm ([`BreederGa`]) over a
 //!    [`DesignSpace`] of catalogue elements, with a user-extensible [`Objective`]; NSGA-II
 //!    ([`optimize::Nsga2`]) for the Pareto front of several [`optimize::DesignFigure`]s.
+//!    Scatter: [`uncertainty`] draws scrambled Sobol' points, maps them through inverse CDFs and
+//!    sums up the figures of a design's samples (mean, sd, quantiles, CVaR).
 //! 7. **Calibrate** — [`fit`]: the parameters that best explain measured signals (bounded
 //!    least squares from several starts), with standard errors, correlations and warnings for
 //!    what the data cannot determine.
@@ -75,6 +77,7 @@ mod real;
 pub mod record;
 mod root;
 pub mod simulate;
+pub mod uncertainty;
 
 pub use analysis::{BandStructure, EffectiveMassCurve, LayerByLayer, Map2, Spectrum};
 pub use error::{Error, Result};

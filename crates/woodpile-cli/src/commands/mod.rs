@@ -12,6 +12,7 @@ pub mod fit;
 pub mod optimize;
 pub mod plot;
 pub mod report;
+pub mod samples;
 pub mod scenarios;
 pub mod simulate;
 pub mod transmission;

@@ -47,6 +47,11 @@ pub struct Args {
     /// Allow an output directory larger than 2 GB.
     #[arg(long)]
     pub allow_large: bool,
+    /// Run K samples of the scenario's `[uncertainty]` (overriding its `samples`) in SIMD lanes and
+    /// write DIR/samples.csv, DIR/samples/NNN.toml and DIR/summary.json (default DIR:
+    /// ./runs/NAME-samples).
+    #[arg(long, value_name = "K")]
+    pub samples: Option<usize>,
 }
 
 /// A scenario ready to run: its name, where it came from, and the directory its files are
@@ -97,6 +102,9 @@ pub fn load(source: &Source) -> Result<Loaded, CliError> {
 
 /// Runs `woodpile simulate`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
+    if let Some(k) = args.samples {
+        return super::samples::run(args, k, ctx);
+    }
     let loaded = load(&args.source)?;
     let resolved = loaded.resolve()?;
     RunSize::estimate(&resolved.settings, resolved.chain.len()).check(

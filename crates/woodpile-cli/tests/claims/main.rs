@@ -32,6 +32,7 @@ mod progress_lines;
 mod readme_file_table;
 mod report_quick;
 mod scenario_roundtrip;
+mod simulate_samples;
 mod stdout_failures;
 mod transmission_command;
 mod up_front_limits;

@@ -281,6 +281,7 @@ fn table() -> Vec<Key> {
         damping_keys(),
         preload_keys(),
         run_keys(),
+        uncertainty_keys(),
     ]
     .concat()
 }
@@ -498,6 +499,25 @@ fn run_keys() -> Vec<Key> {
         float("run.rtol", "", "at least 1e-14", "dopri5 relative tolerance").or(KeyDefault::Float(d::RTOL)).instead_of(PEAK_TOLERANCE),
         float("run.atol", "m", POSITIVE, "dopri5 absolute tolerance").or(KeyDefault::Float(d::ATOL)).instead_of(PEAK_TOLERANCE),
         float("run.sample_interval_s", "s", "> 0 and at most run.duration_s", "uniform output grid").or(KeyDefault::Float(d::SAMPLE_INTERVAL_S)),
+    ]
+}
+
+#[rustfmt::skip] // one row per key
+fn uncertainty_keys() -> Vec<Key> {
+    const DIST: &str = "{ sd = s } (normal, the key's unit), { relative_sd = r } or { uniform = [a, b] }";
+    let dist = |name, unit, doc| Key::new(name, KeyType::Table, unit, DIST, doc);
+    vec![
+        table_key("uncertainty", "manufacturing scatter for --samples studies (docs/optimization.md); none: nominal values only"),
+        int("uncertainty.samples", "", "at least 1", "samples per design").or(KeyDefault::Derived(d::UNCERTAINTY_SAMPLES.to_string())),
+        int("uncertainty.seed", "", "0..2^32", "seed of the scrambled Sobol' points").or(KeyDefault::Derived(d::UNCERTAINTY_SEED.to_string())),
+        dist("uncertainty.rod_length_mm", "mm", "length of each user rod, independently"),
+        dist("uncertainty.crossing_angle_deg", "deg", "angle of each contact between rods, independently"),
+        dist("uncertainty.youngs_modulus", "Pa", "Young's modulus of the elements' material"),
+        dist("uncertainty.impact_velocity_m_s", "m/s", "the striker's impact velocity"),
+        dist("uncertainty.restitution", "", "damping.restitution"),
+        dist("uncertainty.viscous_time_s", "s", "damping.viscous_time_s"),
+        dist("uncertainty.resonator_ratio", "", "damping.resonator_ratio"),
+        dist("uncertainty.on_site_time_s", "s", "damping.on_site_time_s"),
     ]
 }
 

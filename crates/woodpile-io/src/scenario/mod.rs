@@ -30,6 +30,7 @@ pub use builtin::{
     all as builtins, builtin, builtin_names, BuiltinScenario, DEFAULT_SCENARIO, OPTIMIZED_CHAIN_MM,
 };
 pub use keys::{key, keys, Key, KeyDefault, KeyType};
+pub(crate) use resolve::material as material_of;
 pub use resolve::{resolve, resolve_element, resolve_with_keys, ChainKeys, Resolved};
 
 use crate::error::Error;
@@ -60,6 +61,9 @@ pub struct Scenario {
     /// Duration, integrator and sampling (`[run]`).
     #[serde(default)]
     pub run: RunSpec,
+    /// Manufacturing scatter (`[uncertainty]`, default: none; used by `--samples` studies).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uncertainty: Option<crate::uncertainty::UncertaintySpec>,
 }
 
 /// Resonant (Table 1 cell with its resonators) or rigid (one body of the total mass).

@@ -444,6 +444,9 @@ pub fn resolve_with_keys(
 ) -> Result<Resolved, Error> {
     // Defaults are applied once, by completion; resolving checks and converts.
     let scenario = &scenario.complete();
+    if let Some(u) = &scenario.uncertainty {
+        u.check()?;
+    }
     let mut warnings = Vec::new();
     let chain = resolve_chain(scenario, keys, &mut warnings)?;
     let excitation = resolve_excitation(scenario, &chain, base_dir)?;

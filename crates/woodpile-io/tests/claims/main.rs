@@ -14,3 +14,4 @@ mod rod_range_catalogue;
 mod run_directory_roundtrip;
 mod scenario_keys_table;
 mod study_defaults_same_choices;
+mod uncertainty_table;

@@ -50,10 +50,7 @@ impl TransmissionSettings {
     /// The on-site damping time added for the measurement (`measurement_damping_time_s`) when
     /// the user asked for `requested` (None: the default τ; 0: none, the lossless chain): a
     /// damping time is for a chain without damping of its own, and must be ≥ 0.
-    pub fn measurement_damping_for(
-        chain: &Chain,
-        requested: Option<f64>,
-    ) -> Result<Option<f64>> {
+    pub fn measurement_damping_for(chain: &Chain, requested: Option<f64>) -> Result<Option<f64>> {
         let field = "transmission.damping_time_s";
         match requested {
             None => Ok(Some(defaults::TRANSMISSION_DAMPING_TIME_S)),

@@ -1,0 +1,109 @@
+//! `woodpile simulate SCENARIO --samples K`: the scenario under its `[uncertainty]`, K samples
+//! run together in SIMD lanes, written as samples.csv, samples/NNN.toml and summary.json.
+
+use super::simulate::{load, Args};
+use super::Context;
+use crate::CliError;
+use std::path::Path;
+use woodpile::{simulate_many, Job, LaneWidth};
+use woodpile_io::atomic::Staging;
+use woodpile_io::scenario::resolve;
+use woodpile_io::uncertainty::{samples, write_samples, FIGURES};
+
+/// The files a samples directory is made of; summary.json, written last, marks it complete.
+const SAMPLES_FILES: &[&str] = &["samples.csv", "summary.json"];
+const SAMPLES_MARKER: &str = "summary.json";
+
+/// Runs `woodpile simulate --samples K`.
+pub fn run(args: &Args, k: usize, ctx: &Context) -> Result<(), CliError> {
+    let loaded = load(&args.source)?;
+    let Some(spec) = &loaded.scenario.uncertainty else {
+        return Err(CliError::invalid(
+            "--samples",
+            k,
+            "needs the scenario's [uncertainty] table (docs/optimization.md, \"Scatter\")",
+        ));
+    };
+    if k == 0 {
+        return Err(CliError::invalid("--samples", k, "at least 1 sample"));
+    }
+    if args.overwrite {
+        return Err(CliError::invalid(
+            "--overwrite",
+            "true",
+            "not with --samples: remove the earlier samples directory first",
+        ));
+    }
+    let mut u = spec.check()?;
+    u.samples = k;
+    let drawn = samples(&loaded.scenario, &u)?;
+    let resolved = drawn
+        .samples
+        .iter()
+        .map(|s| resolve(&s.scenario, &loaded.base_dir))
+        .collect::<Result<Vec<_>, _>>()?;
+    woodpile_io::limits::RunSize::estimate(&resolved[0].settings, resolved[0].chain.len()).check(
+        args.allow_long,
+        args.allow_large,
+        true,
+    )?;
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| Path::new("runs").join(format!("{}-samples", loaded.name)));
+    let staging = Staging::prepare_marked(&out, false, SAMPLES_MARKER)?;
+    let jobs: Vec<Job<'_>> = resolved
+        .iter()
+        .map(|r| Job {
+            chain: &r.chain,
+            excitation: &r.excitation,
+            settings: &r.settings,
+        })
+        .collect();
+    let started = std::time::Instant::now();
+    let mut runs = Vec::with_capacity(k);
+    for (i, (run, r)) in simulate_many(&jobs, LaneWidth::detect())
+        .into_iter()
+        .zip(&resolved)
+        .enumerate()
+    {
+        let run = run.inspect_err(|_| {
+            crate::out::eprintln(format_args!("sample {} of {k} failed:", i + 1));
+        })?;
+        woodpile_io::limits::check_accuracy(&run, &r.excitation, args.allow_inaccurate)?;
+        runs.push(run);
+    }
+    let elapsed = started.elapsed().as_secs_f64();
+    write_samples(staging.path(), &u, &drawn, &runs)?;
+    let dir = staging.commit(SAMPLES_FILES, SAMPLES_MARKER)?;
+    if !ctx.quiet {
+        crate::out::print(summary_lines(&dir, k, elapsed, &runs))?;
+    }
+    Ok(())
+}
+
+/// What the terminal shows: per figure its mean, sd, 0.95 quantile and CVaR.
+fn summary_lines(dir: &Path, k: usize, elapsed: f64, runs: &[woodpile::RunSummary]) -> String {
+    let mut text = format!(
+        "{k} samples in {elapsed:.2} s ({:.0} runs/s) -> {}\n",
+        k as f64 / elapsed.max(1e-9),
+        dir.display()
+    );
+    for (j, name) in FIGURES.iter().enumerate() {
+        let values: Option<Vec<f64>> = runs
+            .iter()
+            .map(|r| woodpile_io::uncertainty::figures(r)[j])
+            .collect();
+        text += &match values {
+            Some(v) => {
+                let s = woodpile::uncertainty::statistics(&v);
+                format!(
+                    "  {name:<26} mean {:.6e}  sd {:.3e}  q0.95 {:.6e}  cvar_0.95 {:.6e}\n",
+                    s.mean, s.sd, s.quantiles[4].1, s.cvar_95
+                )
+            }
+            None => format!("  {name:<26} not every sample has one (see summary.json)\n"),
+        };
+    }
+    text
+}

@@ -1,0 +1,547 @@
+//! `[uncertainty]`: the manufacturing scatter of a scenario, as per-parameter distributions.
+//!
+//! ```toml
+//! [uncertainty]
+//! samples = 32
+//! seed = 0
+//! rod_length_mm = { sd = 0.2 }              # each rod independently
+//! crossing_angle_deg = { sd = 2.0 }         # each contact between rods
+//! youngs_modulus = { relative_sd = 0.02 }   # the elements' material, one draw per sample
+//! impact_velocity_m_s = { uniform = [1.8, 2.2] }
+//! restitution = { uniform = [0.6, 0.8] }    # damping parameters
+//! ```
+//!
+//! A distribution is exactly one of `sd` (normal about the nominal value, in the parameter's
+//! unit), `relative_sd` (normal about the nominal value, a fraction of it) or `uniform = [a, b]`
+//! (the nominal value is not used). [`UncertaintySpec::check`] refuses what means nothing, naming
+//! the key: a negative or non-finite sd, an empty or reversed range, `samples = 0`; an unknown
+//! parameter or distribution is refused when the file is read (its key is named by the parser).
+
+use crate::error::Error;
+use serde::{Deserialize, Serialize};
+
+/// One parameter's distribution: exactly one of its three keys.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DistributionSpec {
+    /// Standard deviation of a normal about the nominal value, in the parameter's unit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sd: Option<f64>,
+    /// Standard deviation of a normal about the nominal value, as a fraction of it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub relative_sd: Option<f64>,
+    /// A uniform range `[a, b]`, a < b.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uniform: Option<[f64; 2]>,
+}
+
+/// A checked distribution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Distribution {
+    /// Normal, nominal + sd·z.
+    Normal {
+        /// Standard deviation in the parameter's unit.
+        sd: f64,
+    },
+    /// Normal, nominal·(1 + relative_sd·z).
+    RelativeNormal {
+        /// Standard deviation as a fraction of the nominal value.
+        relative_sd: f64,
+    },
+    /// Uniform on [low, high].
+    Uniform {
+        /// Lower end.
+        low: f64,
+        /// Upper end.
+        high: f64,
+    },
+}
+
+impl Distribution {
+    /// The value at unit-cube coordinate `u` (0 < u < 1) about `nominal`, by the inverse CDF.
+    pub fn value(self, nominal: f64, u: f64) -> f64 {
+        let z = || woodpile::uncertainty::standard_normal_quantile(u);
+        match self {
+            Distribution::Normal { sd } => nominal + sd * z(),
+            Distribution::RelativeNormal { relative_sd } => nominal * (1.0 + relative_sd * z()),
+            Distribution::Uniform { low, high } => low + (high - low) * u,
+        }
+    }
+}
+
+impl DistributionSpec {
+    /// The distribution, or an error naming `key.sd`, `key.relative_sd` or `key.uniform`.
+    pub fn check(&self, key: &str) -> Result<Distribution, Error> {
+        const SD: &str = "a finite number >= 0";
+        let given = [
+            self.sd.is_some(),
+            self.relative_sd.is_some(),
+            self.uniform.is_some(),
+        ];
+        if given.iter().filter(|&&g| g).count() != 1 {
+            return Err(Error::invalid(
+                key,
+                "{…}",
+                "exactly one of { sd = s }, { relative_sd = r } or { uniform = [a, b] }",
+            ));
+        }
+        if let Some(sd) = self.sd {
+            if !(sd.is_finite() && sd >= 0.0) {
+                return Err(Error::invalid(format!("{key}.sd"), sd, SD));
+            }
+            return Ok(Distribution::Normal { sd });
+        }
+        if let Some(relative_sd) = self.relative_sd {
+            if !(relative_sd.is_finite() && relative_sd >= 0.0) {
+                return Err(Error::invalid(
+                    format!("{key}.relative_sd"),
+                    relative_sd,
+                    SD,
+                ));
+            }
+            return Ok(Distribution::RelativeNormal { relative_sd });
+        }
+        let [low, high] = self.uniform.unwrap_or_default();
+        if !(low.is_finite() && high.is_finite() && low < high) {
+            return Err(Error::invalid(
+                format!("{key}.uniform"),
+                format!("[{low}, {high}]"),
+                "[a, b] with finite a < b",
+            ));
+        }
+        Ok(Distribution::Uniform { low, high })
+    }
+}
+
+/// `[uncertainty]`, as written in the file.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UncertaintySpec {
+    /// Samples per design (default [`woodpile::defaults::UNCERTAINTY_SAMPLES`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub samples: Option<usize>,
+    /// Seed of the scrambled Sobol' points (default [`woodpile::defaults::UNCERTAINTY_SEED`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u32>,
+    /// Length of each user rod (`kind = "rod"`), independently \[mm\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rod_length_mm: Option<DistributionSpec>,
+    /// Angle between neighbouring rods, each contact independently \[deg\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crossing_angle_deg: Option<DistributionSpec>,
+    /// Young's modulus of the elements' material, one draw per sample \[Pa\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub youngs_modulus: Option<DistributionSpec>,
+    /// The striker's impact velocity \[m/s\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub impact_velocity_m_s: Option<DistributionSpec>,
+    /// `damping.restitution`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub restitution: Option<DistributionSpec>,
+    /// `damping.viscous_time_s` \[s\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub viscous_time_s: Option<DistributionSpec>,
+    /// `damping.resonator_ratio`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub resonator_ratio: Option<DistributionSpec>,
+    /// `damping.on_site_time_s` \[s\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub on_site_time_s: Option<DistributionSpec>,
+}
+
+/// A parameter that `[uncertainty]` can scatter, in the file's order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Parameter {
+    /// `rod_length_mm`: one draw per rod.
+    RodLength,
+    /// `crossing_angle_deg`: one draw per contact between rods.
+    CrossingAngle,
+    /// `youngs_modulus`.
+    YoungsModulus,
+    /// `impact_velocity_m_s`.
+    ImpactVelocity,
+    /// `restitution`.
+    Restitution,
+    /// `viscous_time_s`.
+    ViscousTime,
+    /// `resonator_ratio`.
+    ResonatorRatio,
+    /// `on_site_time_s`.
+    OnSiteTime,
+}
+
+impl Parameter {
+    /// The key under `[uncertainty]`.
+    pub const fn key(self) -> &'static str {
+        match self {
+            Parameter::RodLength => "rod_length_mm",
+            Parameter::CrossingAngle => "crossing_angle_deg",
+            Parameter::YoungsModulus => "youngs_modulus",
+            Parameter::ImpactVelocity => "impact_velocity_m_s",
+            Parameter::Restitution => "restitution",
+            Parameter::ViscousTime => "viscous_time_s",
+            Parameter::ResonatorRatio => "resonator_ratio",
+            Parameter::OnSiteTime => "on_site_time_s",
+        }
+    }
+}
+
+/// A checked `[uncertainty]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Uncertainty {
+    /// Samples per design (at least 1).
+    pub samples: usize,
+    /// Seed of the Sobol' points.
+    pub seed: u32,
+    /// The scattered parameters and their distributions, in the file's order.
+    pub parameters: Vec<(Parameter, Distribution)>,
+}
+
+impl UncertaintySpec {
+    /// Checks every key, naming it (`uncertainty.samples`, `uncertainty.rod_length_mm.sd`, …).
+    pub fn check(&self) -> Result<Uncertainty, Error> {
+        let samples = self
+            .samples
+            .unwrap_or(woodpile::defaults::UNCERTAINTY_SAMPLES);
+        if samples == 0 {
+            return Err(Error::invalid(
+                "uncertainty.samples",
+                samples,
+                "at least 1 sample",
+            ));
+        }
+        let given = [
+            (Parameter::RodLength, &self.rod_length_mm),
+            (Parameter::CrossingAngle, &self.crossing_angle_deg),
+            (Parameter::YoungsModulus, &self.youngs_modulus),
+            (Parameter::ImpactVelocity, &self.impact_velocity_m_s),
+            (Parameter::Restitution, &self.restitution),
+            (Parameter::ViscousTime, &self.viscous_time_s),
+            (Parameter::ResonatorRatio, &self.resonator_ratio),
+            (Parameter::OnSiteTime, &self.on_site_time_s),
+        ];
+        let mut parameters = Vec::new();
+        for (p, spec) in given {
+            if let Some(spec) = spec {
+                parameters.push((p, spec.check(&format!("uncertainty.{}", p.key()))?));
+            }
+        }
+        Ok(Uncertainty {
+            samples,
+            seed: self.seed.unwrap_or(woodpile::defaults::UNCERTAINTY_SEED),
+            parameters,
+        })
+    }
+}
+
+/// One sample of a scenario: its drawn values and its complete scenario (no `[uncertainty]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sample {
+    /// The drawn values, one per [`Samples::columns`].
+    pub values: Vec<f64>,
+    /// The scenario with these values written in, every default written out.
+    pub scenario: crate::scenario::Scenario,
+}
+
+/// The samples of a scenario under its `[uncertainty]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Samples {
+    /// The name of each drawn value: `rod_length_mm[i]` (element i), `crossing_angle_deg[i]`
+    /// (contact i, between elements i and i + 1), `youngs_modulus`, `impact_velocity_m_s`,
+    /// `restitution`, ….
+    pub columns: Vec<String>,
+    /// Sample k is row k of the Sobol' points.
+    pub samples: Vec<Sample>,
+}
+
+/// Where a drawn value goes in the scenario.
+#[derive(Debug, Clone, Copy)]
+enum Target {
+    Length(usize),
+    Angle(usize),
+    Modulus,
+    Velocity,
+    Damping(Parameter),
+}
+
+/// The `samples` samples of `scenario` under `u` (its `[uncertainty]`, checked): the chain is
+/// written as `chain.elements` (a `rods_mm` chain as its Table 1 elements, the same model), each
+/// drawn value written into the key it scatters. Errors name the `[uncertainty]` key that does
+/// not apply to this scenario, and why.
+pub fn samples(scenario: &crate::scenario::Scenario, u: &Uncertainty) -> Result<Samples, Error> {
+    use crate::scenario::{ElementSpec, ExcitationKind};
+    let mut base = scenario.complete();
+    base.uncertainty = None;
+    if let Some(rods) = base.chain.rods_mm.take() {
+        base.chain.elements = Some(
+            rods.into_iter()
+                .map(|l| ElementSpec {
+                    rod_mm: Some(l),
+                    model: base.chain.model,
+                    ..ElementSpec::default()
+                })
+                .collect(),
+        );
+    }
+    let n = base.chain.elements.as_ref().map_or(0, Vec::len);
+    let mut columns = Vec::new();
+    let mut targets = Vec::new();
+    for &(p, dist) in &u.parameters {
+        let key = format!("uncertainty.{}", p.key());
+        match p {
+            Parameter::RodLength => {
+                for i in 0..n {
+                    columns.push(format!("rod_length_mm[{}]", i + 1));
+                    targets.push((Target::Length(i), dist, key.clone()));
+                }
+            }
+            Parameter::CrossingAngle => {
+                for i in 1..n {
+                    columns.push(format!("crossing_angle_deg[{i}]"));
+                    targets.push((Target::Angle(i), dist, key.clone()));
+                }
+            }
+            Parameter::YoungsModulus => {
+                columns.push(p.key().into());
+                targets.push((Target::Modulus, dist, key));
+            }
+            Parameter::ImpactVelocity => {
+                if base.excitation.kind != ExcitationKind::Impact {
+                    return Err(Error::invalid(
+                        key,
+                        "{…}",
+                        "applies to an impact (excitation.kind = \"impact\")",
+                    ));
+                }
+                columns.push(p.key().into());
+                targets.push((Target::Velocity, dist, key));
+            }
+            _ => {
+                if base.damping.is_none() {
+                    return Err(Error::invalid(
+                        key,
+                        "{…}",
+                        "scatters a [damping] key: give the scenario a [damping] table",
+                    ));
+                }
+                columns.push(p.key().into());
+                targets.push((Target::Damping(p), dist, key));
+            }
+        }
+    }
+    let points = woodpile::uncertainty::unit_cube(u.samples, targets.len(), u.seed)
+        .map_err(|e| Error::invalid("uncertainty", targets.len(), e.to_string()))?;
+    let samples = points
+        .iter()
+        .map(|row| {
+            let mut s = base.clone();
+            let values = targets
+                .iter()
+                .zip(row)
+                .map(|((target, dist, key), &x)| apply(&mut s, *target, *dist, key, x))
+                .collect::<Result<Vec<f64>, Error>>()?;
+            Ok(Sample {
+                values,
+                scenario: s,
+            })
+        })
+        .collect::<Result<Vec<_>, Error>>()?;
+    Ok(Samples { columns, samples })
+}
+
+/// Writes the value of `dist` at `x` about the scenario's nominal value into `s`; returns it.
+fn apply(
+    s: &mut crate::scenario::Scenario,
+    target: Target,
+    dist: Distribution,
+    key: &str,
+    x: f64,
+) -> Result<f64, Error> {
+    use crate::scenario::{CustomMaterial, ElementKind, MaterialSpec};
+    let chain_angle = s.chain.crossing_angle_deg;
+    let elements = s.chain.elements.as_deref_mut().unwrap_or(&mut []);
+    let needs = |what: &str| {
+        Error::invalid(
+            key,
+            "{…}",
+            format!("{what}; give the chain as elements of kind = \"rod\" (a Table 1 rod's cell is tabulated for its nominal rod)"),
+        )
+    };
+    Ok(match target {
+        Target::Length(i) => {
+            let e = &mut elements[i];
+            let (ElementKind::Rod, Some(nominal)) = (e.effective_kind(), e.length_mm) else {
+                return Err(needs(&format!(
+                    "scatters user rods' length_mm, and element {} is not one",
+                    i + 1
+                )));
+            };
+            let v = dist.value(nominal, x);
+            e.length_mm = Some(v);
+            v
+        }
+        Target::Angle(i) => {
+            let e = &mut elements[i];
+            let nominal = e.crossing_angle_deg.or(chain_angle).unwrap_or(90.0);
+            let v = dist.value(nominal, x);
+            e.crossing_angle_deg = Some(v);
+            v
+        }
+        Target::Modulus => {
+            let mut value = f64::NAN;
+            for (i, e) in elements.iter_mut().enumerate() {
+                if e.effective_kind() == ElementKind::Catalogue {
+                    return Err(needs(&format!(
+                        "scatters the elements' material, and element {} is a Table 1 rod",
+                        i + 1
+                    )));
+                }
+                let field = format!("chain.elements[{i}].material");
+                let spec = e
+                    .material
+                    .clone()
+                    .unwrap_or(MaterialSpec::preset(woodpile::defaults::ELEMENT_MATERIAL));
+                let m = crate::scenario::material_of(&field, &spec)?;
+                value = dist.value(m.youngs_modulus_pa, x);
+                e.material = Some(MaterialSpec::Custom(CustomMaterial {
+                    name: m.name,
+                    youngs_modulus_pa: value,
+                    poisson_ratio: m.poisson_ratio,
+                    density_kg_m3: m.density_kg_m3,
+                }));
+            }
+            value
+        }
+        Target::Velocity => {
+            let x_spec = &mut s.excitation;
+            let nominal = x_spec.velocity_m_s.unwrap_or_else(|| {
+                woodpile::velocity_from_drop_height(
+                    x_spec
+                        .drop_height_m
+                        .unwrap_or(woodpile::defaults::DROP_HEIGHT_M),
+                )
+            });
+            let v = dist.value(nominal, x);
+            x_spec.velocity_m_s = Some(v);
+            x_spec.drop_height_m = None;
+            v
+        }
+        Target::Damping(p) => {
+            let d = s.damping.get_or_insert_with(Default::default);
+            let slot = match p {
+                Parameter::Restitution => &mut d.restitution,
+                Parameter::ViscousTime => &mut d.viscous_time_s,
+                Parameter::ResonatorRatio => &mut d.resonator_ratio,
+                _ => &mut d.on_site_time_s,
+            };
+            let nominal = match (*slot, dist) {
+                (Some(v), _) => v,
+                (None, Distribution::Uniform { .. }) => f64::NAN,
+                (None, _) => {
+                    return Err(Error::invalid(
+                        key,
+                        "{…}",
+                        format!("an sd needs a nominal value: give damping.{}", p.key()),
+                    ))
+                }
+            };
+            let v = dist.value(nominal, x);
+            *slot = Some(v);
+            v
+        }
+    })
+}
+
+/// The figures of merit of each sample, as the columns of `samples.csv` and the keys of
+/// `summary.json` name them.
+pub const FIGURES: [&str; 3] = [
+    "transmitted_peak_force_n",
+    "incident_peak_force_n",
+    "transmission_ratio",
+];
+
+/// The figures of one run, in the order of [`FIGURES`]; None where a figure means nothing (a
+/// transmission ratio of a wave that never reached the wall).
+pub fn figures(run: &woodpile::RunSummary) -> [Option<f64>; 3] {
+    [
+        Some(run.transmitted_peak_force_n),
+        Some(run.incident_peak_force_n),
+        run.transmission_ratio,
+    ]
+}
+
+/// The file of sample `index` (from 1) under `samples/`.
+pub fn sample_file(index: usize) -> String {
+    format!("{index:03}.toml")
+}
+
+/// Writes a `--samples` study into `dir`: `samples.csv` (`sample` from 1, each drawn value, the
+/// [`FIGURES`]; an empty cell where a figure means nothing), `samples/NNN.toml` (each sample's
+/// complete scenario) and `summary.json` (per figure `mean`, `sd`, `quantiles`, `cvar_0.95`, or
+/// `null` with the reason when some sample has no value). `runs[k]` is sample k's run.
+pub fn write_samples(
+    dir: &std::path::Path,
+    u: &Uncertainty,
+    s: &Samples,
+    runs: &[woodpile::RunSummary],
+) -> Result<(), Error> {
+    use crate::atomic::{io_err, write_atomic};
+    let sample_dir = dir.join("samples");
+    std::fs::create_dir_all(&sample_dir).map_err(io_err(&sample_dir))?;
+    let mut csv = String::from("sample");
+    for c in s.columns.iter().map(String::as_str).chain(FIGURES) {
+        csv += &format!(",{c}");
+    }
+    csv.push('\n');
+    let cell = |x: Option<f64>| x.map(|v| format!("{v:e}")).unwrap_or_default();
+    for (k, (sample, run)) in s.samples.iter().zip(runs).enumerate() {
+        csv += &(k + 1).to_string();
+        for v in sample.values.iter().map(|&v| Some(v)).chain(figures(run)) {
+            csv += &format!(",{}", cell(v));
+        }
+        csv.push('\n');
+        write_atomic(
+            &sample_dir,
+            &sample_file(k + 1),
+            sample.scenario.to_toml().as_bytes(),
+        )?;
+    }
+    write_atomic(dir, "samples.csv", csv.as_bytes())?;
+    let mut per_figure = serde_json::Map::new();
+    for (j, name) in FIGURES.iter().enumerate() {
+        let values: Option<Vec<f64>> = runs.iter().map(|r| figures(r)[j]).collect();
+        per_figure.insert(name.to_string(), summary_of(values, runs.len()));
+    }
+    let summary = serde_json::json!({
+        "woodpile_version": crate::VERSION,
+        "samples": u.samples,
+        "seed": u.seed,
+        "draws": "Owen-scrambled Sobol' points (sobol_burley), row = sample - 1; normals by Acklam's inverse CDF",
+        "parameters": s.columns,
+        "figures": per_figure,
+    });
+    let text = serde_json::to_string_pretty(&summary)
+        .map_err(|e| Error::invalid("summary.json", "", e.to_string()))?;
+    write_atomic(dir, "summary.json", text.as_bytes())
+}
+
+fn summary_of(values: Option<Vec<f64>>, n: usize) -> serde_json::Value {
+    let Some(values) = values else {
+        return serde_json::json!({
+            "value": null,
+            "reason": format!("not every one of the {n} samples has this figure (the wave did not reach the wall within the run): lengthen run.duration_s"),
+        });
+    };
+    let st = woodpile::uncertainty::statistics(&values);
+    let quantiles: serde_json::Map<String, serde_json::Value> = st
+        .quantiles
+        .iter()
+        .map(|(p, q)| (p.to_string(), serde_json::json!(q)))
+        .collect();
+    serde_json::json!({
+        "mean": st.mean,
+        "sd": st.sd,
+        "quantiles": quantiles,
+        "cvar_0.95": st.cvar_95,
+    })
+}
