@@ -51,7 +51,15 @@ pub fn run(args: &Args, k: usize, ctx: &Context) -> Result<(), CliError> {
         .out
         .clone()
         .unwrap_or_else(|| Path::new("runs").join(format!("{}-samples", loaded.name)));
-    let staging = Staging::prepare_marked(&out, false, SAMPLES_MARKER)?;
+    // --overwrite is refused above, so an earlier output is not offered it.
+    let staging = Staging::prepare_marked(&out, false, SAMPLES_MARKER).map_err(|e| match e {
+        CliError::OutputExists { path } => CliError::invalid(
+            "--out",
+            path.display(),
+            "holds earlier samples: choose another --out, or remove it first (--overwrite does not apply to --samples)",
+        ),
+        other => other,
+    })?;
     let jobs: Vec<Job<'_>> = resolved
         .iter()
         .map(|r| Job {
