@@ -238,7 +238,7 @@ pub fn line(
     )
 }
 
-/// [`line`] with the ETA given (None: none shown), and whether it is an upper bound (shown as
+/// [`line()`] with the ETA given (None: none shown), and whether it is an upper bound (shown as
 /// "at most 36 s left").
 pub fn line_with_eta(
     label: &str,
