@@ -105,7 +105,7 @@ pub const FIT_CORRELATION_WARN: f64 = 0.95;
 /// interpolated onto the measured times.
 pub const FIT_OVERSAMPLING: f64 = 4.0;
 
-/// Samples of a scenario's `[uncertainty]` when `samples` is not given (the example).
+/// Samples of a scenario's `[uncertainty]` when `samples` is not given.
 pub const UNCERTAINTY_SAMPLES: usize = 32;
 
 /// Seed of the scrambled Sobol' points of `[uncertainty]` when `seed` is not given.

@@ -114,7 +114,7 @@ fn a_threshold_that_is_no_attenuation_is_refused() {
 /// terminal and in `transmission.json` as `added_damping_time_s`), and its edge table compares
 /// like with like: the first measured edge of ten lossless 40 mm rods (on the default sensor,
 /// 10 Hz bins) lies within 1 % of the finite chain's linear prediction cut at the same level on
-/// the same bins (measured +0.39 %; ten cells make a shallow gap, so the bound is the 1 %,
+/// the same bins (measured +0.39 %; ten cells make a shallow gap, so the bound is the 1 % target,
 /// not the 0.3 % of 40 cells). Giving `--damping-time-s` for a chain that has its own damping is
 /// refused naming the flag.
 #[test]

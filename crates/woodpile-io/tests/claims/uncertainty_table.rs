@@ -1,4 +1,4 @@
-//! Claim: `[uncertainty]` reads exactly the distributions and refuses what means nothing,
+//! Claim: `[uncertainty]` reads exactly the documented distributions and refuses what means nothing,
 //! naming the key as the user wrote it: a negative sd, `samples = 0`, a reversed range, two
 //! distributions at once (at resolve), an unknown distribution or parameter (when the file is
 //! read). A scenario with `[uncertainty]` emits and parses back to the same scenario.
