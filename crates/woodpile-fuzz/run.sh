@@ -7,9 +7,10 @@
 #   cargo install cargo-afl                      # once
 #   bash crates/woodpile-fuzz/run.sh [EXECS] [OUT] [TARGET...]
 set -euo pipefail
-cd "$(dirname "$0")"
 execs="${1:-1000000}"
-out="$(realpath -m "${2:-findings}")"
+# OUT relative to where the script is called from; the default beside the targets.
+out="$(realpath -m "${2:-$(dirname "$0")/findings}")"
+cd "$(dirname "$0")"
 shift $(( $# > 2 ? 2 : $# )) || true
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(scenario optimize_config npy table checkpoint)
