@@ -69,7 +69,7 @@ CLI_CASES = [
     Case("SIGINT during a long generation", ["optimize", "c.toml", "--out", "o", "--threads", "1"], (130,), ("interrupted",),
          files={"c.toml": '[run]\nintegrator = "rk4"\ntime_step_s = 1e-7\nduration_s = 2e-2\n[ga]\npopulation = 200\n'}, interrupt_after_s=2.0),
     Case("SIGINT during a long simulate", ["simulate", "s.toml", "--out", "o"], (130,), ("interrupted",),
-         files={"s.toml": '[chain]\nrods_mm = [80, 80, 80, 80, 80]\n[run]\nduration_s = 1.0\nsample_interval_s = 1.0\n'}, interrupt_after_s=2.0),
+         files={"s.toml": '[chain]\nrods_mm = [80, 80, 80, 80, 80]\n[run]\nduration_s = 10.0\nsample_interval_s = 10.0\n'}, interrupt_after_s=2.0),
     Case("drive amplitude 0", ["simulate", "s.toml", "--out", "o"], (0, 1, 2), ("amplitude",), absent=("ratio 6.0000",),
          files={"s.toml": drive("amplitude = 0.0\nfrequency_hz = 1000.0\n")}),
     Case("drive at 1 GHz", ["simulate", "s.toml", "--out", "o"], (0, 2), ("frequency_hz",),
