@@ -21,7 +21,8 @@
 //! 4. **Optimise** — [`optimize`]: the optimisation config, the problem it defines, its
 //!    checksummed checkpoint and outputs; [`pareto`]: NSGA-II's checkpoint and its Pareto
 //!    outputs (`pareto.csv`, `pareto/NNN.toml`, hypervolume history); [`uncertainty`]: a
-//!    scenario's `[uncertainty]` (manufacturing scatter as per-parameter distributions).
+//!    scenario's `[uncertainty]` (manufacturing scatter as per-parameter distributions);
+//!    [`robust`]: `ga.robust`, the GA's objective as a statistic over that scatter.
 //! 5. **Calibrate** — [`fit`]: the fit file (a scenario, measured CSV files mapped to model
 //!    outputs, the fitted parameters) and the outputs of a fit.
 //! 6. **Say what went wrong** — [`Error`]: typed, naming the field, the value and what is valid
@@ -58,6 +59,7 @@ pub mod limits;
 pub mod npy;
 pub mod optimize;
 pub mod pareto;
+pub mod robust;
 pub mod rundir;
 pub mod scenario;
 pub mod table;

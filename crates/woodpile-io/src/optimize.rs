@@ -78,6 +78,9 @@ pub struct OptimizeConfig {
     /// `[ga]`: the GA's parameters and the objective.
     #[serde(default)]
     pub ga: GaSpec,
+    /// `[uncertainty]` as in a scenario file: the scatter `ga.robust` is taken over.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uncertainty: Option<crate::uncertainty::UncertaintySpec>,
 }
 
 /// `[design]`.
@@ -304,6 +307,11 @@ pub struct GaSpec {
     /// the choices stay those of a run without it (default: off). Needs `transmitted-force`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stop_early: Option<bool>,
+    /// Robust design: the objective is this statistic of the transmitted force over the
+    /// `[uncertainty]` samples (`mean`, `quantile:p`, `cvar:a`), every design on the same draws;
+    /// no screening or early stopping.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub robust: Option<String>,
     /// Goes ahead with a generation above the up-front limit
     /// (`limits::MAX_GENERATION_ELEMENTS` elements simulated per generation; default false).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -360,6 +368,10 @@ impl OptimizeConfig {
             return c;
         }
         c.run.peak_tolerance = Some(woodpile::defaults::STUDY_PEAK_TOLERANCE);
+        if c.ga.robust.is_some() {
+            // A statistic over samples has no screening bound and is no running maximum.
+            return c;
+        }
         let g = &mut c.ga;
         let several = g.objectives.as_ref().is_some_and(|o| o.len() > 1)
             || g.algorithm.as_deref() == Some("nsga2");
@@ -561,6 +573,8 @@ pub struct Problem {
     pub nsga2: Nsga2Settings,
     /// Directory relative to which the config's files are found.
     pub base_dir: PathBuf,
+    /// `ga.robust` and the checked `[uncertainty]`, when robust.
+    pub robust: Option<(crate::robust::Robust, crate::uncertainty::Uncertainty)>,
 }
 
 fn catalogue_index(
@@ -772,6 +786,7 @@ impl Problem {
             constraints,
         };
         let (algorithm, objectives, objective) = study(config, &cfg)?;
+        let robust = robust_of(config, &cfg, algorithm, objective)?;
         let settings = ga_settings(&cfg.ga, threads);
         if algorithm == Algorithm::Breeder {
             settings.validate()?;
@@ -796,22 +811,111 @@ impl Problem {
             objectives,
             nsga2,
             base_dir: base_dir.to_path_buf(),
+            robust,
+        })
+    }
+
+    /// The robust objective of a robust problem (`ga.robust`), else None.
+    pub fn robust_objective(&self) -> Option<crate::robust::RobustObjective> {
+        let (robust, u) = self.robust.clone()?;
+        Some(crate::robust::RobustObjective {
+            config: self.config.clone(),
+            base_dir: self.base_dir.clone(),
+            catalogue: self.space.catalogue.clone(),
+            uncertainty: u,
+            robust,
         })
     }
 
     /// The scenario of a genome: the problem's load, support and run with that chain. Files
     /// named in the config (a blast table) are made absolute so the scenario runs from anywhere.
     pub fn scenario(&self, genome: &[u8], description: Option<String>) -> Scenario {
-        let mut s = self
-            .config
-            .scenario(self.config.chain_spec(genome), description);
-        if let Some(file) = &s.excitation.file {
-            let p = self.base_dir.join(file);
-            let p = p.canonicalize().unwrap_or(p);
-            s.excitation.file = Some(p.display().to_string());
-        }
-        s
+        scenario_of(&self.config, &self.base_dir, genome, description)
     }
+}
+
+/// [`Problem::scenario`] of a completed config.
+pub fn scenario_of(
+    config: &OptimizeConfig,
+    base_dir: &Path,
+    genome: &[u8],
+    description: Option<String>,
+) -> Scenario {
+    let mut s = config.scenario(config.chain_spec(genome), description);
+    if let Some(file) = &s.excitation.file {
+        let p = base_dir.join(file);
+        let p = p.canonicalize().unwrap_or(p);
+        s.excitation.file = Some(p.display().to_string());
+    }
+    s
+}
+
+/// `ga.robust` checked against the rest of the config (`user`: as written, `cfg`: completed):
+/// it needs `[uncertainty]`, the breeder GA, the transmitted force, and no screening or early
+/// stopping; `[uncertainty]` needs `ga.robust`. The samples of the first catalogue entry in
+/// every position are built and resolved, so a key that does not apply fails here.
+fn robust_of(
+    user: &OptimizeConfig,
+    cfg: &OptimizeConfig,
+    algorithm: Algorithm,
+    objective: StandardObjective,
+) -> Result<Option<(crate::robust::Robust, crate::uncertainty::Uncertainty)>, Error> {
+    let (text, spec) = match (&user.ga.robust, &user.uncertainty) {
+        (None, None) => return Ok(None),
+        (None, Some(_)) => {
+            return Err(Error::invalid(
+                "uncertainty",
+                "(given)",
+                "is used by ga.robust: add ga.robust = \"mean\", \"quantile:0.95\" or \"cvar:0.95\"",
+            ))
+        }
+        (Some(t), None) => {
+            return Err(Error::invalid(
+                "ga.robust",
+                t,
+                "needs an [uncertainty] table (the same as a scenario's, docs/optimization.md \"Scatter\")",
+            ))
+        }
+        (Some(t), Some(s)) => (t, s),
+    };
+    let robust = crate::robust::Robust::parse(text)?;
+    if algorithm != Algorithm::Breeder {
+        return Err(Error::invalid(
+            "ga.robust",
+            text,
+            "is for the breeder GA; NSGA-II has no robust objectives yet",
+        ));
+    }
+    if objective != StandardObjective::TransmittedForce {
+        return Err(Error::invalid(
+            "ga.robust",
+            text,
+            format!(
+                "is a statistic of the transmitted force; the objective is {}",
+                objective.as_str()
+            ),
+        ));
+    }
+    for (k, given) in [
+        (
+            "screen_peak_tolerance",
+            user.ga.screen_peak_tolerance.is_some(),
+        ),
+        ("stop_early", user.ga.stop_early == Some(true)),
+    ] {
+        if given {
+            return Err(Error::invalid(
+                format!("ga.{k}"),
+                "(given)",
+                "not with ga.robust: every sample is simulated whole",
+            ));
+        }
+    }
+    let u = spec.check()?;
+    let positions = cfg.design.positions.unwrap_or(20);
+    let nominal = scenario_of(cfg, Path::new("."), &vec![0; positions], None);
+    crate::uncertainty::samples(&nominal, &u)?;
+    Ok(Some((robust, u)))
 }
 
 /// The algorithm, the objectives and the breeder's objective of a config (`user`: as written,
@@ -1474,6 +1578,9 @@ pub fn write_final_outputs(
     );
     let scenario = problem.scenario(&best.genome, Some(description));
     write_atomic(out, "best.toml", scenario.to_toml().as_bytes())?;
+    if let Some(robust) = problem.robust_objective() {
+        crate::robust::write_robust_csv(out, &robust, &best.genome)?;
+    }
     let resolved = resolve(&scenario, &problem.base_dir)?;
     let figures = simulate(
         &resolved.chain,

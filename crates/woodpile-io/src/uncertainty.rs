@@ -475,6 +475,25 @@ pub fn sample_file(index: usize) -> String {
     format!("{index:03}.toml")
 }
 
+/// The text of `samples.csv`: `sample` from 1, each drawn value, the [`FIGURES`] (an empty cell
+/// where a figure means nothing). `runs[k]` is sample k's run.
+pub fn samples_csv(s: &Samples, runs: &[woodpile::RunSummary]) -> String {
+    let mut csv = String::from("sample");
+    for c in s.columns.iter().map(String::as_str).chain(FIGURES) {
+        csv += &format!(",{c}");
+    }
+    csv.push('\n');
+    let cell = |x: Option<f64>| x.map(|v| format!("{v:e}")).unwrap_or_default();
+    for (k, (sample, run)) in s.samples.iter().zip(runs).enumerate() {
+        csv += &(k + 1).to_string();
+        for v in sample.values.iter().map(|&v| Some(v)).chain(figures(run)) {
+            csv += &format!(",{}", cell(v));
+        }
+        csv.push('\n');
+    }
+    csv
+}
+
 /// Writes a `--samples` study into `dir`: `samples.csv` (`sample` from 1, each drawn value, the
 /// [`FIGURES`]; an empty cell where a figure means nothing), `samples/NNN.toml` (each sample's
 /// complete scenario) and `summary.json` (per figure `mean`, `sd`, `quantiles`, `cvar_0.95`, or
@@ -488,18 +507,8 @@ pub fn write_samples(
     use crate::atomic::{io_err, write_atomic};
     let sample_dir = dir.join("samples");
     std::fs::create_dir_all(&sample_dir).map_err(io_err(&sample_dir))?;
-    let mut csv = String::from("sample");
-    for c in s.columns.iter().map(String::as_str).chain(FIGURES) {
-        csv += &format!(",{c}");
-    }
-    csv.push('\n');
-    let cell = |x: Option<f64>| x.map(|v| format!("{v:e}")).unwrap_or_default();
-    for (k, (sample, run)) in s.samples.iter().zip(runs).enumerate() {
-        csv += &(k + 1).to_string();
-        for v in sample.values.iter().map(|&v| Some(v)).chain(figures(run)) {
-            csv += &format!(",{}", cell(v));
-        }
-        csv.push('\n');
+    let csv = samples_csv(s, runs);
+    for (k, sample) in s.samples.iter().enumerate() {
         write_atomic(
             &sample_dir,
             &sample_file(k + 1),

@@ -29,12 +29,13 @@ impl GaSession {
                 "woodpile.optimize runs the breeder GA (one objective); run NSGA-II with `woodpile optimize CONFIG.toml --out DIR`",
             )));
         }
-        let ga = BreederGa::new(
-            problem.space.clone(),
-            Box::new(problem.objective),
-            problem.settings,
-        )
-        .map_err(ga_err)?;
+        // `ga.robust`: the statistic over the `[uncertainty]` samples, as in `woodpile optimize`.
+        let objective: Box<dyn woodpile::Objective> = match problem.robust_objective() {
+            Some(robust) => Box::new(robust),
+            None => Box::new(problem.objective),
+        };
+        let ga =
+            BreederGa::new(problem.space.clone(), objective, problem.settings).map_err(ga_err)?;
         Ok(GaSession {
             config: problem.config.clone(),
             problem,

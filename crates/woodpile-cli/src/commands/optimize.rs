@@ -110,12 +110,12 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     }
     let out = &args.out;
     let initial = prepare_output(out, args.resume, &problem.config)?;
-    let ga = BreederGa::new(
-        problem.space.clone(),
-        Box::new(problem.objective),
-        problem.settings,
-    )
-    .map_err(optimize_error)?;
+    let objective: Box<dyn Objective> = match problem.robust_objective() {
+        Some(robust) => Box::new(robust),
+        None => Box::new(problem.objective),
+    };
+    let ga = BreederGa::new(problem.space.clone(), objective, problem.settings)
+        .map_err(optimize_error)?;
     if let Some(state) = &initial {
         ga.check_state(state).map_err(optimize_error)?;
     }
@@ -218,6 +218,11 @@ fn terminal_summary(
 ) -> String {
     let state = &outcome.state;
     let best = state.best();
+    // Robust: the statistic over the samples (robust/001.csv); the forces are the nominal run's.
+    let robust = problem.config.ga.robust.as_ref().map(|r| {
+        let k = problem.robust.as_ref().map_or(0, |(_, u)| u.samples);
+        (format!("{r} over {k} samples of "), "nominal: ".to_string())
+    });
     let ratio = figures
         .transmission_ratio
         .map_or("none".to_string(), |r| format!("{r:.4}"));
@@ -226,8 +231,8 @@ fn terminal_summary(
          stopped      {} after generation {}: {} evaluations, {}{} cache hits, {:.1} s\n\
          best         {}\n\
          accuracy     {}\n\
-         objective    {} = {:.6e} {}\n\
-         forces       incident {:.4} N, transmitted {:.4} N, ratio {ratio}\n\
+         objective    {}{} = {:.6e} {}\n\
+         forces       {}incident {:.4} N, transmitted {:.4} N, ratio {ratio}\n\
          output       {}\n",
         problem.space.positions,
         problem.space.catalogue.len(),
@@ -240,9 +245,11 @@ fn terminal_summary(
         state.elapsed_s,
         problem.space.labels(&best.genome).join(" "),
         problem.config.accuracy_text(),
+        robust.as_ref().map_or("", |(r, _)| r.as_str()),
         problem.objective.as_str(),
         best.objective,
         problem.objective.unit(),
+        robust.as_ref().map_or("", |(_, nominal)| nominal.as_str()),
         figures.incident_peak_force_n,
         figures.transmitted_peak_force_n,
         out.display()

@@ -24,6 +24,7 @@ mod optimize_best_reruns;
 #[cfg(unix)]
 mod optimize_interrupt_resume;
 mod optimize_pareto;
+mod optimize_robust;
 mod output_files;
 mod paper_values_stated_once;
 mod plot_opt_dir;
