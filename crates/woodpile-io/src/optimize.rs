@@ -1116,6 +1116,13 @@ fn first_duplicate<T: PartialEq>(list: &[T]) -> Option<(usize, usize)> {
     (1..list.len()).find_map(|j| list[..j].iter().position(|x| *x == list[j]).map(|i| (i, j)))
 }
 
+/// The checksum of a value's JSON (FNV-1a 64, 16 hex digits): a checkpoint's `checksum`,
+/// computed with that field empty.
+pub(crate) fn json_checksum(value: &impl Serialize) -> String {
+    let json = serde_json::to_vec(value).unwrap_or_default();
+    format!("{:016x}", fnv1a64(&json))
+}
+
 /// FNV-1a, 64 bits, of `bytes`: a stable content hash (the same on every platform and version
 /// of Rust), for checkpoint checksums and cache keys. Not a cryptographic hash: it detects edits
 /// and corruption, not a determined forger.
@@ -1223,8 +1230,7 @@ impl Checkpoint {
             checksum: String::new(),
             ..self.clone()
         };
-        let json = serde_json::to_vec(&unsigned).unwrap_or_default();
-        format!("{:016x}", fnv1a64(&json))
+        json_checksum(&unsigned)
     }
 
     /// The GA state it holds.

@@ -7,9 +7,7 @@
 
 use crate::atomic::{io_err, write_atomic};
 use crate::error::Error;
-use crate::optimize::{
-    fnv1a64, require_empty, stop_text, OptimizeConfig, Problem, CHECKPOINT_FILE,
-};
+use crate::optimize::{require_empty, stop_text, OptimizeConfig, Problem, CHECKPOINT_FILE};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::fs;
@@ -84,8 +82,7 @@ impl ParetoCheckpoint {
             checksum: String::new(),
             ..self.clone()
         };
-        let json = serde_json::to_vec(&unsigned).unwrap_or_default();
-        format!("{:016x}", fnv1a64(&json))
+        crate::optimize::json_checksum(&unsigned)
     }
 
     /// The state it holds.

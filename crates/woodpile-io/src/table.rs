@@ -39,12 +39,7 @@ pub fn read_table(
         line,
         message,
     };
-    let mut reader = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .trim(csv::Trim::All)
-        .comment(Some(b'#'))
-        .flexible(true)
-        .from_reader(bytes);
+    let mut reader = csv_reader(bytes);
     let headers = reader
         .headers()
         .map_err(|e| table_err(1, format!("cannot read the header row: {e}")))?
@@ -103,4 +98,16 @@ pub fn read_table(
         ));
     }
     Ok((times, values))
+}
+
+/// The CSV reader of every table woodpile reads (blast and drive tables, measured signals): a
+/// header row, fields trimmed, `#` comments, rows of any length (checked by the caller, which
+/// names the line).
+pub(crate) fn csv_reader<R: std::io::Read>(bytes: R) -> csv::Reader<R> {
+    csv::ReaderBuilder::new()
+        .has_headers(true)
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .flexible(true)
+        .from_reader(bytes)
 }

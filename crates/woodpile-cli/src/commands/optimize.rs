@@ -123,14 +123,11 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
 
     crate::interrupt::cooperative(true);
     let stop = crate::interrupt::stop_flag();
-    // The GA stops sooner when it stalls: its ETA is the time to the generation limit.
-    let bar =
-        Progress::new("optimize", problem.settings.generations as u64, ctx.quiet).ending_early();
-    if let Some(s) = &initial {
-        // Resumed: the ETA counts the generations run here.
-        bar.set_position(s.generation as u64);
-        bar.rate_from_here();
-    }
+    let bar = generations_progress(
+        problem.settings.generations,
+        initial.as_ref().map(|s| s.generation),
+        ctx.quiet,
+    );
     let unit = problem.objective.unit().to_string();
     let mut write_error: Option<CliError> = None;
     let mut last_elapsed = initial.as_ref().map_or(0.0, |s| s.elapsed_s);
@@ -149,11 +146,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
             0.0
         };
         (last_elapsed, last_evals) = (s.elapsed_s, simulations(s));
-        bar.set_position(s.generation as u64);
-        if s.generation == 0 {
-            // Generation 0 simulates its whole population: the ETA is measured from the next.
-            bar.rate_from_here();
-        }
+        generation_done(&bar, s.generation);
         bar.detail(format!(
             "generation {}: best {:.6e} {unit} | {rate:.0} sim/s | {} evaluations, {}{} cache hits",
             s.generation,
@@ -189,6 +182,26 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         return Err(interrupted_at(state.generation, out));
     }
     Ok(())
+}
+
+/// The progress of a GA over `generations` generations, resumed after `resumed_at` if given.
+/// The GA stops sooner when it stalls, so its ETA is an upper bound, and it is measured from
+/// the generations run here after generation 0 (which simulates the whole population).
+fn generations_progress(generations: usize, resumed_at: Option<usize>, quiet: bool) -> Progress {
+    let bar = Progress::new("optimize", generations as u64, quiet).ending_early();
+    if let Some(generation) = resumed_at {
+        bar.set_position(generation as u64);
+        bar.rate_from_here();
+    }
+    bar
+}
+
+/// Shows `generation` as done on `bar` (see [`generations_progress`]).
+fn generation_done(bar: &Progress, generation: usize) {
+    bar.set_position(generation as u64);
+    if generation == 0 {
+        bar.rate_from_here();
+    }
 }
 
 /// An interrupt after `generation` was saved in `out`'s checkpoint.
@@ -285,11 +298,11 @@ fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Resul
     fs::create_dir_all(out).map_err(io_err(out))?;
     crate::interrupt::cooperative(true);
     let stop = crate::interrupt::stop_flag();
-    let bar = Progress::new("optimize", problem.nsga2.generations as u64, ctx.quiet).ending_early();
-    if let Some(s) = &initial {
-        bar.set_position(s.generation as u64);
-        bar.rate_from_here();
-    }
+    let bar = generations_progress(
+        problem.nsga2.generations,
+        initial.as_ref().map(|s| s.generation),
+        ctx.quiet,
+    );
     let mut write_error: Option<CliError> = None;
     let mut last = initial
         .as_ref()
@@ -307,11 +320,7 @@ fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Resul
         };
         last = (s.elapsed_s, s.evaluations);
         let h = s.history.last().expect("a generation's line");
-        bar.set_position(s.generation as u64);
-        if s.generation == 0 {
-            // Generation 0 simulates its whole population: the ETA is measured from the next.
-            bar.rate_from_here();
-        }
+        generation_done(&bar, s.generation);
         bar.detail(format!(
             "generation {}: hypervolume {:.6e} | front {} | {rate:.0} sim/s | {} evaluations, {} cache hits",
             s.generation, h.hypervolume, h.front_size, s.evaluations, s.cache_hits

@@ -22,12 +22,7 @@ pub fn read_signals(path: &Path, columns: &[&str]) -> Result<(Vec<f64>, Vec<Vec<
         line,
         message,
     };
-    let mut reader = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .trim(csv::Trim::All)
-        .comment(Some(b'#'))
-        .flexible(true)
-        .from_reader(file);
+    let mut reader = crate::table::csv_reader(file);
     let headers = reader
         .headers()
         .map_err(|e| err(1, format!("cannot read the header row: {e}")))?
