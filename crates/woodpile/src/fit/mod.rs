@@ -18,9 +18,10 @@
 //! quarter of its smallest spacing) by the integrator's dense output and interpolated onto the
 //! shifted measurement times by cubic Hermite (Catmull–Rom) interpolation, which is C¹ in the time
 //! shift. Runs must use a fixed step (`Method::Rk4`): with a fixed step sequence the discrete
-//! model is a smooth function of the parameters, so forward differences of step 1e-7 of a
-//! parameter's range are accurate to about 1e-6 relative (claim `fit_jacobian`); the adaptive
-//! methods change their step sequence with the parameters, which makes finite differences noisy
+//! model is a smooth function of the parameters but for small kinks where a contact opens or
+//! closes between stages, so the Jacobian is central differences over 1e-4 of a parameter's
+//! range, wide enough to average over the kinks (claim `fit_jacobian`); the adaptive methods
+//! change their step sequence with the parameters, which makes finite differences noisy
 //! (measured in docs/fit.md, `examples/fit_jacobian_noise.rs`).
 //!
 //! **Uncertainty.** At the optimum, J is recomputed in the fitting coordinates u (or ln u), σ² =
@@ -285,7 +286,7 @@ pub struct FitSettings<'a> {
     pub starts: usize,
     /// Most residual evaluations of one start (besides its Jacobians).
     pub max_evaluations: usize,
-    /// Forward-difference step of the Jacobian, as a fraction of each bounded parameter's range
+    /// Central-difference step of the Jacobian, as a fraction of each bounded parameter's range
     /// (of |initial| for an unbounded one).
     pub jacobian_step: f64,
     /// Relative tolerance on the cost and on the parameters (MINPACK's ftol and xtol).
