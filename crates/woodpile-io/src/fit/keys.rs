@@ -1,15 +1,24 @@
 //! What a fitted parameter sets: a float key of the scenario (dotted, list entries indexed:
-//! `chain.elements[2].diameter_mm`), or a multiplicative scale of the contact coefficients β of
+//! `chain.elements[2].diameter_mm`), a multiplicative scale of the contact coefficients β of
 //! one type of contact, written into the scenario as explicit β (so that the fitted scenario runs
-//! as it was fitted).
+//! as it was fitted), or a scale of one material's Young's modulus, written as that material's
+//! constants inline wherever the scenario uses it.
 
 use crate::error::Error;
-use crate::scenario::{key, resolve, KeyType, Scenario};
+use crate::scenario::{
+    key, material_of, resolve, CustomMaterial, ElementKind, ExcitationKind, KeyType, MaterialSpec,
+    Scenario, WallKind,
+};
 use std::path::Path;
 use toml::Value;
+use woodpile::defaults;
 
 /// The prefix of the contact scales: `contact_beta_scale.striker`, `.inner`, `.wall`.
 pub const SCALE_PREFIX: &str = "contact_beta_scale";
+
+/// The prefix of the modulus scales: `youngs_modulus_scale.MATERIAL` (a preset name or the
+/// `name` of an inline material).
+pub const MODULUS_PREFIX: &str = "youngs_modulus_scale";
 
 /// Which contacts a scale multiplies.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -37,6 +46,9 @@ pub enum Target {
     },
     /// A scale of a type of contact's β.
     Scale(Scale),
+    /// A scale of the Young's modulus of the material of this name, wherever the scenario
+    /// uses it (elements, striker, wall, an actuator's tip): their cells and contacts follow.
+    Modulus(String),
 }
 
 impl Target {
@@ -59,6 +71,19 @@ impl Target {
                 }
             };
             return Ok(Target::Scale(scale));
+        }
+        if let Some(material) = name
+            .strip_prefix(MODULUS_PREFIX)
+            .and_then(|r| r.strip_prefix('.'))
+        {
+            if material.is_empty() {
+                return Err(Error::invalid(
+                    field,
+                    name,
+                    format!("write {MODULUS_PREFIX}.MATERIAL, a preset name or an inline material's name"),
+                ));
+            }
+            return Ok(Target::Modulus(material.to_string()));
         }
         let mut path = Vec::new();
         for part in name.split('.') {
@@ -94,7 +119,7 @@ impl Target {
             return Err(Error::invalid(
                 field,
                 name,
-                format!("not a key of the scenario file, nor {SCALE_PREFIX}.striker|inner|wall"),
+                format!("not a key of the scenario file, nor {SCALE_PREFIX}.striker|inner|wall or {MODULUS_PREFIX}.MATERIAL"),
             ));
         };
         if k.ty != KeyType::Float {
@@ -117,7 +142,7 @@ impl Target {
     /// Its value in `scenario` (defaults written out); a scale is 1.
     pub fn current(&self, scenario: &Scenario) -> Option<f64> {
         match self {
-            Target::Scale(_) => Some(1.0),
+            Target::Scale(_) | Target::Modulus(_) => Some(1.0),
             Target::Key { path, .. } => {
                 let v = Value::try_from(scenario.complete()).ok()?;
                 let mut at = &v;
@@ -156,12 +181,27 @@ pub(super) fn apply(
             }
         }
     }
+    let moduli: Vec<(&str, f64)> = targets
+        .iter()
+        .zip(values)
+        .filter_map(|(t, &v)| match t {
+            Target::Modulus(m) => Some((m.as_str(), v)),
+            _ => None,
+        })
+        .collect();
+    if !moduli.is_empty() {
+        let mut typed = from_doc(&doc, "scenario")?;
+        for (material, s) in moduli {
+            scale_modulus(&mut typed, material, s)?;
+        }
+        doc = Value::try_from(&typed).map_err(|e| Error::invalid("scenario", "", e.to_string()))?;
+    }
     let scales: Vec<(Scale, f64)> = targets
         .iter()
         .zip(values)
         .filter_map(|(t, &v)| match t {
             Target::Scale(s) => Some((*s, v)),
-            Target::Key { .. } => None,
+            _ => None,
         })
         .collect();
     if !scales.is_empty() {
@@ -282,6 +322,89 @@ fn scale_beta(
         }
     }
     Ok(())
+}
+
+/// Multiplies the Young's modulus of every body of `scenario` made of `material` by `s`, writing
+/// that material's constants inline there. Table 1 rods cannot follow (their cells are tabulated
+/// for fused quartz), so scaling their material is refused, as is a name no body uses.
+fn scale_modulus(scenario: &mut Scenario, material: &str, s: f64) -> Result<(), Error> {
+    let key = format!("{MODULUS_PREFIX}.{material}");
+    let chain = &mut scenario.chain;
+    let catalogue = chain.rods_mm.as_ref().is_some_and(|r| !r.is_empty())
+        || chain
+            .elements
+            .iter()
+            .flatten()
+            .any(|e| e.effective_kind() == ElementKind::Catalogue);
+    if catalogue && material == defaults::ELEMENT_MATERIAL {
+        return Err(Error::invalid(
+            key,
+            s,
+            "the chain has Table 1 rods, whose cells are tabulated for the paper's fused quartz: give the rods as `kind = \"rod\"` elements (their cells follow the modulus)",
+        ));
+    }
+    let mut slots: Vec<(String, &mut Option<MaterialSpec>, &str)> = Vec::new();
+    for (i, e) in chain.elements.iter_mut().flatten().enumerate() {
+        if e.effective_kind() != ElementKind::Catalogue {
+            let field = format!("chain.elements[{i}].material");
+            slots.push((field, &mut e.material, defaults::ELEMENT_MATERIAL));
+        }
+    }
+    let x = &mut scenario.excitation;
+    if x.kind == ExcitationKind::Impact {
+        let striker = x.striker.get_or_insert_with(Default::default);
+        slots.push((
+            "excitation.striker.material".into(),
+            &mut striker.material,
+            defaults::STRIKER_MATERIAL,
+        ));
+    }
+    if let Some(tip) = x
+        .tip
+        .as_mut()
+        .filter(|t| t.effective_kind() != WallKind::Beta)
+    {
+        slots.push((
+            "excitation.tip.material".into(),
+            &mut tip.material,
+            defaults::WALL_MATERIAL,
+        ));
+    }
+    let wall = &mut scenario.wall;
+    if matches!(wall.effective_kind(), WallKind::Cap | WallKind::Flat) {
+        slots.push((
+            "wall.material".into(),
+            &mut wall.material,
+            defaults::WALL_MATERIAL,
+        ));
+    }
+    let (mut changed, mut others) = (0usize, Vec::new());
+    for (field, slot, default) in slots {
+        let spec = slot.clone().unwrap_or(MaterialSpec::preset(default));
+        let m = material_of(&field, &spec)?;
+        if m.name == material {
+            *slot = Some(MaterialSpec::Custom(CustomMaterial {
+                name: m.name,
+                youngs_modulus_pa: s * m.youngs_modulus_pa,
+                poisson_ratio: m.poisson_ratio,
+                density_kg_m3: m.density_kg_m3,
+            }));
+            changed += 1;
+        } else if !others.contains(&m.name) {
+            others.push(m.name);
+        }
+    }
+    if changed > 0 {
+        return Ok(());
+    }
+    Err(Error::invalid(
+        key,
+        s,
+        format!(
+            "no body of the scenario is made of `{material}`; its materials: {}",
+            others.join(", ")
+        ),
+    ))
 }
 
 fn table_chain(table: &mut toml::Table) -> &mut toml::Table {

@@ -15,6 +15,7 @@
 //!   { key = "damping.restitution", bounds = [0.6, 1.0] },
 //!   { key = "contact_beta_scale.wall", bounds = [0.5, 2.0], log = true },
 //!   { key = "excitation.velocity_m_s", bounds = [1.5, 2.5], initial = 2.0 },
+//!   { key = "youngs_modulus_scale.stainless-steel", bounds = [0.8, 1.2] },
 //! ]
 //! time_shift_s = { bounds = [-1e-5, 1e-5] }  # measured(t) = model(t - time_shift_s); omit: 0
 //! window_s = [0.0, 4e-4]                     # optional: only rows in this window are fitted
@@ -26,7 +27,7 @@ mod keys;
 mod output;
 
 pub use data::read_signals;
-pub use keys::{Scale, Target, SCALE_PREFIX};
+pub use keys::{Scale, Target, MODULUS_PREFIX, SCALE_PREFIX};
 pub use output::{check_output, fit_json, residuals_csv, write_outputs, FIT_MARKER};
 
 use crate::error::Error;
@@ -86,8 +87,9 @@ pub struct FitSpec {
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ParameterSpec {
-    /// A float key of the scenario (`damping.restitution`, `chain.elements[2].diameter_mm`) or a
-    /// contact scale (`contact_beta_scale.striker`, `.inner`, `.wall`).
+    /// A float key of the scenario (`damping.restitution`, `chain.elements[2].diameter_mm`), a
+    /// contact scale (`contact_beta_scale.striker`, `.inner`, `.wall`) or a material's modulus
+    /// scale (`youngs_modulus_scale.stainless-steel`).
     pub key: String,
     /// `[lower, upper]`; none: unbounded.
     pub bounds: Option<[f64; 2]>,

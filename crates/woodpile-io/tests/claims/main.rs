@@ -6,6 +6,7 @@
 mod checkpoint_screened_resume;
 mod element_angles_and_mass_in_mass;
 mod errors_speak_no_front_end;
+mod fit_modulus_scale;
 mod fuzz_corpus;
 mod lab_scenario_keys;
 mod pareto_checkpoint_resume;
