@@ -15,7 +15,8 @@
 //! | [`effective_mass`] | M_eff/M_total vs frequency with bands shaded | Fig. 3 |
 //! | [`transmission`] | transmission spectrum (dB) with the predicted gaps shaded | – |
 //! | [`convergence`] | best and mean objective per GA generation | – |
-//! | [`fit_signal`] | a fitted signal: measured, model and residual vs time | – |
+//! | [`fit_signal`] | a fitted signal: measured and model vs time, the residual below | – |
+//! | [`correlation_matrix`] | a fit's correlation matrix, cells coloured −1 … +1 with values | – |
 //! | [`chain_picture`] | rods to scale, top to bottom | Fig. 5 d, e (right) |
 //!
 //! Every function takes a file *stem* (`dir/force_map`) and writes `stem.png` and `stem.svg`
@@ -41,6 +42,7 @@ mod chain;
 mod colorbar;
 mod colormap;
 pub mod dirs;
+mod fit;
 mod heatmap;
 mod lines;
 pub mod output;
@@ -48,14 +50,14 @@ pub mod typeset;
 
 pub use chain::chain_picture;
 pub use colormap::ColorMap;
+pub use fit::{correlation_matrix, fit_signal};
 pub use heatmap::{
     contact0_name, energy_heatmap, energy_map, force_heatmap, force_map, protocol_map,
     spectrum_map, Heatmap, MapColours,
 };
 pub use lines::{
-    convergence, effective_mass, fit_signal, force_histories, force_histories_between,
-    onset_window_s, peaks_per_layer, spectra, spectra_between, transmission, ConvergencePoint,
-    Series,
+    convergence, effective_mass, force_histories, force_histories_between, onset_window_s,
+    peaks_per_layer, spectra, spectra_between, transmission, ConvergencePoint, Series,
 };
 pub use output::{with_output, Format, Output};
 

@@ -70,33 +70,37 @@ const LEGEND_FONT: u32 = 15;
 /// rounds coordinates to whole units of the canvas; on the layout grid (1/1100 of the width)
 /// a nearly flat curve drawn 2100 px wide (7 in at 300 dpi) climbs in visible 2-px steps, on
 /// the fine grid in sub-pixel ones.
-const FINE: u32 = 4;
+pub(crate) const FINE: u32 = 4;
 
 /// A polyline broken into segments (a new segment where the line must not be joined).
-type Segments = Vec<Vec<(f64, f64)>>;
+pub(crate) type Segments = Vec<Vec<(f64, f64)>>;
 
 /// x/y points of several series, drawn as lines on linear or log-y axes.
-struct LinePlot {
-    title: String,
-    x_label: String,
-    y_label: String,
+pub(crate) struct LinePlot {
+    /// Caption; empty: none (a panel under another).
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
     /// Per series: label, (x, y) points split into segments (a new segment where the line must
     /// break, e.g. at a pole).
-    series: Vec<(String, Segments)>,
+    pub series: Vec<(String, Segments)>,
     /// Shaded x intervals: (lo, hi, colour index or None for grey, legend label).
-    bands: Vec<(f64, f64, Option<usize>, Option<String>)>,
-    x_range: (f64, f64),
-    y_range: (f64, f64),
-    log_y: bool,
-    markers: bool,
+    pub bands: Vec<(f64, f64, Option<usize>, Option<String>)>,
+    pub x_range: (f64, f64),
+    pub y_range: (f64, f64),
+    pub log_y: bool,
+    pub markers: bool,
     /// x takes whole numbers only (generations, interfaces): ticks only at whole numbers.
-    integer_x: bool,
-    zero_line: bool,
-    size: (u32, u32),
+    pub integer_x: bool,
+    pub zero_line: bool,
+    /// Layout size (before [`FINE`]).
+    pub size: (u32, u32),
+    /// Index of the first series' colour (a panel continuing another's colours).
+    pub first_colour: usize,
 }
 
 impl LinePlot {
-    fn write(self, stem: &Path) -> Result<Vec<PathBuf>> {
+    pub(crate) fn write(self, stem: &Path) -> Result<Vec<PathBuf>> {
         render(&self, stem)
     }
 
@@ -135,7 +139,7 @@ impl LinePlot {
             ))?;
         }
         for (i, (label, segments)) in self.series.iter().enumerate() {
-            let colour = series_color(i);
+            let colour = series_color(self.first_colour + i);
             // Dense series (spectra) 1 px wide: the miter joins of their sharp peaks would
             // overshoot the frame by far at 2 px.
             let points: usize = segments.iter().map(Vec::len).sum();
@@ -246,8 +250,10 @@ impl Figure for LinePlot {
             10
         };
         let mut builder = ChartBuilder::on(root);
+        if !self.title.is_empty() {
+            builder.caption(&self.title, (FONT, 22 * FINE));
+        }
         builder
-            .caption(&self.title, (FONT, 22 * FINE))
             .margin(15 * FINE)
             .x_label_area_size(50 * FINE)
             .y_label_area_size(85 * FINE);
@@ -280,7 +286,7 @@ impl Figure for LinePlot {
     }
 }
 
-fn bad(what: &str, reason: impl Into<String>) -> PlotError {
+pub(crate) fn bad(what: &str, reason: impl Into<String>) -> PlotError {
     PlotError::BadData {
         what: what.to_string(),
         reason: reason.into(),
@@ -372,6 +378,7 @@ pub fn force_histories_between(
         integer_x: false,
         zero_line: false,
         size: (1100, 600),
+        first_colour: 0,
     }
     .write(stem)
 }
@@ -515,6 +522,7 @@ pub fn spectra_between(
         integer_x: false,
         zero_line: false,
         size: (1100, 600),
+        first_colour: 0,
     }
     .write(stem)
 }
@@ -596,6 +604,7 @@ pub fn effective_mass(
         integer_x: false,
         zero_line: true,
         size: (1100, 600),
+        first_colour: 0,
     }
     .write(stem)
 }
@@ -638,6 +647,7 @@ pub fn convergence(
         integer_x: true,
         zero_line: false,
         size: (1000, 600),
+        first_colour: 0,
     }
     .write(stem)
 }
@@ -681,6 +691,7 @@ pub fn peaks_per_layer(
         integer_x: true,
         zero_line: false,
         size: (1000, 600),
+        first_colour: 0,
     }
     .write(stem)
 }
@@ -755,60 +766,7 @@ pub fn transmission(
         integer_x: false,
         zero_line: true,
         size: (1100, 600),
-    }
-    .write(stem)
-}
-
-/// A fitted signal: the measurement, the fitted model and the residual (model − measured) against
-/// time in ms, one axis in the signal's unit (`y_label`), over the rows of `times_s`. Writes
-/// `stem.png` and `stem.svg`.
-pub fn fit_signal(
-    times_s: &[f64],
-    measured: &[f64],
-    model: &[f64],
-    title: &str,
-    y_label: &str,
-    stem: &Path,
-) -> Result<Vec<PathBuf>> {
-    if times_s.len() < 2 || measured.len() != times_s.len() || model.len() != times_s.len() {
-        return Err(bad(
-            title,
-            "needs at least 2 times and one value of each curve per time",
-        ));
-    }
-    let residual: Vec<f64> = model.iter().zip(measured).map(|(a, b)| a - b).collect();
-    let curves = [
-        ("measured", measured),
-        ("model", model),
-        ("residual (model − measured)", &residual[..]),
-    ];
-    let (lo, hi) = finite_range(title, curves.iter().flat_map(|c| c.1.iter().copied()))?;
-    let (y0, y1) = padded(lo, hi);
-    let pad = 0.05 * (y1 - y0);
-    LinePlot {
-        title: title.to_string(),
-        x_label: "time [ms]".into(),
-        y_label: y_label.to_string(),
-        series: curves
-            .iter()
-            .map(|(label, values)| {
-                let pts = times_s
-                    .iter()
-                    .zip(values.iter())
-                    .map(|(t, v)| (t * 1e3, *v))
-                    .filter(|p| p.1.is_finite())
-                    .collect();
-                (label.to_string(), vec![pts])
-            })
-            .collect(),
-        bands: Vec::new(),
-        x_range: (times_s[0] * 1e3, times_s[times_s.len() - 1] * 1e3),
-        y_range: (y0 - pad, y1 + pad),
-        log_y: false,
-        markers: false,
-        integer_x: false,
-        zero_line: true,
-        size: (1100, 600),
+        first_colour: 0,
     }
     .write(stem)
 }

@@ -67,7 +67,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let result = result?;
     let prediction = predict(&problem, &result.estimates)?;
     write_outputs(&dir, args.overwrite, &setup, &result, &prediction)?;
-    if let Err(e) = draw(&setup, &prediction, &dir.join("plots")) {
+    if let Err(e) = draw(&setup, &result, &prediction, &dir.join("plots")) {
         out::eprintln(format_args!("warning: the figures were not drawn: {e}"));
     }
     if !ctx.quiet {
@@ -84,8 +84,15 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     Ok(())
 }
 
-/// One figure per signal in `plots`: `fit_COLUMN.png` and `.svg` (measured, model, residual).
-fn draw(setup: &FitSetup, prediction: &Prediction, plots: &Path) -> Result<(), String> {
+/// One figure per signal in `plots`: `fit_COLUMN.png` and `.svg` (measured and model above, the
+/// residual below), and `correlation.png`/`.svg` (the estimates' correlation matrix, when the
+/// fit has uncertainties).
+fn draw(
+    setup: &FitSetup,
+    result: &FitResult,
+    prediction: &Prediction,
+    plots: &Path,
+) -> Result<(), String> {
     std::fs::create_dir_all(plots).map_err(|e| format!("{}: {e}", plots.display()))?;
     let mut used = std::collections::BTreeSet::new();
     for (k, (m, model)) in setup
@@ -119,6 +126,15 @@ fn draw(setup: &FitSetup, prediction: &Prediction, plots: &Path) -> Result<(), S
             &title,
             &y_label,
             &plots.join(name),
+        )
+        .map_err(|e| e.to_string())?;
+    }
+    if let Some(u) = &result.uncertainty {
+        woodpile_plot::correlation_matrix(
+            &result.names,
+            &u.correlation,
+            "correlation of the estimates",
+            &plots.join("correlation"),
         )
         .map_err(|e| e.to_string())?;
     }

@@ -2,7 +2,8 @@
 //! known scenario (restitution 0.85, impact speed 1.98 m/s, the wall's β as computed), the
 //! restitution, the speed and a wall-β scale of 1 to 1e-6 relative, starting from 0.8, 2.0 m/s
 //! and the bounds' middle; and `woodpile simulate fitted.toml` reproduces the fitted model
-//! curve of residuals.csv to 1e-9 of the signal's peak. A figure per signal is drawn.
+//! curve of residuals.csv to 1e-9 of the signal's peak. A figure per signal and the correlation
+//! matrix are drawn.
 //!
 //! Tolerance: the data are the model itself on the same RK4 steps, so the optimum is the truth
 //! (the optimiser stops at a relative tolerance of 1e-10); fitted.toml holds the estimates with
@@ -78,6 +79,8 @@ fn fit_recovers_a_simulated_scenario_and_fitted_toml_reproduces_it() {
         "fit_contact_3_n.png",
         "fit_contact_3_n.svg",
         "fit_element_1_m_s.png",
+        "correlation.png",
+        "correlation.svg",
     ] {
         assert!(
             d.join("out/plots").join(figure).is_file(),
