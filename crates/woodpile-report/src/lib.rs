@@ -20,6 +20,8 @@
 //!   Figs. 8, 9); `sweep`: the same chains over a grid of blast loads;
 //! - `fine`: the GA over rods of every length with cells from beam theory (beyond the paper);
 //! - `transmission`: the transmission spectrum of preloaded 80 mm rods (beyond the paper);
+//! - `calibration`: the scale of the paper's unstated striker constant that its incident force
+//!   would need (beyond the paper);
 //! - `cells`: the effective-mass curves of the catalogue (paper Fig. 3).
 //!
 //! `study` holds what the sections share (the loads, a simulated `study::Case`, the paper's
@@ -31,6 +33,7 @@
 //! half-written report.
 
 mod blast;
+mod calibration;
 mod cells;
 mod doc;
 mod fine;
@@ -69,8 +72,8 @@ pub trait Progress: Sync {
 }
 
 /// Progress steps: 4 impact chains, 2 GAs, optimum figures, protocol, 4 blast chains, 2 GAs
-/// over derived cells, cells.
-pub const STEPS: u64 = 15;
+/// over derived cells, the striker calibration, cells.
+pub const STEPS: u64 = 16;
 
 /// The report's title.
 pub const TITLE: &str = "woodpile: reproduction of Kim, Yang et al. 2017 (impact and blast mitigation with locally resonant woodpiles)";
@@ -94,6 +97,7 @@ struct Sections {
     sweep: sweep::Sweep,
     fine: fine::Fine,
     transmission: transmission::Transmission,
+    calibration: calibration::Calibration,
     cells: cells::Cells,
 }
 
@@ -112,6 +116,9 @@ impl Sections {
         let fine = fine::run(s)?;
         s.bar.stage("transmission spectrum");
         let transmission = transmission::run(s)?;
+        s.bar.stage("striker constant");
+        let calibration = calibration::run_all()?;
+        s.bar.inc(1);
         let cells = cells::run(s)?;
         Ok(Sections {
             impact,
@@ -121,6 +128,7 @@ impl Sections {
             sweep,
             fine,
             transmission,
+            calibration,
             cells,
         })
     }
@@ -153,6 +161,7 @@ impl Sections {
         self.blast.write_chains(&mut doc);
         self.fine.write(&mut doc, s, &self.optima);
         self.transmission.write(&mut doc);
+        self.calibration.write(&mut doc);
         self.cells.write(&mut doc);
         doc.h2("Reproducing and caching");
         doc.p("Every figure is also written as SVG beside its PNG in figures/. The GA results are kept in cache/ under an FNV-1a hash of the tool version and the complete problem (config, GA settings, seed); rerunning the same command reuses them. The simulations themselves take well under a second each and are re-run.");

@@ -81,7 +81,7 @@ fn quick_report_writes_every_file_it_names() {
     );
     assert!(o.status.success());
     let stderr = String::from_utf8_lossy(&o.stderr);
-    crate::progress_lines::check_lines(&stderr, "report", 15);
+    crate::progress_lines::check_lines(&stderr, "report", woodpile_report::STEPS);
     for stage in [
         "homogeneous chains under impact",
         "resonant GA",
