@@ -1,9 +1,9 @@
 //! Beyond the paper: its lost striker constant, as a calibration. The paper never states the
 //! striker–rod contact constant; docs/physics.md §2 assumes Hertz theory for a 10 mm soda-lime
-//! sphere on fused quartz. Which scale s of that β makes the incident force (the peak of contact
-//! 1) of the paper's resonant optimum (docs/physics.md §9) the paper's 159.6 N? The paper gives
-//! one number, not a curve, so this is a root of one equation (bisection on s where a bracket
-//! exists), not a `woodpile fit`; the defaults are unchanged.
+//! sphere on fused quartz. Which scale s of that β makes the incident force (the peak of the
+//! first contact) of the paper's resonant optimum (docs/physics.md §9) the paper's 159.6 N? The
+//! paper gives one number, not a curve, so this is a root of one equation (bisection on s where
+//! a bracket exists), not a `woodpile fit`; the defaults are unchanged.
 
 use super::doc::Doc;
 use crate::optima::RESONANT_INCIDENT;
