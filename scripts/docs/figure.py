@@ -8,19 +8,20 @@ import io
 from typing import Any
 
 
-def show(fig: Any, alt: str = "figure") -> None:
-    """Print `fig` as an `<img>` with the PNG inline (a markdown-exec block with html="true")."""
+def png(fig: Any, alt: str = "figure") -> str:
+    """`fig` as an `<img>` with the PNG inline, for a markdown-exec block with html="true" to
+    print (markdown-exec captures the block's own `print` only)."""
     import matplotlib.pyplot as plt
 
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=110)
     plt.close(fig)
     data = base64.b64encode(buf.getvalue()).decode("ascii")
-    print(f'<img alt="{alt}" src="data:image/png;base64,{data}">')
+    return f'<img alt="{alt}" src="data:image/png;base64,{data}">'
 
 
-def show_png(path: str, alt: str = "figure") -> None:
-    """Print a PNG file the build wrote (a woodpile figure) as an inline `<img>`."""
+def png_file(path: str, alt: str = "figure") -> str:
+    """A PNG file the build wrote (a woodpile figure) as an inline `<img>`."""
     with open(path, "rb") as f:
         data = base64.b64encode(f.read()).decode("ascii")
-    print(f'<img alt="{alt}" src="data:image/png;base64,{data}">')
+    return f'<img alt="{alt}" src="data:image/png;base64,{data}">'

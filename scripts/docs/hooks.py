@@ -19,7 +19,8 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
+_HERE = str(Path(__file__).resolve().parent)
+sys.path.insert(0, _HERE)
 import reference  # noqa: E402
 
 _STATE: dict[str, Any] = {}
@@ -31,10 +32,14 @@ def on_config(config: Any) -> Any:
     _STATE["binary"] = binary
     os.environ["PATH"] = f"{binary.parent}{os.pathsep}{os.environ.get('PATH', '')}"
     os.environ.setdefault("MPLBACKEND", "Agg")
+    # The build runs in a scratch directory (on_pre_build): snippets are read from the checkout.
+    config["mdx_configs"].setdefault("pymdownx.snippets", {})["base_path"] = [str(reference.ROOT)]
     return config
 
 
 def on_pre_build(config: Any) -> None:
+    if _HERE not in sys.path:  # mkdocs restores sys.path after loading the hooks
+        sys.path.append(_HERE)  # the tutorials' `from figure import show`
     _STATE["cwd"] = os.getcwd()
     _STATE["scratch"] = tempfile.TemporaryDirectory(prefix="woodpile-docs-")
     os.chdir(_STATE["scratch"].name)
