@@ -42,8 +42,8 @@ def scenario_keys_markdown() -> str:
     out = []
     for section, keys in sections.items():
         out.append(f"## `[{section}]`\n")
-        out.append("| key | type | unit | default | valid | what it is |")
-        out.append("| --- | --- | --- | --- | --- | --- |")
+        out.append("| key | type [unit] | default | what it is; valid values |")
+        out.append("| --- | --- | --- | --- |")
         for k in keys:
             valid = k.valid
             if k.choices:
@@ -51,9 +51,10 @@ def scenario_keys_markdown() -> str:
             doc = k.doc
             if k.alternatives:
                 doc += " (replaces " + ", ".join(f"`{a}`" for a in k.alternatives) + ")"
-            out.append(
-                f"| `{k.name}` | {k.type} | {_cell(k.unit)} | {_default(k)} | {_cell(valid)} | {_cell(doc)} |"
-            )
+            if valid:
+                doc += f". Valid: {valid}"
+            ty = k.type + (f" [{k.unit}]" if k.unit else "")
+            out.append(f"| `{k.name}` | {_cell(ty)} | {_default(k)} | {_cell(doc)} |")
         out.append("")
     return "\n".join(out)
 
