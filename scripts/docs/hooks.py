@@ -82,6 +82,17 @@ def _mathml(tex: str, display: str) -> str:
     return convert(html.unescape(tex).strip(), display=display)
 
 
+_ROLE = re.compile(r":(?:class|func|meth|mod|attr|data|exc):<code>(~?)([\w.]+)</code>")
+
+
+def _role(m: re.Match[str]) -> str:
+    """A Sphinx cross-reference role of a docstring (`:class:`~woodpile.X``) as code: the last
+    name with `~`, the whole path without, as Sphinx shows them."""
+    name = m.group(2).rsplit(".", 1)[-1] if m.group(1) else m.group(2)
+    return f"<code>{name}</code>"
+
+
 def on_page_content(content: str, page: Any, config: Any, files: Any) -> str:
+    content = _ROLE.sub(_role, content)
     content = _BLOCK.sub(lambda m: f'<div class="math">{_mathml(m.group(1), "block")}</div>', content)
     return _INLINE.sub(lambda m: _mathml(m.group(1), "inline"), content)
