@@ -1,0 +1,71 @@
+"""The documentation site's generated reference says what the code does.
+
+Claim 1: the scenario-key page lists every key that `woodpile scenario NAME` writes, for every
+built-in NAME. The page is generated from the key table (scripts/docs/reference.py); a key the
+emitted files hold but the table lacks would be undocumented. The built-in scenarios' TOML
+are read through the extension, which completes them with woodpile-io's code, as `woodpile
+scenario NAME` does.
+
+Claim 2: the output-file page (docs/reference/outputs.md) names every file a run directory holds,
+every key of its summary.json and every column of its CSV files (a numbered column by its first
+number: `contact_0_n`), for a preloaded impact with damping (the case with the most of them: the
+striker's files, the static forces and the dissipated energy).
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import sys
+from pathlib import Path
+
+import woodpile
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "scripts" / "docs"))
+import reference  # noqa: E402
+
+
+def test_key_page_lists_every_key_of_every_builtin_scenario() -> None:
+    page = reference.scenario_keys_markdown()
+    listed = set(re.findall(r"^\| `([^`]+)` \|", page, flags=re.M))
+    assert len(listed) == len(woodpile.scenario_keys())
+    names = woodpile.builtin_scenarios()
+    assert len(names) >= 10
+    for name in names:
+        written = reference.scenario_key_names(woodpile.Scenario.builtin(name).to_dict())
+        missing = sorted(written - listed)
+        assert not missing, f"{name}: keys written but not on the key page: {missing}"
+
+
+def test_outputs_page_names_every_file_of_a_run_directory(tmp_path: Path) -> None:
+    page = (ROOT / "docs" / "reference" / "outputs.md").read_text()
+    scenario = woodpile.Scenario.builtin("lab-impact-40mm").replace(
+        **{"run.duration_s": 1e-4, "preload.force_n": 5.0}
+    )
+    directory = woodpile.simulate(scenario).save(tmp_path / "run")
+    files = sorted(p.name for p in directory.iterdir())
+    assert "striker.npy" in files and "summary.json" in files
+    unnamed = [f for f in files if f"`{f}`" not in page]
+    assert not unnamed, f"files of a run directory not on docs/reference/outputs.md: {unnamed}"
+
+    summary = json.loads((directory / "summary.json").read_text())
+    assert "static_contact_forces_n" in summary
+    keys = list(summary) + [k for v in summary.values() if isinstance(v, dict) for k in v]
+    unnamed = [k for k in keys if f"`{k}`" not in page]
+    assert not unnamed, f"summary.json keys not on docs/reference/outputs.md: {unnamed}"
+
+    columns: set[str] = set()
+    for csv in directory.glob("*.csv"):
+        header = csv.read_text().splitlines()[0].split(",")
+        first: dict[tuple[str, str], int] = {}
+        for name in header:
+            m = re.fullmatch(r"([a-z]+)_(\d+)_([a-z_]+)", name)
+            if m:
+                key = (m.group(1), m.group(3))
+                first[key] = min(first.get(key, int(m.group(2))), int(m.group(2)))
+            else:
+                columns.add(name)
+        columns |= {f"{a}_{i}_{b}" for (a, b), i in first.items()}
+    unnamed = sorted(c for c in columns if c not in page)
+    assert not unnamed, f"CSV columns not on docs/reference/outputs.md: {unnamed}"
