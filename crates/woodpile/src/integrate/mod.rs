@@ -291,7 +291,7 @@ pub const EXACT_MODES_ABOVE_RAD_S: f64 = 2.0 * std::f64::consts::PI * 300e3;
 /// this fraction of the step from either end: a kink that close to a step's end costs little
 /// (its leading error term is δ^{3/2}), and a landed step's end, whose overlap is about zero,
 /// must not trigger a second, tiny step (measured: 0.03 to 0.2 give the same accuracy,
-/// bench/README.md 2026-11-25, event-aware stepping).
+/// bench/README.md, "Integrators: accuracy for the work").
 pub(crate) const EVENT_LANDING_FRACTION: f64 = 0.1;
 
 /// The integration method and its step control.

@@ -6,7 +6,7 @@
 //! to 1e-7. Refined by the quintic through the force and its rate at the last three step ends
 //! (error O(h⁶)) it is off by 5.6e-10; by the cubic through the last two (error O(h⁴)), which
 //! woodpile used before, by 8.9e-6, and the claim fails. Tolerance 1e-7: 50 times the measured
-//! error, 90 times below the cubic's (bench/README.md 2026-11-25, peak refinement).
+//! error, 90 times below the cubic's (bench/README.md, "Integrators: accuracy for the work").
 
 use crate::two_body_hertz_impact::striker_on_free_rod;
 use woodpile::{simulate, Excitation, Method, RunSettings};
