@@ -84,7 +84,7 @@ fn screened_ga(runs: usize) -> woodpile::Result<()> {
     type Choices = (Vec<Vec<Genome>>, Vec<f64>);
     let mut reference: Option<Choices> = None;
     // The reference run's best design, re-run alone to compare its transmitted peak with the
-    // incident one (issue 10: the optimum stays at most 20 % of the incident force).
+    // incident one (the optimum should stay at most 20 % of the incident force).
     let mut optimum: Option<Genome> = None;
     let tolerance = Method::for_peak_tolerance(1e-5)?;
     for (method, screen, stop_early) in [

@@ -124,7 +124,7 @@ fn one_by_one(
         .collect()
 }
 
-/// The objectives of issue 3, all over the whole run.
+/// The run-based objectives of a design study, each over the whole run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum StandardObjective {
     /// Peak force of contact N (the wall) \[N\]: the paper's objective. Peaks are tracked over
