@@ -7,7 +7,9 @@
 //! quantile's interpolation); `robust/NNN.csv` holds those forces and the drawn values bit for
 //! bit; every front design has the same drawn angles and speeds (common random numbers; the
 //! lengths are drawn about each design's own rods); total-mass is
-//! the nominal design's (rod lengths are scattered, so a sample's mass would differ).
+//! the nominal design's (rod lengths are scattered, so a sample's mass would differ). A third
+//! objective, max-contact-pressure, gets its own column in `robust/NNN.csv` (written with
+//! round-trip precision), and `pareto.csv`'s value is the same quantile of that column.
 //! 3 positions of rods of 20, 40 and 60 mm (`rod_range`), population 6 × 3 generations, runs of 0.2 ms at peak
 //! tolerance 1e-5; lengths, angle and speed scattered.
 
@@ -21,7 +23,7 @@ crossing_angle_deg = { sd = 2.0 }\nimpact_velocity_m_s = { uniform = [1.8, 2.2] 
 const CONFIG: &str =
     "[design]\npositions = 3\nrod_range = { from_mm = 20.0, to_mm = 60.0, step_mm = 20.0 }\n\
 [run]\nduration_s = 2e-4\npeak_tolerance = 1e-5\n\
-[ga]\nobjectives = [\"transmitted-force\", \"total-mass\"]\npopulation = 6\ngenerations = 3\n\
+[ga]\nobjectives = [\"transmitted-force\", \"total-mass\", \"max-contact-pressure\"]\npopulation = 6\ngenerations = 3\n\
 robust = \"quantile:0.95\"\n";
 
 /// Header and rows of a CSV file.
@@ -113,11 +115,23 @@ fn front_robust_values_are_the_statistic_of_their_samples_rerun() {
 
         let robust = table(&d.join(format!("o/robust/{n}.csv")));
         let sampled = table(&d.join(format!("{samples_dir}/samples.csv")));
-        assert_eq!(robust.0, sampled.0, "robust/{n}.csv columns");
+        assert_eq!(
+            robust.0[..sampled.0.len()],
+            sampled.0,
+            "robust/{n}.csv columns"
+        );
+        assert_eq!(robust.0.last().unwrap(), "max_contact_pressure_pa");
+        let pressures = column(&robust, "max_contact_pressure_pa");
+        let expected = quantile_95(&pressures);
+        let reported = column(&pareto, "max-contact-pressure")[k];
+        assert!(
+            (reported - expected).abs() <= 1e-12 * expected,
+            "design {n}: pressure {reported} vs its samples' {expected}"
+        );
         let written = column(&robust, "transmitted_peak_force_n");
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&written), bits(&forces), "robust/{n}.csv forces");
-        let drawn: Vec<Vec<u64>> = robust.0[1..robust.0.len() - 3]
+        let drawn: Vec<Vec<u64>> = robust.0[1..robust.0.len() - 4]
             .iter()
             .map(|c| bits(&column(&robust, c)))
             .collect();
@@ -127,7 +141,7 @@ fn front_robust_values_are_the_statistic_of_their_samples_rerun() {
             .collect();
         assert_eq!(drawn, drawn_alone, "robust/{n}.csv drawn values");
         // Lengths are drawn about each design's own rods; the other draws are the same numbers.
-        let shared: Vec<Vec<u64>> = robust.0[1..robust.0.len() - 3]
+        let shared: Vec<Vec<u64>> = robust.0[1..robust.0.len() - 4]
             .iter()
             .filter(|c| !c.starts_with("rod_length_mm"))
             .map(|c| bits(&column(&robust, c)))
