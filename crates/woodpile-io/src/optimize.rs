@@ -308,8 +308,9 @@ pub struct GaSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stop_early: Option<bool>,
     /// Robust design: the objective is this statistic of the transmitted force over the
-    /// `[uncertainty]` samples (`mean`, `quantile:p`, `cvar:a`), every design on the same draws;
-    /// no screening or early stopping.
+    /// `[uncertainty]` samples (`mean`, `quantile:p`, `cvar:a`), every design on the same draws
+    /// (NSGA-II: every figure of a run is; mass, height and layers stay nominal); no screening
+    /// or early stopping.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub robust: Option<String>,
     /// Goes ahead with a generation above the up-front limit
@@ -851,8 +852,8 @@ pub fn scenario_of(
 }
 
 /// `ga.robust` checked against the rest of the config (`user`: as written, `cfg`: completed):
-/// it needs `[uncertainty]`, the breeder GA, the transmitted force, and no screening or early
-/// stopping; `[uncertainty]` needs `ga.robust`. The samples of the first catalogue entry in
+/// it needs `[uncertainty]`, the transmitted force for the breeder GA (NSGA-II takes the
+/// statistic of every figure of a run), and no screening or early stopping; `[uncertainty]` needs `ga.robust`. The samples of the first catalogue entry in
 /// every position are built and resolved, so a key that does not apply fails here.
 fn robust_of(
     user: &OptimizeConfig,
@@ -879,14 +880,7 @@ fn robust_of(
         (Some(t), Some(s)) => (t, s),
     };
     let robust = crate::robust::Robust::parse(text)?;
-    if algorithm != Algorithm::Breeder {
-        return Err(Error::invalid(
-            "ga.robust",
-            text,
-            "is for the breeder GA; NSGA-II has no robust objectives yet",
-        ));
-    }
-    if objective != StandardObjective::TransmittedForce {
+    if algorithm == Algorithm::Breeder && objective != StandardObjective::TransmittedForce {
         return Err(Error::invalid(
             "ga.robust",
             text,

@@ -294,7 +294,8 @@ pub struct ParetoSummary {
     pub config: OptimizeConfig,
 }
 
-/// Writes `pareto.csv`, `pareto/NNN.toml` and `summary.json`; returns the summary.
+/// Writes `pareto.csv`, `pareto/NNN.toml`, `robust/NNN.csv` (a robust study's samples of
+/// each front design) and `summary.json`; returns the summary.
 pub fn write_final_outputs(
     problem: &Problem,
     name: &str,
@@ -306,7 +307,7 @@ pub fn write_final_outputs(
     write_atomic(out, "pareto.csv", pareto_csv(problem, &front).as_bytes())?;
     let dir = out.join("pareto");
     fs::create_dir_all(&dir).map_err(io_err(&dir))?;
-    remove_stale_scenarios(&dir, front.len())?;
+    remove_stale(&dir, front.len(), "toml")?;
     let mut designs = Vec::with_capacity(front.len());
     for (k, ind) in front.iter().enumerate() {
         let file = format!("{:03}.toml", k + 1);
@@ -316,12 +317,18 @@ pub fn write_final_outputs(
             .zip(&ind.objectives)
             .map(|(f, v)| format!("{} = {v} {}", f.as_str(), f.unit()))
             .collect();
-        let description = format!(
+        let mut description = format!(
             "Pareto design {} of `woodpile optimize` ({name}, NSGA-II, seed {}): {}",
             k + 1,
             problem.nsga2.seed,
             values.join(", ")
         );
+        if let Some(robust) = &problem.config.ga.robust {
+            description += &format!(
+                " (the figures of a run: their {robust} over the [uncertainty] samples, robust/{:03}.csv)",
+                k + 1
+            );
+        }
         let scenario = problem.scenario(&ind.genome, Some(description));
         write_atomic(&dir, &file, scenario.to_toml().as_bytes())?;
         designs.push(FrontDesign {
@@ -330,6 +337,16 @@ pub fn write_final_outputs(
             labels: problem.space.labels(&ind.genome),
             genome: ind.genome.clone(),
         });
+    }
+    if let Some(robust) = problem.robust_objective() {
+        let genomes: Vec<&[u8]> = front.iter().map(|i| i.genome.as_slice()).collect();
+        let mut extra = problem.objectives.clone();
+        let pressure = woodpile::optimize::DesignFigure::MaxContactPressure;
+        if problem.space.constraints.max_contact_pressure_pa.is_some() && !extra.contains(&pressure)
+        {
+            extra.push(pressure);
+        }
+        crate::robust::write_robust_csvs(out, &robust, &genomes, &extra)?;
     }
     let last = state.history.last();
     let summary = ParetoSummary {
@@ -374,13 +391,13 @@ pub fn write_final_outputs(
     Ok(summary)
 }
 
-/// Removes `pareto/NNN.toml` files beyond the new front's `count` (written by an earlier
-/// stop of the same run); other files are left alone.
-fn remove_stale_scenarios(dir: &Path, count: usize) -> Result<(), Error> {
+/// Removes `NNN.EXT` files of `dir` (`pareto/NNN.toml`, `robust/NNN.csv`) beyond the new
+/// front's `count` (written by an earlier stop of the same run); other files are left alone.
+pub(crate) fn remove_stale(dir: &Path, count: usize, ext: &str) -> Result<(), Error> {
     for entry in fs::read_dir(dir).map_err(io_err(dir))? {
         let path = entry.map_err(io_err(dir))?.path();
         let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
-        let ours = path.extension().is_some_and(|e| e == "toml")
+        let ours = path.extension().is_some_and(|e| e == ext)
             && stem.len() >= 3
             && stem.bytes().all(|b| b.is_ascii_digit());
         if ours && stem.parse::<usize>().is_ok_and(|k| k > count) {

@@ -3,13 +3,19 @@
 //! random numbers, [`crate::uncertainty::samples`]): its K sample scenarios are built from its
 //! nominal scenario ([`crate::optimize::Problem::scenario`]), resolved and run together in SIMD
 //! lanes, all designs × K runs in one [`woodpile::simulate_many`] call.
+//!
+//! For NSGA-II the same object is a [`FigureEvaluator`]: every figure of a run
+//! (transmitted-force, transmission-ratio, transmitted-energy, transmitted-impulse,
+//! max-contact-pressure) is the statistic of its K sample values, all designs × K runs
+//! together ([`woodpile::optimize::run_figures_many`]); the simulation-free figures (total-mass,
+//! stack-height, layers) are the nominal design's.
 
 use crate::error::Error;
 use crate::optimize::OptimizeConfig;
 use crate::scenario::{resolve, Scenario};
 use crate::uncertainty::{samples, Samples, Uncertainty};
 use std::path::PathBuf;
-use woodpile::optimize::Objective;
+use woodpile::optimize::{run_figures_many, DesignFigure, DesignSpace, FigureEvaluator, Objective};
 use woodpile::uncertainty::{cvar_of_sorted, quantile_of_sorted};
 use woodpile::{Chain, Element, Excitation, Job, LaneWidth, RunSettings, RunSummary};
 
@@ -180,20 +186,177 @@ impl Objective for RobustObjective {
     }
 }
 
-/// Writes `robust/001.csv` under `out` for the design `genome`: each of its samples' drawn
-/// values and figures (the `samples.csv` of `woodpile simulate --samples`), its samples run
-/// again together as in the GA.
+impl RobustObjective {
+    /// Each genome's samples and, per sample, the values of `figures` (NaN in the places of
+    /// the simulation-free ones): every design × sample run together
+    /// ([`run_figures_many`]). A design any of whose samples fails has that error.
+    pub fn sample_figures(
+        &self,
+        figures: &[DesignFigure],
+        genomes: &[&[u8]],
+        lanes: LaneWidth,
+    ) -> Vec<woodpile::Result<(Samples, Vec<Vec<f64>>)>> {
+        let built: Vec<woodpile::Result<(Samples, Vec<crate::scenario::Resolved>)>> = genomes
+            .iter()
+            .map(|g| self.samples(g).map_err(model_error))
+            .collect();
+        let jobs: Vec<Job<'_>> = built
+            .iter()
+            .filter_map(|b| b.as_ref().ok())
+            .flat_map(|(_, resolved)| resolved.iter())
+            .map(|r| Job {
+                chain: &r.chain,
+                excitation: &r.excitation,
+                settings: &r.settings,
+            })
+            .collect();
+        let mut runs = run_figures_many(figures, &jobs, lanes).into_iter();
+        built
+            .iter()
+            .map(|b| {
+                let (drawn, resolved) = b.as_ref().map_err(Clone::clone)?;
+                let values: Vec<woodpile::Result<Vec<f64>>> =
+                    runs.by_ref().take(resolved.len()).collect();
+                Ok((drawn.clone(), values.into_iter().collect::<Result<_, _>>()?))
+            })
+            .collect()
+    }
+}
+
+/// The statistic of `values`, NaN where a sample's value is (a figure that means nothing).
+fn statistic(robust: Robust, values: &[f64]) -> f64 {
+    if values.iter().any(|v| v.is_nan()) {
+        f64::NAN
+    } else {
+        robust.of(values)
+    }
+}
+
+impl FigureEvaluator for RobustObjective {
+    fn figures_many(
+        &self,
+        space: &DesignSpace,
+        figures: &[DesignFigure],
+        genomes: &[&[u8]],
+        lanes: LaneWidth,
+    ) -> Vec<woodpile::Result<Vec<f64>>> {
+        let nominal: Vec<DesignFigure> =
+            figures.iter().copied().filter(|f| !f.needs_run()).collect();
+        let mut nominal_values =
+            woodpile::optimize::figures_many(space, &nominal, genomes, &space.settings, lanes)
+                .into_iter();
+        self.sample_figures(figures, genomes, lanes)
+            .into_iter()
+            .map(|per_sample| {
+                let nominal_values = nominal_values.next().expect("one per genome")?;
+                let (_, runs) = per_sample?;
+                let mut fixed = nominal_values.into_iter();
+                Ok(figures
+                    .iter()
+                    .enumerate()
+                    .map(|(j, f)| {
+                        if f.needs_run() {
+                            let values: Vec<f64> = runs.iter().map(|r| r[j]).collect();
+                            statistic(self.robust, &values)
+                        } else {
+                            fixed.next().expect("a nominal value")
+                        }
+                    })
+                    .collect())
+            })
+            .collect()
+    }
+}
+
+/// The column of a figure in `robust/NNN.csv`: its name in snake case with its unit
+/// (`transmitted_energy_j`, `max_contact_pressure_pa`).
+pub fn figure_column(figure: DesignFigure) -> String {
+    format!(
+        "{}_{}",
+        figure.as_str().replace('-', "_"),
+        figure.unit().to_lowercase().replace(' ', "_")
+    )
+}
+
+/// Writes `robust/NNN.csv` under `out` for each design of `genomes` (NNN from 001, in order):
+/// each of its samples' drawn values and figures (the `samples.csv` of `woodpile simulate
+/// --samples`), then a column per figure of `extra` that needs a run ([`figure_column`];
+/// the transmitted force and the ratio are among the first), its samples run again together
+/// as in the study. Files `robust/NNN.csv` beyond the count, left by an earlier stop, are
+/// removed.
+pub fn write_robust_csvs(
+    out: &std::path::Path,
+    objective: &RobustObjective,
+    genomes: &[&[u8]],
+    extra: &[DesignFigure],
+) -> Result<(), Error> {
+    let dir = out.join("robust");
+    std::fs::create_dir_all(&dir).map_err(crate::atomic::io_err(&dir))?;
+    crate::pareto::remove_stale(&dir, genomes.len(), "csv")?;
+    let extra: Vec<DesignFigure> = extra
+        .iter()
+        .copied()
+        .filter(|f| {
+            f.needs_run()
+                && !matches!(
+                    f,
+                    DesignFigure::Run(
+                        woodpile::StandardObjective::TransmittedForce
+                            | woodpile::StandardObjective::TransmissionRatio
+                    )
+                )
+        })
+        .collect();
+    let drawn: Vec<(Samples, Vec<crate::scenario::Resolved>)> = genomes
+        .iter()
+        .map(|g| objective.samples(g))
+        .collect::<Result<_, _>>()?;
+    let designs: Vec<&[crate::scenario::Resolved]> =
+        drawn.iter().map(|(_, r)| r.as_slice()).collect();
+    let runs = run_samples(&designs, LaneWidth::detect());
+    let extras = if extra.is_empty() {
+        genomes.iter().map(|_| Ok(None)).collect()
+    } else {
+        objective
+            .sample_figures(&extra, genomes, LaneWidth::detect())
+            .into_iter()
+            .map(|r| r.map(|(_, v)| Some(v)))
+            .collect::<Vec<_>>()
+    };
+    for (k, (((samples, _), runs), extras)) in drawn.iter().zip(runs).zip(extras).enumerate() {
+        let runs = runs.map_err(Error::Model)?;
+        let mut csv = crate::uncertainty::samples_csv(samples, &runs);
+        if let Some(values) = extras.map_err(Error::Model)? {
+            csv = append_columns(&csv, &extra, &values);
+        }
+        crate::atomic::write_atomic(&dir, &format!("{:03}.csv", k + 1), csv.as_bytes())?;
+    }
+    Ok(())
+}
+
+/// `csv` with a column per figure appended: its header, then `values[row][figure]`.
+fn append_columns(csv: &str, figures: &[DesignFigure], values: &[Vec<f64>]) -> String {
+    let mut text = String::with_capacity(csv.len() * 2);
+    for (row, line) in csv.lines().enumerate() {
+        text += line;
+        for (j, f) in figures.iter().enumerate() {
+            text += ",";
+            if row == 0 {
+                text += &figure_column(*f);
+            } else if values[row - 1][j].is_finite() {
+                text += &format!("{:e}", values[row - 1][j]);
+            }
+        }
+        text.push('\n');
+    }
+    text
+}
+
+/// Writes `robust/001.csv` under `out` for the breeder's best design `genome`.
 pub fn write_robust_csv(
     out: &std::path::Path,
     objective: &RobustObjective,
     genome: &[u8],
 ) -> Result<(), Error> {
-    let dir = out.join("robust");
-    std::fs::create_dir_all(&dir).map_err(crate::atomic::io_err(&dir))?;
-    let (drawn, resolved) = objective.samples(genome)?;
-    let runs = run_samples(&[&resolved], LaneWidth::detect())
-        .remove(0)
-        .map_err(Error::Model)?;
-    let csv = crate::uncertainty::samples_csv(&drawn, &runs);
-    crate::atomic::write_atomic(&dir, "001.csv", csv.as_bytes())
+    write_robust_csvs(out, objective, &[genome], &[])
 }

@@ -286,12 +286,15 @@ fn screened_text(ledger: &woodpile::optimize::Ledger) -> String {
 fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Result<(), CliError> {
     let out = &args.out;
     let initial = woodpile_io::pareto::prepare_output(out, args.resume, &problem.config)?;
-    let ga = Nsga2::new(
+    let mut ga = Nsga2::new(
         problem.space.clone(),
         problem.objectives.clone(),
         problem.nsga2.clone(),
     )
     .map_err(optimize_error)?;
+    if let Some(robust) = problem.robust_objective() {
+        ga = ga.with_evaluator(Box::new(robust));
+    }
     if let Some(state) = &initial {
         ga.check_state(state).map_err(optimize_error)?;
     }

@@ -25,6 +25,7 @@ mod optimize_best_reruns;
 mod optimize_interrupt_resume;
 mod optimize_pareto;
 mod optimize_robust;
+mod optimize_robust_nsga2;
 mod output_files;
 mod paper_values_stated_once;
 mod plot_opt_dir;

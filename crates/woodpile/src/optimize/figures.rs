@@ -141,9 +141,9 @@ pub fn contact_peak_pressures_pa(chain: &Chain, summary: &RunSummary) -> Result<
 }
 
 /// The values of `figures` for each genome, in order: simulation-free figures from the
-/// catalogue, the others from runs under `settings` on the current rayon pool (force, ratio
-/// and pressure from one run per design in SIMD lanes `lanes` wide; energy and impulse one
-/// run each). A design whose chain does not build, or whose run fails, has its error.
+/// catalogue, the others from runs under `settings` on the current rayon pool
+/// ([`run_figures_many`]). A design whose chain does not build, or whose run fails, has its
+/// error.
 pub fn figures_many(
     space: &DesignSpace,
     figures: &[DesignFigure],
@@ -151,18 +151,34 @@ pub fn figures_many(
     settings: &RunSettings,
     lanes: LaneWidth,
 ) -> Vec<Result<Vec<f64>>> {
-    let mut out: Vec<Result<Vec<f64>>> = genomes
-        .iter()
-        .map(|_| Ok(Vec::with_capacity(figures.len())))
-        .collect();
-    if figures.iter().any(|f| f.needs_run()) {
-        fill_run_figures(space, figures, genomes, settings, lanes, &mut out);
-    } else {
-        for (slot, g) in out.iter_mut().zip(genomes) {
-            *slot = Ok(figures.iter().map(|f| static_value(space, *f, g)).collect());
-        }
+    use rayon::prelude::*;
+    if !figures.iter().any(|f| f.needs_run()) {
+        return genomes
+            .iter()
+            .map(|g| Ok(figures.iter().map(|f| static_value(space, *f, g)).collect()))
+            .collect();
     }
-    out
+    let chains: Vec<Result<Chain>> = genomes.par_iter().map(|g| space.chain(g)).collect();
+    let built: Vec<Chain> = chains
+        .iter()
+        .filter_map(|c| c.as_ref().ok().cloned())
+        .collect();
+    let jobs = Job::for_each_chain(&built, &space.excitation, settings);
+    let mut runs = run_figures_many(figures, &jobs, lanes).into_iter();
+    chains
+        .into_iter()
+        .zip(genomes)
+        .map(|(chain, g)| {
+            chain?;
+            let mut values = runs.next().expect("one result per built chain")?;
+            for (v, f) in values.iter_mut().zip(figures) {
+                if !f.needs_run() {
+                    *v = static_value(space, *f, g);
+                }
+            }
+            Ok(values)
+        })
+        .collect()
 }
 
 /// The value of a simulation-free figure.
@@ -175,21 +191,17 @@ fn static_value(space: &DesignSpace, figure: DesignFigure, genome: &[u8]) -> f64
     }
 }
 
-/// [`figures_many`] where some figure needs a run.
-fn fill_run_figures(
-    space: &DesignSpace,
+/// The figures of each run of `jobs` (any chain, excitation and settings each), in order: the
+/// figures that need a run from it ([`DesignFigure::needs_run`]), NaN in the places of the
+/// others. Force, ratio and pressure come from one run per job in SIMD lanes `lanes` wide
+/// (peaks only); energy and impulse from one recorded run each, on the current rayon pool. A
+/// run that fails, or whose wave never reached the wall, has its error.
+pub fn run_figures_many(
     figures: &[DesignFigure],
-    genomes: &[&[u8]],
-    settings: &RunSettings,
+    jobs: &[Job<'_>],
     lanes: LaneWidth,
-    out: &mut [Result<Vec<f64>>],
-) {
+) -> Vec<Result<Vec<f64>>> {
     use rayon::prelude::*;
-    let chains: Vec<Result<Chain>> = genomes.par_iter().map(|g| space.chain(g)).collect();
-    let built: Vec<Chain> = chains
-        .iter()
-        .filter_map(|c| c.as_ref().ok().cloned())
-        .collect();
     let forces = figures.iter().any(|f| {
         matches!(
             f,
@@ -203,20 +215,27 @@ fn fill_run_figures(
     } else {
         PeakWatch::FiguresOfMerit
     };
-    let peaks_only = RunSettings {
-        sample_interval_s: settings.duration_s,
-        ..*settings
-    };
+    let peaks_only: Vec<RunSettings> = jobs
+        .iter()
+        .map(|j| RunSettings {
+            sample_interval_s: j.settings.duration_s,
+            ..*j.settings
+        })
+        .collect();
     let summaries: Vec<Option<Result<RunSummary>>> = if forces {
-        let jobs = Job::for_each_chain(&built, &space.excitation, &peaks_only);
-        simulate_many_watching(&jobs, lanes, watch)
+        let peak_jobs: Vec<Job<'_>> = jobs
+            .iter()
+            .zip(&peaks_only)
+            .map(|(j, settings)| Job { settings, ..*j })
+            .collect();
+        simulate_many_watching(&peak_jobs, lanes, watch)
             .into_iter()
             .map(Some)
             .collect()
     } else {
-        built.iter().map(|_| None).collect()
+        jobs.iter().map(|_| None).collect()
     };
-    // Energy and impulse: recorders on the sample grid, one run per design and figure.
+    // Energy and impulse: recorders on the sample grid, one run per job and figure.
     let recorded: Vec<(DesignFigure, Vec<Result<f64>>)> = figures
         .iter()
         .filter_map(|f| match f {
@@ -224,43 +243,34 @@ fn fill_run_figures(
                 o @ (StandardObjective::TransmittedEnergy | StandardObjective::TransmittedImpulse),
             ) => Some((
                 *f,
-                o.evaluate_many(&built, &space.excitation, settings, lanes),
+                jobs.par_iter()
+                    .map(|j| o.evaluate(j.chain, j.excitation, j.settings))
+                    .collect(),
             )),
             _ => None,
         })
         .collect();
-    let mut k = 0;
-    for ((slot, chain), g) in out.iter_mut().zip(chains).zip(genomes) {
-        let chain = match chain {
-            Ok(c) => c,
-            Err(e) => {
-                *slot = Err(e);
-                continue;
-            }
-        };
-        let summary = summaries[k].clone();
-        *slot = design_values(space, figures, g, &chain, summary, &recorded, k, settings);
-        k += 1;
-    }
+    summaries
+        .into_iter()
+        .zip(jobs)
+        .enumerate()
+        .map(|(k, (summary, job))| job_values(figures, job, summary, &recorded, k))
+        .collect()
 }
 
-/// The figures of one built design (the `k`-th built) from its run summary and recorded values.
-#[allow(clippy::too_many_arguments)]
-fn design_values(
-    space: &DesignSpace,
+/// The run figures of the `k`-th job from its run summary and recorded values.
+fn job_values(
     figures: &[DesignFigure],
-    genome: &[u8],
-    chain: &Chain,
+    job: &Job<'_>,
     summary: Option<Result<RunSummary>>,
     recorded: &[(DesignFigure, Vec<Result<f64>>)],
     k: usize,
-    settings: &RunSettings,
 ) -> Result<Vec<f64>> {
     let summary = summary.transpose()?;
     if let Some(s) = &summary {
         if !s.wave_arrived {
             return Err(Error::WaveNotArrived {
-                duration_s: settings.duration_s,
+                duration_s: job.settings.duration_s,
                 transmitted_n: s.transmitted_peak_force_n,
                 incident_n: s.incident_peak_force_n,
             });
@@ -282,7 +292,7 @@ fn design_values(
                 .unwrap_or(f64::NAN),
             DesignFigure::MaxContactPressure => {
                 let s = summary.as_ref().expect("forces run");
-                contact_peak_pressures_pa(chain, s)?
+                contact_peak_pressures_pa(job.chain, s)?
                     .into_iter()
                     .fold(0.0, f64::max)
             }
@@ -293,9 +303,40 @@ fn design_values(
                     .expect("recorded figure");
                 list[k].clone()?
             }
-            other => static_value(space, other, genome),
+            DesignFigure::TotalMass | DesignFigure::StackHeight | DesignFigure::Layers => f64::NAN,
         };
         values.push(v);
     }
     Ok(values)
+}
+
+/// How [`crate::optimize::Nsga2`] evaluates its figures for a batch of genomes of its space, on
+/// the current rayon pool: [`NominalFigures`] by default, or one a front end supplies (the
+/// statistics over scattered scenarios of a robust study) without this crate knowing its
+/// scenarios. Values come in the order of `genomes`, one per figure.
+pub trait FigureEvaluator: Send + Sync {
+    /// The values of `figures` for each genome (its error where it has none).
+    fn figures_many(
+        &self,
+        space: &DesignSpace,
+        figures: &[DesignFigure],
+        genomes: &[&[u8]],
+        lanes: LaneWidth,
+    ) -> Vec<Result<Vec<f64>>>;
+}
+
+/// The figures of each design under the space's one excitation and settings ([`figures_many`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NominalFigures;
+
+impl FigureEvaluator for NominalFigures {
+    fn figures_many(
+        &self,
+        space: &DesignSpace,
+        figures: &[DesignFigure],
+        genomes: &[&[u8]],
+        lanes: LaneWidth,
+    ) -> Vec<Result<Vec<f64>>> {
+        figures_many(space, figures, genomes, &space.settings, lanes)
+    }
 }

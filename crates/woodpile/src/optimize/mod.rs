@@ -9,8 +9,10 @@
 //!   delivered to the wall. Every evaluation runs the full window (no early stopping).
 //! - [`DesignFigure`]: objectives as data (the run's figures, total mass, stack height, layers,
 //!   the worst contact's Hertz peak pressure), evaluated together by [`figures_many`] (no run
-//!   for the figures that need none); [`Nsga2`]: NSGA-II over the same genomes, operators and
-//!   repair, with [`pareto`]'s sorting, crowding distance and hypervolume.
+//!   for the figures that need none; [`run_figures_many`] for runs of any chains and
+//!   excitations); [`Nsga2`]: NSGA-II over the same genomes, operators and repair, with
+//!   [`pareto`]'s sorting, crowding distance and hypervolume, its figures from a
+//!   [`FigureEvaluator`] (default [`NominalFigures`]; a front end may supply robust ones).
 //! - [`operators`]: truncation selection, discrete recombination, BGA mutation, as plain
 //!   functions of (population, rng).
 //! - [`BreederGa`]: one generation at a time ([`BreederGa::next_generation`]) on a detachable
@@ -50,7 +52,10 @@ pub mod operators;
 pub mod pareto;
 mod space;
 
-pub use figures::{contact_peak_pressures_pa, element_height_m, figures_many, DesignFigure};
+pub use figures::{
+    contact_peak_pressures_pa, element_height_m, figures_many, run_figures_many, DesignFigure,
+    FigureEvaluator, NominalFigures,
+};
 pub use ga::{
     BreederGa, GaSettings, GaState, GenerationStats, Individual, Ledger, Outcome, StopReason,
     STOP_EARLY_MARGIN,

@@ -13,7 +13,7 @@
 //! g, every draw on the calling thread, every tie broken by index or genome, so a run is
 //! bit-identical for any thread count, lane width, cache setting, and across a resume.
 
-use super::figures::{figures_many, DesignFigure};
+use super::figures::{DesignFigure, FigureEvaluator, NominalFigures};
 use super::operators::{mutate, recombine};
 use super::pareto::{crowded_order, crowding_distances, hypervolume, non_dominated_fronts};
 use super::space::{DesignSpace, FeasibleSet, Genome};
@@ -160,6 +160,7 @@ pub struct Nsga2 {
     settings: Nsga2Settings,
     pool: rayon::ThreadPool,
     lanes: LaneWidth,
+    evaluator: Box<dyn FigureEvaluator>,
 }
 
 impl std::fmt::Debug for Nsga2 {
@@ -235,12 +236,20 @@ impl Nsga2 {
             settings,
             pool,
             lanes: LaneWidth::detect(),
+            evaluator: Box::new(NominalFigures),
         })
     }
 
     /// Advances designs `lanes` at a time; results are the same at every width.
     pub fn with_lanes(mut self, lanes: LaneWidth) -> Self {
         self.lanes = lanes;
+        self
+    }
+
+    /// Evaluates the figures with `evaluator` instead of [`NominalFigures`] (a robust study's
+    /// statistics over scattered scenarios).
+    pub fn with_evaluator(mut self, evaluator: Box<dyn FigureEvaluator>) -> Self {
+        self.evaluator = evaluator;
         self
     }
 
@@ -285,13 +294,8 @@ impl Nsga2 {
         let figures = self.evaluated_figures();
         let refs: Vec<&[u8]> = genomes.iter().map(|g| g.as_ref()).collect();
         let values = self.pool.install(|| {
-            figures_many(
-                &self.space,
-                &figures,
-                &refs,
-                &self.space.settings,
-                self.lanes,
-            )
+            self.evaluator
+                .figures_many(&self.space, &figures, &refs, self.lanes)
         });
         let pressure_at = figures
             .iter()
