@@ -39,7 +39,7 @@ from .errors import (
     StateError,
     WoodpileError,
 )
-from .optimize import BestDesign, BreederGA, GenerationStats, OptimizeResult, optimize
+from .optimize import BestDesign, BreederGA, GenerationStats, OptimizeResult, ParetoResult, optimize
 from .run import Run, load_run, simulate
 from .scenario import Scenario, ScenarioKey, builtin_scenarios, scenario_keys
 from .study import SUMMARY_COLUMNS, evaluate, sweep
@@ -75,6 +75,7 @@ __all__ = [
     "BestDesign",
     "optimize",
     "OptimizeResult",
+    "ParetoResult",
     "fit",
     "FitResult",
 ]

@@ -17,6 +17,7 @@
 //! | [`convergence`] | best and mean objective per GA generation | – |
 //! | [`fit_signal`] | a fitted signal: measured, model and residual vs time | – |
 //! | [`chain_picture`] | rods to scale, top to bottom | Fig. 5 d, e (right) |
+//! | [`pareto_front`], [`front_designs`], [`hypervolume_history`] | a Pareto front (scatter or pairwise panels), its designs as rods, its hypervolume per generation | – |
 //!
 //! Every function takes a file *stem* (`dir/force_map`) and writes `stem.png` and `stem.svg`
 //! (the formats, printed size and resolution of the [`Output`] in effect: by default PNG at
@@ -44,6 +45,7 @@ pub mod dirs;
 mod heatmap;
 mod lines;
 pub mod output;
+mod pareto;
 pub mod typeset;
 
 pub use chain::chain_picture;
@@ -54,10 +56,11 @@ pub use heatmap::{
 };
 pub use lines::{
     convergence, effective_mass, fit_signal, force_histories, force_histories_between,
-    onset_window_s, peaks_per_layer, spectra, spectra_between, transmission, ConvergencePoint,
-    Series,
+    hypervolume_history, onset_window_s, peaks_per_layer, spectra, spectra_between, transmission,
+    ConvergencePoint, Series,
 };
 pub use output::{with_output, Format, Output};
+pub use pareto::{front_designs, pareto_front, FrontDesign, MarkedDesign, ObjectiveAxis};
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
