@@ -424,9 +424,11 @@ def optimize(
     threads: int = 0,
 ) -> OptimizeResult | ParetoResult:
     """Runs the optimisation of ``problem`` (a built-in name such as ``"paper-impact"``, a
-    config file, or a config dict) until its generation or stall limit, with the accuracy
-    ``woodpile optimize`` uses by default (``OptimizeConfig::accuracy_targeted``; ``ga.paper_settings
-    = true`` in the problem for RK4 at 0.1 µs).
+    config file, or a config dict) until its generation or stall limit. NSGA-II runs with the
+    accuracy ``woodpile optimize`` uses by default (every contact peak within 1e-5 unless the
+    problem states its integration; ``ga.paper_settings = true`` for RK4 at 0.1 µs); the
+    breeder GA with the problem's own run settings (the command line adds screening and early
+    stopping by default).
 
     ``objectives`` (``ga.objectives``, e.g. ``["transmitted-force", "total-mass"]``) and
     ``algorithm`` (``ga.algorithm``: ``"breeder"`` or ``"nsga2"``) override the problem's. One

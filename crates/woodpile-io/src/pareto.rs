@@ -392,7 +392,7 @@ fn remove_stale_scenarios(dir: &Path, count: usize) -> Result<(), Error> {
 
 /// The designs a front is compared with in its figures: every homogeneous chain of the
 /// catalogue (`"20 × 40mm"`) and, when the problem is the paper's (the seven Table 1 rods on 20
-/// positions), the paper's optimised chain ([`woodpile::PAPER_OPTIMIZED_CHAIN_MM`]).
+/// positions), the paper's blast-optimised chain ([`woodpile::PAPER_OPTIMIZED_CHAIN_MM`]).
 pub fn reference_designs(problem: &Problem) -> Vec<(String, Vec<u8>)> {
     let space = &problem.space;
     let n = space.positions;
@@ -416,7 +416,7 @@ pub fn reference_designs(problem: &Problem) -> Vec<(String, Vec<u8>)> {
             .iter()
             .map(|mm| paper.iter().position(|l| *l == Some(*mm)).unwrap_or(0) as u8)
             .collect();
-        designs.push(("paper's optimised chain".to_string(), genome));
+        designs.push(("paper's blast-optimised chain".to_string(), genome));
     }
     designs
 }
@@ -442,7 +442,7 @@ pub fn references_csv(problem: &Problem, rows: &[(String, Vec<f64>, bool)]) -> S
 /// One row of `references.csv` read back.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReferenceDesign {
-    /// Its name (`20 × 40mm`, `paper's optimised chain`).
+    /// Its name (`20 × 40mm`, `paper's blast-optimised chain`).
     pub name: String,
     /// One value per objective, SI units.
     pub objectives: Vec<f64>,

@@ -593,7 +593,7 @@ fn thinned(n: usize, most: usize) -> Vec<usize> {
 /// Draws the figures of an NSGA-II output (`ga.algorithm = "nsga2"`, it holds `pareto.csv`)
 /// into `out`: `pareto_front` (two objectives: a scatter; three or more: one panel per pair;
 /// the designs of `references.csv` marked: the catalogue's homogeneous chains and, for the
-/// paper's catalogue, the paper's optimised chain), `pareto_designs` (the front's designs as
+/// paper's catalogue, the paper's blast-optimised chain), `pareto_designs` (the front's designs as
 /// rods to scale, at most [`MOST_FRONT_DESIGNS_DRAWN`]) and `hypervolume` (per generation).
 /// Returns the files written and a note when the front is empty.
 pub fn plot_pareto(
@@ -644,6 +644,7 @@ fn draw_pareto(dir: &Path, out: &Path) -> Result<(Vec<PathBuf>, Option<String>),
         .unwrap_or_default()
         .into_iter()
         .map(|r| crate::MarkedDesign {
+            highlight: r.name.starts_with("paper"),
             name: r.name,
             values: r.objectives,
             feasible: r.feasible,

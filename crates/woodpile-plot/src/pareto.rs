@@ -36,8 +36,9 @@ impl ObjectiveAxis {
     }
 }
 
-/// A design marked on the front's figure: its name, its objective values (SI) and whether it
-/// meets the constraints (an infeasible one is drawn hollow).
+/// A design marked on the front's figure: its name, its objective values (SI), whether it
+/// meets the constraints (an infeasible one is drawn hollow) and whether it is the design the
+/// front is compared with (a red triangle; others are grey crosses).
 #[derive(Debug, Clone, PartialEq)]
 pub struct MarkedDesign {
     /// Name written beside it.
@@ -46,6 +47,8 @@ pub struct MarkedDesign {
     pub values: Vec<f64>,
     /// Drawn filled when true.
     pub feasible: bool,
+    /// Drawn as a red triangle when true.
+    pub highlight: bool,
 }
 
 struct FrontFigure<'a> {
@@ -118,7 +121,7 @@ impl FrontFigure<'_> {
         chart.draw_series(points.iter().map(|&p| Circle::new(p, 5, blue.filled())))?;
         let label = TextStyle::from((FONT, 14).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
         for (k, m) in self.marked.iter().enumerate() {
-            let paper = m.name.starts_with("paper");
+            let paper = m.highlight;
             let colour = if paper {
                 crate::series_color(3)
             } else {
@@ -138,10 +141,16 @@ impl FrontFigure<'_> {
             } else {
                 chart.draw_series(std::iter::once(Cross::new(p, 6, colour.stroke_width(2))))?;
             }
-            // Alternate the side of the label a little so that neighbours stay legible.
+            // Alternate the side of the label a little so that neighbours stay legible; names
+            // of points in the right third of the panel go to their left, inside the frame.
             let dy = if k % 2 == 0 { -10 } else { 10 };
+            let (dx, style) = if p.0 > x0 + 0.66 * (x1 - x0) {
+                (-10, label.clone().pos(Pos::new(HPos::Right, VPos::Center)))
+            } else {
+                (10, label.clone())
+            };
             chart.draw_series(std::iter::once(
-                EmptyElement::at(p) + Text::new(m.name.clone(), (10, dy), label.clone()),
+                EmptyElement::at(p) + Text::new(m.name.clone(), (dx, dy), style),
             ))?;
         }
         Ok(())
@@ -172,7 +181,7 @@ impl Figure for FrontFigure<'_> {
 }
 
 /// The front: two objectives as a scatter joined in order of the first (blue), three or more
-/// as one panel per pair; `marked` designs drawn as crosses (the paper's as a red triangle),
+/// as one panel per pair; `marked` designs drawn as crosses (highlighted ones as red triangles),
 /// hollow where they break a constraint, named beside them. Writes `stem.png` and `stem.svg`.
 pub fn pareto_front(
     axes: &[ObjectiveAxis],
