@@ -619,7 +619,12 @@ fn draw_pareto(dir: &Path, out: &Path) -> Result<(Vec<PathBuf>, Option<String>),
     let reference = s
         .reference_point
         .iter()
-        .map(|v| format_value(*v))
+        .zip(&s.objectives)
+        .map(|(v, o)| {
+            format!("{} {}", format_value(*v), o.unit)
+                .trim_end()
+                .to_string()
+        })
         .collect::<Vec<_>>()
         .join(", ");
     let mut files = crate::hypervolume_history(

@@ -17,8 +17,8 @@ use woodpile_io::optimize::{optimize_error, OptimizeConfig, Problem};
 use woodpile_plot as plot;
 
 /// Population and generations of the report's NSGA-II (`--quick`: 12 × 3).
-const POPULATION: usize = 40;
-const GENERATIONS: usize = 30;
+const POPULATION: usize = 60;
+const GENERATIONS: usize = 60;
 
 /// The objectives of the section.
 const OBJECTIVES: [&str; 2] = ["transmitted-force", "total-mass"];
@@ -32,7 +32,7 @@ pub struct CachedFront {
     pub front: Vec<(Vec<u8>, Vec<f64>)>,
     /// (generation, hypervolume).
     pub history: Vec<(usize, f64)>,
-    /// The hypervolume's reference point [N, kg].
+    /// The hypervolume's reference point \[N, kg\].
     pub reference_point: Vec<f64>,
     /// The designs compared with it, evaluated at the same settings: the homogeneous chains,
     /// then the breeder GA's optimum.
