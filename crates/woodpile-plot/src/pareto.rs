@@ -144,10 +144,21 @@ impl FrontFigure<'_> {
             // Alternate the side of the label a little so that neighbours stay legible; names
             // of points in the right third of the panel go to their left, inside the frame.
             let dy = if k % 2 == 0 { -10 } else { 10 };
-            let (dx, style) = if p.0 > x0 + 0.66 * (x1 - x0) {
-                (-10, label.clone().pos(Pos::new(HPos::Right, VPos::Center)))
+            let (dx, dy, style) = if paper {
+                // Above the point: a highlighted design usually sits next to the front.
+                (
+                    0,
+                    -14,
+                    label.clone().pos(Pos::new(HPos::Left, VPos::Bottom)),
+                )
+            } else if p.0 > x0 + 0.66 * (x1 - x0) {
+                (
+                    -10,
+                    dy,
+                    label.clone().pos(Pos::new(HPos::Right, VPos::Center)),
+                )
             } else {
-                (10, label.clone())
+                (10, dy, label.clone())
             };
             chart.draw_series(std::iter::once(
                 EmptyElement::at(p) + Text::new(m.name.clone(), (dx, dy), style),
