@@ -43,7 +43,7 @@ def main() -> None:
 
     problem = {"design": {"positions": 8}, "ga": {"population": 20, "generations": 5, "seed": 1}}
     with LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None) as cluster, Client(cluster) as client:
-        result = woodpile.optimize(problem, executor=client)
+        result = woodpile.optimize(problem, algorithm="breeder", executor=client)
     print(f"GA (8 positions, 20 × 5 generations on 2 Dask workers): best {result.best['objective']:.2f} N "
           f"with {' '.join(result.best['labels'])}; {int(result.history['evaluations'].iloc[-1])} simulations")
     fig, ax = plt.subplots(figsize=(7, 3.5), constrained_layout=True)

@@ -144,12 +144,13 @@ def test_the_ga_used_out_of_order_raises_state_error_and_bad_values_scenario_err
     assert ga.generation == 0
 
 
-def test_optimize_refuses_a_pareto_study_naming_the_algorithm():
-    """Several objectives ask for NSGA-II, which only `woodpile optimize` runs: ScenarioError on
-    `ga.algorithm`, before any simulation; an unknown objective names its list entry."""
+def test_breeder_ga_refuses_a_pareto_study_naming_the_algorithm():
+    """Several objectives ask for NSGA-II, which BreederGA does not run (woodpile.optimize does,
+    returning a ParetoResult): ScenarioError on `ga.algorithm`, before any simulation; an unknown
+    objective of the config names its list entry."""
     study = {**SMALL_GA, "ga": {"objectives": ["transmitted-force", "total-mass"], "population": 8}}
     with pytest.raises(ScenarioError) as info:
-        woodpile.optimize(study)
+        woodpile.BreederGA(study)
     assert info.value.field == "ga.algorithm" and info.value.value == "nsga2"
     unknown = {**SMALL_GA, "ga": {"objectives": ["transmitted-force", "weight"]}}
     with pytest.raises(ScenarioError) as info:

@@ -12,10 +12,11 @@ One module per domain, everything public re-exported here:
 - :mod:`woodpile.analysis`: :func:`cells`, :func:`effective_mass`, :func:`band_gaps`,
   :func:`spectrum`, :func:`transmission`
 - :mod:`woodpile.optimize`: :class:`BreederGA`, :func:`optimize`, :class:`OptimizeResult`,
-  :class:`GenerationStats`
+  :class:`ParetoResult` (NSGA-II), :class:`GenerationStats`
 - :mod:`woodpile.calibration`: :func:`fit`, :class:`FitResult`
 - :mod:`woodpile.errors`: :class:`WoodpileError` and its subclasses
 - :mod:`woodpile.plot`: matplotlib figures (imported on demand)
+- :mod:`woodpile.pymoo`: a design problem as a pymoo ``Problem`` (imported on demand; needs pymoo)
 
 >>> import woodpile
 >>> run = woodpile.simulate(woodpile.Scenario.builtin("paper-impact-80mm").replace(**{"run.duration_s": 2e-4}))
@@ -39,7 +40,7 @@ from .errors import (
     StateError,
     WoodpileError,
 )
-from .optimize import BestDesign, BreederGA, GenerationStats, OptimizeResult, optimize
+from .optimize import BestDesign, BreederGA, GenerationStats, OptimizeResult, ParetoResult, optimize
 from .run import Run, load_run, simulate
 from .scenario import Scenario, ScenarioKey, builtin_scenarios, scenario_keys
 from .study import SUMMARY_COLUMNS, evaluate, sweep
@@ -75,6 +76,7 @@ __all__ = [
     "BestDesign",
     "optimize",
     "OptimizeResult",
+    "ParetoResult",
     "fit",
     "FitResult",
 ]

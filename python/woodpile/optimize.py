@@ -1,5 +1,6 @@
 """Design optimisation: the breeder GA of ``woodpile optimize`` as ask/tell, so that designs can
-be evaluated anywhere (this process, an executor, a Dask cluster)."""
+be evaluated anywhere (this process, an executor, a Dask cluster), and NSGA-II's Pareto fronts
+(``objectives=[...]``, :class:`ParetoResult`)."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import os
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Literal, Mapping, Sequence, TypedDict, Union
+from typing import TYPE_CHECKING, Any, Literal, Mapping, Sequence, TypedDict, Union, overload
 
 from . import _core
 from .errors import ScenarioError, StateError
@@ -19,7 +20,7 @@ from .study import Executor, _chunks, _workers
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["BestDesign", "BreederGA", "GenerationStats", "OptimizeResult", "Problem", "optimize"]
+__all__ = ["BestDesign", "BreederGA", "GenerationStats", "OptimizeResult", "ParetoResult", "Problem", "optimize"]
 
 #: A problem: a built-in problem's name (``"paper-impact"``), a config file, or a config dict.
 Problem = Union[str, "os.PathLike[str]", Mapping[str, Any]]
@@ -107,16 +108,29 @@ class BreederGA:
         problem: A built-in problem's name, a config file, or a config dict.
         seed: Overrides the config's ``ga.seed``.
         threads: Threads for evaluation in this process (0: one per core).
+        objectives: Overrides ``ga.objectives`` (one objective of a run for the breeder GA).
+        algorithm: Overrides ``ga.algorithm`` (``"breeder"``).
     """
 
-    def __init__(self, problem: Problem, *, seed: int | None = None, threads: int = 0):
+    def __init__(
+        self,
+        problem: Problem,
+        *,
+        seed: int | None = None,
+        threads: int = 0,
+        objectives: Sequence[str] | None = None,
+        algorithm: str | None = None,
+    ):
         _check_count("seed", seed, "the GA's seed: an integer 0 ≤ seed < 2**64")
         _check_count("threads", threads, "threads for evaluation: 0 (one per core) or more")
+        _check_objectives(objectives, algorithm)
         self._source = _problem_source(problem)
         self._seed = seed
         self._threads = threads
+        self._objectives = None if objectives is None else list(objectives)
+        self._algorithm = algorithm
         kind, text, base_dir = self._source
-        self._session = _core.GaSession(kind, text, str(base_dir), seed, threads)
+        self._session = _core.GaSession(kind, text, str(base_dir), seed, threads, self._objectives, algorithm)
         self._asked_at: float | None = None
 
     @property
@@ -218,6 +232,8 @@ class BreederGA:
             "source": (kind, text, str(base_dir)),
             "seed": self._seed,
             "threads": self._threads,
+            "objectives": self._objectives,
+            "algorithm": self._algorithm,
             "state": self._session.state_json(),
         }
 
@@ -226,7 +242,9 @@ class BreederGA:
         self._source = (kind, text, Path(base_dir))
         self._seed = st["seed"]
         self._threads = st["threads"]
-        self._session = _core.GaSession(kind, text, base_dir, self._seed, self._threads)
+        self._objectives = st.get("objectives")
+        self._algorithm = st.get("algorithm")
+        self._session = _core.GaSession(kind, text, base_dir, self._seed, self._threads, self._objectives, self._algorithm)
         self._asked_at = None
         if st["state"] is not None:
             self._session.restore(st["state"])
@@ -253,36 +271,205 @@ class OptimizeResult:
         return f"OptimizeResult(best {self.best['objective']:.6g}: {' '.join(self.best['labels'])})"
 
 
+class ParetoResult:
+    """What :func:`optimize` found with NSGA-II (``ga.algorithm = "nsga2"``, or two or more
+    objectives): the command line's ``pareto.csv``, ``pareto/NNN.toml`` and ``history.csv``.
+
+    Attributes:
+        front: The front as ``pareto.csv`` holds it: one row per non-dominated feasible design,
+            one column per objective named as in ``objectives`` (SI units), then ``layer_1`` …
+            ``layer_N`` (a rod's length in mm, another element's label).
+        designs: Each row's catalogue indices, top to bottom.
+        labels: Each row's element labels, top to bottom.
+        scenarios: Each row's scenario (``pareto/001`` …), which :func:`woodpile.simulate`
+            re-runs to the row's figures.
+        history: ``history.csv`` indexed by ``generation``: ``hypervolume``, ``front_size``,
+            ``feasible``, ``evaluations``, ``cache_hits``, ``elapsed_s``.
+        objectives: The objectives, in column order; ``units`` their SI units.
+        reference_point: The hypervolume's reference point (one value per objective).
+        hypervolume: The final front's hypervolume.
+        stop_reason: ``"generation-limit"``, ``"stalled"`` or ``"interrupted"``.
+        seed: The seed.
+    """
+
+    front: pd.DataFrame
+    designs: list[list[int]]
+    labels: list[list[str]]
+    scenarios: list[Scenario]
+    history: pd.DataFrame
+    objectives: list[str]
+    units: list[str]
+    reference_point: list[float]
+    hypervolume: float
+    stop_reason: str | None
+    seed: int
+
+    def __init__(self, session: _core.ParetoSession):
+        import io
+
+        import pandas as pd
+
+        self.front = pd.read_csv(io.StringIO(session.pareto_csv()))
+        rows = session.front()
+        self.designs = [list(g) for g, _, _ in rows]
+        self.labels = [list(labels) for _, _, labels in rows]
+        self.scenarios = [
+            Scenario(session.scenario_toml(list(g)), name=f"pareto/{k + 1:03d}") for k, (g, _, _) in enumerate(rows)
+        ]
+        self.history = pd.read_csv(io.StringIO(session.history_csv())).set_index("generation")
+        names = session.objectives()
+        self.objectives = [n for n, _ in names]
+        self.units = [u for _, u in names]
+        self.reference_point = list(session.reference_point())
+        self.hypervolume = float(self.history["hypervolume"].iloc[-1])
+        self.stop_reason = session.stop_reason()
+        self.seed = session.seed()
+
+    def __repr__(self) -> str:
+        return (
+            f"ParetoResult({len(self.front)} designs on the front of {', '.join(self.objectives)}; "
+            f"hypervolume {self.hypervolume:.6g})"
+        )
+
+
+def _check_objectives(objectives: Sequence[str] | None, algorithm: str | None) -> None:
+    """Refuses keyword arguments of the wrong type (their values are checked with the config)."""
+    if objectives is not None and (
+        isinstance(objectives, str) or not all(isinstance(o, str) for o in objectives)
+    ):
+        raise ScenarioError(
+            f"invalid objectives = {objectives!r}: must be a list of objective names",
+            "objectives",
+            repr(objectives),
+            'a list such as ["transmitted-force", "total-mass"]',
+        )
+    if algorithm is not None and not isinstance(algorithm, str):
+        raise ScenarioError(
+            f"invalid algorithm = {algorithm!r}: must be \"breeder\" or \"nsga2\"",
+            "algorithm",
+            repr(algorithm),
+            '"breeder" or "nsga2"',
+        )
+
+
+def _optimize_pareto(
+    problem: Problem,
+    seed: int | None,
+    objectives: Sequence[str] | None,
+    algorithm: str | None,
+    checkpoint: str | os.PathLike[str] | None,
+    threads: int,
+) -> ParetoResult:
+    """NSGA-II in this process, exactly as ``woodpile optimize`` runs it."""
+    kind, text, base_dir = _problem_source(problem)
+    obj = None if objectives is None else list(objectives)
+    session = _core.ParetoSession(kind, text, str(base_dir), seed, threads, obj, algorithm)
+    if checkpoint is not None and Path(checkpoint).exists():
+        session.restore(Path(checkpoint).read_text())
+    session.run(None if checkpoint is None else str(checkpoint))
+    return ParetoResult(session)
+
+
+@overload
 def optimize(
     problem: Problem,
     *,
     seed: int | None = None,
+    objectives: Sequence[str] | None = None,
+    algorithm: Literal["nsga2"],
+    executor: None = None,
+    checkpoint: str | os.PathLike[str] | None = None,
+    chunks_per_worker: int = 2,
+    threads: int = 0,
+) -> ParetoResult: ...
+
+
+@overload
+def optimize(
+    problem: Problem,
+    *,
+    seed: int | None = None,
+    objectives: None = None,
+    algorithm: Literal["breeder"],
     executor: Executor | None = None,
     checkpoint: str | os.PathLike[str] | None = None,
     chunks_per_worker: int = 2,
-) -> OptimizeResult:
-    """Runs the breeder GA on ``problem`` (a built-in name such as ``"paper-impact"``, a config
-    file, or a config dict) until its generation or stall limit.
+    threads: int = 0,
+) -> OptimizeResult: ...
 
-    Designs are evaluated in this process, or in chunks on ``executor`` (any
-    ``concurrent.futures.Executor`` or a ``dask.distributed.Client``). With ``checkpoint`` the
-    state is saved after every generation (the command line's checkpoint format) and a run
-    resumes from an existing file exactly. For a seed the result is the command line's.
+
+@overload
+def optimize(
+    problem: Problem,
+    *,
+    seed: int | None = None,
+    objectives: Sequence[str] | None = None,
+    algorithm: str | None = None,
+    executor: Executor | None = None,
+    checkpoint: str | os.PathLike[str] | None = None,
+    chunks_per_worker: int = 2,
+    threads: int = 0,
+) -> OptimizeResult | ParetoResult: ...
+
+
+def optimize(
+    problem: Problem,
+    *,
+    seed: int | None = None,
+    objectives: Sequence[str] | None = None,
+    algorithm: str | None = None,
+    executor: Executor | None = None,
+    checkpoint: str | os.PathLike[str] | None = None,
+    chunks_per_worker: int = 2,
+    threads: int = 0,
+) -> OptimizeResult | ParetoResult:
+    """Runs the optimisation of ``problem`` (a built-in name such as ``"paper-impact"``, a
+    config file, or a config dict) until its generation or stall limit. NSGA-II runs with the
+    accuracy ``woodpile optimize`` uses by default (every contact peak within 1e-5 unless the
+    problem states its integration; ``ga.paper_settings = true`` for RK4 at 0.1 µs); the
+    breeder GA with the problem's own run settings (the command line adds screening and early
+    stopping by default).
+
+    ``objectives`` (``ga.objectives``, e.g. ``["transmitted-force", "total-mass"]``) and
+    ``algorithm`` (``ga.algorithm``: ``"breeder"`` or ``"nsga2"``) override the problem's. One
+    objective of a run: the breeder GA, returning an :class:`OptimizeResult`; designs are
+    evaluated in this process, or in chunks on ``executor`` (any
+    ``concurrent.futures.Executor`` or a ``dask.distributed.Client``). Two or more objectives,
+    or ``algorithm="nsga2"``: NSGA-II in this process (all cores or ``threads``, SIMD lanes),
+    returning a :class:`ParetoResult`. With ``checkpoint`` the state is saved after every
+    generation (the command line's checkpoint format of that algorithm) and a run resumes from
+    an existing file exactly. For a seed the result is the command line's. Bad keywords raise
+    :class:`~woodpile.errors.ScenarioError` naming them (``objectives[1]``, ``algorithm``,
+    ``executor``).
     """
-    ga = BreederGA(problem, seed=seed)
+    _check_objectives(objectives, algorithm)
+    _check_count("threads", threads, "threads for evaluation: 0 (one per core) or more")
+    _check_count("seed", seed, "the GA's seed: an integer 0 ≤ seed < 2**64")
+    kind, text, base_dir = _problem_source(problem)
+    obj = None if objectives is None else list(objectives)
+    if _core.study_algorithm(kind, text, str(base_dir), obj, algorithm) == "nsga2":
+        if executor is not None:
+            raise ScenarioError(
+                "invalid executor: NSGA-II evaluates its generations in this process",
+                "executor",
+                repr(executor),
+                "None for NSGA-II (it runs on all cores in SIMD lanes; executor= is for the breeder GA)",
+            )
+        return _optimize_pareto(problem, seed, objectives, algorithm, checkpoint, threads)
+    ga = BreederGA(problem, seed=seed, threads=threads, objectives=objectives, algorithm=algorithm)
     if checkpoint is not None and Path(checkpoint).exists():
         ga.restore(checkpoint)
     config_json = ga.config_json
-    base_dir = str(ga.base_dir.resolve())
+    worker_dir = str(ga.base_dir.resolve())
     while not ga.done:
         designs = ga.ask()
         if executor is None or not designs:
-            objectives = ga.evaluate(designs)
+            values = ga.evaluate(designs)
         else:
             parts = _chunks(designs, _workers(executor) * chunks_per_worker)
-            futures = [executor.submit(_evaluate_designs, config_json, base_dir, part, 1) for part in parts]
-            objectives = [v for f in futures for v in f.result()]
-        ga.tell(designs, objectives)
+            futures = [executor.submit(_evaluate_designs, config_json, worker_dir, part, 1) for part in parts]
+            values = [v for f in futures for v in f.result()]
+        ga.tell(designs, values)
         if checkpoint is not None:
             ga.save(checkpoint)
     return OptimizeResult(ga)

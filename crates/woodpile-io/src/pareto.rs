@@ -406,3 +406,152 @@ pub(crate) fn remove_stale(dir: &Path, count: usize, ext: &str) -> Result<(), Er
     }
     Ok(())
 }
+
+/// The designs a front is compared with in its figures: every homogeneous chain of the
+/// catalogue (`"20 × 40mm"`) and, when the problem is the paper's (the seven Table 1 rods on 20
+/// positions), the paper's blast-optimised chain ([`woodpile::PAPER_OPTIMIZED_CHAIN_MM`]).
+pub fn reference_designs(problem: &Problem) -> Vec<(String, Vec<u8>)> {
+    let space = &problem.space;
+    let n = space.positions;
+    let mut designs: Vec<(String, Vec<u8>)> = (0..space.catalogue.len())
+        .map(|c| {
+            let label = &space.catalogue[c].label;
+            (format!("{n} × {label}"), vec![c as u8; n])
+        })
+        .collect();
+    let lengths_mm: Vec<Option<u32>> = space
+        .catalogue
+        .iter()
+        .map(|e| match e.body {
+            Body::Rod { length_m, .. } => Some((length_m * 1e3).round() as u32),
+            Body::Sphere { .. } => None,
+        })
+        .collect();
+    let paper = woodpile::TABLE1_LENGTHS_MM.map(Some);
+    if n == woodpile::PAPER_OPTIMIZED_CHAIN_MM.len() && lengths_mm == paper {
+        let genome = woodpile::PAPER_OPTIMIZED_CHAIN_MM
+            .iter()
+            .map(|mm| paper.iter().position(|l| *l == Some(*mm)).unwrap_or(0) as u8)
+            .collect();
+        designs.push(("paper's blast-optimised chain".to_string(), genome));
+    }
+    designs
+}
+
+/// `references.csv`: one row per reference design (see [`reference_designs`]): `design` (its
+/// name), then one column per objective as in `pareto.csv`, then `feasible` (whether it meets
+/// the design's constraints).
+pub fn references_csv(problem: &Problem, rows: &[(String, Vec<f64>, bool)]) -> String {
+    let mut head = vec!["design".to_string()];
+    head.extend(problem.objectives.iter().map(|f| f.as_str().to_string()));
+    head.push("feasible".into());
+    let mut text = head.join(",") + "\n";
+    for (name, values, feasible) in rows {
+        let mut row = vec![name.clone()];
+        row.extend(values.iter().map(|v| format!("{v}")));
+        row.push(feasible.to_string());
+        text.push_str(&row.join(","));
+        text.push('\n');
+    }
+    text
+}
+
+/// One row of `references.csv` read back.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReferenceDesign {
+    /// Its name (`20 × 40mm`, `paper's blast-optimised chain`).
+    pub name: String,
+    /// One value per objective, SI units.
+    pub objectives: Vec<f64>,
+    /// Whether it meets the design's constraints.
+    pub feasible: bool,
+}
+
+/// Reads `references.csv` (None when the directory has none).
+pub fn read_references(path: &Path) -> Result<Option<Vec<ReferenceDesign>>, Error> {
+    if !path.is_file() {
+        return Ok(None);
+    }
+    let bad = |reason: String| crate::atomic::read_error(path, reason);
+    let text = fs::read_to_string(path).map_err(|e| bad(e.to_string()))?;
+    let mut r = crate::table::csv_reader(text.as_bytes());
+    let mut rows = Vec::new();
+    for rec in r.records() {
+        let rec = rec.map_err(|e| bad(e.to_string()))?;
+        let n = rec.len();
+        if n < 3 {
+            return Err(bad(format!(
+                "a row of {n} columns: design, objectives, feasible"
+            )));
+        }
+        let objectives = (1..n - 1)
+            .map(|i| rec[i].trim().parse::<f64>())
+            .collect::<Result<Vec<f64>, _>>()
+            .map_err(|e| bad(format!("{}: {e}", &rec[0])))?;
+        rows.push(ReferenceDesign {
+            name: rec[0].to_string(),
+            objectives,
+            feasible: rec[n - 1].trim() == "true",
+        });
+    }
+    Ok(Some(rows))
+}
+
+/// What `woodpile plot` reads of an NSGA-II output directory.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParetoOutput {
+    /// `summary.json` (the front, the objectives, the reference point).
+    pub summary: ParetoSummary,
+    /// (generation, hypervolume) from `history.csv`.
+    pub hypervolume: Vec<(usize, f64)>,
+    /// `references.csv`, where written.
+    pub references: Option<Vec<ReferenceDesign>>,
+}
+
+/// Whether `dir` holds an NSGA-II run (its `history.csv` has a `hypervolume` column).
+pub fn is_pareto_dir(dir: &Path) -> bool {
+    fs::read_to_string(dir.join("history.csv")).is_ok_and(|t| {
+        t.lines()
+            .next()
+            .is_some_and(|h| h.split(',').any(|c| c == "hypervolume"))
+    })
+}
+
+/// Reads an NSGA-II output directory; one that has not finished (no `summary.json`) is refused
+/// with what to do.
+pub fn read_pareto_output(dir: &Path) -> Result<ParetoOutput, Error> {
+    let path = dir.join("summary.json");
+    if !path.is_file() {
+        return Err(crate::atomic::read_error(
+            &path,
+            "missing: the NSGA-II run has not finished; its front is drawn once it stops (continue it with --resume)",
+        ));
+    }
+    let text = fs::read_to_string(&path).map_err(|e| Error::Read {
+        path: path.clone(),
+        source: e,
+    })?;
+    let summary: ParetoSummary = serde_json::from_str(&text).map_err(|e| Error::Parse {
+        source_name: path.display().to_string(),
+        message: e.to_string(),
+    })?;
+    let history = dir.join("history.csv");
+    let bad = |reason: String| crate::atomic::read_error(&history, reason);
+    let text = fs::read_to_string(&history).map_err(|e| bad(e.to_string()))?;
+    let mut r = crate::table::csv_reader(text.as_bytes());
+    let mut hypervolume = Vec::new();
+    for rec in r.records() {
+        let rec = rec.map_err(|e| bad(e.to_string()))?;
+        let g = rec.get(0).and_then(|s| s.trim().parse::<usize>().ok());
+        let h = rec.get(1).and_then(|s| s.trim().parse::<f64>().ok());
+        match (g, h) {
+            (Some(g), Some(h)) => hypervolume.push((g, h)),
+            _ => return Err(bad(format!("not a generation and a hypervolume: {rec:?}"))),
+        }
+    }
+    Ok(ParetoOutput {
+        summary,
+        hypervolume,
+        references: read_references(&dir.join("references.csv"))?,
+    })
+}

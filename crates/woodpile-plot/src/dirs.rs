@@ -7,6 +7,8 @@
 //!   of a [`RunPlot`].
 //! - [`plot_optimization`]: a `woodpile optimize` output (it holds `history.csv`): the GA's
 //!   convergence and, once it has finished, the best chain to scale (paper Fig. 5 d, e, right).
+//! - [`plot_pareto`]: an NSGA-II output (its `history.csv` has a hypervolume): the front with
+//!   reference designs marked, the front's designs as rods, the hypervolume per generation.
 //! - [`cells_figures`]: the catalogue's effective-mass curves with the negative-mass bands
 //!   shaded (paper Fig. 3).
 //!
@@ -570,4 +572,137 @@ fn format_value(v: f64) -> String {
         let decimals = (3 - v.abs().log10().floor() as i32).clamp(0, 6) as usize;
         format!("{v:.decimals$}")
     }
+}
+
+/// Most designs [`plot_pareto`] draws as rods: a longer front is thinned evenly along its first
+/// objective (both ends kept), as the figure's title states.
+pub const MOST_FRONT_DESIGNS_DRAWN: usize = 16;
+
+/// The rows `0..n` drawn when at most `most` fit: all, or `most` spread evenly, both ends kept.
+fn thinned(n: usize, most: usize) -> Vec<usize> {
+    if n <= most {
+        return (0..n).collect();
+    }
+    let mut rows: Vec<usize> = (0..most)
+        .map(|k| (k as f64 * (n - 1) as f64 / (most - 1) as f64).round() as usize)
+        .collect();
+    rows.dedup();
+    rows
+}
+
+/// Draws the figures of an NSGA-II output (`ga.algorithm = "nsga2"`, it holds `pareto.csv`)
+/// into `out`: `pareto_front` (two objectives: a scatter; three or more: one panel per pair;
+/// the designs of `references.csv` marked: the catalogue's homogeneous chains and, for the
+/// paper's catalogue, the paper's blast-optimised chain), `pareto_designs` (the front's designs as
+/// rods to scale, at most [`MOST_FRONT_DESIGNS_DRAWN`]) and `hypervolume` (per generation).
+/// Returns the files written and a note when the front is empty.
+pub fn plot_pareto(
+    dir: &Path,
+    out: &Path,
+    output: &Output,
+) -> Result<(Vec<PathBuf>, Option<String>), Error> {
+    output.check()?;
+    with_output(output, || draw_pareto(dir, out))
+}
+
+fn draw_pareto(dir: &Path, out: &Path) -> Result<(Vec<PathBuf>, Option<String>), Error> {
+    let read = woodpile_io::pareto::read_pareto_output(dir)?;
+    let s = &read.summary;
+    let config = &s.config;
+    let model = config.design.model.unwrap_or_default().name();
+    let excitation = config.excitation.kind.name();
+    create_dir(out)?;
+    let title = format!(
+        "NSGA-II, {} ({model} model, {excitation}, seed {})",
+        s.problem, s.seed
+    );
+    let reference = s
+        .reference_point
+        .iter()
+        .zip(&s.objectives)
+        .map(|(v, o)| {
+            format!("{} {}", format_value(*v), o.unit)
+                .trim_end()
+                .to_string()
+        })
+        .collect::<Vec<_>>()
+        .join(", ");
+    let mut files = crate::hypervolume_history(
+        &read.hypervolume,
+        &format!("{title}: hypervolume (reference point {reference})"),
+        &out.join("hypervolume"),
+    )?;
+    if s.front.is_empty() {
+        return Ok((
+            files,
+            Some("no feasible design on the front: the front is not drawn".into()),
+        ));
+    }
+    let axes: Vec<crate::ObjectiveAxis> = s
+        .objectives
+        .iter()
+        .map(|o| crate::ObjectiveAxis::new(&o.name, &o.unit))
+        .collect();
+    let front: Vec<Vec<f64>> = s.front.iter().map(|d| d.objectives.clone()).collect();
+    let marked: Vec<crate::MarkedDesign> = read
+        .references
+        .unwrap_or_default()
+        .into_iter()
+        .map(|r| crate::MarkedDesign {
+            highlight: r.name.starts_with("paper"),
+            name: r.name,
+            values: r.objectives,
+            feasible: r.feasible,
+        })
+        .collect();
+    files.extend(crate::pareto_front(
+        &axes,
+        &front,
+        &marked,
+        &format!("{title}: front of {} designs", front.len()),
+        &out.join("pareto_front"),
+    )?);
+    let rows = thinned(s.front.len(), MOST_FRONT_DESIGNS_DRAWN);
+    let mut designs = Vec::with_capacity(rows.len());
+    for &k in &rows {
+        let d = &s.front[k];
+        let path = dir.join(&d.file);
+        let scenario = woodpile_io::scenario::Scenario::load(&path)?;
+        let chain = resolve(&scenario, path.parent().unwrap_or(dir))?.chain;
+        let widths_mm = chain
+            .elements()
+            .iter()
+            .map(|e| match e.body {
+                woodpile::Body::Rod { length_m, .. } => length_m * 1e3,
+                woodpile::Body::Sphere { diameter_m } => diameter_m * 1e3,
+            })
+            .collect();
+        let mut caption = vec![format!("#{}", k + 1)];
+        caption.extend(d.objectives.iter().zip(&axes).map(|(v, a)| {
+            let unit = a
+                .label
+                .rsplit_once('[')
+                .map_or("", |(_, u)| u.trim_end_matches(']'));
+            let unit = if unit == "-" { "" } else { unit };
+            format!("{} {unit}", format_value(v * a.scale))
+                .trim_end()
+                .to_string()
+        }));
+        designs.push(crate::FrontDesign { caption, widths_mm });
+    }
+    let shown = if rows.len() < s.front.len() {
+        format!(
+            "{} of the {} designs, evenly along the front",
+            rows.len(),
+            s.front.len()
+        )
+    } else {
+        format!("its {} designs", rows.len())
+    };
+    files.extend(crate::front_designs(
+        &designs,
+        &format!("Pareto front ({model}, {excitation}): {shown}, top to bottom, to scale"),
+        &out.join("pareto_designs"),
+    )?);
+    Ok((files, None))
 }

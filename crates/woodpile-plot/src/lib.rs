@@ -18,6 +18,7 @@
 //! | [`fit_signal`] | a fitted signal: measured and model vs time, the residual below | – |
 //! | [`correlation_matrix`] | a fit's correlation matrix, cells coloured −1 … +1 with values | – |
 //! | [`chain_picture`] | rods to scale, top to bottom | Fig. 5 d, e (right) |
+//! | [`pareto_front`], [`front_designs`], [`hypervolume_history`] | a Pareto front (scatter or pairwise panels), its designs as rods, its hypervolume per generation | – |
 //!
 //! Every function takes a file *stem* (`dir/force_map`) and writes `stem.png` and `stem.svg`
 //! (the formats, printed size and resolution of the [`Output`] in effect: by default PNG at
@@ -46,6 +47,7 @@ mod fit;
 mod heatmap;
 mod lines;
 pub mod output;
+mod pareto;
 pub mod typeset;
 
 pub use chain::chain_picture;
@@ -56,10 +58,12 @@ pub use heatmap::{
     spectrum_map, Heatmap, MapColours,
 };
 pub use lines::{
-    convergence, effective_mass, force_histories, force_histories_between, onset_window_s,
-    peaks_per_layer, spectra, spectra_between, transmission, ConvergencePoint, Series,
+    convergence, effective_mass, force_histories, force_histories_between, hypervolume_history,
+    onset_window_s, peaks_per_layer, spectra, spectra_between, transmission, ConvergencePoint,
+    Series,
 };
 pub use output::{with_output, Format, Output};
+pub use pareto::{front_designs, pareto_front, FrontDesign, MarkedDesign, ObjectiveAxis};
 
 use plotters::coord::Shift;
 use plotters::prelude::*;

@@ -652,6 +652,41 @@ pub fn convergence(
     .write(stem)
 }
 
+/// Hypervolume of a Pareto search's front per generation (NSGA-II's `history.csv`), with the
+/// reference point stated in the title by the caller. Writes `stem.png` and `stem.svg`.
+pub fn hypervolume_history(
+    points: &[(usize, f64)],
+    title: &str,
+    stem: &Path,
+) -> Result<Vec<PathBuf>> {
+    if points.is_empty() {
+        return Err(bad(title, "no generation"));
+    }
+    let (lo, hi) = finite_range(title, points.iter().map(|p| p.1))?;
+    let (y0, y1) = padded(lo - 0.05 * (hi - lo), hi + 0.05 * (hi - lo));
+    let g0 = points[0].0 as f64;
+    let g1 = (points[points.len() - 1].0 as f64).max(g0 + 1.0);
+    LinePlot {
+        title: title.to_string(),
+        x_label: "generation".into(),
+        y_label: "hypervolume [product of the objectives' SI units]".into(),
+        series: vec![(
+            "hypervolume".to_string(),
+            vec![points.iter().map(|&(g, h)| (g as f64, h)).collect()],
+        )],
+        bands: Vec::new(),
+        x_range: (g0, g1),
+        y_range: (y0, y1),
+        log_y: false,
+        markers: points.len() <= 40,
+        integer_x: true,
+        zero_line: false,
+        size: (1000, 600),
+        first_colour: 0,
+    }
+    .write(stem)
+}
+
 /// Peak force per interface k = 1..N (one or more series, e.g. protocol vs full chain; paper
 /// Fig. 7 b).
 /// Writes `stem.png` and `stem.svg`.

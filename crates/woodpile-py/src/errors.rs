@@ -88,6 +88,24 @@ impl Failure {
         }
     }
 
+    /// The same error naming `keyword` where its field is the config key `key` (or an element
+    /// of it, `key[k]`): a key the caller set through a keyword argument.
+    pub fn keyword(mut self, key: &str, keyword: &str) -> Self {
+        let Some(field) = self.field.clone() else {
+            return self;
+        };
+        let Some(rest) = field.strip_prefix(key) else {
+            return self;
+        };
+        if !(rest.is_empty() || rest.starts_with('[')) {
+            return self;
+        }
+        let renamed = format!("{keyword}{rest}");
+        self.message = self.message.replacen(&field, &renamed, 1);
+        self.field = Some(renamed);
+        self
+    }
+
     /// The exception instance, built from the class of `woodpile.errors`.
     fn to_py(&self, py: Python<'_>) -> PyErr {
         let class =

@@ -12,6 +12,7 @@
 //! | [`study`] | `woodpile.study` | many scenarios at once (rayon, SIMD lanes) |
 //! | [`analysis`] | `woodpile.analysis` | cells, effective mass, band gaps, spectra |
 //! | [`optimize`] | `woodpile.optimize` | the breeder GA as ask/tell |
+//! | [`pareto`] | `woodpile.optimize`, `woodpile.pymoo` | NSGA-II's fronts; a population's objectives and constraints |
 //! | [`fit`] | `woodpile.fit` | calibration to measured signals, with uncertainties |
 //! | [`errors`] | `woodpile.errors` | every error as a `WoodpileError` subclass |
 //!
@@ -22,6 +23,7 @@ mod errors;
 mod fit;
 mod interrupt;
 mod optimize;
+mod pareto;
 mod run;
 mod scenario;
 mod study;
@@ -37,6 +39,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     study::register(m)?;
     analysis::register(m)?;
     optimize::register(m)?;
+    pareto::register(m)?;
     fit::register(m)?;
     Ok(())
 }

@@ -1,12 +1,86 @@
 //! Design optimisation (`woodpile.optimize`): the breeder GA as ask/tell, so that Python can
 //! evaluate designs anywhere (an executor, Dask).
 
-use crate::errors::{ga_err, py_err, Failure, Kind};
+use crate::errors::{classify, ga_err, py_err, Failure, Kind};
 use pyo3::prelude::*;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use woodpile::optimize::{BreederGa, GaState, Ledger};
 use woodpile_io::optimize::{Algorithm, Checkpoint, OptimizeConfig, Problem};
+
+/// The problem of a config given as `kind` = "builtin" (a problem name), "toml" or "json"
+/// text, with Python's keyword arguments over it (`seed` → `ga.seed`, `objectives` →
+/// `ga.objectives` in place of `ga.objective`, `algorithm` → `ga.algorithm`); an NSGA-II
+/// problem made accuracy-targeted exactly as `woodpile optimize` does
+/// (`OptimizeConfig::accuracy_targeted`: every contact peak within 1e-5 unless the run's
+/// integration is stated).
+/// An error about a key set by a keyword names the keyword (`objectives[1]`, `algorithm`).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn load_problem(
+    kind: &str,
+    text: &str,
+    base_dir: &Path,
+    seed: Option<u64>,
+    threads: usize,
+    objectives: Option<Vec<String>>,
+    algorithm: Option<String>,
+) -> PyResult<Problem> {
+    let mut config = match kind {
+        "builtin" => OptimizeConfig::builtin(text).map_err(py_err)?,
+        "toml" => OptimizeConfig::parse(text, "problem").map_err(py_err)?,
+        "json" => serde_json::from_str(text)
+            .map_err(|e| PyErr::from(Failure::new(Kind::Scenario, format!("problem: {e}"))))?,
+        other => {
+            return Err(Failure::invalid("kind", other, "\"builtin\", \"toml\" or \"json\"").into())
+        }
+    };
+    if seed.is_some() {
+        config.ga.seed = seed;
+    }
+    let by_keyword = (objectives.is_some(), algorithm.is_some());
+    if let Some(objectives) = objectives {
+        config.ga.objectives = Some(objectives);
+        config.ga.objective = None;
+    }
+    if algorithm.is_some() {
+        config.ga.algorithm = algorithm;
+    }
+    let named = |e| {
+        let mut failure = classify(e);
+        if by_keyword.0 {
+            failure = failure.keyword("ga.objectives", "objectives");
+        }
+        if by_keyword.1 {
+            failure = failure.keyword("ga.algorithm", "algorithm");
+        }
+        PyErr::from(failure)
+    };
+    let problem = Problem::new(&config, base_dir, threads).map_err(named)?;
+    if problem.algorithm == Algorithm::Breeder {
+        // The breeder GA keeps the problem's own settings here: with early stopping the
+        // ask/tell path's history differs from `BreederGa::run`'s (see docs/python.md).
+        return Ok(problem);
+    }
+    Problem::new(&config.accuracy_targeted(), base_dir, threads).map_err(named)
+}
+
+/// Which search a problem runs, "breeder" or "nsga2" (the problem checked whole, as the
+/// sessions' constructors do).
+#[pyfunction]
+#[pyo3(signature = (kind, text, base_dir, objectives=None, algorithm=None))]
+fn study_algorithm(
+    kind: &str,
+    text: &str,
+    base_dir: PathBuf,
+    objectives: Option<Vec<String>>,
+    algorithm: Option<String>,
+) -> PyResult<&'static str> {
+    let problem = load_problem(kind, text, &base_dir, None, 1, objectives, algorithm)?;
+    Ok(match problem.algorithm {
+        Algorithm::Breeder => "breeder",
+        Algorithm::Nsga2 => "nsga2",
+    })
+}
 
 /// One optimisation: the problem of a config and the GA's state between generations.
 #[pyclass(module = "woodpile._core")]
@@ -20,14 +94,14 @@ struct GaSession {
 }
 
 impl GaSession {
-    fn build(config: OptimizeConfig, base_dir: &Path, threads: usize) -> PyResult<Self> {
-        let problem = Problem::new(&config, base_dir, threads).map_err(py_err)?;
+    fn build(problem: Problem) -> PyResult<Self> {
         if problem.algorithm != Algorithm::Breeder {
-            return Err(py_err(woodpile_io::Error::invalid(
+            return Err(Failure::invalid(
                 "ga.algorithm",
                 "nsga2",
-                "woodpile.optimize runs the breeder GA (one objective); run NSGA-II with `woodpile optimize CONFIG.toml --out DIR`",
-            )));
+                "BreederGA runs one objective; for a Pareto front call woodpile.optimize (it returns a ParetoResult)",
+            )
+            .into());
         }
         // `ga.robust`: the statistic over the `[uncertainty]` samples, as in `woodpile optimize`.
         let objective: Box<dyn woodpile::Objective> = match problem.robust_objective() {
@@ -57,29 +131,19 @@ impl GaSession {
     /// A session for a config given as `kind` = "builtin" (a problem name), "toml" or "json"
     /// text; `seed` overrides `ga.seed`; `threads` for local evaluation (0 = one per core).
     #[new]
-    #[pyo3(signature = (kind, text, base_dir, seed=None, threads=0))]
+    #[pyo3(signature = (kind, text, base_dir, seed=None, threads=0, objectives=None, algorithm=None))]
     fn new(
         kind: &str,
         text: &str,
         base_dir: PathBuf,
         seed: Option<u64>,
         threads: usize,
+        objectives: Option<Vec<String>>,
+        algorithm: Option<String>,
     ) -> PyResult<Self> {
-        let mut config = match kind {
-            "builtin" => OptimizeConfig::builtin(text).map_err(py_err)?,
-            "toml" => OptimizeConfig::parse(text, "problem").map_err(py_err)?,
-            "json" => serde_json::from_str(text)
-                .map_err(|e| PyErr::from(Failure::new(Kind::Scenario, format!("problem: {e}"))))?,
-            other => {
-                return Err(
-                    Failure::invalid("kind", other, "\"builtin\", \"toml\" or \"json\"").into(),
-                )
-            }
-        };
-        if seed.is_some() {
-            config.ga.seed = seed;
-        }
-        Self::build(config, &base_dir, threads)
+        Self::build(load_problem(
+            kind, text, &base_dir, seed, threads, objectives, algorithm,
+        )?)
     }
 
     /// The completed config as JSON (what a worker needs to evaluate designs).
@@ -320,6 +384,8 @@ fn evaluate_designs(
                     base_dir.clone(),
                     None,
                     threads,
+                    None,
+                    None,
                 )?);
                 map.insert(key, s.clone());
                 s
@@ -333,5 +399,6 @@ fn evaluate_designs(
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<GaSession>()?;
     m.add_function(wrap_pyfunction!(evaluate_designs, m)?)?;
+    m.add_function(wrap_pyfunction!(study_algorithm, m)?)?;
     Ok(())
 }

@@ -46,7 +46,7 @@ pub struct Cache {
 
 impl Cache {
     /// The key of an entry: the tool version, the format, the kind and the inputs as JSON.
-    fn key_text(kind: &str, inputs: &impl Serialize) -> String {
+    pub(crate) fn key_text(kind: &str, inputs: &impl Serialize) -> String {
         format!(
             "woodpile {} {CACHE_FORMAT} {kind}\n{}",
             env!("CARGO_PKG_VERSION"),
@@ -55,7 +55,7 @@ impl Cache {
     }
 
     /// The entry file of a key (its FNV-1a hash) and its name.
-    fn file(&self, text: &str) -> (PathBuf, String) {
+    pub(crate) fn file(&self, text: &str) -> (PathBuf, String) {
         let name = format!("{:016x}.json", fnv1a64(text.as_bytes()));
         (self.dir.join(&name), name)
     }

@@ -14,6 +14,8 @@
 //!   the wall (paper Figs. 5 a–c, 6);
 //! - `optima`: the breeder GA for the least wall force under the impact, resonant and rigid
 //!   (paper Fig. 5 d, e): convergence, best chain, incident and transmitted force, restitution;
+//! - `pareto`: NSGA-II's front of transmitted force against total mass over the same problem,
+//!   the resonant optimum marked on it, and its hypervolume per generation (beyond the paper);
 //! - `protocol`: the layer-by-layer protocol on the resonant optimum (paper Fig. 7 a, b);
 //! - `blast`: the Friedlander blast on 20, 40, 80 mm chains and the paper's blast-optimised
 //!   chain: peak energy of the last layer, spectra against the negative-mass bands (paper
@@ -40,6 +42,7 @@ mod fine;
 mod ga;
 mod impact;
 mod optima;
+mod pareto;
 mod protocol;
 mod study;
 mod sweep;
@@ -71,9 +74,9 @@ pub trait Progress: Sync {
     fn elapsed(&self) -> std::time::Duration;
 }
 
-/// Progress steps: 4 impact chains, 2 GAs, optimum figures, protocol, 4 blast chains, 2 GAs
-/// over derived cells, the striker calibration, cells.
-pub const STEPS: u64 = 16;
+/// Progress steps: 4 impact chains, 2 GAs, optimum figures, the force–mass front, protocol,
+/// 4 blast chains, 2 GAs over derived cells, the striker calibration, cells.
+pub const STEPS: u64 = 17;
 
 /// The report's title.
 pub const TITLE: &str = "woodpile: reproduction of Kim, Yang et al. 2017 (impact and blast mitigation with locally resonant woodpiles)";
@@ -92,6 +95,7 @@ pub fn build(s: &Setup) -> Result<(Doc, String), Error> {
 struct Sections {
     impact: impact::Impact,
     optima: optima::Optima,
+    pareto: pareto::Front,
     protocol: protocol::Protocol,
     blast: blast::Blast,
     sweep: sweep::Sweep,
@@ -107,6 +111,7 @@ impl Sections {
         s.bar.stage("homogeneous chains under impact");
         let impact = impact::run(s)?;
         let optima = optima::run(s)?;
+        let pareto = pareto::run(s, &optima.resonant)?;
         s.bar.stage("layer-by-layer protocol");
         let protocol = protocol::run(s, &optima)?;
         s.bar.inc(1);
@@ -123,6 +128,7 @@ impl Sections {
         Ok(Sections {
             impact,
             optima,
+            pareto,
             protocol,
             blast,
             sweep,
@@ -156,6 +162,7 @@ impl Sections {
         self.impact.write(&mut doc);
         self.optima.write(&mut doc);
         self.protocol.write(&mut doc, &self.optima);
+        self.pareto.write(&mut doc);
         self.blast.write_overview(&mut doc, s);
         self.sweep.write(&mut doc);
         self.blast.write_chains(&mut doc);

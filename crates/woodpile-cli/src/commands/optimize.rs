@@ -281,6 +281,29 @@ fn screened_text(ledger: &woodpile::optimize::Ledger) -> String {
     text
 }
 
+/// Evaluates the designs a front is compared with (the catalogue's homogeneous chains, the
+/// paper's optimised chain for the paper's catalogue) and writes `references.csv`.
+fn write_references(ga: &Nsga2, problem: &Problem, out: &Path) -> Result<(), CliError> {
+    let designs = woodpile_io::pareto::reference_designs(problem);
+    let genomes: Vec<&[u8]> = designs.iter().map(|(_, g)| g.as_slice()).collect();
+    let set = woodpile::optimize::FeasibleSet::new(&problem.space).map_err(optimize_error)?;
+    let values = ga.evaluate_designs(&genomes).map_err(optimize_error)?;
+    let rows: Vec<(String, Vec<f64>, bool)> = designs
+        .iter()
+        .zip(values)
+        .map(|((name, g), ind)| {
+            (
+                name.clone(),
+                ind.objectives,
+                set.contains(g) && ind.violation == 0.0,
+            )
+        })
+        .collect();
+    let csv = woodpile_io::pareto::references_csv(problem, &rows);
+    woodpile_io::atomic::write_atomic(out, "references.csv", csv.as_bytes())?;
+    Ok(())
+}
+
 /// Runs NSGA-II (`ga.algorithm = "nsga2"`): a checkpoint and `history.csv` after every
 /// generation, then `pareto.csv`, `pareto/NNN.toml` and `summary.json`.
 fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Result<(), CliError> {
@@ -341,6 +364,7 @@ fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Resul
         other => other.map_err(optimize_error)?,
     };
     let summary = woodpile_io::pareto::write_final_outputs(problem, name, &state, reason, out)?;
+    write_references(&ga, problem, out)?;
     if !ctx.quiet {
         let names: Vec<String> = summary
             .objectives

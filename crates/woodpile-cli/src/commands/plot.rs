@@ -165,6 +165,13 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let output = output(args)?;
     let out = args.out.clone().unwrap_or_else(|| args.dir.join("plots"));
     let files = match detect_dir(&args.dir)? {
+        DirKind::Optimization if woodpile_io::pareto::is_pareto_dir(&args.dir) => {
+            let (files, note) = woodpile_plot::dirs::plot_pareto(&args.dir, &out, &output)?;
+            if let (Some(note), false) = (note, ctx.quiet) {
+                crate::out::eprintln(format_args!("note: {note}"));
+            }
+            files
+        }
         DirKind::Run => plot_run(
             &args.dir,
             &out,

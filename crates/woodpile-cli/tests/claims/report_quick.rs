@@ -1,5 +1,6 @@
 //! Claim: `woodpile report --quick --out DIR` runs everything the paper's figures need (impact on
-//! homogeneous chains, resonant and rigid GAs, the layer-by-layer protocol, the blast cases, the
+//! homogeneous chains, resonant and rigid GAs, NSGA-II's force–mass front with the resonant
+//! optimum placed on it, the layer-by-layer protocol, the blast cases, the
 //! GAs over derived cells, the effective-mass curves) and writes report.md, a self-contained report.html and every figure it
 //! names; a second run reuses the cached GA results; an output location that cannot be written
 //! is refused with exit code 2 and leaves no report behind.
@@ -40,9 +41,22 @@ fn quick_report_writes_every_file_it_names() {
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(!html.is_empty());
     let figures = figures_named(&md);
-    // Impact (4 chains × 5 + 1), optima (2 × 5: Fig. 6 is their energy maps), protocol (2), blast (4 × 4 + 1 + the F0 × Td
-    // sweep), the fine design space's optimum (1), Fig. 3 (2).
-    assert_eq!(figures.len(), 55, "figures named: {figures:?}");
+    // Impact (4 chains × 5 + 1), optima (2 × 5: Fig. 6 is their energy maps), the force–mass
+    // front and its hypervolume (2), protocol (2), blast (4 × 4 + 1 + the F0 × Td sweep), the
+    // fine design space's optimum (1), Fig. 3 (2).
+    assert_eq!(figures.len(), 57, "figures named: {figures:?}");
+    assert!(figures.contains(&"figures/pareto_force_mass.png".to_string()));
+    // The front section says in numbers where the breeder optimum sits.
+    let section = &md[md
+        .find("## Force against mass")
+        .expect("the front's section")..];
+    assert!(
+        section.contains("The breeder GA's resonant optimum (")
+            && (section.contains("No design of the front dominates it")
+                || section.contains("A design of the front dominates it")),
+        "{}",
+        &section[..section.len().min(2000)]
+    );
     for f in &figures {
         let png = out.join(f);
         assert!(png.is_file(), "{f} is named in report.md but missing");
@@ -69,10 +83,10 @@ fn quick_report_writes_every_file_it_names() {
             "comparison table lacks the paper's {paper}"
         );
     }
-    // Four GA results in the cache (resonant, rigid, derived cells at 7 and 61 lengths); a rerun
-    // reuses them.
+    // Four GA results in the cache (resonant, rigid, derived cells at 7 and 61 lengths) and the
+    // NSGA-II front; a rerun reuses them.
     let cached = std::fs::read_dir(out.join("cache")).unwrap().count();
-    assert_eq!(cached, 4);
+    assert_eq!(cached, 5);
     // The rerun without --quiet, its stderr a pipe: one progress line per stage (see
     // progress_lines for the format).
     let o = common::run_in(
@@ -85,6 +99,7 @@ fn quick_report_writes_every_file_it_names() {
     for stage in [
         "homogeneous chains under impact",
         "resonant GA",
+        "force vs mass front (NSGA-II)",
         "layer-by-layer protocol",
         "blast cases",
         "transmission spectrum",
