@@ -854,11 +854,7 @@ fn fewest_layers(e: OptimizeError, positions: PositionsSpec) -> OptimizeError {
 /// `design.positions`: at least one layer; a range with min ≤ max.
 fn check_positions(positions: PositionsSpec) -> Result<(), Error> {
     if positions.min() == 0 {
-        return Err(Error::invalid(
-            positions.min_key(),
-            0,
-            "must be at least 1",
-        ));
+        return Err(Error::invalid(positions.min_key(), 0, "must be at least 1"));
     }
     if positions.max() < positions.min() {
         return Err(Error::invalid(
@@ -988,10 +984,9 @@ impl Problem {
         let asked = space.lengths();
         let text = format!("{} to {} positions", asked.start(), asked.end());
         match woodpile::optimize::FeasibleSet::new(space).map(|s| s.lengths()) {
-            Ok(feasible) if feasible.end() < asked.end() => format!(
-                "{text}, at most {} meeting the constraints",
-                feasible.end()
-            ),
+            Ok(feasible) if feasible.end() < asked.end() => {
+                format!("{text}, at most {} meeting the constraints", feasible.end())
+            }
             _ => text,
         }
     }

@@ -42,7 +42,11 @@ pub fn recombine(a: &[u8], b: &[u8], rng: &mut impl Rng) -> Genome {
         .collect();
     if a.len() != b.len() {
         let longer = if a.len() > b.len() { a } else { b };
-        let len = if rng.random_bool(0.5) { a.len() } else { b.len() };
+        let len = if rng.random_bool(0.5) {
+            a.len()
+        } else {
+            b.len()
+        };
         child.extend_from_slice(&longer[common..len]);
     }
     child

@@ -185,7 +185,10 @@ impl FeasibleSet {
     /// fewest layers meets ([`OptimizeError::Infeasible`], [`OptimizeError::TooHeavy`],
     /// [`OptimizeError::TooTall`], naming the conflicting numbers).
     pub fn new(space: &DesignSpace) -> std::result::Result<Self, OptimizeError> {
-        let (min, max) = (space.positions, space.max_positions.unwrap_or(space.positions));
+        let (min, max) = (
+            space.positions,
+            space.max_positions.unwrap_or(space.positions),
+        );
         if max < min {
             return Err(Error::invalid(
                 "design.positions.max",

@@ -55,8 +55,10 @@ fn meets(space: &DesignSpace, g: &[u8]) -> bool {
         .map(|&x| space.catalogue[usize::from(x)].cell.total_mass_kg())
         .sum();
     let height = g.len() as f64 * ROD_DIAMETER_M;
-    c.max_total_mass_kg.is_none_or(|m| mass <= m * (1.0 + 1e-12))
-        && c.max_stack_height_m.is_none_or(|h| height <= h * (1.0 + 1e-12))
+    c.max_total_mass_kg
+        .is_none_or(|m| mass <= m * (1.0 + 1e-12))
+        && c.max_stack_height_m
+            .is_none_or(|h| height <= h * (1.0 + 1e-12))
 }
 
 fn all_genomes(positions: usize, n: usize) -> impl Iterator<Item = Vec<u8>> {
@@ -88,8 +90,9 @@ fn constraints(min: usize) -> impl Strategy<Value = Constraints> {
 }
 
 fn case() -> impl Strategy<Value = (usize, usize, Constraints, u64)> {
-    (1..=3usize, 0..=2usize)
-        .prop_flat_map(|(min, extra)| (Just(min), Just(min + extra), constraints(min), any::<u64>()))
+    (1..=3usize, 0..=2usize).prop_flat_map(|(min, extra)| {
+        (Just(min), Just(min + extra), constraints(min), any::<u64>())
+    })
 }
 
 proptest! {

@@ -92,7 +92,10 @@ fn nsga2_keeps_lengths_and_limits_in_every_generation() {
     let mut lengths = BTreeSet::new();
     let two = run_nsga2(&nsga2(2, true), &mut lengths);
     // 7 layers are 35 mm: the height limit leaves 3..=7.
-    assert!(lengths.len() >= 3 && lengths.iter().all(|&n| n <= 7), "{lengths:?}");
+    assert!(
+        lengths.len() >= 3 && lengths.iter().all(|&n| n <= 7),
+        "{lengths:?}"
+    );
     assert_eq!(run_nsga2(&nsga2(1, true), &mut lengths), two);
     // Without the cache: the same designs and fronts (the counters and the cache differ).
     let uncached = run_nsga2(&nsga2(2, false), &mut lengths);
