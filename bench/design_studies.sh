@@ -4,8 +4,8 @@
 #  - the breeder GA on the built-in paper-impact problem (seed 1): designs valued per second;
 #  - NSGA-II on two objectives (transmitted force and total mass, 20 Table 1 positions, 20
 #    generations): designs per second;
-#  - a robust evaluation (`ga.robust = "mean"` over 8 samples of rod lengths and impact speed,
-#    20 positions, population 20, 4 generations): designs × samples per second.
+#  - a robust evaluation (`ga.robust = "mean"` over 8 samples of crossing angles and impact speed,
+#    20 positions, population 20, 2 generations): designs × samples per second.
 # Each study runs RUNS times per setting, the settings alternating so that a drift of the machine
 # shows in both; the table gives medians and the ratio default / paper. Both cores.
 # Usage: bash bench/design_studies.sh [RUNS]   (RUNS default 3)
@@ -28,11 +28,11 @@ cat > "$work/robust20.toml" <<'TOML'
 positions = 20
 [ga]
 population = 20
-generations = 4
+generations = 2
 robust = "mean"
 [uncertainty]
 samples = 8
-rod_length_mm = { sd = 0.2 }
+crossing_angle_deg = { sd = 2.0 }
 impact_velocity_m_s = { uniform = [1.8, 2.2] }
 TOML
 

@@ -4,7 +4,7 @@
 //! `max_total_mass_g` and `max_stack_height_mm`, recomputed here from Table 1's cells; a row
 //! shorter than the longest has empty cells after its last layer only, and its `layers` value
 //! is its number of layers. Bad ranges — min > max, min = 0, a max whose generation is over the
-//! size limit, a fixed layer below min, a mass or a height no design of min layers meets, a
+//! size limit or above 1,024 layers, a fixed layer below min, a mass or a height no design of min layers meets, a
 //! robust objective over designs of several lengths, a malformed range — exit with code 2
 //! before any simulation, naming the key (and the numbers), and create no output directory.
 //!

@@ -57,7 +57,9 @@ pub use ga::{
 };
 pub use nsga2::{MoIndividual, Nsga2, Nsga2Settings, Nsga2State, Nsga2Stats};
 pub use objective::{ContactImpulse, LayerEnergyPeak, Objective, StandardObjective, Valued};
-pub use space::{Constraints, DesignSpace, FeasibleSet, Genome, MAX_CATALOGUE_LEN};
+pub use space::{
+    Constraints, DesignSpace, FeasibleSet, Genome, MAX_CATALOGUE_LEN, MAX_VARIABLE_POSITIONS,
+};
 
 /// What can go wrong in an optimisation.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -16,6 +16,11 @@ pub type Genome = Vec<u8>;
 /// Largest catalogue a [`Genome`] can index.
 pub const MAX_CATALOGUE_LEN: usize = 256;
 
+/// Most layers a design may have when the number of layers varies (`max_positions`): every
+/// length of the range gets its own feasible set, so the range costs about max²/2 genes of
+/// memory and set-up; a fixed number of layers has no such limit.
+pub const MAX_VARIABLE_POSITIONS: usize = 1024;
+
 /// Relative slack of the mass constraint, so that summing the same masses in another order
 /// (one rounding per term) never turns a feasible design infeasible.
 const MASS_SLACK: f64 = 1e-12;
@@ -194,6 +199,17 @@ impl FeasibleSet {
                 "design.positions.max",
                 max,
                 format!("must be at least design.positions.min = {min}"),
+            )
+            .into());
+        }
+        if space.max_positions.is_some() && max > MAX_VARIABLE_POSITIONS {
+            return Err(Error::invalid(
+                "design.positions.max",
+                max,
+                format!(
+                    "a variable number of layers goes up to {MAX_VARIABLE_POSITIONS} (each \
+                     length gets its own feasible set); give one number for longer chains"
+                ),
             )
             .into());
         }
