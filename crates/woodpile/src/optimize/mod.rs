@@ -1,7 +1,8 @@
 //! Breeder genetic algorithm for the element arrangement that transmits the least force
 //! (docs/physics.md §11; paper §4).
 //!
-//! - [`DesignSpace`]: N positions filled from a catalogue of [`crate::Element`]s, how the chain
+//! - [`DesignSpace`]: N positions (or any N in a range: the number of layers as part of the
+//!   design) filled from a catalogue of [`crate::Element`]s, how the chain
 //!   is held and loaded, the run settings and the designer's [`Constraints`]; [`FeasibleSet`]
 //!   proves the constraints can be met and repairs genomes into them.
 //! - [`Objective`]: what is minimised; [`StandardObjective`] holds the transmitted peak force
