@@ -111,18 +111,24 @@ impl RunSize {
 /// (`positions = 100000`, `population = 100000000`) is refused at once rather than hanging.
 pub const MAX_GENERATION_ELEMENTS: usize = 1_000_000;
 
-/// Refuses a generation of `population` designs of `positions` elements above
-/// [`MAX_GENERATION_ELEMENTS`] unless `allow`.
-pub fn check_generation(population: usize, positions: usize, allow: bool) -> Result<(), Error> {
+/// Refuses a generation of `population` designs of `positions` elements (the most a design may
+/// have, named by `positions_key` as the config writes it) above [`MAX_GENERATION_ELEMENTS`]
+/// unless `allow`.
+pub fn check_generation(
+    population: usize,
+    positions: usize,
+    positions_key: &str,
+    allow: bool,
+) -> Result<(), Error> {
     let elements = population.saturating_mul(positions);
     if elements > MAX_GENERATION_ELEMENTS && !allow {
         return Err(Error::OverLimit {
             limit: Limit::Generation,
-            field: "ga.population × design.positions".into(),
+            field: format!("ga.population × {positions_key}"),
             value: format!("{population} × {positions} = {elements} elements per generation"),
             reason: format!(
                 "more than {MAX_GENERATION_ELEMENTS} elements simulated per generation (a generation would not end in reasonable time, \
-                 and its designs would fill memory); reduce ga.population or design.positions"
+                 and its designs would fill memory); reduce ga.population or {positions_key}"
             ),
         });
     }

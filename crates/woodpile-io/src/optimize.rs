@@ -6,7 +6,7 @@
 //!
 //! ```toml
 //! [design]
-//! positions = 20                 # N elements (default 20)
+//! positions = 20                 # N elements (default 20), or a range: { min = 8, max = 24 }
 //! catalogue_mm = [20, 30, 40, 50, 60, 70, 80]   # Table 1 rods (default), or:
 //! # elements = [{ rod_mm = 20 }, { kind = "sphere", diameter_mm = 5 }]
 //! model = "resonant"             # or "rigid"
@@ -87,9 +87,10 @@ pub struct OptimizeConfig {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DesignSpec {
-    /// Number of positions N (default 20).
+    /// Number of positions N (default 20), or the range a design's number of layers is chosen
+    /// from.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub positions: Option<usize>,
+    pub positions: Option<PositionsSpec>,
     /// Table 1 rods \[mm\] a position can hold (default: all of 20, 30, …, 80).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub catalogue_mm: Option<Vec<u32>>,
@@ -110,6 +111,104 @@ pub struct DesignSpec {
     /// `[design.constraints]`.
     #[serde(default)]
     pub constraints: ConstraintsSpec,
+}
+
+/// `design.positions`: a fixed number of layers, or `{ min, max }` when the number of layers is
+/// part of the design.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(untagged)]
+pub enum PositionsSpec {
+    /// Exactly this many layers.
+    Count(usize),
+    /// Any number of layers from `min` to `max`.
+    Range(PositionsRange),
+}
+
+/// `design.positions = { min, max }`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PositionsRange {
+    /// The fewest layers.
+    pub min: usize,
+    /// The most layers.
+    pub max: usize,
+}
+
+/// What `design.positions` may be, as a parse error says it.
+const POSITIONS_EXPECTED: &str =
+    "a number of layers (e.g. 20) or a range of them, { min = 8, max = 24 }";
+
+impl<'de> Deserialize<'de> for PositionsSpec {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::{self, MapAccess, Unexpected, Visitor};
+        struct Positions;
+        impl<'de> Visitor<'de> for Positions {
+            type Value = PositionsSpec;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str(POSITIONS_EXPECTED)
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<PositionsSpec, E> {
+                usize::try_from(v)
+                    .map(PositionsSpec::Count)
+                    .map_err(|_| E::invalid_value(Unexpected::Unsigned(v), &self))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<PositionsSpec, E> {
+                usize::try_from(v)
+                    .map(PositionsSpec::Count)
+                    .map_err(|_| E::invalid_value(Unexpected::Signed(v), &self))
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<PositionsSpec, A::Error> {
+                let (mut min, mut max) = (None, None);
+                while let Some(key) = map.next_key::<String>()? {
+                    match key.as_str() {
+                        "min" => min = Some(map.next_value::<usize>()?),
+                        "max" => max = Some(map.next_value::<usize>()?),
+                        other => return Err(de::Error::unknown_field(other, &["min", "max"])),
+                    }
+                }
+                match (min, max) {
+                    (Some(min), Some(max)) => Ok(PositionsSpec::Range(PositionsRange { min, max })),
+                    (None, _) => Err(de::Error::missing_field("min")),
+                    (_, None) => Err(de::Error::missing_field("max")),
+                }
+            }
+        }
+        d.deserialize_any(Positions)
+    }
+}
+
+impl PositionsSpec {
+    /// The fewest layers.
+    pub fn min(self) -> usize {
+        match self {
+            PositionsSpec::Count(n) => n,
+            PositionsSpec::Range(r) => r.min,
+        }
+    }
+
+    /// The most layers.
+    pub fn max(self) -> usize {
+        match self {
+            PositionsSpec::Count(n) => n,
+            PositionsSpec::Range(r) => r.max,
+        }
+    }
+
+    /// The key of the fewest layers as the config writes it.
+    fn min_key(self) -> &'static str {
+        match self {
+            PositionsSpec::Count(_) => "design.positions",
+            PositionsSpec::Range(_) => "design.positions.min",
+        }
+    }
+
+    /// The key of the most layers as the config writes it.
+    fn max_key(self) -> &'static str {
+        match self {
+            PositionsSpec::Count(_) => "design.positions",
+            PositionsSpec::Range(_) => "design.positions.max",
+        }
+    }
 }
 
 /// `[design.rod_range]`: lengths `from_mm`, `from_mm + step_mm`, … up to `to_mm`, for every
@@ -458,7 +557,7 @@ impl OptimizeConfig {
     pub fn complete(&self) -> Self {
         let mut c = self.clone();
         let d = &mut c.design;
-        d.positions.get_or_insert(20);
+        d.positions.get_or_insert(PositionsSpec::Count(20));
         // The default catalogue is Table 1, unless a rod range (expanded by complete_checked)
         // or a general list says otherwise.
         if d.elements.is_none() && d.rod_range.is_none() {
@@ -674,7 +773,7 @@ fn check_catalogue(d: &DesignSpec) -> Result<(), Error> {
 }
 
 /// The constraints of the config, their layers and elements checked against the catalogue.
-fn constraints(cfg: &OptimizeConfig, positions: usize) -> Result<Constraints, Error> {
+fn constraints(cfg: &OptimizeConfig, positions: PositionsSpec) -> Result<Constraints, Error> {
     let c = &cfg.design.constraints;
     let mut constraints = Constraints {
         max_total_mass_kg: c.max_total_mass_g.map(|g| g * 1e-3),
@@ -696,12 +795,16 @@ fn constraints(cfg: &OptimizeConfig, positions: usize) -> Result<Constraints, Er
     }
     for (k, f) in c.fixed.iter().enumerate() {
         let field = format!("design.constraints.fixed[{k}]");
-        if f.layer == 0 || f.layer > positions {
-            return Err(Error::invalid(
-                format!("{field}.layer"),
-                f.layer,
-                format!("layers are 1..={positions} (1 = top)"),
-            ));
+        let n = positions.min();
+        if f.layer == 0 || f.layer > n {
+            let reason = match positions {
+                PositionsSpec::Count(_) => format!("layers are 1..={n} (1 = top)"),
+                PositionsSpec::Range(_) => format!(
+                    "layers are 1..={n} (1 = top): with a variable number of layers a fixed \
+                     layer must exist in every design, so at most design.positions.min = {n}"
+                ),
+            };
+            return Err(Error::invalid(format!("{field}.layer"), f.layer, reason));
         }
         let e = catalogue_index(&field, f.rod_mm, f.element, cfg)?;
         constraints.fixed.push((f.layer - 1, e));
@@ -712,6 +815,61 @@ fn constraints(cfg: &OptimizeConfig, positions: usize) -> Result<Constraints, Er
         constraints.max_count.push((e, m.count));
     }
     Ok(constraints)
+}
+
+/// An infeasibility found at the fewest layers of a range says so: with a variable number of
+/// layers, the lightest (lowest) design is one of `design.positions.min` layers.
+fn fewest_layers(e: OptimizeError, positions: PositionsSpec) -> OptimizeError {
+    let PositionsSpec::Range(r) = positions else {
+        return e;
+    };
+    let note = |labels: String| {
+        format!(
+            "{labels}; {} layers, the fewest design.positions.min allows",
+            r.min
+        )
+    };
+    match e {
+        OptimizeError::TooHeavy {
+            max_total_mass_kg,
+            lightest_kg,
+            lightest,
+        } => OptimizeError::TooHeavy {
+            max_total_mass_kg,
+            lightest_kg,
+            lightest: note(lightest),
+        },
+        OptimizeError::TooTall {
+            max_stack_height_m,
+            lowest_m,
+            lowest,
+        } => OptimizeError::TooTall {
+            max_stack_height_m,
+            lowest_m,
+            lowest: note(lowest),
+        },
+        other => other,
+    }
+}
+
+/// `design.positions`: at least one layer; a range with min ≤ max.
+fn check_positions(positions: PositionsSpec) -> Result<(), Error> {
+    if positions.min() == 0 {
+        return Err(Error::invalid(positions.min_key(), 0, "must be at least 1"));
+    }
+    if positions.max() < positions.min() {
+        return Err(Error::invalid(
+            "design.positions.max",
+            positions.max(),
+            format!(
+                "must be at least design.positions.min = {}; did you mean {{ min = {}, max = {} }}?",
+                positions.min(),
+                positions.max(),
+                positions.min()
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// The GA settings of `[ga]` with `threads` workers (checked by [`GaSettings::validate`]).
@@ -745,15 +903,14 @@ impl Problem {
         }
         let cfg = config.complete_checked()?;
         let d = &cfg.design;
-        let positions = d.positions.unwrap_or(20);
-        if positions == 0 {
-            return Err(Error::invalid("design.positions", 0, "must be at least 1"));
-        }
+        let positions = d.positions.unwrap_or(PositionsSpec::Count(20));
+        check_positions(positions)?;
         crate::limits::check_generation(
             cfg.ga
                 .population
                 .unwrap_or(GaSettings::default().population),
-            positions,
+            positions.max(),
+            positions.max_key(),
             cfg.ga.allow_large.unwrap_or(false),
         )?;
         if d.catalogue_mm.is_some() && d.elements.is_some() {
@@ -778,7 +935,8 @@ impl Problem {
         let catalogue = resolved.chain.elements().to_vec();
         let constraints = constraints(&cfg, positions)?;
         let space = DesignSpace {
-            positions,
+            positions: positions.min(),
+            max_positions: matches!(positions, PositionsSpec::Range(_)).then(|| positions.max()),
             catalogue,
             wall: resolved.chain.wall().clone(),
             crossing_angle_rad: resolved.chain.crossing_angle_rad(),
@@ -792,7 +950,8 @@ impl Problem {
         if algorithm == Algorithm::Breeder {
             settings.validate()?;
         }
-        woodpile::optimize::FeasibleSet::new(&space).map_err(optimize_error)?;
+        woodpile::optimize::FeasibleSet::new(&space)
+            .map_err(|e| optimize_error(fewest_layers(e, positions)))?;
         let nsga2 = Nsga2Settings {
             population: settings.population,
             generations: settings.generations,
@@ -814,6 +973,23 @@ impl Problem {
             base_dir: base_dir.to_path_buf(),
             robust,
         })
+    }
+
+    /// The number of layers as the summary prints it: "20 positions", or with a range "8 to
+    /// 24 positions", saying when the constraints leave fewer.
+    pub fn positions_text(&self) -> String {
+        let space = &self.space;
+        if space.max_positions.is_none() {
+            return format!("{} positions", space.positions);
+        }
+        let asked = space.lengths();
+        let text = format!("{} to {} positions", asked.start(), asked.end());
+        match woodpile::optimize::FeasibleSet::new(space).map(|s| s.lengths()) {
+            Ok(feasible) if feasible.end() < asked.end() => {
+                format!("{text}, at most {} meeting the constraints", feasible.end())
+            }
+            _ => text,
+        }
     }
 
     /// The robust objective of a robust problem (`ga.robust`), else None.
@@ -890,6 +1066,18 @@ fn robust_of(
             ),
         ));
     }
+    if let Some(PositionsSpec::Range(r)) = cfg.design.positions {
+        return Err(Error::invalid(
+            "ga.robust",
+            text,
+            format!(
+                "needs a fixed number of layers: with design.positions = {{ min = {}, max = {} }} \
+                 the per-rod and per-contact draws of designs of different lengths would differ \
+                 (common random numbers hold only among designs of one length)",
+                r.min, r.max
+            ),
+        ));
+    }
     for (k, given) in [
         (
             "screen_peak_tolerance",
@@ -906,7 +1094,7 @@ fn robust_of(
         }
     }
     let u = spec.check()?;
-    let positions = cfg.design.positions.unwrap_or(20);
+    let positions = cfg.design.positions.map_or(20, PositionsSpec::max);
     let nominal = scenario_of(cfg, Path::new("."), &vec![0; positions], None);
     crate::uncertainty::samples(&nominal, &u)?;
     Ok(Some((robust, u)))
@@ -1271,13 +1459,17 @@ pub fn history_csv(history: &[GenerationStats]) -> String {
     s
 }
 
-/// Writes `population.csv`: the final population, best first, one column per layer;
+/// Writes `population.csv`: the final population, best first, one column per layer (empty
+/// beyond a shorter design's last layer);
 /// `objective_bound` is 0 where the objective was simulated at the run's settings, and the
 /// half-width of the interval that holds it where it is a screened value; `stopped` is 1 where
 /// the design's run stopped early and the objective is a lower bound of its value (0 otherwise).
 pub fn population_csv(space: &DesignSpace, population: &[Individual]) -> String {
     let mut s = String::from("rank,objective,objective_bound,stopped");
-    for l in 1..=space.positions {
+    // One column per layer of the longest design; a shorter design's cells beyond its last
+    // layer are empty.
+    let layers = population.iter().map(|i| i.genome.len()).max().unwrap_or(0);
+    for l in 1..=layers {
         s.push_str(&format!(",layer_{l}"));
     }
     s.push('\n');
@@ -1293,6 +1485,7 @@ pub fn population_csv(space: &DesignSpace, population: &[Individual]) -> String 
             s.push(',');
             s.push_str(&l);
         }
+        s.push_str(&",".repeat(layers - i.genome.len()));
         s.push('\n');
     }
     s

@@ -240,14 +240,14 @@ fn terminal_summary(
         .transmission_ratio
         .map_or("none".to_string(), |r| format!("{r:.4}"));
     format!(
-        "problem      {name} ({} positions, {} catalogue entries, seed {})\n\
+        "problem      {name} ({}, {} catalogue entries, seed {})\n\
          stopped      {} after generation {}: {} evaluations, {}{} cache hits, {:.1} s\n\
          best         {}\n\
          accuracy     {}\n\
          objective    {}{} = {:.6e} {}\n\
          forces       {}incident {:.4} N, transmitted {:.4} N, ratio {ratio}\n\
          output       {}\n",
-        problem.space.positions,
+        problem.positions_text(),
         problem.space.catalogue.len(),
         problem.settings.seed,
         stop_text(outcome.reason),
@@ -380,14 +380,14 @@ fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Resul
             )
         };
         crate::out::print(format_args!(
-            "problem      {name} ({} positions, {} catalogue entries, seed {}, NSGA-II)\n\
+            "problem      {name} ({}, {} catalogue entries, seed {}, NSGA-II)\n\
              stopped      {} after generation {}: {} evaluations, {} cache hits, {:.1} s\n\
              accuracy     {}\n\
              objectives   {}\n\
              front        {front}\n\
              hypervolume  {:.6e} (reference point {:?})\n\
              output       {}\n",
-            problem.space.positions,
+            problem.positions_text(),
             problem.space.catalogue.len(),
             problem.nsga2.seed,
             stop_text(reason),

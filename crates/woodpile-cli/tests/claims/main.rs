@@ -23,6 +23,7 @@ mod optimize_bad_input;
 mod optimize_best_reruns;
 #[cfg(unix)]
 mod optimize_interrupt_resume;
+mod optimize_layers;
 mod optimize_pareto;
 mod optimize_robust;
 mod optimize_robust_nsga2;

@@ -3,6 +3,7 @@
 //! One test binary per crate (link time dominates the suite): each module below is one claim,
 //! and opens with the claim it checks and the reason for its tolerance.
 
+mod checkpoint_layers_resume;
 mod checkpoint_screened_resume;
 mod element_angles_and_mass_in_mass;
 mod errors_speak_no_front_end;

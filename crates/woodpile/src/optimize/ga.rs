@@ -965,7 +965,7 @@ impl BreederGa {
         if let Some(g) = (state.ledger.cache.keys())
             .chain(state.ledger.screened.keys())
             .chain(state.ledger.stopped.keys())
-            .find(|g| g.len() != self.space.positions)
+            .find(|g| !self.space.lengths().contains(&g.len()))
         {
             return mismatch(format!("cache holds a genome of length {}", g.len()));
         }

@@ -1,7 +1,8 @@
 //! Breeder genetic algorithm for the element arrangement that transmits the least force
 //! (docs/physics.md §11; paper §4).
 //!
-//! - [`DesignSpace`]: N positions filled from a catalogue of [`crate::Element`]s, how the chain
+//! - [`DesignSpace`]: N positions (or any N in a range: the number of layers as part of the
+//!   design) filled from a catalogue of [`crate::Element`]s, how the chain
 //!   is held and loaded, the run settings and the designer's [`Constraints`]; [`FeasibleSet`]
 //!   proves the constraints can be met and repairs genomes into them.
 //! - [`Objective`]: what is minimised; [`StandardObjective`] holds the transmitted peak force
@@ -62,7 +63,9 @@ pub use ga::{
 };
 pub use nsga2::{MoIndividual, Nsga2, Nsga2Settings, Nsga2State, Nsga2Stats};
 pub use objective::{ContactImpulse, LayerEnergyPeak, Objective, StandardObjective, Valued};
-pub use space::{Constraints, DesignSpace, FeasibleSet, Genome, MAX_CATALOGUE_LEN};
+pub use space::{
+    Constraints, DesignSpace, FeasibleSet, Genome, MAX_CATALOGUE_LEN, MAX_VARIABLE_POSITIONS,
+};
 
 /// What can go wrong in an optimisation.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -27,11 +27,29 @@ pub fn select_parents(pool: usize, rng: &mut impl Rng) -> (usize, usize) {
 
 /// Discrete (gene-wise) recombination: each gene of the child comes from either parent with
 /// probability ½ (Mühlenbein & Schlierkamp-Voosen 1993, §4.1 "discrete recombination").
+///
+/// Parents of different lengths are aligned at the top (layer k of one faces layer k of the
+/// other, counted from where the load arrives): the layers both have are recombined as above,
+/// the child takes either parent's length with probability ½, and its layers below the
+/// shorter parent's last come from the longer parent. Parents of one length draw exactly as
+/// without this rule.
 pub fn recombine(a: &[u8], b: &[u8], rng: &mut impl Rng) -> Genome {
-    a.iter()
-        .zip(b)
+    let common = a.len().min(b.len());
+    let mut child: Genome = a[..common]
+        .iter()
+        .zip(&b[..common])
         .map(|(&x, &y)| if rng.random_bool(0.5) { x } else { y })
-        .collect()
+        .collect();
+    if a.len() != b.len() {
+        let longer = if a.len() > b.len() { a } else { b };
+        let len = if rng.random_bool(0.5) {
+            a.len()
+        } else {
+            b.len()
+        };
+        child.extend_from_slice(&longer[common..len]);
+    }
+    child
 }
 
 /// The BGA mutation step δ = Σ_{k=0}^{15} α_k 2^{−k}, α_k = 1 with probability 1/16
@@ -46,14 +64,52 @@ pub fn bga_delta(rng: &mut impl Rng) -> f64 {
 /// The BGA mutation for catalogue indices: each free gene is mutated with probability 1/n
 /// (n = number of free positions) by ± round(range·δ) indices, at least one, the sign + or −
 /// with probability ½, clamped to the catalogue 0..len. `range` is in index units.
-pub fn mutate(genome: &mut [u8], set: &FeasibleSet, range: f64, rng: &mut impl Rng) {
-    let free = set.free_positions();
+///
+/// When the number of layers is part of the design ([`FeasibleSet::varies_in_length`]), the
+/// length then mutates with the same probability 1/n as a gene ([`mutate_length`]).
+pub fn mutate(genome: &mut Genome, set: &FeasibleSet, range: f64, rng: &mut impl Rng) {
+    mutate_genes(genome, set, range, rng);
+    if set.varies_in_length() {
+        let n = set.free_positions(genome.len()).len().max(1);
+        if rng.random_bool(1.0 / n as f64) {
+            mutate_length(genome, set, rng);
+        }
+    }
+}
+
+/// One layer more or fewer (probability ½ each, the only way open at either end of
+/// [`FeasibleSet::lengths`]): a uniformly drawn catalogue entry inserted at, or the layer
+/// removed from, a uniformly drawn position below every fixed one
+/// ([`FeasibleSet::first_movable_position`]), so fixed layers keep their place.
+pub fn mutate_length(genome: &mut Genome, set: &FeasibleSet, rng: &mut impl Rng) {
+    let lengths = set.lengths();
+    let len = genome.len();
+    let first = set.first_movable_position().min(len);
+    let grow = match (len < *lengths.end(), len > *lengths.start() && len > first) {
+        (true, true) => rng.random_bool(0.5),
+        (grow, shrink) if grow || shrink => grow,
+        _ => return,
+    };
+    if grow {
+        let at = rng.random_range(first..=len);
+        let element = rng.random_range(0..set.catalogue_len()) as u8;
+        genome.insert(at, element);
+    } else {
+        let at = rng.random_range(first..len);
+        genome.remove(at);
+    }
+}
+
+/// The gene part of [`mutate`].
+fn mutate_genes(genome: &mut [u8], set: &FeasibleSet, range: f64, rng: &mut impl Rng) {
+    let free = set.free_positions(genome.len());
     if free.is_empty() {
         return;
     }
     let p = 1.0 / free.len() as f64;
     let top = set.catalogue_len() - 1;
-    for &pos in free {
+    let len = genome.len();
+    for &pos in free.iter().filter(|&&p| p < len) {
         if !rng.random_bool(p) {
             continue;
         }

@@ -1,5 +1,6 @@
-//! What is searched: N positions, each filled from a discrete catalogue of elements, under the
-//! designer's constraints; and the set of genomes that meet them.
+//! What is searched: N positions (a fixed number, or any number in a range), each filled from a
+//! discrete catalogue of elements, under the designer's constraints; and the set of genomes that
+//! meet them.
 
 use super::OptimizeError;
 use crate::error::{Error, Result};
@@ -8,18 +9,25 @@ use crate::model::{CellModel, Chain, ChainBuilder, Element, Wall, TABLE1_LENGTHS
 use crate::simulate::RunSettings;
 use rand::Rng;
 
-/// A design: the catalogue index of the element at each position, top to bottom.
+/// A design: the catalogue index of the element at each position, top to bottom. Its length is
+/// the number of layers (fixed, or within [`DesignSpace::lengths`]).
 pub type Genome = Vec<u8>;
 
 /// Largest catalogue a [`Genome`] can index.
 pub const MAX_CATALOGUE_LEN: usize = 256;
+
+/// Most layers a design may have when the number of layers varies (`max_positions`): every
+/// length of the range gets its own feasible set, so the range costs about max²/2 genes of
+/// memory and set-up; a fixed number of layers has no such limit.
+pub const MAX_VARIABLE_POSITIONS: usize = 1024;
 
 /// Relative slack of the mass constraint, so that summing the same masses in another order
 /// (one rounding per term) never turns a feasible design infeasible.
 const MASS_SLACK: f64 = 1e-12;
 
 /// Optional limits a designer puts on the chain. Indices are catalogue indices; positions count
-/// from 0 at the top.
+/// from 0 at the top (with a variable number of layers a fixed position must exist in every
+/// design: below [`DesignSpace::positions`], the fewest).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Constraints {
     /// Largest total mass of the chain \[kg\].
@@ -36,12 +44,15 @@ pub struct Constraints {
     pub max_contact_pressure_pa: Option<f64>,
 }
 
-/// The design space of an optimisation: N positions, a catalogue, how the chain is held and
-/// loaded, how long it is run, and the constraints.
+/// The design space of an optimisation: N positions (or N in a range), a catalogue, how the
+/// chain is held and loaded, how long it is run, and the constraints.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DesignSpace {
-    /// Number of positions N (elements in the chain).
+    /// Number of positions N (elements in the chain); with `max_positions`, the fewest.
     pub positions: usize,
+    /// The most positions when the number of layers is part of the design (None: exactly
+    /// `positions`).
+    pub max_positions: Option<usize>,
     /// The elements a position can hold (at most [`MAX_CATALOGUE_LEN`]).
     pub catalogue: Vec<Element>,
     /// What the last element stands on.
@@ -70,6 +81,7 @@ impl DesignSpace {
     pub fn table1(positions: usize, model: CellModel, excitation: Excitation) -> Self {
         DesignSpace {
             positions,
+            max_positions: None,
             catalogue: Self::table1_catalogue(model),
             wall: Wall::paper_sensor(),
             crossing_angle_rad: std::f64::consts::FRAC_PI_2,
@@ -88,6 +100,17 @@ impl DesignSpace {
     /// The paper's blast problem (§5): 20 rods, the Friedlander load of docs/physics.md §6, 3 ms.
     pub fn paper_blast(model: CellModel) -> Self {
         Self::table1(20, model, Excitation::Blast(BlastProfile::paper()))
+    }
+
+    /// The numbers of layers a design may have: `positions..=max_positions` (one number when
+    /// `max_positions` is None).
+    pub fn lengths(&self) -> std::ops::RangeInclusive<usize> {
+        self.positions..=self.max_positions.unwrap_or(self.positions)
+    }
+
+    /// Whether the number of layers is part of the design (`max_positions` above `positions`).
+    pub fn varies_in_length(&self) -> bool {
+        self.max_positions.is_some_and(|m| m > self.positions)
     }
 
     /// The chain a genome describes.
@@ -135,15 +158,179 @@ impl DesignSpace {
 /// The genomes that meet a design space's constraints, checked to be non-empty; draws and
 /// repairs genomes.
 ///
+/// The number of layers is a genome's length: fixed, or any number in
+/// [`DesignSpace::lengths`] (layers count from the top, where the load arrives, so a layer
+/// keeps its place whatever the length). The lengths offered are those from the fewest up to
+/// the last one some design meets the constraints at (a design with one free layer fewer is
+/// lighter, lower and holds no more copies of anything, so the feasible lengths are a range
+/// from the fewest).
+///
 /// Constraint handling is by **repair**: an operator's child that breaks a constraint is changed
 /// minimally until it meets them all, so every evaluated genome is feasible. Fixed positions are
 /// reset; an entry used more often than allowed has randomly chosen surplus copies moved to the
 /// nearest catalogue index with room left; while the chain is too heavy, a random position is
 /// moved to the heaviest lighter entry with room left. Each move strictly lowers the mass, and a
 /// design where no move is possible is a lightest design (every lighter entry is full), which the
-/// up-front check found to be light enough: repair always ends feasible.
+/// up-front check found to be light enough: repair always ends feasible. A genome longer than the
+/// longest feasible length first loses its bottom layers; a shorter one than the fewest is
+/// filled with the lightest design's elements.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FeasibleSet {
+    /// One set per number of layers, from the fewest up to the longest feasible.
+    by_length: Vec<LengthSet>,
+    /// The fewest layers.
+    min_positions: usize,
+}
+
+impl FeasibleSet {
+    /// Validates a design space and proves its constraints can be met.
+    ///
+    /// Errors: an invalid field ([`OptimizeError::Model`]; with a range of lengths: the most
+    /// below the fewest, a fixed position not below the fewest) or constraints no design of the
+    /// fewest layers meets ([`OptimizeError::Infeasible`], [`OptimizeError::TooHeavy`],
+    /// [`OptimizeError::TooTall`], naming the conflicting numbers).
+    pub fn new(space: &DesignSpace) -> std::result::Result<Self, OptimizeError> {
+        let (min, max) = (
+            space.positions,
+            space.max_positions.unwrap_or(space.positions),
+        );
+        if max < min {
+            return Err(Error::invalid(
+                "design.positions.max",
+                max,
+                format!("must be at least design.positions.min = {min}"),
+            )
+            .into());
+        }
+        if space.max_positions.is_some() && max > MAX_VARIABLE_POSITIONS {
+            return Err(Error::invalid(
+                "design.positions.max",
+                max,
+                format!(
+                    "a variable number of layers goes up to {MAX_VARIABLE_POSITIONS} (each \
+                     length gets its own feasible set); give one number for longer chains"
+                ),
+            )
+            .into());
+        }
+        if space.max_positions.is_some() {
+            if let Some((k, &(pos, _))) =
+                (space.constraints.fixed.iter().enumerate()).find(|(_, (p, _))| *p >= min)
+            {
+                return Err(Error::invalid(
+                    format!("design.constraints.fixed[{k}].position"),
+                    pos,
+                    format!(
+                        "with a variable number of layers a fixed position counts from the top \
+                         and must exist in every design: 0..{min} (design.positions.min = {min})"
+                    ),
+                )
+                .into());
+            }
+        }
+        LengthSet::validate_space(&DesignSpace {
+            positions: max,
+            ..space.clone()
+        })?;
+        let mut by_length = Vec::with_capacity(max - min + 1);
+        for n in min..=max {
+            let at = DesignSpace {
+                positions: n,
+                max_positions: None,
+                ..space.clone()
+            };
+            match LengthSet::new(&at) {
+                Ok(set) => by_length.push(set),
+                Err(
+                    OptimizeError::Infeasible { .. }
+                    | OptimizeError::TooHeavy { .. }
+                    | OptimizeError::TooTall { .. },
+                ) if n > min => break,
+                Err(e) => return Err(e),
+            }
+        }
+        Ok(FeasibleSet {
+            by_length,
+            min_positions: min,
+        })
+    }
+
+    /// The numbers of layers a feasible design may have: from the fewest to the longest some
+    /// design meets the constraints at.
+    pub fn lengths(&self) -> std::ops::RangeInclusive<usize> {
+        self.min_positions..=self.min_positions + self.by_length.len() - 1
+    }
+
+    /// Whether designs of different lengths are offered.
+    pub fn varies_in_length(&self) -> bool {
+        self.by_length.len() > 1
+    }
+
+    /// The set of genomes of `len` layers (clamped into [`FeasibleSet::lengths`]).
+    fn at(&self, len: usize) -> &LengthSet {
+        let k = len.saturating_sub(self.min_positions);
+        &self.by_length[k.min(self.by_length.len() - 1)]
+    }
+
+    /// Number of catalogue entries.
+    pub fn catalogue_len(&self) -> usize {
+        self.by_length[0].masses_kg.len()
+    }
+
+    /// The positions of a genome of `len` layers not fixed by a constraint.
+    pub fn free_positions(&self, len: usize) -> &[usize] {
+        &self.at(len).free
+    }
+
+    /// The first position below every fixed one (0 when none is fixed): layers are inserted
+    /// and removed only from here down, so fixed positions keep their elements.
+    pub fn first_movable_position(&self) -> usize {
+        let fixed = &self.by_length[0].fixed;
+        fixed.iter().rposition(Option::is_some).map_or(0, |p| p + 1)
+    }
+
+    /// A lightest feasible design of the fewest layers (the witness of feasibility).
+    pub fn lightest(&self) -> &[u8] {
+        &self.by_length[0].lightest
+    }
+
+    /// Whether a genome has a length in [`FeasibleSet::lengths`], indexes the catalogue and
+    /// meets every constraint.
+    pub fn contains(&self, genome: &[u8]) -> bool {
+        self.lengths().contains(&genome.len()) && self.at(genome.len()).contains(genome)
+    }
+
+    /// A random feasible genome: with a range of lengths, the number of layers uniform over
+    /// [`FeasibleSet::lengths`]; each free gene uniform over the catalogue; then repaired.
+    pub fn random(&self, rng: &mut impl Rng) -> Genome {
+        let len = if self.varies_in_length() {
+            rng.random_range(self.lengths())
+        } else {
+            self.min_positions
+        };
+        self.at(len).random(rng)
+    }
+
+    /// Changes a genome with genes inside the catalogue as little as the rules of
+    /// [`FeasibleSet`] allow until it meets every constraint (its length brought into
+    /// [`FeasibleSet::lengths`] first).
+    pub fn repair(&self, genome: &mut Genome, rng: &mut impl Rng) {
+        let lengths = self.lengths();
+        if genome.len() > *lengths.end() {
+            genome.truncate(*lengths.end());
+        }
+        if genome.len() < *lengths.start() {
+            let fill = &self.lightest()[genome.len()..];
+            genome.extend_from_slice(fill);
+        }
+        self.at(genome.len()).repair(genome, rng);
+    }
+}
+
+/// The genomes of one length that meet a design space's constraints, checked to be non-empty
+/// (one per number of layers of a [`FeasibleSet`]).
+#[derive(Debug, Clone, PartialEq)]
+struct LengthSet {
     positions: usize,
     masses_kg: Vec<f64>,
     caps: Vec<usize>,
@@ -155,13 +342,12 @@ pub struct FeasibleSet {
     lightest: Genome,
 }
 
-impl FeasibleSet {
+impl LengthSet {
     /// Validates a design space and proves its constraints can be met.
     ///
     /// Errors: an invalid field ([`OptimizeError::Model`]) or constraints no design meets
     /// ([`OptimizeError::Infeasible`], naming the conflicting numbers).
-    pub fn new(space: &DesignSpace) -> std::result::Result<Self, OptimizeError> {
-        Self::validate_space(space)?;
+    fn new(space: &DesignSpace) -> std::result::Result<Self, OptimizeError> {
         let fixed = Self::fixed_positions(space)?;
         let caps = Self::count_caps(space)?;
         let max_mass_kg = match space.constraints.max_total_mass_kg {
@@ -208,7 +394,7 @@ impl FeasibleSet {
             "design.constraints.max_contact_pressure_pa",
             space.constraints.max_contact_pressure_pa,
         )?;
-        let mut set = FeasibleSet {
+        let mut set = LengthSet {
             positions: space.positions,
             masses_kg,
             caps,
@@ -444,26 +630,6 @@ impl FeasibleSet {
         lightest
     }
 
-    /// Number of positions N.
-    pub fn positions(&self) -> usize {
-        self.positions
-    }
-
-    /// Number of catalogue entries.
-    pub fn catalogue_len(&self) -> usize {
-        self.masses_kg.len()
-    }
-
-    /// The positions not fixed by a constraint.
-    pub fn free_positions(&self) -> &[usize] {
-        &self.free
-    }
-
-    /// A lightest feasible design (the witness of feasibility).
-    pub fn lightest(&self) -> &[u8] {
-        &self.lightest
-    }
-
     fn mass_kg(&self, genome: &[u8]) -> f64 {
         genome.iter().map(|&g| self.masses_kg[usize::from(g)]).sum()
     }
@@ -477,7 +643,7 @@ impl FeasibleSet {
     }
 
     /// Whether a genome has the right length, indexes the catalogue and meets every constraint.
-    pub fn contains(&self, genome: &[u8]) -> bool {
+    fn contains(&self, genome: &[u8]) -> bool {
         if genome.len() != self.positions
             || genome
                 .iter()
@@ -514,7 +680,7 @@ impl FeasibleSet {
     }
 
     /// A random feasible genome: each free gene uniform over the catalogue, then repaired.
-    pub fn random(&self, rng: &mut impl Rng) -> Genome {
+    fn random(&self, rng: &mut impl Rng) -> Genome {
         let n = self.masses_kg.len();
         let mut g: Genome = self.fixed.iter().map(|f| f.unwrap_or(0)).collect();
         for &p in &self.free {
@@ -526,7 +692,7 @@ impl FeasibleSet {
 
     /// Changes a genome of the right length with genes inside the catalogue as little as the
     /// rules of [`FeasibleSet`] allow until it meets every constraint.
-    pub fn repair(&self, genome: &mut [u8], rng: &mut impl Rng) {
+    fn repair(&self, genome: &mut [u8], rng: &mut impl Rng) {
         assert_eq!(genome.len(), self.positions, "genome length");
         for (g, f) in genome.iter_mut().zip(&self.fixed) {
             if let Some(f) = f {

@@ -47,6 +47,8 @@ mod optimize_cache_transparent;
 mod optimize_common;
 mod optimize_exhaustive_tiny;
 mod optimize_height_constraint;
+mod optimize_layers_operators;
+mod optimize_layers_runs;
 mod optimize_nsga2_determinism;
 mod optimize_nsga2_exhaustive;
 mod optimize_operators_feasible;
