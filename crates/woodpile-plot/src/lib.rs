@@ -37,6 +37,7 @@
 //! Errors are [`PlotError`]: data that cannot be drawn, an [`Output`] option out of range (its
 //! field, value and range), or a file that could not be written.
 
+mod bars;
 mod chain;
 mod colorbar;
 mod colormap;
@@ -46,6 +47,7 @@ mod lines;
 pub mod output;
 pub mod typeset;
 
+pub use bars::{sobol_indices, IndexBars};
 pub use chain::chain_picture;
 pub use colormap::ColorMap;
 pub use heatmap::{

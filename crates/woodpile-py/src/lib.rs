@@ -12,6 +12,7 @@
 //! | [`study`] | `woodpile.study` | many scenarios at once (rayon, SIMD lanes) |
 //! | [`analysis`] | `woodpile.analysis` | cells, effective mass, band gaps, spectra |
 //! | [`optimize`] | `woodpile.optimize` | the breeder GA as ask/tell |
+//! | [`sensitivity`] | `woodpile.sensitivity` | Sobol' indices over `[uncertainty]` (Saltelli) |
 //! | [`fit`] | `woodpile.fit` | calibration to measured signals, with uncertainties |
 //! | [`errors`] | `woodpile.errors` | every error as a `WoodpileError` subclass |
 //!
@@ -24,6 +25,7 @@ mod interrupt;
 mod optimize;
 mod run;
 mod scenario;
+mod sensitivity;
 mod study;
 
 use pyo3::prelude::*;
@@ -38,5 +40,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     analysis::register(m)?;
     optimize::register(m)?;
     fit::register(m)?;
+    sensitivity::register(m)?;
     Ok(())
 }
