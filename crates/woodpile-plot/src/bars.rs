@@ -90,7 +90,7 @@ impl Figure for Bars {
                     String::new()
                 }
             })
-            .y_desc("Sobol' index")
+            .y_desc("Sobol' index (S1 first order, ST total)")
             .y_label_formatter(&|v| format_number(*v))
             .label_style((FONT, 15 * FINE))
             .axis_desc_style((FONT, 17 * FINE))
@@ -104,7 +104,7 @@ impl Figure for Bars {
             vec![(-0.5, 0.0), (n as f64 - 0.5, 0.0)],
             BLACK.stroke_width(FINE),
         )))?;
-        for (k, label) in ["S1 (first order)", "ST (total)"].into_iter().enumerate() {
+        for (k, label) in ["S1", "ST"].into_iter().enumerate() {
             let colour = series_color(k);
             let offset = if k == 0 { -0.2 } else { 0.2 };
             let pick = |b: &IndexBars| if k == 0 { b.first_order } else { b.total };

@@ -228,7 +228,7 @@ pub fn indices(
     }
     let m = mean(y.iter().copied());
     let sd = variance(y).sqrt();
-    if !(sd > 0.0) {
+    if sd <= 0.0 {
         return Err(Error::invalid(
             "sensitivity.outputs",
             format!("all {rows} equal to {m:e}"),
