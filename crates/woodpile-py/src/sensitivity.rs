@@ -135,7 +135,11 @@ fn sensitivity(
 /// The Saltelli design in the unit cube (`woodpile::sensitivity::saltelli_unit_cube`).
 #[pyfunction]
 #[pyo3(signature = (base_samples, group_of, seed=0))]
-fn saltelli_unit_cube(base_samples: usize, group_of: Vec<usize>, seed: u32) -> PyResult<Vec<Vec<f64>>> {
+fn saltelli_unit_cube(
+    base_samples: usize,
+    group_of: Vec<usize>,
+    seed: u32,
+) -> PyResult<Vec<Vec<f64>>> {
     woodpile::sensitivity::saltelli_unit_cube(base_samples, &group_of, seed).map_err(core_err)
 }
 
