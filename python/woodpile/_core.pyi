@@ -126,6 +126,7 @@ def sensitivity(
     seed: Optional[int] = None,
     paper_settings: bool = False,
     threads: Optional[int] = None,
+    allow_large: bool = False,
 ) -> tuple[
     list[str],
     list[list[float]],

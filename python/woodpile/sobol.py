@@ -28,6 +28,7 @@ def sensitivity(
     seed: Optional[int] = None,
     paper_settings: bool = False,
     threads: Optional[int] = None,
+    allow_large: bool = False,
 ) -> pd.DataFrame:
     """First-order (S1) and total (ST) Sobol' indices of each figure of merit for each
     ``[uncertainty]`` parameter of ``scenario``, with their 95 % bootstrap intervals: one row per
@@ -38,7 +39,8 @@ def sensitivity(
     also seeds the bootstrap). Unless ``paper_settings`` (the scenario's run settings as they
     are) or the scenario states a ``run.peak_tolerance``, every contact peak is computed within
     1e-5 (a :class:`Scenario` always carries the completed RK4 settings, so they do not count as
-    stated here).
+    stated here). A study of more than 1e6 elements in all (runs × chain elements) raises
+    :class:`woodpile.LimitError` unless ``allow_large``.
 
     The DataFrame's ``attrs`` hold the design: ``attrs["samples"]`` (the Saltelli matrix, SALib's
     row order, one column per drawn value), ``attrs["outputs"]`` (one column per figure, same
@@ -55,6 +57,7 @@ def sensitivity(
         seed,
         paper_settings,
         threads,
+        allow_large,
     )
     indices = pd.DataFrame(rows, columns=INDEX_COLUMNS)
     indices.attrs["samples"] = pd.DataFrame(matrix, columns=columns, dtype=float)

@@ -82,11 +82,14 @@ pub struct Design {
 }
 
 /// The Saltelli design of `scenario` under its checked `[uncertainty]` `u` with `base_samples`
-/// base points (refused as [`base_samples_refusal`] says, naming `base_samples`).
+/// base points (refused as [`base_samples_refusal`] says, naming `base_samples`). A design of
+/// more than [`crate::limits::MAX_GENERATION_ELEMENTS`] elements in all (rows × chain elements:
+/// every row's scenario is built before the runs) is refused unless `allow_large`.
 pub fn design(
     scenario: &crate::scenario::Scenario,
     u: &Uncertainty,
     base_samples: usize,
+    allow_large: bool,
 ) -> Result<Design, Error> {
     if let Some(reason) = base_samples_refusal(base_samples) {
         return Err(Error::invalid("base_samples", base_samples, reason));
@@ -113,6 +116,30 @@ pub fn design(
             "{…}",
             "draws no value in this scenario (e.g. crossing angles of a one-element chain): remove it",
         ));
+    }
+    let chain = scenario.complete().chain;
+    let elements = chain
+        .rods_mm
+        .as_ref()
+        .map(Vec::len)
+        .or(chain.elements.as_ref().map(Vec::len))
+        .unwrap_or(1);
+    let runs = woodpile::sensitivity::saltelli_rows(base_samples, parameters.len());
+    let total = runs.saturating_mul(elements.max(1));
+    if total > crate::limits::MAX_GENERATION_ELEMENTS && !allow_large {
+        return Err(Error::OverLimit {
+            limit: crate::error::Limit::Generation,
+            field: "base_samples × (parameters + 2) × elements".into(),
+            value: format!(
+                "{base_samples} × {} × {} = {total} elements",
+                parameters.len() + 2,
+                elements.max(1)
+            ),
+            reason: format!(
+                "more than {} elements in one study (its runs would not end in reasonable time, and their scenarios would fill memory); reduce base_samples",
+                crate::limits::MAX_GENERATION_ELEMENTS
+            ),
+        });
     }
     let rows = saltelli_unit_cube(base_samples, &group_of, u.seed)
         .map_err(|e| Error::invalid("uncertainty", group_of.len(), e.to_string()))?;

@@ -1,7 +1,7 @@
 //! Sensitivity studies (`woodpile.sensitivity`): Sobol' indices over a scenario's
 //! `[uncertainty]`, and the estimators alone on any outputs.
 
-use crate::errors::{core_err, py_err, Failure};
+use crate::errors::{core_err, py_err, Failure, Kind};
 use pyo3::prelude::*;
 use std::path::PathBuf;
 use woodpile::sensitivity::Bootstrap;
@@ -29,8 +29,10 @@ type Study = (
 
 /// The sensitivity study of the scenario `text` (`woodpile sensitivity`), runs in SIMD lanes on
 /// `threads` threads, GIL released.
+// The Python keyword arguments, one parameter each.
+#[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (text, base_dir, base_samples, seed=None, paper_settings=false, threads=None))]
+#[pyo3(signature = (text, base_dir, base_samples, seed=None, paper_settings=false, threads=None, allow_large=false))]
 fn sensitivity(
     py: Python<'_>,
     text: String,
@@ -39,6 +41,7 @@ fn sensitivity(
     seed: Option<u32>,
     paper_settings: bool,
     threads: Option<usize>,
+    allow_large: bool,
 ) -> PyResult<Study> {
     crate::interrupt::detach_interruptibly(py, || {
         let mut scenario = Scenario::parse(&text).map_err(py_err)?;
@@ -64,7 +67,14 @@ fn sensitivity(
             (r.integrator, r.time_step_s, r.rtol, r.atol) = (None, None, None, None);
         }
         let accuracy = accuracy_targeted(&mut scenario, paper_settings);
-        let d = design(&scenario, &u, base_samples).map_err(py_err)?;
+        let d = design(&scenario, &u, base_samples, allow_large).map_err(|e| match e {
+            woodpile_io::Error::OverLimit { .. } => Failure::new(
+                Kind::Limit,
+                format!("{e}; pass allow_large=True to go ahead anyway"),
+            )
+            .into(),
+            other => py_err(other),
+        })?;
         let resolved = d
             .samples
             .samples

@@ -40,6 +40,9 @@ pub struct Args {
     /// Allow runs of more than 1e9 integration steps.
     #[arg(long)]
     pub allow_long: bool,
+    /// Allow a study of more than 1e6 elements in all (runs × chain elements).
+    #[arg(long)]
+    pub allow_large: bool,
 }
 
 /// Runs of one progress step: the lanes are refilled from one queue within a chunk.
@@ -67,7 +70,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         u.seed = seed;
     }
     let accuracy = accuracy_targeted(&mut loaded.scenario, args.paper_settings);
-    let d = design(&loaded.scenario, &u, args.base_samples)?;
+    let d = design(&loaded.scenario, &u, args.base_samples, args.allow_large)?;
     let resolved = d
         .samples
         .samples

@@ -8,7 +8,8 @@
 //! transmitted force's variance (the Hertz peak force grows as v^{6/5}, a ±12 % swing): its ST
 //! exceeds the lengths' by more than both intervals. Bad input exits 2 naming the key or flag:
 //! no `[uncertainty]`, `--base-samples 0` and `12` (not a power of two: refused, not warned),
-//! an existing `--out`. Runs of 0.2 ms at peak tolerance 1e-5 (the default), N = 16: 64 runs.
+//! a study over the 1e6-element limit without `--allow-large`, a foreign `--out`. Runs of
+//! 0.2 ms at peak tolerance 1e-5 (the default), N = 16: 64 runs.
 
 use crate::common;
 
@@ -135,6 +136,8 @@ fn bad_input_exits_2_naming_the_key() {
     refused("[chain]\nrods_mm = [40, 20]\n", "8", "x", "uncertainty");
     refused(CHAIN, "0", "x", "--base-samples");
     refused(CHAIN, "12", "x", "--base-samples");
+    // 131072 × (2 + 2) runs × 3 elements: over the 1e6-element limit, refused before any run.
+    refused(CHAIN, "131072", "x", "--allow-large");
     std::fs::create_dir(dir.path().join("full")).unwrap();
     common::write(&dir.path().join("full"), "mine.txt", "not woodpile's");
     refused(CHAIN, "2", "full", "--out");
