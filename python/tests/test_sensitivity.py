@@ -10,7 +10,8 @@ SALib's, so they are only asserted to agree within a factor 1.5 (both estimate t
 in SALib's layout: row AB_g differs from A only in group g's columns) and indices equal to
 SALib's on its own ``attrs["outputs"]``, to 1e-10.
 (3) Bad input raises ``ScenarioError`` naming the key: ``base_samples`` of 0 or not a power of
-two, a scenario without ``[uncertainty]``.
+two, a scenario without ``[uncertainty]``; a study over 1e6 elements raises ``LimitError`` naming
+``allow_large=True``.
 """
 
 import math
@@ -101,3 +102,10 @@ def test_no_uncertainty_refused() -> None:
     with pytest.raises(ScenarioError) as e:
         woodpile.sensitivity(Scenario.from_toml("[chain]\nrods_mm = [80, 40]\n"), 16)
     assert e.value.field == "uncertainty"
+
+
+def test_oversized_study_refused_before_any_run() -> None:
+    # 131072 × (2 + 2) runs × 3 elements: over the 1e6-element limit.
+    with pytest.raises(woodpile.LimitError) as e:
+        woodpile.sensitivity(Scenario.from_toml(CHAIN), 131072)
+    assert "allow_large=True" in str(e.value)
