@@ -37,22 +37,23 @@ pub fn base_samples_refusal(base_samples: usize) -> Option<String> {
 
 /// The scenario as a design study runs it: unless `paper_settings` or the scenario states how to
 /// integrate (`run.peak_tolerance`, `integrator`, `time_step_s`, `rtol`, `atol`), every contact
-/// peak within [`woodpile::defaults::STUDY_PEAK_TOLERANCE`]. Returns the words for how it is run.
-pub fn accuracy_targeted(scenario: &mut crate::scenario::Scenario, paper_settings: bool) -> String {
+/// peak within [`woodpile::defaults::STUDY_PEAK_TOLERANCE`]. Returns the words for how it is run,
+/// and whether that default was applied.
+pub fn accuracy_targeted(
+    scenario: &mut crate::scenario::Scenario,
+    paper_settings: bool,
+) -> (String, bool) {
     let r = &mut scenario.run;
     let stated = r.peak_tolerance.is_some()
         || r.integrator.is_some()
         || r.time_step_s.is_some()
         || r.rtol.is_some()
         || r.atol.is_some();
-    if !paper_settings && !stated {
+    let applied = !paper_settings && !stated;
+    if applied {
         r.peak_tolerance = Some(woodpile::defaults::STUDY_PEAK_TOLERANCE);
-        return format!(
-            "every contact peak within {:e} (relative) (--paper-settings: the scenario's own run settings)",
-            woodpile::defaults::STUDY_PEAK_TOLERANCE
-        );
     }
-    match (r.peak_tolerance, r.integrator, r.time_step_s) {
+    let text = match (r.peak_tolerance, r.integrator, r.time_step_s) {
         (Some(t), _, _) => format!("every contact peak within {t:e} (relative)"),
         (None, Some(crate::scenario::IntegratorKind::Dopri5), _) => format!(
             "dopri5, rtol {:e}, atol {:e} m",
@@ -63,7 +64,8 @@ pub fn accuracy_targeted(scenario: &mut crate::scenario::Scenario, paper_setting
             "rk4 at {:e} s",
             dt.unwrap_or(woodpile::defaults::TIME_STEP_S)
         ),
-    }
+    };
+    (text, applied)
 }
 
 /// A scenario's Saltelli design: the parameters (groups), and each row's scenario.

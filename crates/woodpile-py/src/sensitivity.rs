@@ -66,7 +66,10 @@ fn sensitivity(
             let r = &mut scenario.run;
             (r.integrator, r.time_step_s, r.rtol, r.atol) = (None, None, None, None);
         }
-        let accuracy = accuracy_targeted(&mut scenario, paper_settings);
+        let (mut accuracy, fast) = accuracy_targeted(&mut scenario, paper_settings);
+        if fast {
+            accuracy.push_str(" (paper_settings=True: the scenario's own run settings)");
+        }
         let d = design(&scenario, &u, base_samples, allow_large).map_err(|e| match e {
             woodpile_io::Error::OverLimit { .. } => Failure::new(
                 Kind::Limit,

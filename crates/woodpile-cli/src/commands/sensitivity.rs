@@ -69,7 +69,10 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     if let Some(seed) = args.seed {
         u.seed = seed;
     }
-    let accuracy = accuracy_targeted(&mut loaded.scenario, args.paper_settings);
+    let (mut accuracy, fast) = accuracy_targeted(&mut loaded.scenario, args.paper_settings);
+    if fast {
+        accuracy.push_str(" (--paper-settings: the scenario's own run settings)");
+    }
     let d = design(&loaded.scenario, &u, args.base_samples, args.allow_large)?;
     let resolved = d
         .samples
