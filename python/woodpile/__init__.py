@@ -14,6 +14,7 @@ One module per domain, everything public re-exported here:
 - :mod:`woodpile.optimize`: :class:`BreederGA`, :func:`optimize`, :class:`OptimizeResult`,
   :class:`ParetoResult` (NSGA-II), :class:`GenerationStats`
 - :mod:`woodpile.calibration`: :func:`fit`, :class:`FitResult`
+- :mod:`woodpile.sobol`: :func:`sensitivity` (Sobol' indices over ``[uncertainty]``)
 - :mod:`woodpile.errors`: :class:`WoodpileError` and its subclasses
 - :mod:`woodpile.plot`: matplotlib figures (imported on demand)
 - :mod:`woodpile.pymoo`: a design problem as a pymoo ``Problem`` (imported on demand; needs pymoo)
@@ -43,6 +44,7 @@ from .errors import (
 from .optimize import BestDesign, BreederGA, GenerationStats, OptimizeResult, ParetoResult, optimize
 from .run import Run, load_run, simulate
 from .scenario import Scenario, ScenarioKey, builtin_scenarios, scenario_keys
+from .sobol import INDEX_COLUMNS, sensitivity
 from .study import SUMMARY_COLUMNS, evaluate, sweep
 
 __all__ = [
@@ -79,6 +81,8 @@ __all__ = [
     "ParetoResult",
     "fit",
     "FitResult",
+    "sensitivity",
+    "INDEX_COLUMNS",
 ]
 __version__: str = _core.__version__
 

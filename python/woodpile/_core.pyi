@@ -163,6 +163,30 @@ class ParetoSession:
     def constraint_names(self) -> list[str]: ...
     def evaluate(self, designs: list[list[int]]) -> tuple[list[list[float]], list[list[float]]]: ...
 
+# sensitivity.rs ---------------------------------------------------------------------------
+
+def sensitivity(
+    text: str,
+    base_dir: str,
+    base_samples: int,
+    seed: Optional[int] = None,
+    paper_settings: bool = False,
+    threads: Optional[int] = None,
+    allow_large: bool = False,
+) -> tuple[
+    list[str],
+    list[list[float]],
+    list[str],
+    list[list[Optional[float]]],
+    list[tuple[str, str, float, float, float, float]],
+    list[tuple[str, str]],
+    str,
+]: ...
+def saltelli_unit_cube(base_samples: int, group_of: list[int], seed: int = 0) -> list[list[float]]: ...
+def sobol_indices(
+    y: list[float], base_samples: int, groups: int, resamples: int = 100, level: float = 0.95, seed: int = 0
+) -> list[tuple[float, float, float, float]]: ...
+
 # fit.rs -----------------------------------------------------------------------------------
 
 def fit_file(

@@ -32,6 +32,9 @@ enum Command {
     /// Measure the transmission spectrum of a preloaded chain and compare its gaps with the
     /// Bloch prediction (docs/physics.md §15).
     Transmission(commands::transmission::Args),
+    /// Sobol' indices of the figures of merit over a scenario's `[uncertainty]` (Saltelli
+    /// sampling, SALib's estimators; docs/sensitivity.md).
+    Sensitivity(commands::sensitivity::Args),
     /// Calibrate a scenario's parameters to measured signals, with uncertainties (docs/fit.md).
     Fit(commands::fit::Args),
     /// Draw the figures of a `simulate` or `optimize` output directory into DIR/plots (PNG, SVG).
@@ -49,6 +52,7 @@ fn dispatch(command: &Command, ctx: &Context) -> Result<(), CliError> {
         Command::Optimize(args) => commands::optimize::run(args, ctx),
         Command::Transmission(args) => commands::transmission::run(args, ctx),
         Command::Fit(args) => commands::fit::run(args, ctx),
+        Command::Sensitivity(args) => commands::sensitivity::run(args, ctx),
         Command::Plot(args) => commands::plot::run(args, ctx),
         Command::Report(args) => commands::report::run(args, ctx),
     }

@@ -23,6 +23,7 @@
 //!    outputs (`pareto.csv`, `pareto/NNN.toml`, hypervolume history); [`uncertainty`]: a
 //!    scenario's `[uncertainty]` (manufacturing scatter as per-parameter distributions);
 //!    [`robust`]: `ga.robust`, the GA's objective as a statistic over that scatter.
+//!    [`sensitivity`]: a Saltelli design of that scatter and the Sobol' indices' files.
 //! 5. **Calibrate** — [`fit`]: the fit file (a scenario, measured CSV files mapped to model
 //!    outputs, the fitted parameters) and the outputs of a fit.
 //! 6. **Say what went wrong** — [`Error`]: typed, naming the field, the value and what is valid
@@ -62,6 +63,7 @@ pub mod pareto;
 pub mod robust;
 pub mod rundir;
 pub mod scenario;
+pub mod sensitivity;
 pub mod table;
 pub mod transmission;
 pub mod uncertainty;

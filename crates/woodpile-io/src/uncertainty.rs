@@ -269,6 +269,20 @@ enum Target {
 /// drawn value written into the key it scatters. Errors name the `[uncertainty]` key that does
 /// not apply to this scenario, and why.
 pub fn samples(scenario: &crate::scenario::Scenario, u: &Uncertainty) -> Result<Samples, Error> {
+    samples_at(scenario, u, |dimensions| {
+        woodpile::uncertainty::unit_cube(u.samples, dimensions, u.seed)
+            .map_err(|e| Error::invalid("uncertainty", dimensions, e.to_string()))
+    })
+}
+
+/// The samples of `scenario` under `u` at the unit-cube points `points(D)` returns for its D
+/// drawn values (one row per sample, D coordinates each, strictly inside (0, 1)), e.g. a
+/// Saltelli design (`crate::sensitivity`). [`samples`] is this at u's Sobol' points.
+pub fn samples_at(
+    scenario: &crate::scenario::Scenario,
+    u: &Uncertainty,
+    points: impl FnOnce(usize) -> Result<Vec<Vec<f64>>, Error>,
+) -> Result<Samples, Error> {
     use crate::scenario::{ElementSpec, ExcitationKind};
     let mut base = scenario.complete();
     base.uncertainty = None;
@@ -329,8 +343,17 @@ pub fn samples(scenario: &crate::scenario::Scenario, u: &Uncertainty) -> Result<
             }
         }
     }
-    let points = woodpile::uncertainty::unit_cube(u.samples, targets.len(), u.seed)
-        .map_err(|e| Error::invalid("uncertainty", targets.len(), e.to_string()))?;
+    let points = points(targets.len())?;
+    if let Some(row) = points.iter().find(|row| row.len() != targets.len()) {
+        return Err(Error::invalid(
+            "uncertainty",
+            row.len(),
+            format!(
+                "{} coordinates per point, one per drawn value",
+                targets.len()
+            ),
+        ));
+    }
     let samples = points
         .iter()
         .map(|row| {
@@ -347,6 +370,16 @@ pub fn samples(scenario: &crate::scenario::Scenario, u: &Uncertainty) -> Result<
         })
         .collect::<Result<Vec<_>, Error>>()?;
     Ok(Samples { columns, samples })
+}
+
+impl Samples {
+    /// The `[uncertainty]` key each column draws (`rod_length_mm` for `rod_length_mm[3]`).
+    pub fn column_keys(&self) -> Vec<&str> {
+        self.columns
+            .iter()
+            .map(|c| c.split('[').next().unwrap_or(c))
+            .collect()
+    }
 }
 
 /// Writes the value of `dist` at `x` about the scenario's nominal value into `s`; returns it.

@@ -9,6 +9,8 @@
 //!   convergence and, once it has finished, the best chain to scale (paper Fig. 5 d, e, right).
 //! - [`plot_pareto`]: an NSGA-II output (its `history.csv` has a hypervolume): the front with
 //!   reference designs marked, the front's designs as rods, the hypervolume per generation.
+//! - [`sensitivity`]: a `woodpile sensitivity` output (it holds `indices.csv`): a bar chart of
+//!   S1 and ST with their confidence intervals per figure of merit.
 //! - [`cells_figures`]: the catalogue's effective-mass curves with the negative-mass bands
 //!   shaded (paper Fig. 3).
 //!
@@ -705,4 +707,36 @@ fn draw_pareto(dir: &Path, out: &Path) -> Result<(Vec<PathBuf>, Option<String>),
         &out.join("pareto_designs"),
     )?);
     Ok((files, None))
+}
+
+/// The bar charts of a `woodpile sensitivity` directory, one per figure of merit with indices
+/// (`indices.csv`), into `out` as `indices_FIGURE.png` and `.svg`.
+pub fn sensitivity(dir: &Path, out: &Path) -> Result<Vec<PathBuf>, Error> {
+    let rows = woodpile_io::sensitivity::read_indices(dir)?;
+    create_dir(out)?;
+    let mut figures: Vec<&str> = Vec::new();
+    for r in &rows {
+        if !figures.contains(&r.figure.as_str()) {
+            figures.push(&r.figure);
+        }
+    }
+    let mut files = Vec::new();
+    for figure in figures {
+        let bars: Vec<crate::IndexBars> = rows
+            .iter()
+            .filter(|r| r.figure == figure)
+            .map(|r| crate::IndexBars {
+                parameter: r.parameter.clone(),
+                first_order: (r.s1, r.s1_conf),
+                total: (r.st, r.st_conf),
+            })
+            .collect();
+        let title = format!("Sobol' indices of {figure} (95 % intervals)");
+        files.extend(crate::sobol_indices(
+            &bars,
+            &title,
+            &out.join(format!("indices_{figure}")),
+        )?);
+    }
+    Ok(files)
 }

@@ -39,6 +39,7 @@
 //! Errors are [`PlotError`]: data that cannot be drawn, an [`Output`] option out of range (its
 //! field, value and range), or a file that could not be written.
 
+mod bars;
 mod chain;
 mod colorbar;
 mod colormap;
@@ -50,6 +51,7 @@ pub mod output;
 mod pareto;
 pub mod typeset;
 
+pub use bars::{sobol_indices, IndexBars};
 pub use chain::chain_picture;
 pub use colormap::ColorMap;
 pub use fit::{correlation_matrix, fit_signal};

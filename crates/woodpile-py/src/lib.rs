@@ -13,6 +13,7 @@
 //! | [`analysis`] | `woodpile.analysis` | cells, effective mass, band gaps, spectra |
 //! | [`optimize`] | `woodpile.optimize` | the breeder GA as ask/tell |
 //! | [`pareto`] | `woodpile.optimize`, `woodpile.pymoo` | NSGA-II's fronts; a population's objectives and constraints |
+//! | [`sensitivity`] | `woodpile.sensitivity` | Sobol' indices over `[uncertainty]` (Saltelli) |
 //! | [`fit`] | `woodpile.fit` | calibration to measured signals, with uncertainties |
 //! | [`errors`] | `woodpile.errors` | every error as a `WoodpileError` subclass |
 //!
@@ -26,6 +27,7 @@ mod optimize;
 mod pareto;
 mod run;
 mod scenario;
+mod sensitivity;
 mod study;
 
 use pyo3::prelude::*;
@@ -41,5 +43,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     optimize::register(m)?;
     pareto::register(m)?;
     fit::register(m)?;
+    sensitivity::register(m)?;
     Ok(())
 }

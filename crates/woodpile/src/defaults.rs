@@ -106,6 +106,13 @@ pub const FIT_CORRELATION_WARN: f64 = 0.95;
 /// interpolated onto the measured times.
 pub const FIT_OVERSAMPLING: f64 = 4.0;
 
+/// Base samples N of a sensitivity study (`woodpile sensitivity`): N·(G + 2) runs for G
+/// scattered parameters; a power of two keeps the Sobol' points balanced.
+pub const SENSITIVITY_BASE_SAMPLES: usize = 64;
+/// Bootstrap resamples of a sensitivity study's confidence intervals (SALib's default).
+pub const SENSITIVITY_RESAMPLES: usize = 100;
+/// Confidence level of a sensitivity study's intervals (SALib's default).
+pub const SENSITIVITY_CONFIDENCE: f64 = 0.95;
 /// Samples of a scenario's `[uncertainty]` when `samples` is not given.
 pub const UNCERTAINTY_SAMPLES: usize = 32;
 

@@ -34,7 +34,9 @@
 //!    [`DesignSpace`] of catalogue elements, with a user-extensible [`Objective`]; NSGA-II
 //!    ([`optimize::Nsga2`]) for the Pareto front of several [`optimize::DesignFigure`]s.
 //!    Scatter: [`uncertainty`] draws scrambled Sobol' points, maps them through inverse CDFs and
-//!    sums up the figures of a design's samples (mean, sd, quantiles, CVaR).
+//!    sums up the figures of a design's samples (mean, sd, quantiles, CVaR); [`sensitivity`]
+//!    apportions a figure's variance to the scattered parameters (Sobol' indices, Saltelli
+//!    sampling, SALib's estimators).
 //! 7. **Calibrate** — [`fit`]: the parameters that best explain measured signals (bounded
 //!    least squares from several starts), with standard errors, correlations and warnings for
 //!    what the data cannot determine.
@@ -76,6 +78,7 @@ pub mod optimize;
 mod real;
 pub mod record;
 mod root;
+pub mod sensitivity;
 pub mod simulate;
 pub mod uncertainty;
 

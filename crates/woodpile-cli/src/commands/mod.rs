@@ -14,6 +14,7 @@ pub mod plot;
 pub mod report;
 pub mod samples;
 pub mod scenarios;
+pub mod sensitivity;
 pub mod simulate;
 pub mod transmission;
 

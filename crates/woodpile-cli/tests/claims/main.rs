@@ -35,6 +35,7 @@ mod progress_lines;
 mod readme_file_table;
 mod report_quick;
 mod scenario_roundtrip;
+mod sensitivity_command;
 mod simulate_samples;
 mod stdout_failures;
 mod transmission_command;

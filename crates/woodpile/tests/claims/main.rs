@@ -62,6 +62,7 @@ mod preload_static_equilibrium;
 mod rk4_dopri5_agreement;
 mod run_limits;
 mod scatter_draws;
+mod sensitivity_ishigami;
 mod simd_step_bit_identical;
 mod table_load_peak;
 mod transmission_band_edges;

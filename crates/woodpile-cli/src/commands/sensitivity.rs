@@ -1,0 +1,217 @@
+//! `woodpile sensitivity SCENARIO --out DIR`: Sobol' indices of the figures of merit over the
+//! scenario's `[uncertainty]` (Saltelli design, SALib's estimators), the runs in SIMD lanes.
+
+use super::simulate::{load, Source};
+use super::Context;
+use crate::progress::Progress;
+use crate::CliError;
+use std::path::{Path, PathBuf};
+use woodpile::sensitivity::Bootstrap;
+use woodpile::{simulate_many, Job, LaneWidth};
+use woodpile_io::atomic::Staging;
+use woodpile_io::scenario::resolve;
+use woodpile_io::sensitivity::{
+    accuracy_targeted, base_samples_refusal, design, figure_indices, FigureIndices, FILES, MARKER,
+};
+
+/// Arguments of `woodpile sensitivity`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct Args {
+    /// The scenario; it needs an `[uncertainty]` table (docs/sensitivity.md).
+    #[command(flatten)]
+    pub source: Source,
+    /// Output directory (default: ./runs/NAME-sensitivity); an existing one is refused.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Base samples N, a power of two: N·(G + 2) runs for G scattered parameters.
+    #[arg(long, value_name = "N", default_value_t = woodpile::defaults::SENSITIVITY_BASE_SAMPLES)]
+    pub base_samples: usize,
+    /// Seed of the Sobol' points (default: the scenario's `[uncertainty] seed`); also seeds the
+    /// bootstrap.
+    #[arg(long, value_name = "S")]
+    pub seed: Option<u32>,
+    /// Run with the scenario's own run settings (the paper's RK4 at 0.1 µs when it states none)
+    /// instead of the design studies' default, every contact peak within 1e-5.
+    #[arg(long)]
+    pub paper_settings: bool,
+    /// Keep runs whose energy balance is off by more than 1e-2 (docs/physics.md §8).
+    #[arg(long)]
+    pub allow_inaccurate: bool,
+    /// Allow runs of more than 1e9 integration steps.
+    #[arg(long)]
+    pub allow_long: bool,
+    /// Allow a study of more than 1e6 elements in all (runs × chain elements).
+    #[arg(long)]
+    pub allow_large: bool,
+}
+
+/// Runs of one progress step: the lanes are refilled from one queue within a chunk.
+const CHUNK: usize = 256;
+
+/// Runs `woodpile sensitivity`.
+pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
+    let mut loaded = load(&args.source)?;
+    let Some(spec) = &loaded.scenario.uncertainty else {
+        return Err(CliError::invalid(
+            "uncertainty",
+            "(none)",
+            "woodpile sensitivity needs the scenario's [uncertainty] table: the parameters to scatter and their distributions (docs/sensitivity.md)",
+        ));
+    };
+    if let Some(reason) = base_samples_refusal(args.base_samples) {
+        return Err(CliError::invalid(
+            "--base-samples",
+            args.base_samples,
+            reason,
+        ));
+    }
+    let mut u = spec.check()?;
+    if let Some(seed) = args.seed {
+        u.seed = seed;
+    }
+    let (mut accuracy, fast) = accuracy_targeted(&mut loaded.scenario, args.paper_settings);
+    if fast {
+        accuracy.push_str(" (--paper-settings: the scenario's own run settings)");
+    }
+    let d = design(&loaded.scenario, &u, args.base_samples, args.allow_large)?;
+    let resolved = d
+        .samples
+        .samples
+        .iter()
+        .map(|s| resolve(&s.scenario, &loaded.base_dir))
+        .collect::<Result<Vec<_>, _>>()?;
+    woodpile_io::limits::RunSize::estimate(&resolved[0].settings, resolved[0].chain.len()).check(
+        args.allow_long,
+        false,
+        true,
+    )?;
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| Path::new("runs").join(format!("{}-sensitivity", loaded.name)));
+    let staging = Staging::prepare_marked(&out, false, MARKER).map_err(|e| match e {
+        CliError::OutputExists { path } => CliError::invalid(
+            "--out",
+            path.display(),
+            "holds an earlier sensitivity study: choose another --out, or remove it first",
+        ),
+        other => other,
+    })?;
+    let rows = resolved.len();
+    if !ctx.quiet {
+        crate::out::println(format_args!(
+            "{} parameters ({}), N = {}: {rows} runs; accuracy: {accuracy}",
+            d.parameters.len(),
+            d.parameters.join(", "),
+            d.base_samples
+        ))?;
+    }
+    let progress = Progress::new("runs", rows as u64, ctx.quiet);
+    let started = std::time::Instant::now();
+    let mut runs = Vec::with_capacity(rows);
+    for (c, chunk) in resolved.chunks(CHUNK).enumerate() {
+        let jobs: Vec<Job<'_>> = chunk
+            .iter()
+            .map(|r| Job {
+                chain: &r.chain,
+                excitation: &r.excitation,
+                settings: &r.settings,
+            })
+            .collect();
+        for (i, (run, r)) in simulate_many(&jobs, LaneWidth::detect())
+            .into_iter()
+            .zip(chunk)
+            .enumerate()
+        {
+            let row = c * CHUNK + i + 1;
+            let run = run.inspect_err(|_| {
+                crate::out::eprintln(format_args!("run {row} of {rows} failed:"));
+            })?;
+            woodpile_io::limits::check_accuracy(&run, &r.excitation, args.allow_inaccurate)?;
+            runs.push(run);
+        }
+        progress.inc(chunk.len() as u64);
+    }
+    progress.finish();
+    let elapsed = started.elapsed().as_secs_f64();
+    let bootstrap = Bootstrap {
+        seed: u64::from(u.seed),
+        ..Bootstrap::default()
+    };
+    let per_figure = figure_indices(&d, &runs, &bootstrap);
+    woodpile_io::sensitivity::write(
+        staging.path(),
+        &d,
+        &runs,
+        &bootstrap,
+        &per_figure,
+        &accuracy,
+    )?;
+    let dir = staging.commit(FILES, MARKER)?;
+    let figure_dir = dir.join("plots");
+    let plotted = woodpile_plot::dirs::sensitivity(&dir, &figure_dir);
+    if !ctx.quiet {
+        crate::out::print(summary_lines(
+            &d.parameters,
+            &per_figure,
+            rows,
+            elapsed,
+            &dir,
+        ))?;
+        match plotted {
+            Ok(files) => crate::out::println(format_args!(
+                "figures      {}",
+                files
+                    .iter()
+                    .map(|f| f.display().to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ))?,
+            Err(e) => crate::out::eprintln(format_args!("warning: no bar chart: {e}")),
+        }
+    }
+    Ok(())
+}
+
+/// What the terminal shows: per figure, each parameter's S1 and ST with their intervals.
+fn summary_lines(
+    parameters: &[String],
+    per_figure: &[(&'static str, FigureIndices)],
+    rows: usize,
+    elapsed: f64,
+    dir: &Path,
+) -> String {
+    let mut text = format!(
+        "{rows} runs in {elapsed:.2} s ({:.0} runs/s) -> {}\n",
+        rows as f64 / elapsed.max(1e-9),
+        dir.display()
+    );
+    for (figure, result) in per_figure {
+        text += &format!("{figure}\n");
+        match result {
+            FigureIndices::Indices(s) => {
+                for (p, i) in parameters.iter().zip(s) {
+                    text += &format!(
+                        "  {p:<22} S1 {:>9} ± {:<9}  ST {:>9} ± {}\n",
+                        index(i.first_order),
+                        index(i.first_order_conf),
+                        index(i.total),
+                        index(i.total_conf)
+                    );
+                }
+            }
+            FigureIndices::Meaningless(reason) => text += &format!("  no indices: {reason}\n"),
+        }
+    }
+    text
+}
+
+/// An index as text: three decimals, or two significant digits below 1e-3 (so that a small
+/// index is not shown as 0.000).
+fn index(v: f64) -> String {
+    if v != 0.0 && v.abs() < 1e-3 {
+        format!("{v:.1e}")
+    } else {
+        format!("{v:.3}")
+    }
+}
