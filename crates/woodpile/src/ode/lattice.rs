@@ -60,11 +60,14 @@ pub struct LatticeOde {
 }
 
 impl LatticeOde {
-    /// The lattice struck by `striker` at `at_m` = (x, y) \[m\] on its top layer; errors name
-    /// `excitation.at_mm`.
+    /// The lattice struck by `striker` at `at_m` = (x, y) \[m\] on its top layer (on the axis
+    /// of the top rod there, within its radius); errors name `excitation.at_mm`.
     pub fn new(lattice: &Lattice, striker: &Striker, at_m: [f64; 2]) -> Result<Self> {
         striker.validate()?;
         let hit = lattice.top_point(at_m, "excitation.at_mm")?;
+        // The striker's force acts on the top rod's axis (a rod neither twists nor rolls in this
+        // model): the impact point is the point of the axis under `at_m`.
+        let at_m = lattice.rods[hit.rod].point_m(hit.s_m);
         let mut omega2 = vec![0.0];
         let m_s = striker.mass_kg();
         let mut translation = vec![m_s.sqrt()];
