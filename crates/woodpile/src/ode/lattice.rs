@@ -145,6 +145,11 @@ impl LatticeOde {
         self.omega2.len()
     }
 
+    /// β per contact, in output order [N/m^1.5].
+    pub fn contact_betas(&self) -> &[f64] {
+        &self.beta
+    }
+
     /// Whether contact c is a support (a rod on a fixed point).
     pub fn is_support(&self, c: usize) -> bool {
         self.below[c].is_none()
