@@ -5,7 +5,8 @@
 //! Geometry, top to bottom: layer 1's rods lie along x, and each further layer is turned by its
 //! `angle_deg` (default 90) against the layer above, so that by default odd layers run along x
 //! and even ones along y. Rod i (from 0) of a layer of n rods lies at the transverse coordinate
-//! (i − (n − 1)/2)·pitch, its centre on the line through the origin normal to the rods. Two rods
+//! (i − (n − 1)/2)·pitch, its centre on the line through the origin normal to the rods, the
+//! rods numbered toward +x (toward +y for rods along x). Two rods
 //! of adjacent layers touch where their projections cross, if that point lies within both
 //! lengths; the contact's point on each rod is its axial coordinate s (from the rod's centre,
 //! along its axis). Every contact starts closed at zero overlap, as in a chain.
@@ -232,12 +233,17 @@ impl LatticeBuilder {
             let modes = FreeRodModes::new(&rod, self.fe_elements)
                 .map_err(|e| super::chain::prefix_field(e, "lattice."))?;
             let axis = [angle_rad.cos(), angle_rad.sin()];
+            // The transverse direction, toward +x (toward +y for rods along x).
+            let mut normal = [-axis[1], axis[0]];
+            if normal[0] < -1e-12 || (normal[0].abs() <= 1e-12 && normal[1] < 0.0) {
+                normal = [-normal[0], -normal[1]];
+            }
             for i in 0..layer.rods {
                 let t = (i as f64 - 0.5 * (layer.rods as f64 - 1.0)) * layer.pitch_m;
                 rods.push(LatticeRod {
                     layer: k + 1,
                     number: i + 1,
-                    centre_m: [-t * axis[1], t * axis[0]],
+                    centre_m: [t * normal[0], t * normal[1]],
                     axis,
                     rod: rod.clone(),
                     modes: modes.clone(),
