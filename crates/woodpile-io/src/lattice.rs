@@ -255,7 +255,13 @@ impl LatticeScenario {
         for (k, l) in s.lattice.layers.iter().enumerate() {
             let key = |f: &str| format!("lattice.layers[{k}].{f}");
             let required = |f: &str, v: Option<f64>| {
-                v.ok_or_else(|| Error::invalid(key(f), "(unset)", "required in the top layer (the layers below take the layer above's)"))
+                v.ok_or_else(|| {
+                    Error::invalid(
+                        key(f),
+                        "(unset)",
+                        "required in the top layer (the layers below take the layer above's)",
+                    )
+                })
             };
             if k == 0 {
                 if let Some(a) = self.lattice.layers[0].angle_deg {
@@ -265,16 +271,17 @@ impl LatticeScenario {
             let rods = l.rods.ok_or_else(|| {
                 Error::invalid(key("rods"), "(unset)", "required in the top layer")
             })?;
-            let pitch = if rods > 1 { required("pitch_mm", l.pitch_mm)? } else { l.pitch_mm.unwrap_or(0.0) };
+            let pitch = if rods > 1 {
+                required("pitch_mm", l.pitch_mm)?
+            } else {
+                l.pitch_mm.unwrap_or(0.0)
+            };
             layers.push(LayerSpec {
                 rods,
                 pitch_m: pitch * 1e-3,
                 length_m: required("length_mm", l.length_mm)? * 1e-3,
                 diameter_m: required("diameter_mm", l.diameter_mm)? * 1e-3,
-                material: material_of(
-                    &key("material"),
-                    l.material.as_ref().expect("completed"),
-                )?,
+                material: material_of(&key("material"), l.material.as_ref().expect("completed"))?,
                 angle_deg: l.angle_deg.unwrap_or(0.0),
             });
         }
@@ -496,7 +503,9 @@ pub fn write_lattice_run(
         &dir.join("forces.csv"),
         &forces_header,
         &run.times_s,
-        run.contact_forces_n.chunks(run.contacts).map(<[f64]>::to_vec),
+        run.contact_forces_n
+            .chunks(run.contacts)
+            .map(<[f64]>::to_vec),
     )?;
     let mut support_header: Vec<String> = (1..=run.supports.len())
         .map(|s| format!("support_{s}_n"))

@@ -199,8 +199,9 @@ fn run_lattice(args: &Args, file: &Path, text: &str, ctx: &Context) -> Result<()
         .clone()
         .unwrap_or_else(|| Path::new("runs").join(&name));
     let staging = Staging::prepare(&out, args.overwrite)?;
-    let mut ode = woodpile::ode::LatticeOde::new(&resolved.lattice, &resolved.striker, resolved.at_m)
-        .map_err(woodpile_io::Error::from)?;
+    let mut ode =
+        woodpile::ode::LatticeOde::new(&resolved.lattice, &resolved.striker, resolved.at_m)
+            .map_err(woodpile_io::Error::from)?;
     let progress = (!ctx.quiet).then(|| Progress::new("simulate", 1, ctx.quiet));
     let run = woodpile::simulate::simulate_lattice(&mut ode, &resolved.settings)
         .map_err(woodpile_io::Error::from)?;
@@ -217,8 +218,7 @@ fn run_lattice(args: &Args, file: &Path, text: &str, ctx: &Context) -> Result<()
             relative_error: error,
             reference: "the initial energy",
             limit: woodpile::defaults::ENERGY_ERROR_FAIL,
-        }
-        .into());
+        });
     }
     write_lattice_run(
         staging.path(),

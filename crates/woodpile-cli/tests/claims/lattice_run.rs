@@ -29,8 +29,15 @@ duration_s = 3e-4
 fn lattice_run_directory_lists_its_contacts() {
     let dir = tempfile::tempdir().unwrap();
     common::write(dir.path(), "lat.toml", LATTICE);
-    let out = common::run_in(dir.path(), &["simulate", "lat.toml", "--out", "out", "--quiet"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = common::run_in(
+        dir.path(),
+        &["simulate", "lat.toml", "--out", "out", "--quiet"],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let run = common::json(&dir.path().join("out/run.json"));
     let contacts = run["contacts"].as_array().unwrap();
     // 1 striker + 3 × 2 crossings + 2 supports.
@@ -70,7 +77,10 @@ fn lattice_run_directory_lists_its_contacts() {
     let transmitted = summary["transmitted_peak_force_n"].as_f64().unwrap();
     assert!(transmitted > 1.0, "the wave reached the supports");
     assert!(sampled_peak <= transmitted * (1.0 + 1e-12));
-    assert!(sampled_peak > 0.98 * transmitted, "{sampled_peak} vs {transmitted}");
+    assert!(
+        sampled_peak > 0.98 * transmitted,
+        "{sampled_peak} vs {transmitted}"
+    );
     let forces = std::fs::read_to_string(dir.path().join("out/forces.csv")).unwrap();
     assert_eq!(forces.lines().next().unwrap().split(',').count(), 10);
 }

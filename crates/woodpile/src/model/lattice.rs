@@ -202,7 +202,11 @@ impl LatticeBuilder {
         for (k, layer) in self.layers.iter().enumerate() {
             let field = |f: &str| format!("lattice.layers[{k}].{f}");
             if layer.rods == 0 {
-                return Err(Error::invalid(field("rods"), 0, "a layer has at least 1 rod"));
+                return Err(Error::invalid(
+                    field("rods"),
+                    0,
+                    "a layer has at least 1 rod",
+                ));
             }
             require_positive(&field("length_mm"), layer.length_m)?;
             require_positive(&field("diameter_mm"), layer.diameter_m)?;
@@ -219,7 +223,7 @@ impl LatticeBuilder {
             if k > 0 {
                 let a = layer.angle_deg;
                 let folded = a.rem_euclid(180.0);
-                if !a.is_finite() || folded < 1.0 || folded > 179.0 {
+                if !a.is_finite() || !(1.0..=179.0).contains(&folded) {
                     return Err(Error::invalid(
                         field("angle_deg"),
                         a,
@@ -228,8 +232,13 @@ impl LatticeBuilder {
                 }
                 angle_rad += a.to_radians();
             }
-            let rod = Rod::new(layer.length_m, layer.diameter_m, 0.0, layer.material.clone())
-                .map_err(|e| super::chain::prefix_field(e, &format!("lattice.layers[{k}].")))?;
+            let rod = Rod::new(
+                layer.length_m,
+                layer.diameter_m,
+                0.0,
+                layer.material.clone(),
+            )
+            .map_err(|e| super::chain::prefix_field(e, &format!("lattice.layers[{k}].")))?;
             let modes = FreeRodModes::new(&rod, self.fe_elements)
                 .map_err(|e| super::chain::prefix_field(e, "lattice."))?;
             let axis = [angle_rad.cos(), angle_rad.sin()];
@@ -261,13 +270,18 @@ impl LatticeBuilder {
         contacts: &mut Vec<LatticeContact>,
     ) -> Result<()> {
         let upper: Vec<usize> = (0..rods.len()).filter(|&r| rods[r].layer == k).collect();
-        let lower: Vec<usize> = (0..rods.len()).filter(|&r| rods[r].layer == k + 1).collect();
+        let lower: Vec<usize> = (0..rods.len())
+            .filter(|&r| rods[r].layer == k + 1)
+            .collect();
         for &a in &upper {
             for &b in &lower {
                 let (ra, rb) = (&rods[a], &rods[b]);
                 // c_a + s a_a = c_b + u a_b.
                 let det = ra.axis[0] * (-rb.axis[1]) - ra.axis[1] * (-rb.axis[0]);
-                let d = [rb.centre_m[0] - ra.centre_m[0], rb.centre_m[1] - ra.centre_m[1]];
+                let d = [
+                    rb.centre_m[0] - ra.centre_m[0],
+                    rb.centre_m[1] - ra.centre_m[1],
+                ];
                 let s = (d[0] * (-rb.axis[1]) - d[1] * (-rb.axis[0])) / det;
                 let point = ra.point_m(s);
                 let (Some(s_a), Some(s_b)) = (ra.covers(point), rb.covers(point)) else {

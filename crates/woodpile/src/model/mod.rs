@@ -17,9 +17,9 @@ pub use contact::{
     complete_elliptic_integrals, hertz_beta, hertz_contact, EllipseSolution, HertzContact, Surface,
 };
 pub use fe_beam::FreeRodModes;
+pub use lab::{ContactDamping, Damping, Preload, ResonatorDamping};
 pub use lattice::{
     Lattice, LatticeBuilder, LatticeContact, LatticeRod, LayerSpec, RodPoint, Supports,
 };
-pub use lab::{ContactDamping, Damping, Preload, ResonatorDamping};
 pub use law::ContactLaw;
 pub use material::Material;

@@ -78,9 +78,7 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
     );
     let nc = ode.contacts();
     let q = ode.coordinates();
-    let supports: Vec<usize> = (0..nc)
-        .filter(|&c| ode.is_support(c))
-        .collect();
+    let supports: Vec<usize> = (0..nc).filter(|&c| ode.is_support(c)).collect();
     let mut run = LatticeRun {
         contact_peak_forces_n: vec![0.0; nc],
         contact_peak_times_s: vec![0.0; nc],

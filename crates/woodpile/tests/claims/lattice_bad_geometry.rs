@@ -40,7 +40,10 @@ fn refused_geometries_name_their_key() {
     assert_eq!(field(e), "lattice.layers[1].angle_deg");
 
     let crowded = LatticeBuilder::new(vec![layer(3, 4.0, 80.0), layer(3, 20.0, 80.0)], 2);
-    assert_eq!(field(crowded.build().unwrap_err()), "lattice.layers[0].pitch_mm");
+    assert_eq!(
+        field(crowded.build().unwrap_err()),
+        "lattice.layers[0].pitch_mm"
+    );
 
     let mut off = LatticeBuilder::new(vec![layer(3, 20.0, 80.0), layer(3, 20.0, 80.0)], 2);
     off.supports = Supports::Points(vec![[-20e-3, 0.0], [10e-3, 10e-3]]);

@@ -14,5 +14,7 @@ pub fn three_by_four(elements: usize) -> Lattice {
         material: Material::fused_quartz(),
         angle_deg: 90.0,
     };
-    LatticeBuilder::new(vec![layer; 4], elements).build().unwrap()
+    LatticeBuilder::new(vec![layer; 4], elements)
+        .build()
+        .unwrap()
 }

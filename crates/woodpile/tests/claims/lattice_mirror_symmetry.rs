@@ -20,8 +20,15 @@ fn centre_impact_gives_mirror_equal_forces() {
         sample_interval_s: 1e-6,
     };
     let run = simulate_lattice(&mut ode, &settings).unwrap();
-    let peak = run.contact_peak_forces_n.iter().fold(0.0_f64, |a, &b| a.max(b));
-    let supports: f64 = run.supports.iter().map(|&s| run.contact_peak_forces_n[s]).sum();
+    let peak = run
+        .contact_peak_forces_n
+        .iter()
+        .fold(0.0_f64, |a, &b| a.max(b));
+    let supports: f64 = run
+        .supports
+        .iter()
+        .map(|&s| run.contact_peak_forces_n[s])
+        .sum();
     assert!(supports > 0.01 * peak, "the wave reached the supports");
     // Output order: striker, then the lattice's contacts.
     let contacts = &lattice.contacts;
@@ -51,5 +58,8 @@ fn centre_impact_gives_mirror_equal_forces() {
     }
     eprintln!("{pairs} mirror pairs, largest difference {worst:e} of the peak force {peak:.3} N");
     assert!(pairs > 20);
-    assert!(worst < 1e-12, "mirror images differ by {worst:e} of the peak");
+    assert!(
+        worst < 1e-12,
+        "mirror images differ by {worst:e} of the peak"
+    );
 }

@@ -44,7 +44,10 @@ fn momentum_and_its_moment_follow_the_support_impulses() {
         "support impulse {:.3} of m v0, moment up to {largest_moment:.3e} of m v0 L; errors {worst_p:e}, {worst_h:e}",
         j_end / p0
     );
-    assert!(j_end > 0.05 * p0, "the supports took a part of the momentum");
+    assert!(
+        j_end > 0.05 * p0,
+        "the supports took a part of the momentum"
+    );
     assert!(largest_moment > 1e-3, "the supports exerted a moment");
     assert!(worst_p < 1e-9, "momentum off by {worst_p:e}");
     assert!(worst_h < 1e-9, "moment of momentum off by {worst_h:e}");

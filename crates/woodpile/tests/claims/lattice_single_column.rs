@@ -75,8 +75,14 @@ fn one_rod_per_layer_is_the_fe_rod_chain() {
 
     assert_eq!(run.contacts, trajectory.n_contacts());
     assert_eq!(run.times_s.len(), trajectory.len());
-    let peak = run.contact_peak_forces_n.iter().fold(0.0_f64, |a, &b| a.max(b));
-    assert!(run.contact_peak_forces_n[3] > 0.01 * peak, "the wave reached the wall");
+    let peak = run
+        .contact_peak_forces_n
+        .iter()
+        .fold(0.0_f64, |a, &b| a.max(b));
+    assert!(
+        run.contact_peak_forces_n[3] > 0.01 * peak,
+        "the wave reached the wall"
+    );
     let mut worst_force = 0.0_f64;
     for c in 0..run.contacts {
         let (a, b) = (run.contact_force_n(c), trajectory.contact_force_n(c));
@@ -93,6 +99,9 @@ fn one_rod_per_layer_is_the_fe_rod_chain() {
         .map(|(a, b)| (a - b).abs() / e0)
         .fold(0.0_f64, f64::max);
     eprintln!("largest force difference {worst_force:e} of the peak, energy {worst_energy:e}");
-    assert!(worst_force < 1e-12, "forces differ by {worst_force:e} of the peak");
+    assert!(
+        worst_force < 1e-12,
+        "forces differ by {worst_force:e} of the peak"
+    );
     assert!(worst_energy < 1e-12, "energies differ by {worst_energy:e}");
 }
