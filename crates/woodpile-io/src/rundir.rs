@@ -615,6 +615,12 @@ fn check_format(path: &Path, run: &Value) -> Result<(), Error> {
         ));
     }
     if let Some(format) = run.get("format").and_then(Value::as_str) {
+        if format == crate::lattice::LATTICE_RUN_FORMAT {
+            return Err(read_error(
+                path,
+                "a lattice run (docs/physics.md §16): its files are read directly (forces_n.npy, supports.csv); figures of lattice runs are not drawn yet",
+            ));
+        }
         if format != RUN_FORMAT {
             return Err(read_error(
                 path,

@@ -3,7 +3,8 @@
 //! the crossings layer by layer, the supports (layer L + 1, their number as the rod) — in the
 //! order of `summary.json`'s `contact_peak_forces_n` and of the force columns, and whose
 //! `supports.csv` ends in their sum, `transmitted_n`, whose peak is the summary's transmitted
-//! peak (sampled every step there, every µs here: within 2 % on this run). Bad lattices —
+//! peak (sampled every step there, every µs here: within 2 % on this run); `woodpile plot`
+//! refuses it as a lattice run (exit 2; no figures of lattices yet). Bad lattices —
 //! layers that do not touch, a support under no bottom rod, an impact point on no top rod —
 //! exit with code 2 naming the key, and leave no output directory.
 
@@ -83,6 +84,11 @@ fn lattice_run_directory_lists_its_contacts() {
     );
     let forces = std::fs::read_to_string(dir.path().join("out/forces.csv")).unwrap();
     assert_eq!(forces.lines().next().unwrap().split(',').count(), 10);
+    // `woodpile plot` does not draw lattices yet, and says so (not "re-run simulate").
+    let plot = common::run_in(dir.path(), &["plot", "out"]);
+    let stderr = String::from_utf8_lossy(&plot.stderr);
+    assert_eq!(plot.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("a lattice run"), "{stderr}");
 }
 
 fn refused(name: &str, scenario: &str, expected: &[&str]) {
