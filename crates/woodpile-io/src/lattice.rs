@@ -323,6 +323,14 @@ impl LatticeScenario {
     }
 }
 
+fn positive(field: &str, v: f64) -> Result<f64, Error> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(Error::invalid(field, v, "must be a finite number > 0"))
+    }
+}
+
 fn resolve_striker(x: &LatticeExcitationSpec) -> Result<Striker, Error> {
     let kind = x.kind.as_deref().unwrap_or("impact");
     if kind != "impact" {
@@ -340,13 +348,19 @@ fn resolve_striker(x: &LatticeExcitationSpec) -> Result<Striker, Error> {
                 format!("give either drop_height_m (here {h}) or velocity_m_s, not both"),
             ))
         }
-        (_, Some(v)) => v,
-        (Some(h), None) => woodpile::velocity_from_drop_height(h),
+        (_, Some(v)) => positive("excitation.velocity_m_s", v)?,
+        (Some(h), None) => {
+            woodpile::velocity_from_drop_height(positive("excitation.drop_height_m", h)?)
+        }
         (None, None) => unreachable!("completed"),
     };
     let st = x.striker.as_ref().expect("completed");
+    let diameter_mm = positive(
+        "excitation.striker.diameter_mm",
+        st.diameter_mm.expect("completed"),
+    )?;
     let striker = Striker {
-        diameter_m: st.diameter_mm.expect("completed") * 1e-3,
+        diameter_m: diameter_mm * 1e-3,
         material: material_of(
             "excitation.striker.material",
             st.material.as_ref().expect("completed"),

@@ -198,10 +198,10 @@ fn run_lattice(args: &Args, file: &Path, text: &str, ctx: &Context) -> Result<()
         .out
         .clone()
         .unwrap_or_else(|| Path::new("runs").join(&name));
-    let staging = Staging::prepare(&out, args.overwrite)?;
     let mut ode =
         woodpile::ode::LatticeOde::new(&resolved.lattice, &resolved.striker, resolved.at_m)
             .map_err(woodpile_io::Error::from)?;
+    let staging = Staging::prepare(&out, args.overwrite)?;
     let progress = (!ctx.quiet).then(|| Progress::new("simulate", 1, ctx.quiet));
     let run = woodpile::simulate::simulate_lattice(&mut ode, &resolved.settings)
         .map_err(woodpile_io::Error::from)?;

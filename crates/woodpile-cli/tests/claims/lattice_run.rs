@@ -5,7 +5,8 @@
 //! `supports.csv` ends in their sum, `transmitted_n`, whose peak is the summary's transmitted
 //! peak (sampled every step there, every µs here: within 2 % on this run); `woodpile plot`
 //! refuses it as a lattice run (exit 2; no figures of lattices yet). Bad lattices —
-//! layers that do not touch, a support under no bottom rod, an impact point on no top rod —
+//! layers that do not touch, a support under no bottom rod, an impact point on no top rod, a
+//! negative drop height —
 //! exit with code 2 naming the key, and leave no output directory.
 
 use crate::common;
@@ -123,6 +124,14 @@ fn bad_lattices_exit_2_naming_the_key() {
         "impact",
         &LATTICE.replace("at_mm = [10.0, 0.0]", "at_mm = [10.0, 10.0]"),
         &["excitation.at_mm", "[10, 10]"],
+    );
+    refused(
+        "drop height",
+        &LATTICE.replace(
+            "kind = \"impact\"",
+            "kind = \"impact\"\ndrop_height_m = -0.2",
+        ),
+        &["excitation.drop_height_m", "-0.2"],
     );
     refused(
         "unknown key",

@@ -235,8 +235,9 @@ impl LatticeOde {
         (p, h, j[0], [j[1], j[2]])
     }
 
-    /// Tolerance units per state component for adaptive methods (1 m per modal coordinate
-    /// scaled by 1/√kg is not a length; the atol applies to them as given).
+    /// Tolerance units per state component for adaptive methods: 1 for every component, so
+    /// atol applies to the modal coordinates as given (q = √m u: for rods of a few grams, atol
+    /// on q is about ten times atol on the displacement) and to the supports' impulses.
     pub fn tolerance_units(&self) -> Vec<f64> {
         vec![1.0; 2 * (self.coordinates() + 3)]
     }
