@@ -56,6 +56,7 @@ pub mod atomic;
 pub mod cells;
 pub mod error;
 pub mod fit;
+pub mod lattice;
 pub mod limits;
 pub mod npy;
 pub mod optimize;

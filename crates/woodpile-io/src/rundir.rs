@@ -272,7 +272,7 @@ pub struct RunJson {
     pub wall_time_s: f64,
 }
 
-fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<(), Error> {
+pub(crate) fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<(), Error> {
     let file = fs::File::create(path).map_err(io_err(path))?;
     let mut w = BufWriter::new(file);
     serde_json::to_writer_pretty(&mut w, value)
@@ -281,7 +281,7 @@ fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<(), Error> {
 }
 
 /// Writes a CSV with a header and one row per sample (`time_s` then the row's values).
-fn write_csv(
+pub(crate) fn write_csv(
     path: &Path,
     header: &[String],
     times: &[f64],
@@ -615,6 +615,12 @@ fn check_format(path: &Path, run: &Value) -> Result<(), Error> {
         ));
     }
     if let Some(format) = run.get("format").and_then(Value::as_str) {
+        if format == crate::lattice::LATTICE_RUN_FORMAT {
+            return Err(read_error(
+                path,
+                "a lattice run (docs/physics.md §16): its files are read directly (forces_n.npy, supports.csv); figures of lattice runs are not drawn yet",
+            ));
+        }
         if format != RUN_FORMAT {
             return Err(read_error(
                 path,

@@ -10,6 +10,9 @@
 //!    Table 1 catalogue, effective mass and band edges), cells of any rod from Timoshenko beam
 //!    theory ([`Rod`], [`UnitCell::from_rod`]), and the [`Chain`] of elements on a [`Wall`],
 //!    built by [`ChainBuilder`].
+//!    Lattices of several rods per layer ([`model::LatticeBuilder`], docs/physics.md §16): every
+//!    crossing a contact, every rod a free–free finite-element beam ([`model::FreeRodModes`]),
+//!    run by [`simulate::simulate_lattice`] over the contact graph [`ode::LatticeOde`].
 //!    Lab physics (docs/physics.md §14): contact, resonator and on-site [`Damping`]; a static
 //!    [`Preload`] and gravity, from whose exact equilibrium a run starts.
 //! 2. **Excite it** — [`excitation`]: a [`Striker`] sphere, a [`BlastProfile`] force, or an

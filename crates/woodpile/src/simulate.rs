@@ -9,7 +9,10 @@ use crate::model::Chain;
 use crate::ode::ChainOde;
 use crate::record::{Layout, Recorder, Sample};
 
+mod lattice;
 mod modal;
+
+pub use lattice::{simulate_lattice, LatticeRun};
 
 /// How long, how and how often to sample.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -105,6 +105,15 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     if let Some(k) = args.samples {
         return super::samples::run(args, k, ctx);
     }
+    if let Some(file) = &args.source.file {
+        let text = std::fs::read_to_string(file).map_err(|e| woodpile_io::Error::Read {
+            path: file.clone(),
+            source: e,
+        })?;
+        if woodpile_io::lattice::is_lattice(&text) {
+            return run_lattice(args, file, &text, ctx);
+        }
+    }
     let loaded = load(&args.source)?;
     let resolved = loaded.resolve()?;
     RunSize::estimate(&resolved.settings, resolved.chain.len()).check(
@@ -175,6 +184,65 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     }
     if !ctx.quiet {
         crate::out::print(terminal_summary(&record, &dir))?;
+    }
+    Ok(())
+}
+
+/// `woodpile simulate` of a lattice scenario (a `[lattice]` table, docs/physics.md §16).
+fn run_lattice(args: &Args, file: &Path, text: &str, ctx: &Context) -> Result<(), CliError> {
+    use woodpile_io::lattice::{write_lattice_run, LatticeScenario, LATTICE_RUN_FILES};
+    let scenario = LatticeScenario::parse(text, &file.display().to_string())?;
+    let resolved = scenario.resolve()?;
+    let (name, _) = super::name_and_base(file, "lattice");
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| Path::new("runs").join(&name));
+    let mut ode =
+        woodpile::ode::LatticeOde::new(&resolved.lattice, &resolved.striker, resolved.at_m)
+            .map_err(woodpile_io::Error::from)?;
+    let staging = Staging::prepare(&out, args.overwrite)?;
+    let progress = (!ctx.quiet).then(|| Progress::new("simulate", 1, ctx.quiet));
+    let run = woodpile::simulate::simulate_lattice(&mut ode, &resolved.settings)
+        .map_err(woodpile_io::Error::from)?;
+    if let Some(p) = &progress {
+        p.inc(1);
+        p.finish();
+    }
+    let error = run.energy.max_relative_error;
+    let within = error
+        .partial_cmp(&woodpile::defaults::ENERGY_ERROR_FAIL)
+        .is_some_and(|o| o.is_le());
+    if !within && !args.allow_inaccurate {
+        return Err(woodpile_io::Error::Inaccurate {
+            relative_error: error,
+            reference: "the initial energy",
+            limit: woodpile::defaults::ENERGY_ERROR_FAIL,
+        });
+    }
+    write_lattice_run(
+        staging.path(),
+        &name,
+        &scenario,
+        &resolved,
+        ode.contact_betas(),
+        &run,
+    )?;
+    let dir = staging.commit(LATTICE_RUN_FILES, RUN_MARKER)?;
+    if !ctx.quiet {
+        let rods: usize = resolved.lattice.rods.len();
+        crate::out::print(format!(
+            "scenario     {name}\nlattice      {} layers, {rods} rods, {} contacts ({} supports)\nincident     {:.4} N   (peak of the striker's contact)\ntransmitted  {:.4} N   (peak of the sum of the supports)\nenergy       max relative error {:.2e}\nintegrator   {} steps; {} samples\noutput       {}\n",
+            resolved.lattice.layers,
+            run.contacts,
+            run.supports.len(),
+            run.incident_peak_force_n,
+            run.transmitted_peak_force_n,
+            error,
+            run.stats.steps,
+            run.times_s.len(),
+            dir.display()
+        ))?;
     }
     Ok(())
 }

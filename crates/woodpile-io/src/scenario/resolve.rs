@@ -1004,7 +1004,11 @@ fn resolve_preload(s: &Scenario) -> Result<Preload, Error> {
 /// `[run]`. Positivity is checked here (naming NaN as the file writes it); how the step, the
 /// sampling and the duration relate is checked once, by [`RunSettings::validate`].
 fn resolve_run(s: &Scenario) -> Result<RunSettings, Error> {
-    let r = &s.run;
+    resolve_run_spec(&s.run)
+}
+
+/// `[run]` (every default filled in, or a peak tolerance given) as the core's settings.
+pub(crate) fn resolve_run_spec(r: &super::RunSpec) -> Result<RunSettings, Error> {
     let get = |field: &str, v: Option<f64>| positive(field, completed(field, v.as_ref())?);
     let duration = get("run.duration_s", r.duration_s)?;
     let sample = get("run.sample_interval_s", r.sample_interval_s)?;

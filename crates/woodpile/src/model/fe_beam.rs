@@ -232,3 +232,207 @@ impl UnitCell {
         UnitCell::new(primary, resonators)
     }
 }
+
+/// The free–free modes of the whole finite-element rod (docs/physics.md §16): `2n` elements
+/// over the length (n per half, as for [`UnitCell::from_rod_fe`]), nodes at
+/// s_k = −L/2 + k·h, mass-normalised (φᵀMφ = 1). Modes 0 and 1 are the rigid translation
+/// (w = 1, θ = 0) and the rigid rocking (w = s, θ = 1), set exactly with ω = 0; every elastic
+/// mode is made M-orthogonal to both, so that momentum and moment of momentum are carried by
+/// the rigid modes alone.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FreeRodModes {
+    /// Rod length L \[m\].
+    pub length_m: f64,
+    /// Element length h = L / (2n) \[m\].
+    pub element_m: f64,
+    /// Shear parameter Φ = 12EI/(κGAh²) of the elements (it enters the shape functions).
+    pub shear_parameter: f64,
+    /// Angular frequency ω_j \[rad/s\] per mode, ascending (0 for the two rigid modes).
+    pub omega_rad_s: Vec<f64>,
+    /// Mode shapes: `shapes[j][2k]` = w of mode j at node k, `shapes[j][2k + 1]` = θ.
+    pub shapes: Vec<Vec<f64>>,
+    /// ψ_tᵀ M φ_j: the momentum per unit modal velocity [kg^½] (√m for mode 0, 0 otherwise).
+    pub translation_participation: Vec<f64>,
+    /// ψ_rᵀ M φ_j: the moment of momentum about the centre per unit modal velocity [kg^½ m].
+    pub rocking_participation: Vec<f64>,
+}
+
+impl FreeRodModes {
+    /// The free–free modes of `rod` with `elements` per half rod (1..=[`MAX_FE_ELEMENTS`]).
+    pub fn new(rod: &Rod, elements: usize) -> Result<Self> {
+        if !(1..=MAX_FE_ELEMENTS).contains(&elements) {
+            return Err(Error::invalid(
+                "rod.fe_elements",
+                elements,
+                format!("must be 1..={MAX_FE_ELEMENTS} elements per half rod"),
+            ));
+        }
+        let count = 2 * elements;
+        let h = rod.length_m / count as f64;
+        let (k, m) = assemble(rod, h, count);
+        let n = 2 * (count + 1);
+        let l = cholesky(&m, n).ok_or_else(|| {
+            Error::invalid(
+                "rod.fe_elements",
+                elements,
+                "the mass matrix is not positive definite",
+            )
+        })?;
+        let a = congruence(&l, &k, n);
+        let (values, vectors) = jacobi_eigen(a, n);
+        let mut order: Vec<usize> = (0..n).collect();
+        order.sort_by(|&x, &y| values[x].total_cmp(&values[y]));
+        let node_s = |node: usize| -0.5 * rod.length_m + node as f64 * h;
+        let translation: Vec<f64> = (0..n).map(|d| if d % 2 == 0 { 1.0 } else { 0.0 }).collect();
+        let rocking: Vec<f64> = (0..n)
+            .map(|d| if d % 2 == 0 { node_s(d / 2) } else { 1.0 })
+            .collect();
+        let mut shapes: Vec<Vec<f64>> = Vec::with_capacity(n);
+        for rigid in [translation.clone(), rocking.clone()] {
+            shapes.push(m_orthonormal(rigid, &shapes, &m, n));
+        }
+        let mut omega_rad_s = vec![0.0, 0.0];
+        for &j in &order[2..] {
+            // φ = L⁻ᵀ y.
+            let mut phi: Vec<f64> = (0..n).map(|i| vectors[i * n + j]).collect();
+            for i in (0..n).rev() {
+                let s: f64 = (i + 1..n).map(|r| l[r * n + i] * phi[r]).sum();
+                phi[i] = (phi[i] - s) / l[i * n + i];
+            }
+            omega_rad_s.push(values[j].max(0.0).sqrt());
+            let phi = m_orthonormal(phi, &shapes[..2], &m, n);
+            shapes.push(phi);
+        }
+        let largest = values[order[n - 1]];
+        for &j in &order[..2] {
+            if values[j].abs() > 1e-8 * largest {
+                return Err(Error::invalid(
+                    "rod.fe_elements",
+                    elements,
+                    format!(
+                        "the free rod's two rigid modes were not found (eigenvalue {:e} against {largest:e})",
+                        values[j]
+                    ),
+                ));
+            }
+        }
+        let participation = |psi: &[f64]| -> Vec<f64> {
+            let m_psi = mat_vec(&m, psi, n);
+            shapes.iter().map(|phi| dot(phi, &m_psi)).collect()
+        };
+        Ok(FreeRodModes {
+            length_m: rod.length_m,
+            element_m: h,
+            shear_parameter: shear_parameter(rod, h),
+            translation_participation: participation(&translation),
+            rocking_participation: participation(&rocking),
+            omega_rad_s,
+            shapes,
+        })
+    }
+
+    /// The weights (element's first DOF index, [N_w1, N_θ1, N_w2, N_θ2]) that give the deflection
+    /// w(s) at axial coordinate s ∈ [−L/2, L/2] from the nodal values: the Timoshenko element's
+    /// own shape functions (those its matrices are built from), exact at the nodes.
+    pub fn deflection_weights(&self, s_m: f64) -> (usize, [f64; 4]) {
+        let count = self.shapes[0].len() / 2 - 1;
+        let x = (s_m + 0.5 * self.length_m) / self.element_m;
+        let el = (x.floor().max(0.0) as usize).min(count - 1);
+        let xi = x - el as f64;
+        let (p, h) = (self.shear_parameter, self.element_m);
+        let c = 1.0 / (1.0 + p);
+        let (xi2, xi3) = (xi * xi, xi * xi * xi);
+        (
+            2 * el,
+            [
+                c * (2.0 * xi3 - 3.0 * xi2 - p * xi + 1.0 + p),
+                c * h * (xi3 - (2.0 + 0.5 * p) * xi2 + (1.0 + 0.5 * p) * xi),
+                -c * (2.0 * xi3 - 3.0 * xi2 - p * xi),
+                c * h * (xi3 - (1.0 - 0.5 * p) * xi2 - 0.5 * p * xi),
+            ],
+        )
+    }
+
+    /// The deflection of every mode at s: w(s) = Σ_j row_j q_j.
+    pub fn modal_row(&self, s_m: f64) -> Vec<f64> {
+        let (first, weights) = self.deflection_weights(s_m);
+        self.shapes
+            .iter()
+            .map(|phi| (0..4).map(|k| weights[k] * phi[first + k]).sum())
+            .collect()
+    }
+}
+
+/// Φ = 12EI/(κGAh²) of an element of length h.
+fn shear_parameter(rod: &Rod, h: f64) -> f64 {
+    let e = rod.material.youngs_modulus_pa;
+    let g = e / (2.0 * (1.0 + rod.material.poisson_ratio));
+    12.0 * e * rod.second_moment_m4() / (rod.shear_coefficient() * g * rod.area_m2() * h * h)
+}
+
+/// K and M (row-major, 2(count + 1) square) of `count` elements of length h in a row.
+fn assemble(rod: &Rod, h: f64, count: usize) -> (Vec<f64>, Vec<f64>) {
+    let (ke, me) = element_matrices(rod, h);
+    let full = 2 * (count + 1);
+    let (mut k, mut m) = (vec![0.0; full * full], vec![0.0; full * full]);
+    for el in 0..count {
+        let base = 2 * el;
+        for r in 0..4 {
+            for c in 0..4 {
+                k[(base + r) * full + base + c] += ke[r][c];
+                m[(base + r) * full + base + c] += me[r][c];
+            }
+        }
+    }
+    (k, m)
+}
+
+/// L⁻¹ K L⁻ᵀ for the lower Cholesky factor L of M (all row-major n × n).
+fn congruence(l: &[f64], k: &[f64], n: usize) -> Vec<f64> {
+    let solve_lower = |b: &mut [f64], stride: usize, offset: usize| {
+        for i in 0..n {
+            let s: f64 = (0..i).map(|j| l[i * n + j] * b[j * stride + offset]).sum();
+            b[i * stride + offset] = (b[i * stride + offset] - s) / l[i * n + i];
+        }
+    };
+    let mut a = k.to_vec();
+    for col in 0..n {
+        solve_lower(&mut a, n, col);
+    }
+    let mut at: Vec<f64> = (0..n * n).map(|idx| a[(idx % n) * n + idx / n]).collect();
+    for col in 0..n {
+        solve_lower(&mut at, n, col);
+    }
+    // Symmetrise the round-off.
+    for i in 0..n {
+        for j in 0..i {
+            let v = 0.5 * (at[i * n + j] + at[j * n + i]);
+            at[i * n + j] = v;
+            at[j * n + i] = v;
+        }
+    }
+    at
+}
+
+fn mat_vec(a: &[f64], x: &[f64], n: usize) -> Vec<f64> {
+    (0..n).map(|i| dot(&a[i * n..(i + 1) * n], x)).collect()
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// `v` made M-orthogonal to the (M-orthonormal) `basis` and normalised to vᵀMv = 1 (twice
+/// Gram–Schmidt, so that the orthogonality holds to round-off).
+fn m_orthonormal(mut v: Vec<f64>, basis: &[Vec<f64>], m: &[f64], n: usize) -> Vec<f64> {
+    for _ in 0..2 {
+        let mv = mat_vec(m, &v, n);
+        for b in basis {
+            let c = dot(b, &mv);
+            v.iter_mut().zip(b).for_each(|(x, y)| *x -= c * y);
+        }
+    }
+    let norm = dot(&v, &mat_vec(m, &v, n)).sqrt();
+    v.iter_mut().for_each(|x| *x /= norm);
+    v
+}

@@ -1,4 +1,4 @@
-//! What is solved: materials, Hertz contacts, unit cells and chains.
+//! What is solved: materials, Hertz contacts, unit cells, chains and lattices.
 
 pub mod beam;
 pub mod cell;
@@ -6,6 +6,7 @@ pub mod chain;
 pub mod contact;
 pub mod fe_beam;
 pub mod lab;
+pub mod lattice;
 pub mod law;
 pub mod material;
 
@@ -15,6 +16,10 @@ pub use chain::{Body, Chain, ChainBuilder, Element, Wall, PAPER_ROD_DIAMETER_M};
 pub use contact::{
     complete_elliptic_integrals, hertz_beta, hertz_contact, EllipseSolution, HertzContact, Surface,
 };
+pub use fe_beam::FreeRodModes;
 pub use lab::{ContactDamping, Damping, Preload, ResonatorDamping};
+pub use lattice::{
+    Lattice, LatticeBuilder, LatticeContact, LatticeRod, LayerSpec, RodPoint, Supports,
+};
 pub use law::ContactLaw;
 pub use material::Material;

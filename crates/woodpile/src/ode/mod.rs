@@ -22,9 +22,11 @@
 
 mod equations;
 mod lab;
+mod lattice;
 mod modal;
 
 pub(crate) use equations::{Equations, LabEquations, LabShape, Load};
+pub use lattice::LatticeOde;
 pub(crate) use modal::ModalChain;
 
 use crate::error::{Error, Result};
