@@ -42,24 +42,14 @@ pub fn run(args: &Args, k: usize, ctx: &Context) -> Result<(), CliError> {
         .iter()
         .map(|s| resolve(&s.scenario, &loaded.base_dir))
         .collect::<Result<Vec<_>, _>>()?;
-    woodpile_io::limits::RunSize::estimate(&resolved[0].settings, resolved[0].chain.len()).check(
-        args.allow_long,
-        args.allow_large,
-        true,
+    let staging = stage_study(
+        &resolved,
+        (args.allow_long, args.allow_large),
+        args.out.clone(),
+        Path::new("runs").join(format!("{}-samples", loaded.name)),
+        SAMPLES_MARKER,
+        "holds earlier samples: choose another --out, or remove it first (--overwrite does not apply to --samples)",
     )?;
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| Path::new("runs").join(format!("{}-samples", loaded.name)));
-    // --overwrite is refused above, so an earlier output is not offered it.
-    let staging = Staging::prepare_marked(&out, false, SAMPLES_MARKER).map_err(|e| match e {
-        CliError::OutputExists { path } => CliError::invalid(
-            "--out",
-            path.display(),
-            "holds earlier samples: choose another --out, or remove it first (--overwrite does not apply to --samples)",
-        ),
-        other => other,
-    })?;
     let jobs: Vec<Job<'_>> = resolved
         .iter()
         .map(|r| Job {
@@ -114,4 +104,27 @@ fn summary_lines(dir: &Path, k: usize, elapsed: f64, runs: &[woodpile::RunSummar
         };
     }
     text
+}
+
+/// The run-size check of a study's runs (the first stands for all: one chain, one run setting)
+/// and its staged output directory: `out`, or `default`. `--overwrite` does not apply: a
+/// directory holding an earlier study (`marker`) is refused with `earlier` as the reason.
+pub(crate) fn stage_study(
+    resolved: &[woodpile_io::scenario::Resolved],
+    (allow_long, allow_large): (bool, bool),
+    out: Option<std::path::PathBuf>,
+    default: std::path::PathBuf,
+    marker: &'static str,
+    earlier: &str,
+) -> Result<Staging, CliError> {
+    woodpile_io::limits::RunSize::estimate(&resolved[0].settings, resolved[0].chain.len()).check(
+        allow_long,
+        allow_large,
+        true,
+    )?;
+    let out = out.unwrap_or(default);
+    Staging::prepare_marked(&out, false, marker).map_err(|e| match e {
+        CliError::OutputExists { path } => CliError::invalid("--out", path.display(), earlier),
+        other => other,
+    })
 }

@@ -8,7 +8,6 @@ use crate::CliError;
 use std::path::{Path, PathBuf};
 use woodpile::sensitivity::Bootstrap;
 use woodpile::{simulate_many, Job, LaneWidth};
-use woodpile_io::atomic::Staging;
 use woodpile_io::scenario::resolve;
 use woodpile_io::sensitivity::{
     accuracy_targeted, base_samples_refusal, design, figure_indices, FigureIndices, FILES, MARKER,
@@ -80,23 +79,14 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         .iter()
         .map(|s| resolve(&s.scenario, &loaded.base_dir))
         .collect::<Result<Vec<_>, _>>()?;
-    woodpile_io::limits::RunSize::estimate(&resolved[0].settings, resolved[0].chain.len()).check(
-        args.allow_long,
-        false,
-        true,
+    let staging = super::samples::stage_study(
+        &resolved,
+        (args.allow_long, false),
+        args.out.clone(),
+        Path::new("runs").join(format!("{}-sensitivity", loaded.name)),
+        MARKER,
+        "holds an earlier sensitivity study: choose another --out, or remove it first",
     )?;
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| Path::new("runs").join(format!("{}-sensitivity", loaded.name)));
-    let staging = Staging::prepare_marked(&out, false, MARKER).map_err(|e| match e {
-        CliError::OutputExists { path } => CliError::invalid(
-            "--out",
-            path.display(),
-            "holds an earlier sensitivity study: choose another --out, or remove it first",
-        ),
-        other => other,
-    })?;
     let rows = resolved.len();
     if !ctx.quiet {
         crate::out::println(format_args!(
