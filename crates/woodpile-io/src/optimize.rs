@@ -1106,6 +1106,36 @@ fn study(
     user: &OptimizeConfig,
     cfg: &OptimizeConfig,
 ) -> Result<(Algorithm, Vec<DesignFigure>, StandardObjective), Error> {
+    let objectives = objectives_of(user, cfg)?;
+    let algorithm = algorithm_of(cfg, objectives.len())?;
+    if algorithm == Algorithm::Breeder {
+        let Some(DesignFigure::Run(o)) = objectives.first().copied() else {
+            return Err(Error::invalid(
+                if cfg.ga.objectives.is_some() { "ga.objectives[0]" } else { "ga.objective" },
+                objectives[0].as_str(),
+                "the breeder GA minimises a figure of a run (transmitted-force, transmission-ratio, transmitted-energy, transmitted-impulse); use ga.algorithm = \"nsga2\" for the others",
+            ));
+        };
+        if let Some(p) = cfg.design.constraints.max_contact_pressure_pa {
+            return Err(Error::invalid(
+                "design.constraints.max_contact_pressure_pa",
+                p,
+                "is known only after a run: set ga.algorithm = \"nsga2\", whose constraint domination handles it",
+            ));
+        }
+        return Ok((algorithm, objectives, o));
+    }
+    check_nsga2_settings(user, cfg, objectives.len())?;
+    let first_run = objectives.iter().find_map(|f| match f {
+        DesignFigure::Run(o) => Some(*o),
+        _ => None,
+    });
+    Ok((algorithm, objectives, first_run.unwrap_or_default()))
+}
+
+/// The objectives of `ga.objective` or `ga.objectives` (not both; none: the default), each
+/// known and listed once.
+fn objectives_of(user: &OptimizeConfig, cfg: &OptimizeConfig) -> Result<Vec<DesignFigure>, Error> {
     let g = &user.ga;
     if g.objective.is_some() && g.objectives.is_some() {
         return Err(Error::invalid(
@@ -1148,49 +1178,37 @@ fn study(
         }
         objectives.push(f);
     }
-    let algorithm = match cfg.ga.algorithm.as_deref() {
-        None | Some("breeder") if objectives.len() == 1 => Algorithm::Breeder,
-        None => Algorithm::Nsga2,
-        Some("nsga2") => Algorithm::Nsga2,
-        Some("breeder") => {
-            return Err(Error::invalid(
-                "ga.algorithm",
-                "breeder",
-                format!(
-                    "the breeder GA minimises one objective, {} are given: use \"nsga2\"",
-                    objectives.len()
-                ),
-            ))
-        }
-        Some(other) => {
-            return Err(Error::invalid(
-                "ga.algorithm",
-                other,
-                "must be \"breeder\" or \"nsga2\"",
-            ))
-        }
-    };
-    let first_run = objectives.iter().find_map(|f| match f {
-        DesignFigure::Run(o) => Some(*o),
-        _ => None,
-    });
-    if algorithm == Algorithm::Breeder {
-        let Some(DesignFigure::Run(o)) = objectives.first().copied() else {
-            return Err(Error::invalid(
-                if cfg.ga.objectives.is_some() { "ga.objectives[0]" } else { "ga.objective" },
-                objectives[0].as_str(),
-                "the breeder GA minimises a figure of a run (transmitted-force, transmission-ratio, transmitted-energy, transmitted-impulse); use ga.algorithm = \"nsga2\" for the others",
-            ));
-        };
-        if let Some(p) = cfg.design.constraints.max_contact_pressure_pa {
-            return Err(Error::invalid(
-                "design.constraints.max_contact_pressure_pa",
-                p,
-                "is known only after a run: set ga.algorithm = \"nsga2\", whose constraint domination handles it",
-            ));
-        }
-        return Ok((algorithm, objectives, o));
+    Ok(objectives)
+}
+
+/// `ga.algorithm` (default: the breeder GA for one objective, NSGA-II for more).
+fn algorithm_of(cfg: &OptimizeConfig, objectives: usize) -> Result<Algorithm, Error> {
+    match cfg.ga.algorithm.as_deref() {
+        None | Some("breeder") if objectives == 1 => Ok(Algorithm::Breeder),
+        None | Some("nsga2") => Ok(Algorithm::Nsga2),
+        Some("breeder") => Err(Error::invalid(
+            "ga.algorithm",
+            "breeder",
+            format!(
+                "the breeder GA minimises one objective, {objectives} are given: use \"nsga2\""
+            ),
+        )),
+        Some(other) => Err(Error::invalid(
+            "ga.algorithm",
+            other,
+            "must be \"breeder\" or \"nsga2\"",
+        )),
     }
+}
+
+/// NSGA-II's settings: none of the breeder's, a population of at least 4, a reference point of
+/// one finite number per objective.
+fn check_nsga2_settings(
+    user: &OptimizeConfig,
+    cfg: &OptimizeConfig,
+    objectives: usize,
+) -> Result<(), Error> {
+    let g = &user.ga;
     for (k, given) in [
         ("truncation", g.truncation.is_some()),
         ("elites", g.elites.is_some()),
@@ -1213,18 +1231,15 @@ fn study(
         ));
     }
     if let Some(r) = &cfg.ga.reference_point {
-        if r.len() != objectives.len() || r.iter().any(|x| !x.is_finite()) {
+        if r.len() != objectives || r.iter().any(|x| !x.is_finite()) {
             return Err(Error::invalid(
                 "ga.reference_point",
                 format!("{r:?}"),
-                format!(
-                    "give {} finite numbers, one per objective, in SI units",
-                    objectives.len()
-                ),
+                format!("give {objectives} finite numbers, one per objective, in SI units"),
             ));
         }
     }
-    Ok((algorithm, objectives, first_run.unwrap_or_default()))
+    Ok(())
 }
 
 /// Where the catalogue of an optimisation config lives: errors of its elements name these keys.

@@ -114,25 +114,7 @@ fn sensitivity(
             seed: u64::from(u.seed),
             ..Bootstrap::default()
         };
-        let mut rows = Vec::new();
-        let mut meaningless = Vec::new();
-        for (figure, result) in figure_indices(&d, &runs, &bootstrap) {
-            match result {
-                FigureIndices::Indices(s) => {
-                    for (p, i) in d.parameters.iter().zip(s) {
-                        rows.push((
-                            p.clone(),
-                            figure.to_string(),
-                            i.first_order,
-                            i.first_order_conf,
-                            i.total,
-                            i.total_conf,
-                        ));
-                    }
-                }
-                FigureIndices::Meaningless(reason) => meaningless.push((figure.into(), reason)),
-            }
-        }
+        let (rows, meaningless) = index_rows(&d, &runs, &bootstrap);
         Ok((
             d.samples.columns.clone(),
             d.samples.samples.iter().map(|s| s.values.clone()).collect(),
@@ -143,6 +125,39 @@ fn sensitivity(
             accuracy,
         ))
     })
+}
+
+/// The indices of every figure as rows (parameter, figure, S1, its interval, ST, its interval),
+/// and the figures without indices with the reason.
+#[allow(clippy::type_complexity)]
+fn index_rows(
+    d: &woodpile_io::sensitivity::Design,
+    runs: &[woodpile::RunSummary],
+    bootstrap: &Bootstrap,
+) -> (
+    Vec<(String, String, f64, f64, f64, f64)>,
+    Vec<(String, String)>,
+) {
+    let mut rows = Vec::new();
+    let mut meaningless = Vec::new();
+    for (figure, result) in figure_indices(d, runs, bootstrap) {
+        match result {
+            FigureIndices::Indices(s) => {
+                for (p, i) in d.parameters.iter().zip(s) {
+                    rows.push((
+                        p.clone(),
+                        figure.to_string(),
+                        i.first_order,
+                        i.first_order_conf,
+                        i.total,
+                        i.total_conf,
+                    ));
+                }
+            }
+            FigureIndices::Meaningless(reason) => meaningless.push((figure.into(), reason)),
+        }
+    }
+    (rows, meaningless)
 }
 
 /// The Saltelli design in the unit cube (`woodpile::sensitivity::saltelli_unit_cube`).

@@ -96,33 +96,8 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
             d.base_samples
         ))?;
     }
-    let progress = Progress::new("runs", rows as u64, ctx.quiet);
     let started = std::time::Instant::now();
-    let mut runs = Vec::with_capacity(rows);
-    for (c, chunk) in resolved.chunks(CHUNK).enumerate() {
-        let jobs: Vec<Job<'_>> = chunk
-            .iter()
-            .map(|r| Job {
-                chain: &r.chain,
-                excitation: &r.excitation,
-                settings: &r.settings,
-            })
-            .collect();
-        for (i, (run, r)) in simulate_many(&jobs, LaneWidth::detect())
-            .into_iter()
-            .zip(chunk)
-            .enumerate()
-        {
-            let row = c * CHUNK + i + 1;
-            let run = run.inspect_err(|_| {
-                crate::out::eprintln(format_args!("run {row} of {rows} failed:"));
-            })?;
-            woodpile_io::limits::check_accuracy(&run, &r.excitation, args.allow_inaccurate)?;
-            runs.push(run);
-        }
-        progress.inc(chunk.len() as u64);
-    }
-    progress.finish();
+    let runs = run_rows(&resolved, args.allow_inaccurate, ctx.quiet)?;
     let elapsed = started.elapsed().as_secs_f64();
     let bootstrap = Bootstrap {
         seed: u64::from(u.seed),
@@ -161,6 +136,43 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// Every row's run, in lanes `CHUNK` at a time (a progress step each), each checked for
+/// accuracy; a failed run names its row.
+fn run_rows(
+    resolved: &[woodpile_io::scenario::Resolved],
+    allow_inaccurate: bool,
+    quiet: bool,
+) -> Result<Vec<woodpile::RunSummary>, CliError> {
+    let rows = resolved.len();
+    let progress = Progress::new("runs", rows as u64, quiet);
+    let mut runs = Vec::with_capacity(rows);
+    for (c, chunk) in resolved.chunks(CHUNK).enumerate() {
+        let jobs: Vec<Job<'_>> = chunk
+            .iter()
+            .map(|r| Job {
+                chain: &r.chain,
+                excitation: &r.excitation,
+                settings: &r.settings,
+            })
+            .collect();
+        for (i, (run, r)) in simulate_many(&jobs, LaneWidth::detect())
+            .into_iter()
+            .zip(chunk)
+            .enumerate()
+        {
+            let row = c * CHUNK + i + 1;
+            let run = run.inspect_err(|_| {
+                crate::out::eprintln(format_args!("run {row} of {rows} failed:"));
+            })?;
+            woodpile_io::limits::check_accuracy(&run, &r.excitation, allow_inaccurate)?;
+            runs.push(run);
+        }
+        progress.inc(chunk.len() as u64);
+    }
+    progress.finish();
+    Ok(runs)
 }
 
 /// What the terminal shows: per figure, each parameter's S1 and ST with their intervals.
