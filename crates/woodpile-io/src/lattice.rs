@@ -21,6 +21,7 @@
 //! (`contact_peak_forces_n` in that order, the transmitted peak, the energy balance),
 //! `forces.csv` / `forces_n.npy` (samples × contacts), `supports.csv` (each support's force and
 //! their sum, `transmitted_n`), `energy.csv` and `time_s.npy`.
+//! [`read_lattice_run`] reads `run.json`, `time_s.npy` and `forces_n.npy` back (for figures).
 
 use crate::error::Error;
 use crate::scenario::{material_of, resolve_run_spec, MaterialSpec, RunSpec, StrikerSpec};
@@ -554,4 +555,107 @@ pub fn write_lattice_run(
     crate::rundir::write_npy(&dir.join("time_s.npy"), &[n], &run.times_s)?;
     crate::rundir::write_json(&dir.join("summary.json"), &summary)?;
     crate::rundir::write_json(&dir.join("run.json"), &run_json)
+}
+
+/// A lattice run read back from its directory: `run.json` and the sampled contact forces.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LatticeRunRead {
+    /// `run.json`.
+    pub run: LatticeRunJson,
+    /// Sample times \[s\] (`time_s.npy`).
+    pub times_s: Vec<f64>,
+    /// Contact forces \[N\], samples × contacts in `run.json`'s order (`forces_n.npy`).
+    pub forces_n: Vec<f64>,
+}
+
+impl LatticeRunRead {
+    /// Number of contacts.
+    pub fn n_contacts(&self) -> usize {
+        self.run.contacts.len()
+    }
+
+    /// The force history of contact `c` \[N\].
+    pub fn contact_force_n(&self, c: usize) -> Vec<f64> {
+        let n = self.n_contacts();
+        self.forces_n.chunks(n).map(|row| row[c]).collect()
+    }
+
+    /// The supports' contacts (their layer below is L + 1), in output order.
+    pub fn supports(&self) -> Vec<usize> {
+        let below = self.run.rods_per_layer.len() + 1;
+        (0..self.n_contacts())
+            .filter(|&c| self.run.contacts[c].layer_below == below)
+            .collect()
+    }
+
+    /// The transmitted force, the sum of the supports' forces, at every sample \[N\] (the
+    /// `transmitted_n` column of `supports.csv`).
+    pub fn transmitted_force_n(&self) -> Vec<f64> {
+        let (n, supports) = (self.n_contacts(), self.supports());
+        self.forces_n
+            .chunks(n)
+            .map(|row| supports.iter().map(|&s| row[s]).sum())
+            .collect()
+    }
+}
+
+/// Whether `dir` holds a lattice run (its `run.json` has the format [`LATTICE_RUN_FORMAT`]).
+pub fn is_lattice_run(dir: &Path) -> bool {
+    std::fs::read_to_string(dir.join(crate::atomic::RUN_MARKER))
+        .ok()
+        .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
+        .is_some_and(|v| v.get("format").and_then(|f| f.as_str()) == Some(LATTICE_RUN_FORMAT))
+}
+
+/// Reads a lattice run directory written by [`write_lattice_run`]: `run.json`, `time_s.npy`
+/// and `forces_n.npy`, whose shape must be samples × the contacts `run.json` lists. A missing,
+/// foreign or damaged file is an error naming it and saying what is wrong.
+pub fn read_lattice_run(dir: &Path) -> Result<LatticeRunRead, Error> {
+    use crate::atomic::read_error;
+    let path = dir.join(crate::atomic::RUN_MARKER);
+    let text = std::fs::read_to_string(&path).map_err(|e| Error::Read {
+        path: path.clone(),
+        source: e,
+    })?;
+    let run: LatticeRunJson = serde_json::from_str(&text).map_err(|e| {
+        read_error(
+            &path,
+            format!("not a complete lattice run.json ({e}); re-run `woodpile simulate`"),
+        )
+    })?;
+    if run.tool != "woodpile" || run.format != LATTICE_RUN_FORMAT {
+        return Err(read_error(
+            &path,
+            format!(
+                "tool `{}`, format `{}`: not a woodpile lattice run (`{LATTICE_RUN_FORMAT}`)",
+                run.tool, run.format
+            ),
+        ));
+    }
+    let n = run.contacts.len();
+    if n == 0 {
+        return Err(read_error(
+            &path,
+            "lists no contacts; re-run `woodpile simulate`",
+        ));
+    }
+    let missing = |f: &str| {
+        read_error(
+            &dir.join(f),
+            "missing: a lattice run writes it; re-run `woodpile simulate`",
+        )
+    };
+    for f in ["time_s.npy", "forces_n.npy"] {
+        if !dir.join(f).is_file() {
+            return Err(missing(f));
+        }
+    }
+    let times_s = crate::rundir::read_npy(&dir.join("time_s.npy"), &[None])?;
+    let forces_n =
+        crate::rundir::read_npy(&dir.join("forces_n.npy"), &[Some(times_s.len()), Some(n)])?;
+    Ok(LatticeRunRead {
+        run,
+        times_s,
+        forces_n,
+    })
 }

@@ -618,7 +618,7 @@ fn check_format(path: &Path, run: &Value) -> Result<(), Error> {
         if format == crate::lattice::LATTICE_RUN_FORMAT {
             return Err(read_error(
                 path,
-                "a lattice run (docs/physics.md §16): its files are read directly (forces_n.npy, supports.csv); figures of lattice runs are not drawn yet",
+                "a lattice run (docs/physics.md §16), not a chain run: its files are read by `woodpile_io::lattice::read_lattice_run` (forces_n.npy, supports.csv), its figures drawn by `woodpile plot`",
             ));
         }
         if format != RUN_FORMAT {
@@ -734,7 +734,7 @@ fn trajectory(
 }
 
 /// Reads a float64 `.npy` file and checks its shape (None: any length).
-fn read_npy(path: &Path, shape: &[Option<usize>]) -> Result<Vec<f64>, Error> {
+pub(crate) fn read_npy(path: &Path, shape: &[Option<usize>]) -> Result<Vec<f64>, Error> {
     let bytes = fs::read(path).map_err(|e| Error::Read {
         path: path.to_path_buf(),
         source: e,

@@ -5,6 +5,9 @@
 //!   maps, force histories at chosen contacts (and the same zoomed on the first arrivals), their
 //!   spectra, and a picture of the chain, with the time and frequency windows and the output
 //!   of a [`RunPlot`].
+//! - [`plot_lattice_run`]: a `woodpile simulate` run of a lattice (its `run.json` has the
+//!   lattice format): the supports' forces and their sum against time, and a map of every
+//!   contact's force over time (striker, crossings layer by layer, supports).
 //! - [`plot_optimization`]: a `woodpile optimize` output (it holds `history.csv`): the GA's
 //!   convergence and, once it has finished, the best chain to scale (paper Fig. 5 d, e, right).
 //! - [`plot_pareto`]: an NSGA-II output (its `history.csv` has a hypervolume): the front with
@@ -739,4 +742,156 @@ pub fn sensitivity(dir: &Path, out: &Path) -> Result<Vec<PathBuf>, Error> {
         )?);
     }
     Ok(files)
+}
+
+/// Draws the figures of a lattice run directory (`woodpile simulate` of a `[lattice]`
+/// scenario, docs/physics.md §16) into `out`: `support_forces` (each support's force and their
+/// sum, the transmitted force, against time) and `contact_force_map` (every contact's force
+/// over time, contacts in output order: the striker's, the crossings layer by layer, the
+/// supports), in the time window and map colours of `plot` and its output formats. Chain-only
+/// options (`signals`) are refused naming `--signal`; the frequency window and the spectrum
+/// window are not used (no spectra are drawn of a lattice). Returns the files written.
+pub fn plot_lattice_run(dir: &Path, out: &Path, plot: &RunPlot) -> Result<Vec<PathBuf>, Error> {
+    plot.output.check()?;
+    if let Some(name) = plot.signals.first() {
+        return Err(Error::invalid(
+            "--signal",
+            name,
+            "picks a contact of a chain run; a lattice run draws every contact (contact_force_map) and the supports (support_forces)",
+        ));
+    }
+    with_output(&plot.output, || draw_lattice_run(dir, out, plot))
+}
+
+fn draw_lattice_run(dir: &Path, out: &Path, plot: &RunPlot) -> Result<Vec<PathBuf>, Error> {
+    let read = woodpile_io::lattice::read_lattice_run(dir)?;
+    let times = &read.times_s;
+    if times.len() < 2 {
+        return Err(read_error(
+            &dir.join("time_s.npy"),
+            "fewer than 2 samples: nothing to plot",
+        ));
+    }
+    let (t0, t1) = (times[0], times[times.len() - 1]);
+    let window_s = plot.time_s.unwrap_or((t0, t1));
+    let ms = |v: f64| format!("{}", (v * 1e6).round() / 1e3);
+    if times
+        .iter()
+        .filter(|&&t| window_s.0 <= t && t <= window_s.1)
+        .count()
+        < 2
+    {
+        return Err(Error::invalid(
+            "--time-ms",
+            format!("{},{}", ms(window_s.0), ms(window_s.1)),
+            format!(
+                "holds fewer than 2 samples; the run covers {} to {} ms",
+                ms(t0),
+                ms(t1)
+            ),
+        ));
+    }
+    let run = &read.run;
+    let layers = run.rods_per_layer.len();
+    let title = format!(
+        "{}, {layers} layers × {} rods",
+        run.scenario_name,
+        describe_rods(&run.rods_per_layer)
+    );
+    let supports = read.supports();
+    let mut series: Vec<Series> = supports
+        .iter()
+        .map(|&c| {
+            let p = &run.contacts[c];
+            // To 0.1 mm, −0 written as 0 (the points come from rod geometry, ~1e-15 off).
+            let mm = |v: f64| format!("{:.1}", if v.abs() < 0.05 { 0.0 } else { v });
+            let label = format!(
+                "support {} at ({}, {}) mm",
+                p.rod_below,
+                mm(p.x_mm),
+                mm(p.y_mm)
+            );
+            Series::new(label, read.contact_force_n(c))
+        })
+        .collect();
+    series.push(Series::new("transmitted (sum)", read.transmitted_force_n()));
+    create_dir(out)?;
+    let mut files = crate::force_histories_between(
+        times,
+        &series,
+        &format!(
+            "{title}, impact {:.2} m/s: support forces",
+            run.striker_velocity_m_s
+        ),
+        window_s,
+        &out.join("support_forces"),
+    )?;
+    files.extend(lattice_force_map(&read, &title, plot, out)?);
+    Ok(files)
+}
+
+/// `contact_force_map` of a lattice run: contacts in output order (rows) × time.
+fn lattice_force_map(
+    read: &woodpile_io::lattice::LatticeRunRead,
+    title: &str,
+    plot: &RunPlot,
+    out: &Path,
+) -> Result<Vec<PathBuf>, Error> {
+    let n = read.n_contacts();
+    let ns = read.times_s.len();
+    let data = (0..n)
+        .flat_map(|c| (0..ns).map(move |s| read.forces_n[s * n + c]))
+        .collect();
+    let map = Map2::new(
+        Axis::index("contact", n),
+        Axis::new("time", "s", read.times_s.clone()),
+        "contact force",
+        "N",
+        data,
+    )?;
+    let map = match plot.time_s {
+        Some((a, b)) => columns_between(&map, a, b)?.unwrap_or(map),
+        None => map,
+    };
+    let supports = read.supports();
+    let first_support = supports.first().copied().unwrap_or(n);
+    let span = |a: usize, b: usize| match b - a {
+        0 => format!("{a}"),
+        _ => format!("{a}–{b}"),
+    };
+    let mut order = vec!["0 striker".to_string()];
+    if first_support > 1 {
+        order.push(format!(
+            "{} crossings layer by layer",
+            span(1, first_support - 1)
+        ));
+    }
+    if !supports.is_empty() {
+        order.push(format!("{} supports", span(first_support, n - 1)));
+    }
+    // The order is the title (a long axis label loses its parenthesis when it does not fit).
+    let heatmap = crate::Heatmap {
+        y_label: "contact (output order)".into(),
+        ..crate::force_heatmap(
+            &map,
+            &format!("{title}: contacts {}", order.join(", ")),
+            Some("striker"),
+        )
+    };
+    Ok(plot
+        .map_colours
+        .apply(heatmap)
+        .write(&out.join("contact_force_map"))?)
+}
+
+/// Rods per layer: `3` when every layer has as many, else `3/2/3`.
+fn describe_rods(rods_per_layer: &[usize]) -> String {
+    match rods_per_layer {
+        [first, rest @ ..] if rest.iter().all(|r| r == first) => first.to_string(),
+        _ => rods_per_layer
+            .iter()
+            .map(usize::to_string)
+            .collect::<Vec<_>>()
+            .join("/"),
+    }
 }

@@ -1,6 +1,6 @@
 //! `woodpile plot DIR`: the figures of an output directory, written to `DIR/plots/` as PNG and
-//! SVG (or the formats of `--format`), sized for a journal page. What is drawn for a run and for
-//! an optimisation is [`woodpile_plot::dirs`]; how the figures are sized is
+//! SVG (or the formats of `--format`), sized for a journal page. What is drawn for a run, a
+//! lattice run and an optimisation is [`woodpile_plot::dirs`]; how the figures are sized is
 //! [`woodpile_plot::output`].
 
 use crate::commands::Context;
@@ -8,7 +8,7 @@ use crate::CliError;
 use std::path::PathBuf;
 use woodpile::analysis::Window;
 use woodpile_io::rundir::{detect_dir, DirKind};
-use woodpile_plot::dirs::{plot_optimization, plot_run, RunPlot};
+use woodpile_plot::dirs::{plot_lattice_run, plot_optimization, plot_run, RunPlot};
 use woodpile_plot::{Format, Output, PlotError};
 
 /// Arguments of `woodpile plot`.
@@ -172,18 +172,21 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
             }
             files
         }
-        DirKind::Run => plot_run(
-            &args.dir,
-            &out,
-            &RunPlot {
+        DirKind::Run => {
+            let plot = RunPlot {
                 time_s: time_ms.map(|(a, b)| (a * 1e-3, b * 1e-3)),
                 frequency_hz: (frequency_khz.0 * 1e3, frequency_khz.1 * 1e3),
                 window,
                 signals: args.signals.clone(),
                 map_colours,
                 output,
-            },
-        )?,
+            };
+            if woodpile_io::lattice::is_lattice_run(&args.dir) {
+                plot_lattice_run(&args.dir, &out, &plot)?
+            } else {
+                plot_run(&args.dir, &out, &plot)?
+            }
+        }
         DirKind::Optimization => {
             let (files, note) = plot_optimization(&args.dir, &out, &output)?;
             if let (Some(note), false) = (note, ctx.quiet) {

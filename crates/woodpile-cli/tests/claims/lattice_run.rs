@@ -4,7 +4,8 @@
 //! order of `summary.json`'s `contact_peak_forces_n` and of the force columns, and whose
 //! `supports.csv` ends in their sum, `transmitted_n`, whose peak is the summary's transmitted
 //! peak (sampled every step there, every µs here: within 2 % on this run); `woodpile plot`
-//! refuses it as a lattice run (exit 2; no figures of lattices yet). Bad lattices —
+//! draws its `support_forces` and `contact_force_map` as PNG and SVG (exit 0) and refuses the
+//! run once its `forces_n.npy` is cut short, naming the file (exit 2). Bad lattices —
 //! layers that do not touch, a support under no bottom rod, an impact point on no top rod, a
 //! negative drop height —
 //! exit with code 2 naming the key, and leave no output directory.
@@ -85,11 +86,25 @@ fn lattice_run_directory_lists_its_contacts() {
     );
     let forces = std::fs::read_to_string(dir.path().join("out/forces.csv")).unwrap();
     assert_eq!(forces.lines().next().unwrap().split(',').count(), 10);
-    // `woodpile plot` does not draw lattices yet, and says so (not "re-run simulate").
+    // `woodpile plot` draws the lattice's two figures, each as PNG and SVG.
+    let plot = common::run_in(dir.path(), &["plot", "out", "--quiet"]);
+    let stderr = String::from_utf8_lossy(&plot.stderr);
+    assert_eq!(plot.status.code(), Some(0), "{stderr}");
+    for stem in ["support_forces", "contact_force_map"] {
+        let png = std::fs::read(dir.path().join(format!("out/plots/{stem}.png"))).unwrap();
+        assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"), "{stem}.png is a PNG");
+        let svg =
+            std::fs::read_to_string(dir.path().join(format!("out/plots/{stem}.svg"))).unwrap();
+        assert!(svg.contains("<svg"), "{stem}.svg is an SVG");
+    }
+    // A damaged run (its force file cut short) is refused naming the file, exit 2.
+    let npy = dir.path().join("out/forces_n.npy");
+    let bytes = std::fs::read(&npy).unwrap();
+    std::fs::write(&npy, &bytes[..bytes.len() / 2]).unwrap();
     let plot = common::run_in(dir.path(), &["plot", "out"]);
     let stderr = String::from_utf8_lossy(&plot.stderr);
     assert_eq!(plot.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("a lattice run"), "{stderr}");
+    assert!(stderr.contains("forces_n.npy"), "{stderr}");
 }
 
 fn refused(name: &str, scenario: &str, expected: &[&str]) {
