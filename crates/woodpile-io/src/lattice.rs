@@ -287,6 +287,7 @@ impl LatticeScenario {
             });
         }
         let fe_elements = s.lattice.rod.expect("completed").fe_elements;
+        check_size(&layers, fe_elements)?;
         let supports = match s.wall.supports.as_ref().expect("completed") {
             SupportsToml::Named(n) if n == "centres" => Supports::Centres,
             SupportsToml::Named(n) => {
@@ -322,6 +323,72 @@ impl LatticeScenario {
             settings,
         })
     }
+}
+
+/// Most layers of a lattice (each layer's rod modes are one eigenproblem: about 0.3 s at 64
+/// elements per half rod on the project's machine).
+pub const MAX_LATTICE_LAYERS: usize = 100;
+
+/// Most rods of a lattice, all layers together.
+pub const MAX_LATTICE_RODS: usize = 10_000;
+
+/// Most modal coordinates of a lattice: rods × 2(2n + 1) for n elements per half rod (a
+/// 10-layer lattice of 5 rods at 16 elements has 3,300).
+pub const MAX_LATTICE_MODES: usize = 100_000;
+
+/// Most crossings a lattice may have: the products of the rods of adjacent layers, summed (each
+/// crossing is a contact; a 10-layer lattice of 5 rods per layer has 225).
+pub const MAX_LATTICE_CROSSINGS: usize = 100_000;
+
+/// Refuses a lattice too large to build and run in reasonable time and memory, before its rods'
+/// modes or crossings are computed.
+fn check_size(layers: &[LayerSpec], fe_elements: usize) -> Result<(), Error> {
+    if layers.len() > MAX_LATTICE_LAYERS {
+        return Err(Error::invalid(
+            "lattice.layers",
+            format!("{} layers", layers.len()),
+            format!("at most {MAX_LATTICE_LAYERS} layers"),
+        ));
+    }
+    let rods = layers
+        .iter()
+        .fold(0usize, |sum, l| sum.saturating_add(l.rods));
+    if rods > MAX_LATTICE_RODS {
+        return Err(Error::invalid(
+            "lattice.layers",
+            format!("{rods} rods in all"),
+            format!("at most {MAX_LATTICE_RODS} rods in all layers together"),
+        ));
+    }
+    let crossings = layers.windows(2).fold(0usize, |sum, w| {
+        sum.saturating_add(w[0].rods.saturating_mul(w[1].rods))
+    });
+    if crossings > MAX_LATTICE_CROSSINGS {
+        return Err(Error::invalid(
+            "lattice.layers",
+            format!("up to {crossings} crossings (rods × rods of adjacent layers)"),
+            format!("at most {MAX_LATTICE_CROSSINGS} crossings: fewer rods per layer"),
+        ));
+    }
+    let modes = rods.saturating_mul(2 * (2 * fe_elements.min(1 << 20) + 1));
+    if modes > MAX_LATTICE_MODES {
+        return Err(Error::invalid(
+            "lattice.rod.fe_elements",
+            fe_elements,
+            format!(
+                "{rods} rods of {fe_elements} elements per half rod have {modes} modal coordinates, more than {MAX_LATTICE_MODES}: fewer elements or fewer rods"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The run-size estimate of a resolved lattice: its steps and the values its run directory
+/// holds per sample (each contact's force in CSV and NPY, the supports and their sum, the
+/// energies, time).
+pub fn run_size(r: &ResolvedLattice) -> crate::limits::RunSize {
+    let contacts = r.lattice.contacts.len();
+    crate::limits::RunSize::with_columns(&r.settings, 2 * contacts + 8)
 }
 
 fn positive(field: &str, v: f64) -> Result<f64, Error> {

@@ -55,10 +55,14 @@ pub struct RunSize {
 impl RunSize {
     /// The estimate for `settings` on a chain of `n_elements` elements.
     pub fn estimate(settings: &woodpile::RunSettings, n_elements: usize) -> Self {
-        let samples = settings.n_samples();
         // forces (N+2 columns with time), energy (N+5), displacements and velocities (N+1 each),
         // striker (3).
-        let columns = 4 * n_elements + 12;
+        Self::with_columns(settings, 4 * n_elements + 12)
+    }
+
+    /// The estimate for `settings` of a run writing `columns` values per sample.
+    pub fn with_columns(settings: &woodpile::RunSettings, columns: usize) -> Self {
+        let samples = settings.n_samples();
         RunSize {
             steps: settings.estimated_steps(),
             samples,

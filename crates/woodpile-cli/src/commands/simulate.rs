@@ -193,6 +193,7 @@ fn run_lattice(args: &Args, file: &Path, text: &str, ctx: &Context) -> Result<()
     use woodpile_io::lattice::{write_lattice_run, LatticeScenario, LATTICE_RUN_FILES};
     let scenario = LatticeScenario::parse(text, &file.display().to_string())?;
     let resolved = scenario.resolve()?;
+    woodpile_io::lattice::run_size(&resolved).check(args.allow_long, args.allow_large, true)?;
     let (name, _) = super::name_and_base(file, "lattice");
     let out = args
         .out

@@ -7,8 +7,9 @@
 //! draws its `support_forces` and `contact_force_map` as PNG and SVG (exit 0) and refuses the
 //! run once its `forces_n.npy` is cut short, naming the file (exit 2). Bad lattices —
 //! layers that do not touch, a support under no bottom rod, an impact point on no top rod, a
-//! negative drop height —
-//! exit with code 2 naming the key, and leave no output directory.
+//! negative drop height, more rods or crossings than the limits, an output of hundreds of GB —
+//! exit with code 2 naming the key, and leave no output directory (each refused at once: the
+//! oversized lattices before their rods' modes or crossings are computed).
 
 use crate::common;
 
@@ -147,6 +148,26 @@ fn bad_lattices_exit_2_naming_the_key() {
             "kind = \"impact\"\ndrop_height_m = -0.2",
         ),
         &["excitation.drop_height_m", "-0.2"],
+    );
+    refused(
+        "too many rods",
+        &LATTICE.replace("{ rods = 2 }", "{ rods = 100000 }"),
+        &["lattice.layers", "100003 rods in all", "at most 10000"],
+    );
+    refused(
+        "too many crossings",
+        &LATTICE
+            .replace("rods = 3, pitch_mm = 20.0", "rods = 4000, pitch_mm = 20.0")
+            .replace("{ rods = 2 }", "{ rods = 4000 }"),
+        &["lattice.layers", "16000000 crossings", "at most 100000"],
+    );
+    refused(
+        "output size",
+        &LATTICE.replace(
+            "duration_s = 3e-4",
+            "duration_s = 0.1\nsample_interval_s = 1e-9",
+        ),
+        &["run.sample_interval_s", "GB of output", "--allow-large"],
     );
     refused(
         "unknown key",
