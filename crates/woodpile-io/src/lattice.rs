@@ -391,14 +391,6 @@ pub fn run_size(r: &ResolvedLattice) -> crate::limits::RunSize {
     crate::limits::RunSize::with_columns(&r.settings, 2 * contacts + 8)
 }
 
-fn positive(field: &str, v: f64) -> Result<f64, Error> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(Error::invalid(field, v, "must be a finite number > 0"))
-    }
-}
-
 fn resolve_striker(x: &LatticeExcitationSpec) -> Result<Striker, Error> {
     let kind = x.kind.as_deref().unwrap_or("impact");
     if kind != "impact" {
@@ -408,35 +400,7 @@ fn resolve_striker(x: &LatticeExcitationSpec) -> Result<Striker, Error> {
             "a lattice is struck (\"impact\"); blasts and drives on lattices are not modelled yet",
         ));
     }
-    let velocity = match (x.drop_height_m, x.velocity_m_s) {
-        (Some(h), Some(v)) => {
-            return Err(Error::invalid(
-                "excitation.velocity_m_s",
-                v,
-                format!("give either drop_height_m (here {h}) or velocity_m_s, not both"),
-            ))
-        }
-        (_, Some(v)) => positive("excitation.velocity_m_s", v)?,
-        (Some(h), None) => {
-            woodpile::velocity_from_drop_height(positive("excitation.drop_height_m", h)?)
-        }
-        (None, None) => unreachable!("completed"),
-    };
-    let st = x.striker.as_ref().expect("completed");
-    let diameter_mm = positive(
-        "excitation.striker.diameter_mm",
-        st.diameter_mm.expect("completed"),
-    )?;
-    let striker = Striker {
-        diameter_m: diameter_mm * 1e-3,
-        material: material_of(
-            "excitation.striker.material",
-            st.material.as_ref().expect("completed"),
-        )?,
-        velocity_m_s: velocity,
-        beta_override: None,
-    };
-    Ok(striker)
+    crate::scenario::striker_of(x.drop_height_m, x.velocity_m_s, x.striker.as_ref(), None)
 }
 
 /// One contact in `run.json`.

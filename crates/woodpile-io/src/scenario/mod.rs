@@ -32,6 +32,7 @@ pub use builtin::{
 pub use keys::{key, keys, Key, KeyDefault, KeyType};
 pub(crate) use resolve::material as material_of;
 pub(crate) use resolve::resolve_run_spec;
+pub(crate) use resolve::striker_of;
 pub use resolve::{resolve, resolve_element, resolve_with_keys, ChainKeys, Resolved};
 
 use crate::error::Error;

@@ -749,7 +749,23 @@ fn resolve_excitation(s: &Scenario, chain: &Chain, base_dir: &Path) -> Result<Ex
 }
 
 fn resolve_impact(x: &ExcitationSpec, chain: &Chain) -> Result<Excitation, Error> {
-    let velocity = match (x.drop_height_m, x.velocity_m_s) {
+    let striker = striker_of(x.drop_height_m, x.velocity_m_s, x.striker.as_ref(), x.beta)?;
+    // Fails early (as a usage error) when the striker cannot touch the top element.
+    striker
+        .contact_beta(chain)
+        .map_err(Error::at("excitation.striker"))?;
+    Ok(Excitation::Impact(striker))
+}
+
+/// The striker of a completed `[excitation]` (a chain's or a lattice's): its speed from
+/// `velocity_m_s` or `drop_height_m` (not both), its sphere, and a given contact β.
+pub(crate) fn striker_of(
+    drop_height_m: Option<f64>,
+    velocity_m_s: Option<f64>,
+    striker: Option<&super::StrikerSpec>,
+    beta: Option<f64>,
+) -> Result<Striker, Error> {
+    let velocity = match (drop_height_m, velocity_m_s) {
         (Some(h), Some(v)) => {
             return Err(Error::invalid(
                 "excitation.velocity_m_s",
@@ -763,23 +779,18 @@ fn resolve_impact(x: &ExcitationSpec, chain: &Chain) -> Result<Excitation, Error
             woodpile::velocity_from_drop_height(positive(field, completed(field, h.as_ref())?)?)
         }
     };
-    let st = completed("excitation.striker", x.striker.as_ref())?;
+    let st = completed("excitation.striker", striker)?;
     let field = "excitation.striker.diameter_mm";
     let diameter = positive(field, completed(field, st.diameter_mm.as_ref())?)?;
     let field = "excitation.striker.material";
     let mat = material(field, &completed(field, st.material.as_ref())?)?;
-    let beta = x.beta.map(|b| positive("excitation.beta", b)).transpose()?;
-    let striker = Striker {
+    let beta = beta.map(|b| positive("excitation.beta", b)).transpose()?;
+    Ok(Striker {
         diameter_m: diameter * 1e-3,
         material: mat,
         velocity_m_s: velocity,
         beta_override: beta,
-    };
-    // Fails early (as a usage error) when the striker cannot touch the top element.
-    striker
-        .contact_beta(chain)
-        .map_err(Error::at("excitation.striker"))?;
-    Ok(Excitation::Impact(striker))
+    })
 }
 
 fn resolve_drive(x: &ExcitationSpec, chain: &Chain, base_dir: &Path) -> Result<Excitation, Error> {
