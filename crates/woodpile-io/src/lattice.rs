@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 use std::path::Path;
 use woodpile::model::{Lattice, LatticeBuilder, LayerSpec, Supports};
 use woodpile::simulate::LatticeRun;
-use woodpile::{Method, RunSettings, Striker};
+use woodpile::{RunSettings, Striker};
 
 /// Run-directory format tag of a lattice run.
 pub const LATTICE_RUN_FORMAT: &str = "woodpile-lattice-run/1";
@@ -309,13 +309,6 @@ impl LatticeScenario {
         let at_m = [at[0] * 1e-3, at[1] * 1e-3];
         lattice.top_point(at_m, "excitation.at_mm")?;
         let settings = resolve_run_spec(&s.run)?;
-        if matches!(settings.method, Method::ExactModes { .. }) {
-            return Err(Error::invalid(
-                "run.integrator",
-                "exact-modes",
-                "lattices run with rk4, dopri5 or a peak tolerance",
-            ));
-        }
         Ok(ResolvedLattice {
             lattice,
             striker,
@@ -498,6 +491,10 @@ pub struct LatticeSummaryJson {
     pub transmitted_peak_force_n: f64,
     /// Largest |E(t) − E(0)| / E(0) over the samples.
     pub energy_max_relative_error: f64,
+    /// The method the run stepped with (a stated peak tolerance resolved for the lattice:
+    /// `exact-modes` for finite-element rods) and its work.
+    #[serde(default)]
+    pub integrator: Option<crate::rundir::IntegratorJson>,
 }
 
 /// Writes a lattice run's files into `dir` (a staging directory).
@@ -533,6 +530,12 @@ pub fn write_lattice_run(
         contact_peak_times_s: run.contact_peak_times_s.clone(),
         incident_peak_force_n: run.incident_peak_force_n,
         transmitted_peak_force_n: run.transmitted_peak_force_n,
+        integrator: Some(crate::rundir::IntegratorJson {
+            method: crate::rundir::method_label(run.method).to_string(),
+            steps: run.stats.steps,
+            rhs_evaluations: run.stats.rhs_evaluations,
+            rejected_steps: run.stats.rejected_steps,
+        }),
         energy_max_relative_error: run.energy.max_relative_error,
     };
     let header = |names: Vec<String>| {

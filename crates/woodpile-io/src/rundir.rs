@@ -140,9 +140,15 @@ pub struct SummaryJson {
 /// The name of the method the run stepped with (a stated peak tolerance resolved for its system).
 fn method_name(r: &Resolved) -> &'static str {
     let settings = &r.settings;
-    let method = settings
-        .method_for(&r.chain, &r.excitation)
-        .unwrap_or(settings.method);
+    method_label(
+        settings
+            .method_for(&r.chain, &r.excitation)
+            .unwrap_or(settings.method),
+    )
+}
+
+/// A method's name in `run.json` and `summary.json` ([`IntegratorJson::method`]).
+pub fn method_label(method: Method) -> &'static str {
     match method {
         Method::Rk4 { .. } => "rk4",
         Method::Dopri5 { .. } => "dopri5",

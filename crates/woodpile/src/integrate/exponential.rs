@@ -152,7 +152,6 @@ pub fn kernel(theta: f64, z: f64) -> Kernel {
 /// primary its response to the force polynomial summed over its modes.
 #[derive(Debug, Clone)]
 pub(crate) struct StepWeights {
-    pub h: f64,
     /// Per node σ = c₁, c₂, 1 and mode: cos(σz) and h sin(σz)/z.
     pub cos: [Vec<f64>; 3],
     pub hsinc: [Vec<f64>; 3],
@@ -169,7 +168,7 @@ pub(crate) struct StepWeights {
 }
 
 /// σ³ − (3/2)σ² + (1/2)σ in monomials: the error polynomial of [`StepWeights::error`].
-const ERROR_POLY: [f64; 4] = [0.0, 0.5, -1.5, 1.0];
+pub(crate) const ERROR_POLY: [f64; 4] = [0.0, 0.5, -1.5, 1.0];
 
 impl StepWeights {
     /// The weights for step h of a chain with distinct frequencies `frequencies`, per mode its
@@ -222,7 +221,6 @@ impl StepWeights {
             error.push((ex, ev));
         }
         StepWeights {
-            h,
             cos,
             hsinc,
             vel_of_pos,

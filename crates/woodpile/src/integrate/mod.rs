@@ -15,6 +15,7 @@
 mod control;
 pub mod exponential;
 mod kernels;
+pub(crate) mod modal_graph;
 pub(crate) mod modal_step;
 
 pub(crate) use control::{StepControl, Verdict};

@@ -19,10 +19,10 @@ const LADDER_BASE_S: f64 = 1e-12;
 /// The fixed-point iteration of the node forces stops when no node force changes by more than
 /// this fraction of rtol times the largest contact force (at least 1e-13 of it), or after
 /// [`MAX_ITERATIONS`] (a rejection): its error then stays a thousandth of the step's.
-const FIXED_POINT_TOLERANCE: f64 = 1e-3;
-const MAX_ITERATIONS: usize = 30;
+pub(super) const FIXED_POINT_TOLERANCE: f64 = 1e-3;
+pub(super) const MAX_ITERATIONS: usize = 30;
 /// Velocity units of the error norm, as [`ChainOde::tolerance_units`]: 1/τ with τ = 1 µs.
-const VELOCITY_UNIT: f64 = 1e6;
+pub(super) const VELOCITY_UNIT: f64 = 1e6;
 
 /// One run's stepper state.
 #[derive(Debug, Clone)]
@@ -46,8 +46,7 @@ pub(crate) struct ModalIntegrator {
     /// Per slot: the overlap at the current point \[m\].
     overlap: Vec<f64>,
     control: StepControl,
-    ladder: Vec<(i64, StepWeights)>,
-    off_ladder: Option<StepWeights>,
+    ladder: Ladder<StepWeights>,
     lagrange: [[f64; 4]; 4],
     stats: IntegratorStats,
     scratch: Scratch,
@@ -72,10 +71,115 @@ struct Scratch {
     x: Vec<f64>,
 }
 
-/// An attempt's outcome.
-struct Attempt {
-    err: f64,
-    missed: Option<f64>,
+/// An attempt's outcome: its error norm (infinite when the collocation conditions were not
+/// solved) and the first crossing it missed inside (\[s\] from its start).
+pub(super) struct Attempt {
+    pub err: f64,
+    pub missed: Option<f64>,
+}
+
+/// A stepper of [`super::Method::ExactModes`] (a chain's or a contact graph's): what
+/// [`adaptive_step`] needs of it.
+pub(super) trait ExactStepper {
+    /// Its controller and counters.
+    fn control(&mut self) -> (&mut StepControl, &mut IntegratorStats);
+    /// The current time \[s\].
+    fn now(&self) -> f64;
+    /// The longest step allowed \[s\].
+    fn max_step(&self) -> f64 {
+        f64::INFINITY
+    }
+
+    /// Tries a step of size h (weights from the ladder's rung, or off the ladder).
+    fn attempt(&mut self, h: f64, rung: Option<i64>) -> Attempt;
+    /// Advances over the attempt just made.
+    fn commit(&mut self, h: f64, rung: Option<i64>);
+}
+
+/// One accepted step toward t_end; returns its size. Steps come from the ladder (the weights
+/// of a rung are computed once), except a step that ends the run or lands on a crossing.
+pub(super) fn adaptive_step<S: ExactStepper>(s: &mut S, t_end: f64) -> Result<f64> {
+    loop {
+        let t = s.now();
+        let remaining = t_end - t;
+        let h_try = s.control().0.propose(t, t_end)?.min(s.max_step());
+        // A rung of the ladder below the proposal, unless the step ends the run.
+        let (h_try, rung) = if h_try < remaining {
+            ladder_floor(h_try)
+        } else {
+            (h_try, None)
+        };
+        let h = s.control().0.land(h_try, None);
+        // A retake ends exactly on the crossing, with weights of its own (ending it on the
+        // rung below instead, the kink then early in the next step, was measured worse:
+        // energy errors up to 2.6e-3 on Table 1 cells, bench/README.md).
+        let landing = s.control().0.landing;
+        let rung = if landing { None } else { rung };
+        let attempt = s.attempt(h, rung);
+        let missed = if landing { None } else { attempt.missed };
+        let s_max = s.max_step();
+        let (control, stats) = s.control();
+        match control.judge(h, attempt.err, missed, CONTROL_ORDER, stats) {
+            Verdict::Retry => continue,
+            Verdict::Accept => {
+                control.accepted(h, attempt.err, CONTROL_ORDER);
+                control.h = control.h.min(s_max);
+                stats.steps += 1;
+                s.commit(h, rung);
+                return Ok(h);
+            }
+        }
+    }
+}
+
+/// The weights of the step sizes a run has used: each rung of the ladder's, computed once, and
+/// the last off-ladder step's.
+#[derive(Debug, Clone)]
+pub(super) struct Ladder<W> {
+    rungs: Vec<(i64, W)>,
+    off: Option<(f64, W)>,
+}
+
+impl<W> Default for Ladder<W> {
+    fn default() -> Self {
+        Ladder {
+            rungs: Vec::new(),
+            off: None,
+        }
+    }
+}
+
+impl<W> Ladder<W> {
+    /// Makes sure the weights of step h (rung `rung`, or off the ladder) are at hand.
+    pub fn ensure(&mut self, h: f64, rung: Option<i64>, make: impl FnOnce() -> W) {
+        match rung {
+            Some(k) => {
+                if !self.rungs.iter().any(|(r, _)| *r == k) {
+                    self.rungs.push((k, make()));
+                }
+            }
+            None => {
+                if self.off.as_ref().is_none_or(|(step, _)| *step != h) {
+                    self.off = Some((h, make()));
+                }
+            }
+        }
+    }
+
+    /// The weights of a rung, or the off-ladder ones ([`Ladder::ensure`] first).
+    pub fn get(&self, rung: Option<i64>) -> &W {
+        match rung {
+            Some(k) => {
+                &self
+                    .rungs
+                    .iter()
+                    .find(|(r, _)| *r == k)
+                    .expect("computed")
+                    .1
+            }
+            None => &self.off.as_ref().expect("computed").1,
+        }
+    }
 }
 
 impl ModalIntegrator {
@@ -101,8 +205,7 @@ impl ModalIntegrator {
             force_net: vec![0.0; p],
             overlap: vec![0.0; p + 1],
             control: StepControl::new(h0),
-            ladder: Vec::new(),
-            off_ladder: None,
+            ladder: Ladder::default(),
             lagrange: lagrange(),
             stats: IntegratorStats::default(),
             scratch: Scratch {
@@ -165,11 +268,10 @@ impl ModalIntegrator {
         self.stats
     }
 
-    /// Makes sure the weights of step h are at hand: in the ladder's cache when h is a rung,
-    /// else computed as the off-ladder weights.
+    /// Makes sure the weights of step h are at hand (a rung's, or the off-ladder ones).
     fn weights(&mut self, h: f64, rung: Option<i64>) {
         let m = &self.modal;
-        let make = || {
+        self.ladder.ensure(h, rung, || {
             StepWeights::new(
                 h,
                 &m.frequencies,
@@ -177,58 +279,12 @@ impl ModalIntegrator {
                 &m.inv_modal_mass,
                 &m.ranges,
             )
-        };
-        match rung {
-            Some(k) => {
-                if !self.ladder.iter().any(|(r, _)| *r == k) {
-                    let w = make();
-                    self.ladder.push((k, w));
-                }
-            }
-            None => {
-                if self.off_ladder.as_ref().is_none_or(|w| w.h != h) {
-                    let w = make();
-                    self.off_ladder = Some(w);
-                }
-            }
-        }
+        });
     }
 
     /// One accepted step toward t_end; returns its size.
     pub fn step(&mut self, t_end: f64) -> Result<f64> {
-        loop {
-            let remaining = t_end - self.t;
-            let h_try = self.control.propose(self.t, t_end)?;
-            // A rung of the ladder below the proposal, unless the step ends the run.
-            let (h_try, rung) = if h_try < remaining {
-                ladder_floor(h_try)
-            } else {
-                (h_try, None)
-            };
-            let h = self.control.land(h_try, None);
-            // A retake ends exactly on the crossing, with weights of its own (ending it on the
-            // rung below instead, the kink then early in the next step, was measured worse:
-            // energy errors up to 2.6e-3 on Table 1 cells, bench/README.md).
-            let rung = if self.control.landing { None } else { rung };
-            let attempt = self.attempt(h, rung);
-            let missed = if self.control.landing {
-                None
-            } else {
-                attempt.missed
-            };
-            match self
-                .control
-                .judge(h, attempt.err, missed, CONTROL_ORDER, &mut self.stats)
-            {
-                Verdict::Retry => continue,
-                Verdict::Accept => {
-                    self.commit(h, rung);
-                    self.control.accepted(h, attempt.err, CONTROL_ORDER);
-                    self.stats.steps += 1;
-                    return Ok(h);
-                }
-            }
-        }
+        adaptive_step(self, t_end)
     }
 
     /// Tries a step of size h: solves the collocation conditions, returns the error norm
@@ -283,7 +339,7 @@ impl ModalIntegrator {
     }
 
     fn ladder_or_off(&self, rung: Option<i64>) -> &StepWeights {
-        pick(&self.ladder, &self.off_ladder, rung)
+        self.ladder.get(rung)
     }
 
     /// The fixed-point iteration of the collocation conditions: node forces → cubic → node
@@ -352,7 +408,7 @@ impl ModalIntegrator {
         std::mem::swap(&mut self.c, &mut self.c_prev);
         std::mem::swap(&mut self.cdot, &mut self.cdot_prev);
         let sc = std::mem::replace(&mut self.scratch, Scratch::empty());
-        let weights = pick(&self.ladder, &self.off_ladder, rung);
+        let weights = self.ladder.get(rung);
         for (range, a) in self.modal.ranges.iter().zip(&sc.coef) {
             weights.advance(
                 range.clone(),
@@ -442,6 +498,24 @@ impl ModalIntegrator {
     }
 }
 
+impl ExactStepper for ModalIntegrator {
+    fn control(&mut self) -> (&mut StepControl, &mut IntegratorStats) {
+        (&mut self.control, &mut self.stats)
+    }
+
+    fn now(&self) -> f64 {
+        self.t
+    }
+
+    fn attempt(&mut self, h: f64, rung: Option<i64>) -> Attempt {
+        self.attempt(h, rung)
+    }
+
+    fn commit(&mut self, h: f64, rung: Option<i64>) {
+        self.commit(h, rung)
+    }
+}
+
 /// A primary at a step's end: what the samples inside the step are interpolated from.
 #[derive(Debug, Clone, Copy, Default)]
 struct PrimaryEnd {
@@ -467,20 +541,8 @@ impl Scratch {
     }
 }
 
-/// The weights of a rung of the ladder, or the off-ladder ones (computed by `weights()`).
-fn pick<'a>(
-    ladder: &'a [(i64, StepWeights)],
-    off_ladder: &'a Option<StepWeights>,
-    rung: Option<i64>,
-) -> &'a StepWeights {
-    match rung {
-        Some(k) => &ladder.iter().find(|(r, _)| *r == k).expect("computed").1,
-        None => off_ladder.as_ref().expect("computed"),
-    }
-}
-
 /// The rung of the step ladder at or below h, and its index.
-fn ladder_floor(h: f64) -> (f64, Option<i64>) {
+pub(super) fn ladder_floor(h: f64) -> (f64, Option<i64>) {
     let k = (LADDER_PER_OCTAVE * (h / LADDER_BASE_S).log2()).floor();
     (
         LADDER_BASE_S * (k / LADDER_PER_OCTAVE).exp2(),
@@ -491,9 +553,9 @@ fn ladder_floor(h: f64) -> (f64, Option<i64>) {
 /// The first point θ ∈ (EVENT_LANDING_FRACTION, NYSTROM_LANDING_END) of a step where a contact
 /// (β > 0) opens or closes, from its overlaps at the four nodes (the cubic through them, bisected
 /// in the first node interval whose ends differ in sign).
-fn first_crossing(overlaps: &[[f64; 4]], beta: &[f64], c: &[f64; 4]) -> Option<f64> {
+pub(super) fn first_crossing(overlaps: &[[f64; 4]], beta: &[f64], c: &[f64; 4]) -> Option<f64> {
     let mut first: Option<f64> = None;
-    for (s, d) in overlaps.iter().enumerate().skip(1) {
+    for (s, d) in overlaps.iter().enumerate() {
         if beta[s] == 0.0 {
             continue;
         }

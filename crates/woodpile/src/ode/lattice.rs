@@ -26,24 +26,37 @@ use crate::model::{hertz_beta, ContactLaw, Lattice, Surface};
 /// One side of a contact: a body's first coordinate, its number of coordinates and where its
 /// row starts in [`LatticeOde::rows`].
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Side {
-    offset: usize,
-    len: usize,
-    row: usize,
+pub(crate) struct Side {
+    pub offset: usize,
+    pub len: usize,
+    pub row: usize,
+}
+
+impl Side {
+    /// The deflection of this side's point for modal coordinates `q` (all of them) and the
+    /// rows `rows` (all of them) \[m\].
+    #[inline(always)]
+    pub(crate) fn dot(self, rows: &[f64], q: &[f64]) -> f64 {
+        rows[self.row..self.row + self.len]
+            .iter()
+            .zip(&q[self.offset..self.offset + self.len])
+            .map(|(r, x)| r * x)
+            .sum()
+    }
 }
 
 /// The compiled equations of a lattice under a striker.
 #[derive(Debug, Clone)]
 pub struct LatticeOde {
     /// ω_j² per coordinate [1/s²] (0 for the striker and the rigid modes).
-    omega2: Vec<f64>,
+    pub(crate) omega2: Vec<f64>,
     /// Per contact (striker first, then the lattice's contacts): above, below, β.
-    above: Vec<Side>,
-    below: Vec<Option<Side>>,
-    beta: Vec<f64>,
-    rows: Vec<f64>,
+    pub(crate) above: Vec<Side>,
+    pub(crate) below: Vec<Option<Side>>,
+    pub(crate) beta: Vec<f64>,
+    pub(crate) rows: Vec<f64>,
     /// (support's contact index, x − x₀, y − y₀ \[m\]).
-    supports: Vec<(usize, f64, f64)>,
+    pub(crate) supports: Vec<(usize, f64, f64)>,
     /// Per body (striker, rods): offset, count, centre − impact point \[m\], axis.
     bodies: Vec<(usize, usize, [f64; 2], [f64; 2])>,
     /// ψ_tᵀMφ_j and ψ_rᵀMφ_j per coordinate.
@@ -140,6 +153,15 @@ impl LatticeOde {
         })
     }
 
+    /// The striker's Hertz contact time on a rigid half-space \[s\]: 2.94 δ_max / v₀ with
+    /// δ_max = (5 m v₀² / (4 β))^{2/5} (Johnson, *Contact Mechanics*, §11.4), the shortest
+    /// event of the run's scale.
+    pub fn striker_contact_time_s(&self) -> f64 {
+        let (m, v) = (self.striker_mass_kg, self.striker_velocity_m_s);
+        let delta_max = (1.25 * m * v * v / self.beta[0]).powf(0.4);
+        2.94 * delta_max / v
+    }
+
     /// Number of modal coordinates Q.
     pub fn coordinates(&self) -> usize {
         self.omega2.len()
@@ -171,11 +193,26 @@ impl LatticeOde {
     /// The deflection at a contact's side.
     #[inline(always)]
     fn deflection(&self, side: Side, q: &[f64]) -> f64 {
-        let row = &self.rows[side.row..side.row + side.len];
-        row.iter()
-            .zip(&q[side.offset..side.offset + side.len])
-            .map(|(r, x)| r * x)
-            .sum()
+        side.dot(&self.rows, q)
+    }
+
+    /// The stiffest mode's angular frequency \[rad/s\] (what sets an explicit method's step).
+    pub fn stiffest_mode_rad_s(&self) -> f64 {
+        self.omega2.iter().fold(0.0, |m: f64, &w2| m.max(w2)).sqrt()
+    }
+
+    /// Every contact's force rate dF/dt \[N/s\] in state y into `rate` (after
+    /// [`LatticeOde::contact_forces`] at y's positions): β (3/2) δ₊^{1/2} δ̇.
+    pub(crate) fn contact_force_rates(&self, y: &[f64], rate: &mut [f64]) {
+        let q = self.coordinates();
+        let v = &y[q + 3..2 * q + 3];
+        for (c, r) in rate.iter_mut().enumerate() {
+            let mut dv = self.deflection(self.above[c], v);
+            if let Some(b) = self.below[c] {
+                dv -= self.deflection(b, v);
+            }
+            *r = ContactLaw::elastic_force_rate(self.force_n[c], self.overlap_m[c], dv);
+        }
     }
 
     /// Every contact's overlap and force at positions q into `overlap_m` and `force_n`.

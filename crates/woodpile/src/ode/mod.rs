@@ -27,6 +27,7 @@ mod modal;
 
 pub(crate) use equations::{Equations, LabEquations, LabShape, Load};
 pub use lattice::LatticeOde;
+pub(crate) use lattice::Side;
 pub(crate) use modal::ModalChain;
 
 use crate::error::{Error, Result};

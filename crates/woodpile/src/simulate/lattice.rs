@@ -2,8 +2,9 @@
 //! integrators, checks every contact after every step, tracks each contact's peak, samples the
 //! contact forces and the energy on the uniform grid, and audits the energy.
 
-use super::{EnergyBalance, RunSettings};
+use super::{EnergyBalance, PeakTracker, RunSettings};
 use crate::error::{Error, Result};
+use crate::integrate::modal_graph::GraphModalIntegrator;
 use crate::integrate::{Integrator, IntegratorStats, Method};
 use crate::ode::LatticeOde;
 
@@ -35,6 +36,8 @@ pub struct LatticeRun {
     pub supports: Vec<usize>,
     /// Integrator counters.
     pub stats: IntegratorStats,
+    /// The method the run took ([`lattice_method`]).
+    pub method: Method,
 }
 
 impl LatticeRun {
@@ -55,29 +58,88 @@ impl LatticeRun {
     }
 }
 
-/// Runs a lattice: `settings.method` may be RK4, DOPRI5 (with or without events), RKN 6(4) or a
-/// peak tolerance (RKN 6(4) at its rtol); the exact modal method is for chains.
+/// What steps a lattice: the chain's integrators, or the exact modal stepper.
+enum Stepper {
+    Explicit(Integrator),
+    ExactModes(Box<GraphModalIntegrator>),
+}
+
+impl Stepper {
+    fn new(ode: &mut LatticeOde, method: Method, settings: &RunSettings) -> Self {
+        match method {
+            Method::ExactModes { rtol, atol } => {
+                let h0 = FIRST_STEP_OF_SAMPLE * settings.sample_interval_s.min(settings.duration_s);
+                Stepper::ExactModes(Box::new(GraphModalIntegrator::new(ode, rtol, atol, h0)))
+            }
+            _ => {
+                let (y0, units) = (ode.initial_state(), ode.tolerance_units());
+                Stepper::Explicit(Integrator::new(
+                    method,
+                    ode,
+                    0.0,
+                    y0,
+                    &units,
+                    settings.duration_s,
+                ))
+            }
+        }
+    }
+
+    fn step(&mut self, ode: &mut LatticeOde, t_end: f64) -> Result<f64> {
+        match self {
+            Stepper::Explicit(i) => i.step(ode, t_end),
+            Stepper::ExactModes(m) => m.step(t_end),
+        }
+    }
+
+    fn t(&self) -> f64 {
+        match self {
+            Stepper::Explicit(i) => i.t(),
+            Stepper::ExactModes(m) => m.t(),
+        }
+    }
+
+    fn y(&self) -> &[f64] {
+        match self {
+            Stepper::Explicit(i) => i.y(),
+            Stepper::ExactModes(m) => m.y(),
+        }
+    }
+
+    fn interpolate(&self, ts: f64, out: &mut [f64]) {
+        match self {
+            Stepper::Explicit(i) => i.interpolate(ts, out),
+            Stepper::ExactModes(m) => m.observe_at(ts, out),
+        }
+    }
+
+    fn stats(&self) -> IntegratorStats {
+        match self {
+            Stepper::Explicit(i) => i.stats(),
+            Stepper::ExactModes(m) => m.stats(),
+        }
+    }
+}
+
+/// The first step the exact modal method tries \[s\]: a hundredth of the sample interval.
+const FIRST_STEP_OF_SAMPLE: f64 = 0.01;
+
+/// The method a lattice runs: a stated peak tolerance becomes [`Method::ExactModes`] for rods
+/// whose stiffest mode is above [`crate::integrate::EXACT_MODES_ABOVE_RAD_S`] (finite-element
+/// rods: RKN 6(4)'s step would be set by that mode's stability) and RKN 6(4) otherwise
+/// ([`Method::resolve_for_modes`]).
+pub fn lattice_method(ode: &LatticeOde, method: Method) -> Method {
+    method.resolve_for_modes(true, ode.stiffest_mode_rad_s())
+}
+
+/// Runs a lattice: `settings.method` may be RK4, DOPRI5 (with or without events), RKN 6(4), the
+/// exact modal method, or a peak tolerance ([`lattice_method`] chooses).
 pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<LatticeRun> {
     settings.validate()?;
-    if matches!(settings.method, Method::ExactModes { .. }) {
-        return Err(Error::invalid(
-            "run.integrator",
-            "exact-modes",
-            "lattices run with rk4, dopri5 or a peak tolerance (RKN 6(4))",
-        ));
-    }
+    let method = lattice_method(ode, settings.method);
+    let mut stepper = Stepper::new(ode, method, settings);
     let y0 = ode.initial_state();
-    let units = ode.tolerance_units();
-    let mut integrator = Integrator::new(
-        settings.method,
-        ode,
-        0.0,
-        y0.clone(),
-        &units,
-        settings.duration_s,
-    );
     let nc = ode.contacts();
-    let q = ode.coordinates();
     let supports: Vec<usize> = (0..nc).filter(|&c| ode.is_support(c)).collect();
     let mut run = LatticeRun {
         contact_peak_forces_n: vec![0.0; nc],
@@ -98,40 +160,43 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         contacts: nc,
         supports,
         stats: IntegratorStats::default(),
+        method,
     };
     let e0 = ode.energy_j(&y0);
-    let mut sample = y0;
+    let mut sample = y0.clone();
     record(ode, &mut run, 0.0, &sample);
+    // Every contact's peak, and the transmitted force's (the supports' sum) as one more.
+    let mut peaks = PeakTracker::new(nc + 1);
+    let mut forces = vec![0.0; nc + 1];
+    watch_forces(ode, &y0, &run.supports, &mut forces, &mut peaks.rate);
+    peaks.start(&forces);
     let interval = settings.sample_interval_s;
     let mut next = 1usize;
-    while integrator.t() < settings.duration_s {
+    while stepper.t() < settings.duration_s {
         if crate::interrupt::requested() {
             return Err(Error::Interrupted {
-                time_s: integrator.t(),
+                time_s: stepper.t(),
             });
         }
-        let h = integrator.step(ode, settings.duration_s)?;
-        let t = integrator.t();
-        let y = integrator.y();
-        ode.contact_forces(&y[..q]);
+        let t0 = stepper.t();
+        let h = stepper.step(ode, settings.duration_s)?;
+        let t = stepper.t();
+        let y = stepper.y();
+        watch_forces(ode, y, &run.supports, &mut forces, &mut peaks.rate);
         check(ode, t, y)?;
-        for c in 0..nc {
-            if ode.force_n[c] > run.contact_peak_forces_n[c] {
-                run.contact_peak_forces_n[c] = ode.force_n[c];
-                run.contact_peak_times_s[c] = t;
-            }
-        }
-        let transmitted: f64 = run.supports.iter().map(|&s| ode.force_n[s]).sum();
-        run.transmitted_peak_force_n = run.transmitted_peak_force_n.max(transmitted);
+        peaks.update(t0, t, &forces);
         while let Some(ts) = sample_time(next, interval, settings.duration_s) {
             if ts > t + 1e-9 * h {
                 break;
             }
-            integrator.interpolate(ts, &mut sample);
+            stepper.interpolate(ts, &mut sample);
             record(ode, &mut run, ts, &sample);
             next += 1;
         }
     }
+    run.contact_peak_forces_n.copy_from_slice(&peaks.peak[..nc]);
+    run.contact_peak_times_s.copy_from_slice(&peaks.time[..nc]);
+    run.transmitted_peak_force_n = peaks.peak[nc];
     run.incident_peak_force_n = run.contact_peak_forces_n[0];
     let final_j = *run.energy_j.last().expect("the first sample");
     run.energy = EnergyBalance {
@@ -145,8 +210,25 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         input_work_j: 0.0,
         dissipated_j: 0.0,
     };
-    run.stats = integrator.stats();
+    run.stats = stepper.stats();
     Ok(run)
+}
+
+/// Every contact's force and its rate in state y, then the supports' sum and its rate, into
+/// `forces` and `rates` (contacts + 1 each).
+fn watch_forces(
+    ode: &mut LatticeOde,
+    y: &[f64],
+    supports: &[usize],
+    forces: &mut [f64],
+    rates: &mut [f64],
+) {
+    let nc = ode.contacts();
+    ode.contact_forces(&y[..ode.coordinates()]);
+    ode.contact_force_rates(y, &mut rates[..nc]);
+    forces[..nc].copy_from_slice(&ode.force_n);
+    forces[nc] = supports.iter().map(|&s| forces[s]).sum();
+    rates[nc] = supports.iter().map(|&s| rates[s]).sum();
 }
 
 /// Sample k's time, if within the run.

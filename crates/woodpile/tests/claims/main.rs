@@ -44,6 +44,7 @@ mod lanes_lab_physics;
 mod lattice_bad_geometry;
 mod lattice_common;
 mod lattice_energy_balance;
+mod lattice_exact_modes;
 mod lattice_free_rod_modes;
 mod lattice_mirror_symmetry;
 mod lattice_momentum;

@@ -1,0 +1,453 @@
+//! [`Method::ExactModes`](super::Method::ExactModes) on a contact graph (a lattice,
+//! docs/physics.md §16 and §8 "Exact linear vibrations"): every body moves in mass-normalised
+//! modal coordinates, q̈_m = −ω_m² q_m + Σ_c r_cm F_c, so the linear part is diagonal. Over a
+//! step each contact force F_c is replaced by its cubic through the four Lobatto nodes, every
+//! mode is advanced against the cubic its contacts exert (Σ_c ∓r_cm a_c, [`super::exponential`])
+//! exactly, and the node forces are found by fixed-point iteration on the contacts' overlaps.
+//!
+//! The embedded error estimate is that of the chain's stepper (the cubic's σ³ part against the
+//! quadratic through 0, ½, 1), mapped from the modes to the two points of every contact; its norm
+//! is the largest over the contacts' points, not their mean, so that one active contact among
+//! hundreds at rest is held to the tolerance. A step in which a contact opens or closes is
+//! retaken to end there; samples inside a step are the exact flow at their time.
+
+use super::exponential::{kernel, lagrange, nodes, Kernel, ERROR_POLY};
+use super::modal_step::{
+    adaptive_step, first_crossing, Attempt, ExactStepper, Ladder, FIXED_POINT_TOLERANCE,
+    MAX_ITERATIONS, VELOCITY_UNIT,
+};
+use super::{IntegratorStats, StepControl};
+use crate::error::Result;
+use crate::model::ContactLaw;
+use crate::ode::LatticeOde;
+
+/// The longest step, as a fraction of the striker's Hertz contact time
+/// ([`LatticeOde::striker_contact_time_s`]). The exact flow would let a step grow without bound
+/// while the contacts are open; a contact that closes and opens again between two of a step's
+/// nodes would then go unseen.
+const MAX_STEP_OF_CONTACT_TIME: f64 = 0.25;
+
+/// What a step of size h needs of one frequency ω (z = hω): per node σ = c₁, c₂, 1 the free
+/// motion cos(σz), h sin(σz)/z and the response h² S_n(σ, z) to σⁿ; at the end the velocity's
+/// −(z/h) sin z and h C_n(1, z); the error weights h² Σ E_n S_n(1, z), h Σ E_n C_n(1, z).
+#[derive(Debug, Clone, Copy, Default)]
+struct FrequencyWeights {
+    cos: [f64; 3],
+    hsinc: [f64; 3],
+    pos: [[f64; 4]; 3],
+    vel_of_pos: f64,
+    vel: [f64; 4],
+    err_pos: f64,
+    err_vel: f64,
+}
+
+impl FrequencyWeights {
+    fn new(h: f64, omega: f64) -> Self {
+        let c = nodes();
+        let k: [Kernel; 3] = [
+            kernel(c[1], h * omega),
+            kernel(c[2], h * omega),
+            kernel(1.0, h * omega),
+        ];
+        let end = &k[2];
+        FrequencyWeights {
+            cos: k.map(|k| k.cos),
+            hsinc: k.map(|k| h * k.sinc),
+            pos: k.map(|k| k.s.map(|s| h * h * s)),
+            vel_of_pos: -end.zsin / h,
+            vel: end.c.map(|c| h * c),
+            err_pos: h * h * (0..4).map(|n| ERROR_POLY[n] * end.s[n]).sum::<f64>(),
+            err_vel: h * (0..4).map(|n| ERROR_POLY[n] * end.c[n]).sum::<f64>(),
+        }
+    }
+}
+
+/// The stepper of a lattice's run.
+#[derive(Debug, Clone)]
+pub(crate) struct GraphModalIntegrator {
+    ode: LatticeOde,
+    /// The distinct frequencies \[rad/s\] and each coordinate's index into them.
+    frequencies: Vec<f64>,
+    frequency_index: Vec<usize>,
+    rtol: f64,
+    atol: f64,
+    t: f64,
+    t_prev: f64,
+    h_last: f64,
+    /// The state in [`LatticeOde`]'s layout, now and at the last step's start.
+    y: Vec<f64>,
+    y_prev: Vec<f64>,
+    /// Per contact: its force's cubic over the last step (monomials in σ) \[N\].
+    coef: Vec<[f64; 4]>,
+    /// Per coordinate: the cubic of its modal force over the last step.
+    modal_force: Vec<[f64; 4]>,
+    /// Per contact: force and overlap now.
+    force: Vec<f64>,
+    overlap: Vec<f64>,
+    control: StepControl,
+    /// The longest step \[s\]: a quarter of the striker's Hertz contact time.
+    max_step_s: f64,
+    ladder: Ladder<Vec<FrequencyWeights>>,
+    lagrange: [[f64; 4]; 4],
+    stats: IntegratorStats,
+    sc: Scratch,
+}
+
+/// Buffers of an attempt.
+#[derive(Debug, Clone, Default)]
+struct Scratch {
+    /// Per node σ = c₁, c₂, 1 and coordinate: the free (force-less) motion.
+    free: [Vec<f64>; 3],
+    /// Per node and coordinate: the response to the modal forces' cubics.
+    forced: [Vec<f64>; 3],
+    /// Per coordinate: the cubic of its modal force.
+    modal_force: Vec<[f64; 4]>,
+    /// Per contact and node 1..3: the free overlap.
+    free_overlap: Vec<[f64; 3]>,
+    /// Per contact and node 0..3: force and overlap.
+    node_force: Vec<[f64; 4]>,
+    node_overlap: Vec<[f64; 4]>,
+    coef: Vec<[f64; 4]>,
+}
+
+impl GraphModalIntegrator {
+    /// A stepper for the lattice `ode` from its initial state, with tolerances rtol and atol
+    /// \[m\] on the contacts' points and a first step `h0`.
+    pub fn new(ode: &LatticeOde, rtol: f64, atol: f64, h0: f64) -> Self {
+        let q = ode.coordinates();
+        let (mut frequencies, mut frequency_index) = (Vec::<f64>::new(), Vec::with_capacity(q));
+        for &w2 in &ode.omega2 {
+            let w = w2.sqrt();
+            let index = frequencies.iter().position(|&f| f == w).unwrap_or_else(|| {
+                frequencies.push(w);
+                frequencies.len() - 1
+            });
+            frequency_index.push(index);
+        }
+        let n = ode.contacts();
+        let y = ode.initial_state();
+        let mut ode = ode.clone();
+        ode.contact_forces(&y[..q]);
+        let per_node = || [vec![0.0; q], vec![0.0; q], vec![0.0; q]];
+        GraphModalIntegrator {
+            frequencies,
+            frequency_index,
+            rtol,
+            atol,
+            t: 0.0,
+            t_prev: 0.0,
+            h_last: 0.0,
+            y_prev: y.clone(),
+            y,
+            coef: vec![[0.0; 4]; n],
+            modal_force: vec![[0.0; 4]; q],
+            force: ode.force_n.clone(),
+            overlap: ode.overlap_m.clone(),
+            control: StepControl::new(h0),
+            max_step_s: MAX_STEP_OF_CONTACT_TIME * ode.striker_contact_time_s(),
+            ladder: Ladder::default(),
+            lagrange: lagrange(),
+            stats: IntegratorStats {
+                rhs_evaluations: 1,
+                ..IntegratorStats::default()
+            },
+            sc: Scratch {
+                free: per_node(),
+                forced: per_node(),
+                modal_force: vec![[0.0; 4]; q],
+                free_overlap: vec![[0.0; 3]; n],
+                node_force: vec![[0.0; 4]; n],
+                node_overlap: vec![[0.0; 4]; n],
+                coef: vec![[0.0; 4]; n],
+            },
+            ode,
+        }
+    }
+
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+
+    /// The state now, in [`LatticeOde`]'s layout.
+    pub fn y(&self) -> &[f64] {
+        &self.y
+    }
+
+    pub fn stats(&self) -> IntegratorStats {
+        self.stats
+    }
+
+    /// One accepted step toward t_end; returns its size.
+    pub fn step(&mut self, t_end: f64) -> Result<f64> {
+        adaptive_step(self, t_end)
+    }
+
+    /// The overlap of contact c for coordinates `x` \[m\].
+    fn overlap_of(&self, c: usize, x: &[f64]) -> f64 {
+        let o = &self.ode;
+        let mut d = o.above[c].dot(&o.rows, x);
+        if let Some(b) = o.below[c] {
+            d -= b.dot(&o.rows, x);
+        }
+        d
+    }
+
+    /// The attempt's free motion at the nodes and the first guess of the node forces (the last
+    /// step's cubics continued; constant at the start).
+    fn start_attempt(&mut self, h: f64, weights: &[FrequencyWeights]) {
+        let q = self.frequency_index.len();
+        let c_nodes = nodes();
+        let (x, v) = (&self.y[..q], &self.y[q + 3..2 * q + 3]);
+        for j in 0..3 {
+            for m in 0..q {
+                let w = &weights[self.frequency_index[m]];
+                self.sc.free[j][m] = w.cos[j] * x[m] + w.hsinc[j] * v[m];
+            }
+        }
+        for c in 0..self.force.len() {
+            let free = [0, 1, 2].map(|j| self.overlap_of(c, &self.sc.free[j]));
+            self.sc.free_overlap[c] = free;
+            self.sc.node_overlap[c][0] = self.overlap[c];
+            let f = &mut self.sc.node_force[c];
+            f[0] = self.force[c];
+            for j in 1..4 {
+                f[j] = if self.h_last > 0.0 {
+                    let s = 1.0 + c_nodes[j] * h / self.h_last;
+                    let a = &self.coef[c];
+                    ((a[3] * s + a[2]) * s + a[1]) * s + a[0]
+                } else {
+                    self.force[c]
+                };
+            }
+        }
+    }
+
+    /// Each contact's cubic from its node forces, and each coordinate's modal force cubic.
+    fn cubics(&mut self) {
+        let o = &self.ode;
+        let sc = &mut self.sc;
+        for b in sc.modal_force.iter_mut() {
+            *b = [0.0; 4];
+        }
+        for (c, (a, f)) in sc.coef.iter_mut().zip(&sc.node_force).enumerate() {
+            for n in 0..4 {
+                a[n] = (0..4).map(|j| self.lagrange[n][j] * f[j]).sum();
+            }
+            if f.iter().all(|&x| x == 0.0) {
+                continue;
+            }
+            let mut add = |side: crate::ode::Side, sign: f64| {
+                let rows = &o.rows[side.row..side.row + side.len];
+                let b = &mut sc.modal_force[side.offset..side.offset + side.len];
+                for (bm, r) in b.iter_mut().zip(rows) {
+                    for n in 0..4 {
+                        bm[n] += sign * r * a[n];
+                    }
+                }
+            };
+            add(o.above[c], -1.0);
+            if let Some(below) = o.below[c] {
+                add(below, 1.0);
+            }
+        }
+    }
+
+    /// The fixed-point iteration of the collocation conditions: node forces → cubics → node
+    /// overlaps → node forces. False when it did not converge.
+    fn solve_nodes(&mut self, weights: &[FrequencyWeights]) -> bool {
+        let q = self.frequency_index.len();
+        for _ in 0..MAX_ITERATIONS {
+            self.cubics();
+            for j in 0..3 {
+                for m in 0..q {
+                    let w = &weights[self.frequency_index[m]].pos[j];
+                    let b = &self.sc.modal_force[m];
+                    self.sc.forced[j][m] = w[0] * b[0] + w[1] * b[1] + w[2] * b[2] + w[3] * b[3];
+                }
+            }
+            let (mut change, mut scale) = (0.0_f64, 0.0_f64);
+            for c in 0..self.force.len() {
+                let beta = self.ode.beta[c];
+                for j in 0..3 {
+                    let d = self.sc.free_overlap[c][j] + self.overlap_of(c, &self.sc.forced[j]);
+                    let f = ContactLaw::elastic_force(beta, d);
+                    if !f.is_finite() {
+                        return false;
+                    }
+                    change = change.max((f - self.sc.node_force[c][j + 1]).abs());
+                    scale = scale.max(f.abs());
+                    self.sc.node_force[c][j + 1] = f;
+                    self.sc.node_overlap[c][j + 1] = d;
+                }
+            }
+            self.stats.rhs_evaluations += 3;
+            if change <= (FIXED_POINT_TOLERANCE * self.rtol).max(1e-13) * scale || scale == 0.0 {
+                self.cubics();
+                return true;
+            }
+        }
+        false
+    }
+
+    /// The error norm of the solved attempt: per contact point, the σ³ part's effect on its
+    /// position and velocity against atol + rtol |x| (the position at the step's end) and
+    /// atol/τ + rtol |v| (the velocity at its start), the largest.
+    fn error_norm(&self, weights: &[FrequencyWeights]) -> f64 {
+        let o = &self.ode;
+        let q = self.frequency_index.len();
+        let v = &self.y[q + 3..2 * q + 3];
+        let mut worst = 0.0_f64;
+        let mut side_error = |side: crate::ode::Side| {
+            let (mut ex, mut ev, mut x, mut xd) = (0.0, 0.0, 0.0, 0.0);
+            for k in 0..side.len {
+                let (m, r) = (side.offset + k, o.rows[side.row + k]);
+                let w = &weights[self.frequency_index[m]];
+                let b3 = self.sc.modal_force[m][3];
+                ex += r * w.err_pos * b3;
+                ev += r * w.err_vel * b3;
+                x += r * (self.sc.free[2][m] + self.sc.forced[2][m]);
+                xd += r * v[m];
+            }
+            let sx = self.atol + self.rtol * x.abs();
+            let sv = self.atol * VELOCITY_UNIT + self.rtol * xd.abs();
+            worst = worst.max((ex / sx).powi(2) + (ev / sv).powi(2));
+        };
+        for c in 0..self.force.len() {
+            if self.sc.node_force[c].iter().all(|&f| f == 0.0) {
+                continue;
+            }
+            side_error(o.above[c]);
+            if let Some(b) = o.below[c] {
+                side_error(b);
+            }
+        }
+        (0.5 * worst).sqrt()
+    }
+
+    /// The weights of the step h (a rung's, or off the ladder).
+    fn weights(&mut self, h: f64, rung: Option<i64>) -> Vec<FrequencyWeights> {
+        let frequencies = &self.frequencies;
+        self.ladder.ensure(h, rung, || {
+            frequencies
+                .iter()
+                .map(|&w| FrequencyWeights::new(h, w))
+                .collect()
+        });
+        self.ladder.get(rung).clone()
+    }
+
+    /// The state at ts inside the last step (the exact flow under the step's cubics) into y.
+    pub fn observe_at(&self, ts: f64, out: &mut [f64]) {
+        let h = self.h_last;
+        if ts >= self.t || h == 0.0 {
+            out.copy_from_slice(&self.y);
+            return;
+        }
+        let theta = ((ts - self.t_prev) / h).clamp(0.0, 1.0);
+        let kernels: Vec<Kernel> = self
+            .frequencies
+            .iter()
+            .map(|&w| kernel(theta, h * w))
+            .collect();
+        let q = self.frequency_index.len();
+        let (x0, v0) = (&self.y_prev[..q], &self.y_prev[q + 3..2 * q + 3]);
+        for m in 0..q {
+            let k = &kernels[self.frequency_index[m]];
+            let b = &self.modal_force[m];
+            let sb: f64 = (0..4).map(|n| k.s[n] * b[n]).sum();
+            let cb: f64 = (0..4).map(|n| k.c[n] * b[n]).sum();
+            out[m] = k.cos * x0[m] + h * k.sinc * v0[m] + h * h * sb;
+            out[q + 3 + m] = -k.zsin / h * x0[m] + k.cos * v0[m] + h * cb;
+        }
+        self.supports_flow(theta, h, &self.y_prev, out);
+    }
+
+    /// The supports' impulses J and their integrals ∫J dt at θ of a step of size h from `from`
+    /// (the support forces' cubics of that step) into `out`.
+    fn supports_flow(&self, theta: f64, h: f64, from: &[f64], out: &mut [f64]) {
+        let q = self.frequency_index.len();
+        let (mut dj, mut djint) = ([0.0; 3], [0.0; 3]);
+        for &(c, dx, dy) in &self.ode.supports {
+            let a = &self.coef[c];
+            let (mut i1, mut i2) = (0.0, 0.0);
+            let mut pw = theta;
+            for (n, an) in a.iter().enumerate() {
+                let n1 = (n + 1) as f64;
+                i1 += an * pw / n1;
+                i2 += an * pw * theta / (n1 * (n1 + 1.0));
+                pw *= theta;
+            }
+            for (k, arm) in [1.0, dx, dy].iter().enumerate() {
+                dj[k] += arm * h * i1;
+                djint[k] += arm * h * h * i2;
+            }
+        }
+        for k in 0..3 {
+            let j0 = from[2 * q + 3 + k];
+            out[2 * q + 3 + k] = j0 + dj[k];
+            out[q + k] = from[q + k] + theta * h * j0 + djint[k];
+        }
+    }
+}
+
+impl ExactStepper for GraphModalIntegrator {
+    fn control(&mut self) -> (&mut StepControl, &mut IntegratorStats) {
+        (&mut self.control, &mut self.stats)
+    }
+
+    fn now(&self) -> f64 {
+        self.t
+    }
+
+    fn max_step(&self) -> f64 {
+        self.max_step_s
+    }
+
+    fn attempt(&mut self, h: f64, rung: Option<i64>) -> Attempt {
+        let weights = self.weights(h, rung);
+        self.start_attempt(h, &weights);
+        let converged = self.solve_nodes(&weights);
+        let err = match converged.then(|| self.error_norm(&weights)) {
+            Some(e) if e.is_finite() => e,
+            _ => f64::INFINITY,
+        };
+        let missed = if err <= 1.0 {
+            first_crossing(&self.sc.node_overlap, &self.ode.beta, &nodes()).map(|theta| theta * h)
+        } else {
+            None
+        };
+        Attempt { err, missed }
+    }
+
+    fn commit(&mut self, h: f64, rung: Option<i64>) {
+        std::mem::swap(&mut self.y, &mut self.y_prev);
+        let q = self.frequency_index.len();
+        let weights = self.ladder.get(rung);
+        let (x0, v0) = (&self.y_prev[..q], &self.y_prev[q + 3..2 * q + 3]);
+        let (x1, rest) = self.y.split_at_mut(q + 3);
+        let v1 = &mut rest[..q];
+        for m in 0..q {
+            let w = &weights[self.frequency_index[m]];
+            let b = &self.sc.modal_force[m];
+            let p = &w.pos[2];
+            x1[m] = w.cos[2] * x0[m]
+                + w.hsinc[2] * v0[m]
+                + (p[0] * b[0] + p[1] * b[1] + p[2] * b[2] + p[3] * b[3]);
+            v1[m] = w.vel_of_pos * x0[m]
+                + w.cos[2] * v0[m]
+                + (w.vel[0] * b[0] + w.vel[1] * b[1] + w.vel[2] * b[2] + w.vel[3] * b[3]);
+        }
+        self.coef.copy_from_slice(&self.sc.coef);
+        self.modal_force.copy_from_slice(&self.sc.modal_force);
+        let mut y = std::mem::take(&mut self.y);
+        self.supports_flow(1.0, h, &self.y_prev, &mut y);
+        self.y = y;
+        for c in 0..self.force.len() {
+            self.force[c] = self.sc.node_force[c][3];
+            self.overlap[c] = self.sc.node_overlap[c][3];
+        }
+        self.h_last = h;
+        self.t_prev = self.t;
+        self.t += h;
+    }
+}
