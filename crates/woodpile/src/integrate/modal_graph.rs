@@ -230,8 +230,8 @@ impl GraphModalIntegrator {
             *b = [0.0; 4];
         }
         for (c, (a, f)) in sc.coef.iter_mut().zip(&sc.node_force).enumerate() {
-            for n in 0..4 {
-                a[n] = (0..4).map(|j| self.lagrange[n][j] * f[j]).sum();
+            for (an, l) in a.iter_mut().zip(&self.lagrange) {
+                *an = (0..4).map(|j| l[j] * f[j]).sum();
             }
             if f.iter().all(|&x| x == 0.0) {
                 continue;

@@ -60,7 +60,7 @@ impl LatticeRun {
 
 /// What steps a lattice: the chain's integrators, or the exact modal stepper.
 enum Stepper {
-    Explicit(Integrator),
+    Explicit(Box<Integrator>),
     ExactModes(Box<GraphModalIntegrator>),
 }
 
@@ -73,14 +73,14 @@ impl Stepper {
             }
             _ => {
                 let (y0, units) = (ode.initial_state(), ode.tolerance_units());
-                Stepper::Explicit(Integrator::new(
+                Stepper::Explicit(Box::new(Integrator::new(
                     method,
                     ode,
                     0.0,
                     y0,
                     &units,
                     settings.duration_s,
-                ))
+                )))
             }
         }
     }
