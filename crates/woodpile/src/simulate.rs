@@ -12,7 +12,7 @@ use crate::record::{Layout, Recorder, Sample};
 mod lattice;
 mod modal;
 
-pub use lattice::{simulate_lattice, LatticeRun};
+pub use lattice::{lattice_method, simulate_lattice, LatticeRun};
 
 /// How long, how and how often to sample.
 #[derive(Debug, Clone, Copy, PartialEq)]
