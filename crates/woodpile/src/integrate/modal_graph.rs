@@ -6,9 +6,9 @@
 //! exactly, and the node forces are found by fixed-point iteration on the contacts' overlaps.
 //!
 //! The embedded error estimate is that of the chain's stepper (the cubic's σ³ part against the
-//! quadratic through 0, ½, 1), mapped from the modes to the two points of every contact; its norm
-//! is the largest over the contacts' points, not their mean, so that one active contact among
-//! hundreds at rest is held to the tolerance. A step in which a contact opens or closes is
+//! quadratic through 0, ½, 1), mapped from the modes to the two points of every loaded contact
+//! and to its force; its norm is the largest over those, not their mean, so that one active
+//! contact among hundreds at rest is held to the tolerance. A step in which a contact opens or closes is
 //! retaken to end there; samples inside a step are the exact flow at their time.
 
 use super::exponential::{kernel, lagrange, nodes, Kernel, ERROR_POLY};
@@ -62,6 +62,24 @@ impl FrequencyWeights {
     }
 }
 
+/// An attempt's error at one point of a contact.
+#[derive(Debug, Clone, Copy, Default)]
+struct PointError {
+    position: f64,
+    velocity: f64,
+    x: f64,
+    v: f64,
+}
+
+impl PointError {
+    /// The squared errors of position and velocity against their scales, summed.
+    fn norm2(&self, rtol: f64, atol: f64) -> f64 {
+        let sx = atol + rtol * self.x.abs();
+        let sv = atol * VELOCITY_UNIT + rtol * self.v.abs();
+        (self.position / sx).powi(2) + (self.velocity / sv).powi(2)
+    }
+}
+
 /// The stepper of a lattice's run.
 #[derive(Debug, Clone)]
 pub(crate) struct GraphModalIntegrator {
@@ -81,8 +99,9 @@ pub(crate) struct GraphModalIntegrator {
     coef: Vec<[f64; 4]>,
     /// Per coordinate: the cubic of its modal force over the last step.
     modal_force: Vec<[f64; 4]>,
-    /// Per contact: force and overlap now.
+    /// Per contact: force and overlap now, and the largest overlap at any node so far \[m\].
     force: Vec<f64>,
+    largest_overlap: Vec<f64>,
     overlap: Vec<f64>,
     control: StepControl,
     /// The longest step \[s\]: a quarter of the striker's Hertz contact time.
@@ -142,6 +161,7 @@ impl GraphModalIntegrator {
             coef: vec![[0.0; 4]; n],
             modal_force: vec![[0.0; 4]; q],
             force: ode.force_n.clone(),
+            largest_overlap: ode.overlap_m.iter().map(|d| d.max(0.0)).collect(),
             overlap: ode.overlap_m.clone(),
             control: StepControl::new(h0),
             max_step_s: MAX_STEP_OF_CONTACT_TIME * ode.striker_contact_time_s(),
@@ -289,39 +309,54 @@ impl GraphModalIntegrator {
         false
     }
 
-    /// The error norm of the solved attempt: per contact point, the σ³ part's effect on its
-    /// position and velocity against atol + rtol |x| (the position at the step's end) and
-    /// atol/τ + rtol |v| (the velocity at its start), the largest.
+    /// The error norm of the solved attempt, the larger of two tests over the loaded contacts:
+    /// at each of a contact's points, the σ³ part's effect on its position and velocity against
+    /// atol + rtol |x| (the position at the step's end) and atol/τ + rtol |v| (the velocity at
+    /// its start); and on the contact's overlap, against atol + rtol δ_max / 1.5 with δ_max its
+    /// largest overlap so far (a point can move far more than a contact deep in the lattice is
+    /// compressed, and a peak force's relative error is 1.5 times its overlap's).
     fn error_norm(&self, weights: &[FrequencyWeights]) -> f64 {
         let o = &self.ode;
-        let q = self.frequency_index.len();
-        let v = &self.y[q + 3..2 * q + 3];
-        let mut worst = 0.0_f64;
-        let mut side_error = |side: crate::ode::Side| {
-            let (mut ex, mut ev, mut x, mut xd) = (0.0, 0.0, 0.0, 0.0);
-            for k in 0..side.len {
-                let (m, r) = (side.offset + k, o.rows[side.row + k]);
-                let w = &weights[self.frequency_index[m]];
-                let b3 = self.sc.modal_force[m][3];
-                ex += r * w.err_pos * b3;
-                ev += r * w.err_vel * b3;
-                x += r * (self.sc.free[2][m] + self.sc.forced[2][m]);
-                xd += r * v[m];
-            }
-            let sx = self.atol + self.rtol * x.abs();
-            let sv = self.atol * VELOCITY_UNIT + self.rtol * xd.abs();
-            worst = worst.max((ex / sx).powi(2) + (ev / sv).powi(2));
-        };
+        let (mut worst_point, mut worst_force) = (0.0_f64, 0.0_f64);
         for c in 0..self.force.len() {
-            if self.sc.node_force[c].iter().all(|&f| f == 0.0) {
+            let f = &self.sc.node_force[c];
+            if f.iter().all(|&f| f == 0.0) {
                 continue;
             }
-            side_error(o.above[c]);
+            let above = self.point_error(o.above[c], weights);
+            worst_point = worst_point.max(above.norm2(self.rtol, self.atol));
+            let mut overlap_error = above.position;
             if let Some(b) = o.below[c] {
-                side_error(b);
+                let below = self.point_error(b, weights);
+                worst_point = worst_point.max(below.norm2(self.rtol, self.atol));
+                overlap_error -= below.position;
             }
+            // F ∝ δ^{3/2}: a relative error ε of the overlap at the peak is 1.5 ε of the force.
+            let largest = self.sc.node_overlap[c]
+                .iter()
+                .fold(self.largest_overlap[c], |m, &d| m.max(d));
+            let scale = self.atol + self.rtol * largest / 1.5;
+            worst_force = worst_force.max(overlap_error.abs() / scale);
         }
-        (0.5 * worst).sqrt()
+        (0.5 * worst_point).sqrt().max(worst_force)
+    }
+
+    /// The σ³ part's effect on a point's position and velocity, and the point's position at the
+    /// step's end and velocity at its start.
+    fn point_error(&self, side: crate::ode::Side, weights: &[FrequencyWeights]) -> PointError {
+        let q = self.frequency_index.len();
+        let v = &self.y[q + 3..2 * q + 3];
+        let mut e = PointError::default();
+        for k in 0..side.len {
+            let (m, r) = (side.offset + k, self.ode.rows[side.row + k]);
+            let w = &weights[self.frequency_index[m]];
+            let b3 = self.sc.modal_force[m][3];
+            e.position += r * w.err_pos * b3;
+            e.velocity += r * w.err_vel * b3;
+            e.x += r * (self.sc.free[2][m] + self.sc.forced[2][m]);
+            e.v += r * v[m];
+        }
+        e
     }
 
     /// The weights of the step h (a rung's, or off the ladder).
@@ -443,8 +478,10 @@ impl ExactStepper for GraphModalIntegrator {
         self.supports_flow(1.0, h, &self.y_prev, &mut y);
         self.y = y;
         for c in 0..self.force.len() {
+            let d = &self.sc.node_overlap[c];
             self.force[c] = self.sc.node_force[c][3];
-            self.overlap[c] = self.sc.node_overlap[c][3];
+            self.overlap[c] = d[3];
+            self.largest_overlap[c] = d.iter().fold(self.largest_overlap[c], |m, &x| m.max(x));
         }
         self.h_last = h;
         self.t_prev = self.t;
