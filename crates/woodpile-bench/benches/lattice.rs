@@ -50,7 +50,10 @@ fn lattice(layers: usize, rods: usize, fe_elements: usize) -> Lattice {
 
 /// The centre of the top layer's middle rod (rod n/2 from 0: right of the centre for even n).
 fn impact_point(rods: usize) -> [f64; 2] {
-    [0.0, (rods / 2) as f64 * PITCH_M - 0.5 * (rods - 1) as f64 * PITCH_M]
+    [
+        0.0,
+        (rods / 2) as f64 * PITCH_M - 0.5 * (rods - 1) as f64 * PITCH_M,
+    ]
 }
 
 fn settings() -> RunSettings {

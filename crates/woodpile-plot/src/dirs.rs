@@ -903,7 +903,11 @@ fn interface_windows(times_s: &[f64], (a, b): (f64, f64)) -> Vec<(f64, f64)> {
     let span = (b - a) / parts as f64;
     (0..parts)
         .map(|j| {
-            let end = if j + 1 == parts { b } else { a + (j + 1) as f64 * span };
+            let end = if j + 1 == parts {
+                b
+            } else {
+                a + (j + 1) as f64 * span
+            };
             (a + j as f64 * span, end)
         })
         .collect()

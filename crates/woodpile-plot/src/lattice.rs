@@ -8,8 +8,8 @@
 
 use crate::colorbar::{ColorBar, ColorScale};
 use crate::typeset::Line;
-use crate::{format_number, render, ColorMap, DrawResult, Figure, MapColours, PlotError, Result};
 use crate::FONT;
+use crate::{format_number, render, ColorMap, DrawResult, Figure, MapColours, PlotError, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -219,10 +219,7 @@ pub fn interface_forces(
             .map(|(_, row)| row)
             .collect();
         if rows.is_empty() {
-            return Err(bad(
-                title,
-                format!("no sample in the window {a} to {b} s"),
-            ));
+            return Err(bad(title, format!("no sample in the window {a} to {b} s")));
         }
         for c in 0..n {
             values[w * n + c] = rows
@@ -357,8 +354,20 @@ impl InterfaceGrid<'_> {
             .y_labels(7)
             .x_desc(if x_ticks { "x [mm]" } else { "" })
             .y_desc(if y_ticks { "y [mm]" } else { "" })
-            .x_label_formatter(&|v| if x_ticks { format_number(*v) } else { String::new() })
-            .y_label_formatter(&|v| if y_ticks { format_number(*v) } else { String::new() })
+            .x_label_formatter(&|v| {
+                if x_ticks {
+                    format_number(*v)
+                } else {
+                    String::new()
+                }
+            })
+            .y_label_formatter(&|v| {
+                if y_ticks {
+                    format_number(*v)
+                } else {
+                    String::new()
+                }
+            })
             .label_style((FONT, TICK_FONT))
             .axis_desc_style((FONT, LABEL_FONT))
             .draw()?;
@@ -433,8 +442,8 @@ impl Figure for InterfaceGrid<'_> {
         for (i, &k) in self.interfaces.iter().enumerate() {
             let y = top + i as u32 * (h + GAP_PX);
             let name = self.layout.interface_name(k);
-            let fit = (f64::from(h) / f64::from(Line::new(&name, LABEL_FONT, false).size().0))
-                .min(1.0);
+            let fit =
+                (f64::from(h) / f64::from(Line::new(&name, LABEL_FONT, false).size().0)).min(1.0);
             root.draw(&Text::new(
                 name,
                 ((MARGIN_PX + ROW_LABEL_PX / 2) as i32, (y + h / 2) as i32),
@@ -453,7 +462,11 @@ impl Figure for InterfaceGrid<'_> {
             }
         }
         let bar_x = left + cols * w + (cols - 1) * GAP_PX;
-        bar.draw(root, bar_x as i32, top as i32..(top + rows * h + (rows - 1) * GAP_PX) as i32)?;
+        bar.draw(
+            root,
+            bar_x as i32,
+            top as i32..(top + rows * h + (rows - 1) * GAP_PX) as i32,
+        )?;
         Ok(())
     }
 }

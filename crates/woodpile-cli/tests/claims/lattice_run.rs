@@ -4,8 +4,9 @@
 //! order of `summary.json`'s `contact_peak_forces_n` and of the force columns, and whose
 //! `supports.csv` ends in their sum, `transmitted_n`, whose peak is the summary's transmitted
 //! peak (sampled every step there, every µs here: within 2 % on this run); `woodpile plot`
-//! draws its `support_forces` and `contact_force_map` as PNG and SVG (exit 0) and refuses the
-//! run once its `forces_n.npy` is cut short, naming the file (exit 2). Bad lattices —
+//! draws its `support_forces`, `contact_force_map`, `interface_forces` and `lattice_view` as
+//! PNG and SVG (exit 0) and refuses the run once its `forces_n.npy` is cut short, naming the
+//! file (exit 2). Bad lattices —
 //! layers that do not touch, a support under no bottom rod, an impact point on no top rod, a
 //! negative drop height, more rods or crossings than the limits, an output of hundreds of GB —
 //! exit with code 2 naming the key, and leave no output directory (each refused at once: the
@@ -87,11 +88,16 @@ fn lattice_run_directory_lists_its_contacts() {
     );
     let forces = std::fs::read_to_string(dir.path().join("out/forces.csv")).unwrap();
     assert_eq!(forces.lines().next().unwrap().split(',').count(), 10);
-    // `woodpile plot` draws the lattice's two figures, each as PNG and SVG.
+    // `woodpile plot` draws the lattice's four figures, each as PNG and SVG.
     let plot = common::run_in(dir.path(), &["plot", "out", "--quiet"]);
     let stderr = String::from_utf8_lossy(&plot.stderr);
     assert_eq!(plot.status.code(), Some(0), "{stderr}");
-    for stem in ["support_forces", "contact_force_map"] {
+    for stem in [
+        "support_forces",
+        "contact_force_map",
+        "interface_forces",
+        "lattice_view",
+    ] {
         let png = std::fs::read(dir.path().join(format!("out/plots/{stem}.png"))).unwrap();
         assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"), "{stem}.png is a PNG");
         let svg =
