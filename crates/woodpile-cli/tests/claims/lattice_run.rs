@@ -5,8 +5,9 @@
 //! `supports.csv` ends in their sum, `transmitted_n`, whose peak is the summary's transmitted
 //! peak (sampled every step there, every µs here: within 2 % on this run); `woodpile plot`
 //! draws its `support_forces`, `contact_force_map`, `interface_forces` and `lattice_view` as
-//! PNG and SVG (exit 0) and refuses the run once its `forces_n.npy` is cut short, naming the
-//! file (exit 2). Bad lattices —
+//! PNG and SVG (exit 0; the last two with a disc per contact of `run.json`, in each of four time
+//! windows and once) and refuses the run once its `forces_n.npy` is cut short, naming the file
+//! (exit 2). Bad lattices —
 //! layers that do not touch, a support under no bottom rod, an impact point on no top rod, a
 //! negative drop height, more rods or crossings than the limits, an output of hundreds of GB —
 //! exit with code 2 naming the key, and leave no output directory (each refused at once: the
@@ -103,6 +104,18 @@ fn lattice_run_directory_lists_its_contacts() {
         let svg =
             std::fs::read_to_string(dir.path().join(format!("out/plots/{stem}.svg"))).unwrap();
         assert!(svg.contains("<svg"), "{stem}.svg is an SVG");
+        // The lattice's figures draw run.json's 9 contacts as discs: in each of the four time
+        // windows (300 samples) and once in the 3-D view.
+        let discs = svg
+            .split("<circle")
+            .skip(1)
+            .filter(|t| !t[..t.find('>').unwrap()].contains("fill=\"none\""))
+            .count();
+        match stem {
+            "interface_forces" => assert_eq!(discs, 4 * 9, "{stem}"),
+            "lattice_view" => assert_eq!(discs, 9, "{stem}"),
+            _ => {}
+        }
     }
     // A damaged run (its force file cut short) is refused naming the file, exit 2.
     let npy = dir.path().join("out/forces_n.npy");
