@@ -94,7 +94,8 @@ impl LatticeLayout {
         }
         for r in &self.rods {
             let finite = r.centre_mm.iter().chain(&r.axis).all(|v| v.is_finite());
-            if !finite || !(r.length_mm > 0.0) || !(r.diameter_mm > 0.0) || r.layer == 0 {
+            let sized = r.length_mm > 0.0 && r.diameter_mm > 0.0;
+            if !finite || !sized || r.layer == 0 {
                 return Err(bad(
                     what,
                     format!(
