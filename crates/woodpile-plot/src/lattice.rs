@@ -293,6 +293,16 @@ const DISC_PX: u32 = 6;
 const TICK_FONT: f64 = 14.0;
 const LABEL_FONT: f64 = 15.0;
 
+/// A label area of `units` at the text's printed size (the output's text scale).
+fn scaled(units: u32) -> u32 {
+    (f64::from(units) * crate::output::text_scale()).round() as u32
+}
+
+/// Tick labels for a panel side of `px` units: at most one per 30 units of printed text, 2 to 7.
+fn ticks(px: u32) -> usize {
+    (f64::from(px) / (30.0 * crate::output::text_scale())).clamp(2.0, 7.0) as usize
+}
+
 impl InterfaceGrid<'_> {
     /// The panels' data ranges (x0..x1, y0..y1) \[mm\] with the aspect `h / w` (equal scales).
     fn ranges(&self, w: f64, h: f64) -> ((f64, f64), (f64, f64)) {
@@ -315,7 +325,8 @@ impl InterfaceGrid<'_> {
     /// `bar_px` wide: the data's aspect, between 0.5 and 1.
     fn panel_size(&self, width: u32, bar_px: u32) -> (u32, u32) {
         let cols = self.windows_s.len() as u32;
-        let free = width.saturating_sub(ROW_LABEL_PX + Y_TICKS_PX + bar_px + 2 * MARGIN_PX);
+        let free = width
+            .saturating_sub(scaled(ROW_LABEL_PX) + scaled(Y_TICKS_PX) + bar_px + 2 * MARGIN_PX);
         let w = (free.saturating_sub(GAP_PX * (cols - 1)) / cols).max(40);
         let (x0, x1, y0, y1) = self.layout.extent_mm();
         let aspect = ((y1 - y0) / (x1 - x0).max(1e-9)).clamp(0.5, 1.0);
@@ -344,17 +355,27 @@ impl InterfaceGrid<'_> {
         DB::ErrorType: 'static,
     {
         let ((x0, x1), (y0, y1)) = ranges;
+        let (w_all, h_all) = area.dim_in_pixel();
+        let w_px = w_all - if y_ticks { scaled(Y_TICKS_PX) } else { 0 };
+        let h_px = h_all - if x_ticks { scaled(X_TICKS_PX) } else { 0 };
         let mut chart = ChartBuilder::on(area)
-            .y_label_area_size(if y_ticks { Y_TICKS_PX } else { 0 })
-            .x_label_area_size(if x_ticks { X_TICKS_PX } else { 0 })
+            .y_label_area_size(if y_ticks { scaled(Y_TICKS_PX) } else { 0 })
+            .x_label_area_size(if x_ticks { scaled(X_TICKS_PX) } else { 0 })
             .build_cartesian_2d(x0..x1, y0..y1)?;
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_labels(7)
-            .y_labels(7)
+            .x_labels(ticks(w_px))
+            .y_labels(ticks(h_px))
             .x_desc(if x_ticks { "x [mm]" } else { "" })
-            .y_desc(if y_ticks { "y [mm]" } else { "" })
+            // A row too short for the axis title goes without (its neighbours' would overlap).
+            .y_desc(
+                if y_ticks && f64::from(h_px) > 70.0 * crate::output::text_scale() {
+                    "y [mm]"
+                } else {
+                    ""
+                },
+            )
             .x_label_formatter(&|v| {
                 if x_ticks {
                     format_number(*v)
@@ -403,7 +424,11 @@ impl Figure for InterfaceGrid<'_> {
         let width = crate::output::REFERENCE_WIDTH;
         let (_, h) = self.panel_size(width, self.bar().width());
         let rows = self.interfaces.len() as u32;
-        let height = TITLE_PX + HEADER_PX + rows * h + (rows - 1) * GAP_PX + X_TICKS_PX;
+        let height = scaled(TITLE_PX)
+            + scaled(HEADER_PX)
+            + rows * h
+            + (rows - 1) * GAP_PX
+            + scaled(X_TICKS_PX);
         (width, height + 2 * MARGIN_PX)
     }
 
@@ -419,35 +444,50 @@ impl Figure for InterfaceGrid<'_> {
         let (w, natural_h) = self.panel_size(width, bar.width());
         // Another height than the natural one (an output's aspect): the rows share it.
         let free = height.saturating_sub(
-            TITLE_PX + HEADER_PX + X_TICKS_PX + 2 * MARGIN_PX + (rows - 1) * GAP_PX,
+            scaled(TITLE_PX)
+                + scaled(HEADER_PX)
+                + scaled(X_TICKS_PX)
+                + 2 * MARGIN_PX
+                + (rows - 1) * GAP_PX,
         );
         let h = (free / rows).clamp(20, natural_h.max(20) * 2);
         let ranges = self.ranges(f64::from(w), f64::from(h));
         root.draw(&Text::new(
             self.title.clone(),
-            ((width / 2) as i32, (MARGIN_PX + TITLE_PX / 2) as i32),
+            (
+                (width / 2) as i32,
+                (MARGIN_PX + scaled(TITLE_PX) / 2) as i32,
+            ),
             TextStyle::from((FONT, 22).into_font()).pos(Pos::new(HPos::Center, VPos::Center)),
         ))?;
-        let left = MARGIN_PX + ROW_LABEL_PX + Y_TICKS_PX;
-        let top = MARGIN_PX + TITLE_PX + HEADER_PX;
+        let left = MARGIN_PX + scaled(ROW_LABEL_PX) + scaled(Y_TICKS_PX);
+        let top = MARGIN_PX + scaled(TITLE_PX) + scaled(HEADER_PX);
         let ms = |t: f64| format_number(t * 1e3);
         let label_style = TextStyle::from((FONT, LABEL_FONT).into_font());
         for (j, &(a, b)) in self.windows_s.iter().enumerate() {
             let x = left + j as u32 * (w + GAP_PX) + w / 2;
             root.draw(&Text::new(
                 format!("{}–{} ms", ms(a), ms(b)),
-                (x as i32, (top - HEADER_PX / 2) as i32),
+                (x as i32, (top - scaled(HEADER_PX) / 2) as i32),
                 label_style.pos(Pos::new(HPos::Center, VPos::Center)),
             ))?;
         }
         for (i, &k) in self.interfaces.iter().enumerate() {
             let y = top + i as u32 * (h + GAP_PX);
             let name = self.layout.interface_name(k);
-            let fit =
-                (f64::from(h) / f64::from(Line::new(&name, LABEL_FONT, false).size().0)).min(1.0);
+            let fit = (f64::from(h)
+                / f64::from(
+                    Line::new(&name, LABEL_FONT * crate::output::text_scale(), false)
+                        .size()
+                        .0,
+                ))
+            .min(1.0);
             root.draw(&Text::new(
                 name,
-                ((MARGIN_PX + ROW_LABEL_PX / 2) as i32, (y + h / 2) as i32),
+                (
+                    (MARGIN_PX + scaled(ROW_LABEL_PX) / 2) as i32,
+                    (y + h / 2) as i32,
+                ),
                 TextStyle::from((FONT, LABEL_FONT * fit).into_font())
                     .transform(FontTransform::Rotate270)
                     .pos(Pos::new(HPos::Center, VPos::Center)),
@@ -455,9 +495,9 @@ impl Figure for InterfaceGrid<'_> {
             for j in 0..cols {
                 let x = left + j * (w + GAP_PX);
                 let (y_ticks, x_ticks) = (j == 0, i as u32 == rows - 1);
-                let x_from = if y_ticks { x - Y_TICKS_PX } else { x };
-                let w_all = w + if y_ticks { Y_TICKS_PX } else { 0 };
-                let h_all = h + if x_ticks { X_TICKS_PX } else { 0 };
+                let x_from = if y_ticks { x - scaled(Y_TICKS_PX) } else { x };
+                let w_all = w + if y_ticks { scaled(Y_TICKS_PX) } else { 0 };
+                let h_all = h + if x_ticks { scaled(X_TICKS_PX) } else { 0 };
                 let area = root.clone().shrink((x_from, y), (w_all, h_all));
                 self.draw_panel(&area, k, j as usize, ranges, y_ticks, x_ticks)?;
             }
