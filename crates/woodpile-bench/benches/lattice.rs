@@ -3,7 +3,9 @@
 //! 2 ms, at the default `peak_tolerance` (1e-5; the method it resolves to for a lattice is
 //! printed with each run's step count).
 //!
-//! Printed first, medians of `LATTICE_BENCH_REPEATS` runs (default 3) on one thread:
+//! Printed first, medians of `LATTICE_BENCH_REPEATS` runs (default 3) on one thread, the cost
+//! per step from the thread's CPU time (Linux; the wall time beside it includes any wait for a
+//! core on a shared machine):
 //!
 //! - the cost per step of lattices of 2 × 2, 4 × 3 and 10 × 5 rods (layers × rods per layer) at
 //!   4, 8 and 16 finite elements per half rod, with the time per contact per step and per
@@ -101,11 +103,33 @@ impl Case {
     }
 
     fn run(&self) -> (LatticeRun, Duration) {
+        self.run_timed().0
+    }
+
+    /// The run, its wall time and the CPU time its thread used (None where Linux's
+    /// `/proc/thread-self/stat` is not readable).
+    fn run_timed(&self) -> ((LatticeRun, Duration), Option<f64>) {
         let mut ode = self.ode.clone();
+        let cpu0 = thread_cpu_s();
         let start = Instant::now();
         let run = simulate_lattice(&mut ode, &settings()).expect("the run succeeds");
-        (run, start.elapsed())
+        let wall = start.elapsed();
+        let cpu = thread_cpu_s().zip(cpu0).map(|(b, a)| b - a);
+        ((run, wall), cpu)
     }
+}
+
+/// CPU time of the calling thread \[s\] (user + system, in clock ticks of 10 ms: Linux's
+/// USER_HZ = 100), from `/proc/thread-self/stat`. On a machine shared with other work the wall
+/// time includes the time the thread waited for a core; this does not.
+fn thread_cpu_s() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/thread-self/stat").ok()?;
+    // Fields after the command name (in parentheses, possibly with spaces): state is field 3,
+    // utime and stime fields 14 and 15.
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    let ticks = |i: usize| fields.get(i - 3)?.parse::<f64>().ok();
+    Some((ticks(14)? + ticks(15)?) / 100.0)
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -133,30 +157,33 @@ fn resolved_method(ode: &LatticeOde) -> Method {
 
 fn scaling_table() {
     println!(
-        "lattice cost per step: 2 ms at peak_tolerance {STUDY_PEAK_TOLERANCE:e}, one thread, median of {} runs",
+        "lattice cost per step: 2 ms at peak_tolerance {STUDY_PEAK_TOLERANCE:e}, one thread, median of {} runs; per step from the thread's CPU time",
         repeats()
     );
     let case = Case::new(2, 2, 4);
     println!("method: {:?}", resolved_method(&case.ode));
     println!(
-        "| layers × rods | elements per half rod | contacts | modal coordinates | row entries | steps | rhs evaluations | ms per run | µs per step | ns per contact per step | ns per row entry per evaluation |"
+        "| layers × rods | elements per half rod | contacts | modal coordinates | row entries | steps | rhs evaluations | wall ms per run | CPU ms per run | µs per step | ns per contact per step | ns per row entry per evaluation |"
     );
-    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     for (layers, rods) in [(2, 2), (4, 3), (10, 5)] {
         for fe in [4, 8, 16] {
             let case = Case::new(layers, rods, fe);
-            let mut times = Vec::new();
+            let (mut walls, mut cpus) = (Vec::new(), Vec::new());
             let mut stats = None;
             for _ in 0..repeats() {
-                let (run, t) = case.run();
-                times.push(t.as_secs_f64());
+                let ((run, wall), cpu) = case.run_timed();
+                walls.push(wall.as_secs_f64());
+                cpus.extend(cpu);
                 stats = Some(run.stats);
             }
             let stats = stats.expect("at least one run");
-            let t = median(times);
+            let wall = median(walls);
+            // The thread's CPU time where known (the machine may be shared), else wall time.
+            let t = if cpus.is_empty() { wall } else { median(cpus) };
             let per_step = t / stats.steps as f64;
             println!(
-                "| {} × {} | {} | {} | {} | {} | {} | {} | {:.1} | {:.2} | {:.1} | {:.2} |",
+                "| {} × {} | {} | {} | {} | {} | {} | {} | {:.1} | {:.1} | {:.2} | {:.1} | {:.2} |",
                 case.layers,
                 case.rods,
                 case.fe_elements,
@@ -165,6 +192,7 @@ fn scaling_table() {
                 case.row_entries(),
                 stats.steps,
                 stats.rhs_evaluations,
+                wall * 1e3,
                 t * 1e3,
                 per_step * 1e6,
                 per_step * 1e9 / case.ode.contacts() as f64,
