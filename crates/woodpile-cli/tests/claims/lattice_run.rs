@@ -6,8 +6,8 @@
 //! peak (sampled every step there, every µs here: within 2 % on this run); `woodpile plot`
 //! draws its `support_forces`, `contact_force_map`, `interface_forces` and `lattice_view` as
 //! PNG and SVG (exit 0; the last two with a disc per contact of `run.json`, in each of four time
-//! windows and once) and refuses the run once its `forces_n.npy` is cut short, naming the file
-//! (exit 2). Bad lattices —
+//! windows and once) and refuses the run once its `summary.json` lists too few peaks or its
+//! `forces_n.npy` is cut short, naming the file (exit 2). Bad lattices —
 //! layers that do not touch, a support under no bottom rod, an impact point on no top rod, a
 //! negative drop height, more rods or crossings than the limits, an output of hundreds of GB —
 //! exit with code 2 naming the key, and leave no output directory (each refused at once: the
@@ -117,6 +117,21 @@ fn lattice_run_directory_lists_its_contacts() {
             _ => {}
         }
     }
+    // A summary.json whose peaks do not match run.json's contacts is refused naming it, exit 2
+    // (the 3-D view colours each contact by its peak there).
+    let summary_path = dir.path().join("out/summary.json");
+    let summary_text = std::fs::read_to_string(&summary_path).unwrap();
+    let mut short: serde_json::Value = serde_json::from_str(&summary_text).unwrap();
+    short["contact_peak_forces_n"]
+        .as_array_mut()
+        .unwrap()
+        .truncate(8);
+    std::fs::write(&summary_path, short.to_string()).unwrap();
+    let plot = common::run_in(dir.path(), &["plot", "out"]);
+    let stderr = String::from_utf8_lossy(&plot.stderr);
+    assert_eq!(plot.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("summary.json"), "{stderr}");
+    std::fs::write(&summary_path, summary_text).unwrap();
     // A damaged run (its force file cut short) is refused naming the file, exit 2.
     let npy = dir.path().join("out/forces_n.npy");
     let bytes = std::fs::read(&npy).unwrap();
