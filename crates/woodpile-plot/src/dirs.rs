@@ -864,7 +864,14 @@ fn lattice_layout(
             format!("its scenario does not resolve ({e}); re-run `woodpile simulate`"),
         )
     })?;
-    let lattice = &resolved.lattice;
+    Ok(layout_of(&resolved.lattice, &read.run.contacts))
+}
+
+/// The figures' view of a lattice: its rods (in mm) and the contacts of `run.json`.
+pub fn layout_of(
+    lattice: &woodpile::model::Lattice,
+    contacts: &[woodpile_io::lattice::ContactJson],
+) -> crate::LatticeLayout {
     let rods = lattice
         .rods
         .iter()
@@ -877,9 +884,7 @@ fn lattice_layout(
             diameter_mm: r.rod.outer_diameter_m * 1e3,
         })
         .collect();
-    let contacts = read
-        .run
-        .contacts
+    let contacts = contacts
         .iter()
         .map(|c| crate::ContactPoint {
             layer_above: c.layer_above,
@@ -888,16 +893,16 @@ fn lattice_layout(
             y_mm: c.y_mm,
         })
         .collect();
-    Ok(crate::LatticeLayout {
+    crate::LatticeLayout {
         rods,
         contacts,
         layers: lattice.layers,
-    })
+    }
 }
 
-/// The time windows of `interface_forces`: the plotted window in four equal parts (each then
+/// The time windows of [`crate::interface_forces`] in `woodpile plot`: the plotted window in four equal parts (each then
 /// holds at least one sample), or whole when it holds fewer than 8 samples.
-fn interface_windows(times_s: &[f64], (a, b): (f64, f64)) -> Vec<(f64, f64)> {
+pub fn interface_windows(times_s: &[f64], (a, b): (f64, f64)) -> Vec<(f64, f64)> {
     let samples = times_s.iter().filter(|&&t| a <= t && t <= b).count();
     let parts = if samples >= 8 { 4 } else { 1 };
     let span = (b - a) / parts as f64;
