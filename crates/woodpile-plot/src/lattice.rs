@@ -211,24 +211,7 @@ pub fn interface_forces(
     if windows_s.is_empty() {
         return Err(bad(title, "no time window"));
     }
-    let mut values = vec![0.0; windows_s.len() * n];
-    for (w, &(a, b)) in windows_s.iter().enumerate() {
-        let rows: Vec<&[f64]> = times_s
-            .iter()
-            .zip(forces_n.chunks(n))
-            .filter(|(t, _)| a <= **t && **t <= b)
-            .map(|(_, row)| row)
-            .collect();
-        if rows.is_empty() {
-            return Err(bad(title, format!("no sample in the window {a} to {b} s")));
-        }
-        for c in 0..n {
-            values[w * n + c] = rows
-                .iter()
-                .map(|row| row[c])
-                .fold(f64::NEG_INFINITY, f64::max);
-        }
-    }
+    let values = window_maxima(times_s, forces_n, n, windows_s, title)?;
     crate::finite_range(title, values.iter().copied())?;
     let scale = force_scale(&values, colours);
     let interfaces: Vec<usize> = (0..=layout.layers)
@@ -268,6 +251,36 @@ pub fn interface_forces(
         )?);
     }
     Ok(files)
+}
+
+/// Each contact's largest force in each window (windows × contacts), of the samples with
+/// a ≤ t ≤ b; a window without a sample is an error.
+fn window_maxima(
+    times_s: &[f64],
+    forces_n: &[f64],
+    n: usize,
+    windows_s: &[(f64, f64)],
+    title: &str,
+) -> Result<Vec<f64>> {
+    let mut values = vec![0.0; windows_s.len() * n];
+    for (w, &(a, b)) in windows_s.iter().enumerate() {
+        let rows: Vec<&[f64]> = times_s
+            .iter()
+            .zip(forces_n.chunks(n))
+            .filter(|(t, _)| a <= **t && **t <= b)
+            .map(|(_, row)| row)
+            .collect();
+        if rows.is_empty() {
+            return Err(bad(title, format!("no sample in the window {a} to {b} s")));
+        }
+        for c in 0..n {
+            values[w * n + c] = rows
+                .iter()
+                .map(|row| row[c])
+                .fold(f64::NEG_INFINITY, f64::max);
+        }
+    }
+    Ok(values)
 }
 
 struct InterfaceGrid<'a> {
