@@ -497,6 +497,35 @@ pub struct LatticeSummaryJson {
     pub integrator: Option<crate::rundir::IntegratorJson>,
 }
 
+/// Reads a lattice run's `summary.json`, whose `contact_peak_forces_n` must list `contacts`
+/// finite peaks (those of `run.json`); a missing or damaged file is an error naming it.
+pub fn read_lattice_summary(dir: &Path, contacts: usize) -> Result<LatticeSummaryJson, Error> {
+    use crate::atomic::read_error;
+    let path = dir.join("summary.json");
+    let text = std::fs::read_to_string(&path).map_err(|e| Error::Read {
+        path: path.clone(),
+        source: e,
+    })?;
+    let summary: LatticeSummaryJson = serde_json::from_str(&text).map_err(|e| {
+        read_error(
+            &path,
+            format!("not a lattice run's summary.json ({e}); re-run `woodpile simulate`"),
+        )
+    })?;
+    let peaks = &summary.contact_peak_forces_n;
+    if peaks.len() != contacts || peaks.iter().any(|p| !p.is_finite()) {
+        return Err(read_error(
+            &path,
+            format!(
+                "contact_peak_forces_n holds {} values (finite: {}) for the {contacts} contacts of run.json; re-run `woodpile simulate`",
+                peaks.len(),
+                peaks.iter().all(|p| p.is_finite())
+            ),
+        ));
+    }
+    Ok(summary)
+}
+
 /// Writes a lattice run's files into `dir` (a staging directory).
 pub fn write_lattice_run(
     dir: &Path,

@@ -129,7 +129,33 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "BGA (synthetic data)",
         &stem("convergence"),
     )?;
+    draw_lattice(&stem("interface_forces"), &stem("lattice_view"))?;
     println!("figures in {}", out.display());
+    Ok(())
+}
+
+/// The lattice figures of `examples/lattice.toml` (3 × 3 rods, 4 layers, struck off centre).
+fn draw_lattice(interfaces: &Path, view: &Path) -> Result<(), Box<dyn std::error::Error>> {
+    use woodpile_io::lattice::{contacts_json, LatticeScenario};
+    let toml = include_str!("../../../examples/lattice.toml");
+    let resolved = LatticeScenario::parse(toml, "lattice.toml")?.resolve()?;
+    let mut ode =
+        woodpile::ode::LatticeOde::new(&resolved.lattice, &resolved.striker, resolved.at_m)?;
+    let run = woodpile::simulate::simulate_lattice(&mut ode, &resolved.settings)?;
+    let layout = plot::dirs::layout_of(&resolved.lattice, &contacts_json(&resolved));
+    let t = &run.times_s;
+    let windows = plot::dirs::interface_windows(t, (t[0], t[t.len() - 1]));
+    let title = "3 × 3 rods, 4 layers, struck at (13, 0) mm";
+    plot::interface_forces(
+        &layout,
+        t,
+        &run.contact_forces_n,
+        &windows,
+        plot::MapColours::Auto,
+        title,
+        interfaces,
+    )?;
+    plot::lattice_view(&layout, &run.contact_peak_forces_n, title, view)?;
     Ok(())
 }
 

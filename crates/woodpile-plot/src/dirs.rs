@@ -6,8 +6,10 @@
 //!   spectra, and a picture of the chain, with the time and frequency windows and the output
 //!   of a [`RunPlot`].
 //! - [`plot_lattice_run`]: a `woodpile simulate` run of a lattice (its `run.json` has the
-//!   lattice format): the supports' forces and their sum against time, and a map of every
-//!   contact's force over time (striker, crossings layer by layer, supports).
+//!   lattice format): the supports' forces and their sum against time, a map of every
+//!   contact's force over time (striker, crossings layer by layer, supports), each interface's
+//!   contact forces on the crossing grid window by window, and a three-dimensional view of
+//!   the lattice coloured by peak contact force.
 //! - [`plot_optimization`]: a `woodpile optimize` output (it holds `history.csv`): the GA's
 //!   convergence and, once it has finished, the best chain to scale (paper Fig. 5 d, e, right).
 //! - [`plot_pareto`]: an NSGA-II output (its `history.csv` has a hypervolume): the front with
@@ -746,9 +748,13 @@ pub fn sensitivity(dir: &Path, out: &Path) -> Result<Vec<PathBuf>, Error> {
 
 /// Draws the figures of a lattice run directory (`woodpile simulate` of a `[lattice]`
 /// scenario, docs/physics.md §16) into `out`: `support_forces` (each support's force and their
-/// sum, the transmitted force, against time) and `contact_force_map` (every contact's force
+/// sum, the transmitted force, against time), `contact_force_map` (every contact's force
 /// over time, contacts in output order: the striker's, the crossings layer by layer, the
-/// supports), in the time window and map colours of `plot` and its output formats. Chain-only
+/// supports), `interface_forces` (each interface's contacts on the crossing grid, coloured by
+/// their largest force in four windows of the time window; `interface_forces_1`, `_2`, … when
+/// more than [`crate::INTERFACES_PER_PAGE`] interfaces) and `lattice_view` (the lattice in
+/// three dimensions, each contact coloured by its peak force from `summary.json`), in the time
+/// window and map colours of `plot` and its output formats. Chain-only
 /// options (`signals`) are refused naming `--signal`; the frequency window and the spectrum
 /// window are not used (no spectra are drawn of a lattice). Returns the files written.
 pub fn plot_lattice_run(dir: &Path, out: &Path, plot: &RunPlot) -> Result<Vec<PathBuf>, Error> {
@@ -827,7 +833,89 @@ fn draw_lattice_run(dir: &Path, out: &Path, plot: &RunPlot) -> Result<Vec<PathBu
         &out.join("support_forces"),
     )?;
     files.extend(lattice_force_map(&read, &title, plot, out)?);
+    let layout = lattice_layout(dir, &read)?;
+    let summary = woodpile_io::lattice::read_lattice_summary(dir, read.n_contacts())?;
+    files.extend(crate::interface_forces(
+        &layout,
+        times,
+        &read.forces_n,
+        &interface_windows(times, window_s),
+        plot.map_colours,
+        &format!("{title}: largest contact force per time window"),
+        &out.join("interface_forces"),
+    )?);
+    files.extend(crate::lattice_view(
+        &layout,
+        &summary.contact_peak_forces_n,
+        &format!("{title}: peak contact forces"),
+        &out.join("lattice_view"),
+    )?);
     Ok(files)
+}
+
+/// The rods of a lattice run (its scenario in `run.json` resolved again) and its contacts.
+fn lattice_layout(
+    dir: &Path,
+    read: &woodpile_io::lattice::LatticeRunRead,
+) -> Result<crate::LatticeLayout, Error> {
+    let resolved = read.run.scenario.resolve().map_err(|e| {
+        read_error(
+            &dir.join("run.json"),
+            format!("its scenario does not resolve ({e}); re-run `woodpile simulate`"),
+        )
+    })?;
+    Ok(layout_of(&resolved.lattice, &read.run.contacts))
+}
+
+/// The figures' view of a lattice: its rods (in mm) and the contacts of `run.json`.
+pub fn layout_of(
+    lattice: &woodpile::model::Lattice,
+    contacts: &[woodpile_io::lattice::ContactJson],
+) -> crate::LatticeLayout {
+    let rods = lattice
+        .rods
+        .iter()
+        .map(|r| crate::RodLine {
+            layer: r.layer,
+            number: r.number,
+            centre_mm: [r.centre_m[0] * 1e3, r.centre_m[1] * 1e3],
+            axis: r.axis,
+            length_mm: r.rod.length_m * 1e3,
+            diameter_mm: r.rod.outer_diameter_m * 1e3,
+        })
+        .collect();
+    let contacts = contacts
+        .iter()
+        .map(|c| crate::ContactPoint {
+            layer_above: c.layer_above,
+            layer_below: c.layer_below,
+            x_mm: c.x_mm,
+            y_mm: c.y_mm,
+        })
+        .collect();
+    crate::LatticeLayout {
+        rods,
+        contacts,
+        layers: lattice.layers,
+    }
+}
+
+/// The time windows of [`crate::interface_forces`] in `woodpile plot`: the plotted window in four equal parts (each then
+/// holds at least one sample), or whole when it holds fewer than 8 samples.
+pub fn interface_windows(times_s: &[f64], (a, b): (f64, f64)) -> Vec<(f64, f64)> {
+    let samples = times_s.iter().filter(|&&t| a <= t && t <= b).count();
+    let parts = if samples >= 8 { 4 } else { 1 };
+    let span = (b - a) / parts as f64;
+    (0..parts)
+        .map(|j| {
+            let end = if j + 1 == parts {
+                b
+            } else {
+                a + (j + 1) as f64 * span
+            };
+            (a + j as f64 * span, end)
+        })
+        .collect()
 }
 
 /// `contact_force_map` of a lattice run: contacts in output order (rows) × time.

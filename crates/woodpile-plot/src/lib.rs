@@ -18,6 +18,8 @@
 //! | [`fit_signal`] | a fitted signal: measured and model vs time, the residual below | – |
 //! | [`correlation_matrix`] | a fit's correlation matrix, cells coloured −1 … +1 with values | – |
 //! | [`chain_picture`] | rods to scale, top to bottom | Fig. 5 d, e (right) |
+//! | [`interface_forces`] | a lattice's contact forces on the crossing grid, interface × time window | – |
+//! | [`lattice_view`] | a lattice in three dimensions, every contact coloured by its peak force | – |
 //! | [`pareto_front`], [`front_designs`], [`hypervolume_history`] | a Pareto front (scatter or pairwise panels), its designs as rods, its hypervolume per generation | – |
 //!
 //! Every function takes a file *stem* (`dir/force_map`) and writes `stem.png` and `stem.svg`
@@ -46,6 +48,7 @@ mod colormap;
 pub mod dirs;
 mod fit;
 mod heatmap;
+mod lattice;
 mod lines;
 pub mod output;
 mod pareto;
@@ -58,6 +61,9 @@ pub use fit::{correlation_matrix, fit_signal};
 pub use heatmap::{
     contact0_name, energy_heatmap, energy_map, force_heatmap, force_map, protocol_map,
     spectrum_map, Heatmap, MapColours,
+};
+pub use lattice::{
+    interface_forces, lattice_view, ContactPoint, LatticeLayout, RodLine, INTERFACES_PER_PAGE,
 };
 pub use lines::{
     convergence, effective_mass, force_histories, force_histories_between, hypervolume_history,

@@ -4,8 +4,10 @@
 //! order of `summary.json`'s `contact_peak_forces_n` and of the force columns, and whose
 //! `supports.csv` ends in their sum, `transmitted_n`, whose peak is the summary's transmitted
 //! peak (sampled every step there, every µs here: within 2 % on this run); `woodpile plot`
-//! draws its `support_forces` and `contact_force_map` as PNG and SVG (exit 0) and refuses the
-//! run once its `forces_n.npy` is cut short, naming the file (exit 2). Bad lattices —
+//! draws its `support_forces`, `contact_force_map`, `interface_forces` and `lattice_view` as
+//! PNG and SVG (exit 0; the last two with a disc per contact of `run.json`, in each of four time
+//! windows and once) and refuses the run once its `summary.json` lists too few peaks or its
+//! `forces_n.npy` is cut short, naming the file (exit 2). Bad lattices —
 //! layers that do not touch, a support under no bottom rod, an impact point on no top rod, a
 //! negative drop height, more rods or crossings than the limits, an output of hundreds of GB —
 //! exit with code 2 naming the key, and leave no output directory (each refused at once: the
@@ -87,17 +89,49 @@ fn lattice_run_directory_lists_its_contacts() {
     );
     let forces = std::fs::read_to_string(dir.path().join("out/forces.csv")).unwrap();
     assert_eq!(forces.lines().next().unwrap().split(',').count(), 10);
-    // `woodpile plot` draws the lattice's two figures, each as PNG and SVG.
+    // `woodpile plot` draws the lattice's four figures, each as PNG and SVG.
     let plot = common::run_in(dir.path(), &["plot", "out", "--quiet"]);
     let stderr = String::from_utf8_lossy(&plot.stderr);
     assert_eq!(plot.status.code(), Some(0), "{stderr}");
-    for stem in ["support_forces", "contact_force_map"] {
+    for stem in [
+        "support_forces",
+        "contact_force_map",
+        "interface_forces",
+        "lattice_view",
+    ] {
         let png = std::fs::read(dir.path().join(format!("out/plots/{stem}.png"))).unwrap();
         assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"), "{stem}.png is a PNG");
         let svg =
             std::fs::read_to_string(dir.path().join(format!("out/plots/{stem}.svg"))).unwrap();
         assert!(svg.contains("<svg"), "{stem}.svg is an SVG");
+        // The lattice's figures draw run.json's 9 contacts as discs: in each of the four time
+        // windows (300 samples) and once in the 3-D view.
+        let discs = svg
+            .split("<circle")
+            .skip(1)
+            .filter(|t| !t[..t.find('>').unwrap()].contains("fill=\"none\""))
+            .count();
+        match stem {
+            "interface_forces" => assert_eq!(discs, 4 * 9, "{stem}"),
+            "lattice_view" => assert_eq!(discs, 9, "{stem}"),
+            _ => {}
+        }
     }
+    // A summary.json whose peaks do not match run.json's contacts is refused naming it, exit 2
+    // (the 3-D view colours each contact by its peak there).
+    let summary_path = dir.path().join("out/summary.json");
+    let summary_text = std::fs::read_to_string(&summary_path).unwrap();
+    let mut short: serde_json::Value = serde_json::from_str(&summary_text).unwrap();
+    short["contact_peak_forces_n"]
+        .as_array_mut()
+        .unwrap()
+        .truncate(8);
+    std::fs::write(&summary_path, short.to_string()).unwrap();
+    let plot = common::run_in(dir.path(), &["plot", "out"]);
+    let stderr = String::from_utf8_lossy(&plot.stderr);
+    assert_eq!(plot.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("summary.json"), "{stderr}");
+    std::fs::write(&summary_path, summary_text).unwrap();
     // A damaged run (its force file cut short) is refused naming the file, exit 2.
     let npy = dir.path().join("out/forces_n.npy");
     let bytes = std::fs::read(&npy).unwrap();

@@ -1,7 +1,8 @@
 //! Claim: every plot function writes a non-empty, valid PNG (signature and IHDR of the requested
 //! size) and an SVG document for small data, without system fonts (the font is bundled).
 //! No tolerance: file checks are exact.
-//! Claims on the bitmaps' text (woodpile_plot::typeset) are at the end.
+//! Claims on the bitmaps' text (woodpile_plot::typeset) are at the end; the lattice figures'
+//! claims are in `lattice_figures`.
 
 use std::path::{Path, PathBuf};
 use woodpile::analysis::{
@@ -13,6 +14,8 @@ use woodpile::{
     Trajectory, UnitCell,
 };
 use woodpile_plot as plot;
+
+mod lattice_figures;
 
 fn out_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("woodpile-plot-{}-{name}", std::process::id()));
