@@ -27,7 +27,7 @@ use crate::error::Error;
 use crate::scenario::{material_of, resolve_run_spec, MaterialSpec, RunSpec, StrikerSpec};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
-use woodpile::model::{Lattice, LatticeBuilder, LayerSpec, Supports};
+use woodpile::model::{Lattice, LatticeBuilder, LayerSpec, RodOverrides, Supports};
 use woodpile::simulate::LatticeRun;
 use woodpile::{Method, RunSettings, Striker};
 
@@ -98,6 +98,13 @@ pub struct LayerToml {
     /// Angle to the rods of the layer above \[deg\] (default 90; not for the top layer).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub angle_deg: Option<f64>,
+    /// Each rod's length \[mm\], one per rod (graded designs; not taken by the layer below).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lengths_mm: Option<Vec<f64>>,
+    /// Each rod's shift along its own axis \[mm\], one per rod (staggered designs; not taken by
+    /// the layer below).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub offsets_mm: Option<Vec<f64>>,
 }
 
 /// `rod = { fe_elements = n }`.
@@ -277,10 +284,14 @@ impl LatticeScenario {
             } else {
                 l.pitch_mm.unwrap_or(0.0)
             };
+            let length_mm = match (&l.lengths_mm, l.length_mm) {
+                (Some(v), None) => v.first().copied().unwrap_or(f64::NAN),
+                _ => required("length_mm", l.length_mm)?,
+            };
             layers.push(LayerSpec {
                 rods,
                 pitch_m: pitch * 1e-3,
-                length_m: required("length_mm", l.length_mm)? * 1e-3,
+                length_m: length_mm * 1e-3,
                 diameter_m: required("diameter_mm", l.diameter_mm)? * 1e-3,
                 material: material_of(&key("material"), l.material.as_ref().expect("completed"))?,
                 angle_deg: l.angle_deg.unwrap_or(0.0),
@@ -303,6 +314,8 @@ impl LatticeScenario {
         };
         let mut builder = LatticeBuilder::new(layers, fe_elements);
         builder.supports = supports;
+        builder.overrides = rod_overrides(&s.lattice.layers);
+        check_distinct_rods(&builder.layers, &builder.overrides)?;
         let lattice = builder.build()?;
         let striker = resolve_striker(&s.excitation)?;
         let at = s.excitation.at_mm.expect("completed");
@@ -323,6 +336,54 @@ impl LatticeScenario {
             settings,
         })
     }
+}
+
+/// The per-rod `lengths_mm` and `offsets_mm` of every layer, in metres (checked by the core's
+/// builder, whose errors name these keys).
+fn rod_overrides(layers: &[LayerToml]) -> Vec<RodOverrides> {
+    let metres = |v: &Option<Vec<f64>>| {
+        v.as_ref()
+            .map(|v| v.iter().map(|x| x * 1e-3).collect::<Vec<f64>>())
+    };
+    layers
+        .iter()
+        .map(|l| RodOverrides {
+            lengths_m: metres(&l.lengths_mm),
+            offsets_m: metres(&l.offsets_mm),
+        })
+        .collect()
+}
+
+/// Most distinct rods (length, diameter, material) of a lattice: each is one eigenproblem
+/// (identical rods share theirs), as many as [`MAX_LATTICE_LAYERS`] layers of rods of one kind.
+pub const MAX_LATTICE_DISTINCT_RODS: usize = MAX_LATTICE_LAYERS;
+
+/// Refuses more distinct rods than [`MAX_LATTICE_DISTINCT_RODS`] before any rod's modes are
+/// computed (per-rod `lengths_mm` can make every rod different).
+fn check_distinct_rods(layers: &[LayerSpec], overrides: &[RodOverrides]) -> Result<(), Error> {
+    let mut kinds: Vec<(u64, u64, &woodpile::Material)> = Vec::new();
+    for (k, layer) in layers.iter().enumerate() {
+        let lengths = overrides.get(k).and_then(|o| o.lengths_m.as_ref());
+        for i in 0..layer.rods {
+            let length = lengths.and_then(|v| v.get(i)).unwrap_or(&layer.length_m);
+            let kind = (
+                length.to_bits(),
+                layer.diameter_m.to_bits(),
+                &layer.material,
+            );
+            if !kinds.contains(&kind) {
+                kinds.push(kind);
+            }
+            if kinds.len() > MAX_LATTICE_DISTINCT_RODS {
+                return Err(Error::invalid(
+                    format!("lattice.layers[{k}].lengths_mm[{i}]"),
+                    length * 1e3,
+                    format!("more than {MAX_LATTICE_DISTINCT_RODS} distinct rods (length, diameter, material) in the lattice: each is one eigenproblem; use fewer distinct lengths"),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Most layers of a lattice (each layer's rod modes are one eigenproblem: about 0.3 s at 64

@@ -19,7 +19,8 @@ pub use contact::{
 pub use fe_beam::FreeRodModes;
 pub use lab::{ContactDamping, Damping, Preload, ResonatorDamping};
 pub use lattice::{
-    Lattice, LatticeBuilder, LatticeContact, LatticeRod, LayerSpec, RodPoint, Supports,
+    Lattice, LatticeBuilder, LatticeContact, LatticeRod, LayerSpec, RodOverrides, RodPoint,
+    Supports,
 };
 pub use law::ContactLaw;
 pub use material::Material;
