@@ -150,6 +150,9 @@ pub struct Lattice {
     pub layers: usize,
     /// Finite elements per half rod.
     pub fe_elements: usize,
+    /// `rod = { modes = l }`: every rod by its l lowest analytic bending modes (and the rigid
+    /// ones) instead of the finite-element rod.
+    pub bending_modes: Option<usize>,
 }
 
 /// Builds a [`Lattice`]; errors name the scenario keys (`lattice.layers[k].…`, `wall.supports`).
@@ -166,6 +169,10 @@ pub struct LatticeBuilder {
     /// Per-rod overrides, layer by layer from the top (shorter than `layers`, or empty: none
     /// for the layers left out).
     pub overrides: Vec<RodOverrides>,
+    /// `rod = { modes = l }`: every rod by its l lowest analytic free–free Timoshenko bending
+    /// modes and its two rigid modes ([`FreeRodModes::analytic`]); None: the finite-element rod
+    /// of `fe_elements` per half rod.
+    pub bending_modes: Option<usize>,
 }
 
 impl LatticeBuilder {
@@ -177,6 +184,7 @@ impl LatticeBuilder {
             supports: Supports::Centres,
             wall: Wall::paper_sensor(),
             overrides: Vec::new(),
+            bending_modes: None,
         }
     }
 
@@ -209,6 +217,7 @@ impl LatticeBuilder {
             contacts,
             layers: self.layers.len(),
             fe_elements: self.fe_elements,
+            bending_modes: self.bending_modes,
         })
     }
 
@@ -258,7 +267,7 @@ impl LatticeBuilder {
             for i in 0..layer.rods {
                 let rod = Rod::new(lengths[i], layer.diameter_m, 0.0, layer.material.clone())
                     .map_err(|e| super::chain::prefix_field(e, &format!("lattice.layers[{k}].")))?;
-                let modes = modes_of(&rod, self.fe_elements, &mut cache)?;
+                let modes = modes_of(&rod, self.fe_elements, self.bending_modes, &mut cache)?;
                 let t = (i as f64 - 0.5 * (layer.rods as f64 - 1.0)) * layer.pitch_m;
                 rods.push(LatticeRod {
                     layer: k + 1,
@@ -493,18 +502,22 @@ impl Lattice {
     }
 }
 
-/// The free–free modes of `rod`, computed once per distinct rod (identical rods share one
-/// eigenproblem).
+/// The free–free modes of `rod` (finite elements, or `bending` analytic modes), computed once
+/// per distinct rod (identical rods share one eigenproblem).
 fn modes_of(
     rod: &Rod,
     elements: usize,
+    bending: Option<usize>,
     cache: &mut Vec<(Rod, FreeRodModes)>,
 ) -> Result<FreeRodModes> {
     if let Some((_, m)) = cache.iter().find(|(r, _)| r == rod) {
         return Ok(m.clone());
     }
-    let modes =
-        FreeRodModes::new(rod, elements).map_err(|e| super::chain::prefix_field(e, "lattice."))?;
+    let modes = match bending {
+        Some(l) => FreeRodModes::analytic(rod, l),
+        None => FreeRodModes::new(rod, elements),
+    }
+    .map_err(|e| super::chain::prefix_field(e, "lattice."))?;
     cache.push((rod.clone(), modes.clone()));
     Ok(modes)
 }
