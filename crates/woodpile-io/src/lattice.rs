@@ -107,12 +107,16 @@ pub struct LayerToml {
     pub offsets_mm: Option<Vec<f64>>,
 }
 
-/// `rod = { fe_elements = n }`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// `rod = { fe_elements = n }` or `rod = { modes = l }` (alternatives).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RodToml {
     /// Finite elements per half rod.
-    pub fe_elements: usize,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fe_elements: Option<usize>,
+    /// The l lowest analytic free–free bending modes (and the two rigid modes) instead.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modes: Option<usize>,
 }
 
 /// `[excitation]` of a lattice: an impact at a point of the top layer.
@@ -215,7 +219,7 @@ impl LatticeScenario {
             }
             above = Some(layer.clone());
         }
-        s.lattice.rod.get_or_insert(RodToml { fe_elements: 8 });
+        complete_rod(&mut s.lattice.rod);
         let x = &mut s.excitation;
         x.kind.get_or_insert("impact".into());
         x.at_mm.get_or_insert([0.0, 0.0]);
@@ -297,8 +301,11 @@ impl LatticeScenario {
                 angle_deg: l.angle_deg.unwrap_or(0.0),
             });
         }
-        let fe_elements = s.lattice.rod.expect("completed").fe_elements;
+        let (fe_elements, bending_modes) = rod_model(s.lattice.rod.expect("completed"))?;
         check_size(&layers, fe_elements)?;
+        if let Some(l) = bending_modes {
+            check_modes(&layers, l)?;
+        }
         let supports = match s.wall.supports.as_ref().expect("completed") {
             SupportsToml::Named(n) if n == "centres" => Supports::Centres,
             SupportsToml::Named(n) => {
@@ -315,6 +322,7 @@ impl LatticeScenario {
         let mut builder = LatticeBuilder::new(layers, fe_elements);
         builder.supports = supports;
         builder.overrides = rod_overrides(&s.lattice.layers);
+        builder.bending_modes = bending_modes;
         check_distinct_rods(&builder.layers, &builder.overrides)?;
         let lattice = builder.build()?;
         let striker = resolve_striker(&s.excitation)?;
@@ -336,6 +344,43 @@ impl LatticeScenario {
             settings,
         })
     }
+}
+
+/// The default rod: the finite-element rod of 8 elements per half rod, unless `modes` is given.
+fn complete_rod(rod: &mut Option<RodToml>) {
+    let r = rod.get_or_insert_with(RodToml::default);
+    if r.modes.is_none() {
+        r.fe_elements.get_or_insert(8);
+    }
+}
+
+/// (finite elements per half rod, analytic bending modes) of a completed `rod`; `fe_elements`
+/// and `modes` are alternatives (with `modes`, the elements are not used).
+fn rod_model(rod: RodToml) -> Result<(usize, Option<usize>), Error> {
+    match (rod.fe_elements, rod.modes) {
+        (Some(_), Some(l)) => Err(Error::invalid(
+            "lattice.rod.modes",
+            l,
+            "fe_elements and modes are alternatives: give rod = { fe_elements = n } (the finite-element rod) or rod = { modes = l } (its l lowest analytic bending modes), not both",
+        )),
+        (_, Some(l)) => Ok((1, Some(l))),
+        (n, None) => Ok((n.unwrap_or(8), None)),
+    }
+}
+
+/// Refuses more modal coordinates than [`MAX_LATTICE_MODES`] with `rod = { modes = l }`: l + 2
+/// per rod.
+fn check_modes(layers: &[LayerSpec], l: usize) -> Result<(), Error> {
+    let rods = layers.iter().fold(0usize, |n, x| n.saturating_add(x.rods));
+    let modes = rods.saturating_mul(l.saturating_add(2));
+    if modes > MAX_LATTICE_MODES {
+        return Err(Error::invalid(
+            "lattice.rod.modes",
+            l,
+            format!("{rods} rods of {l} bending modes and 2 rigid ones have {modes} modal coordinates, more than {MAX_LATTICE_MODES}: fewer modes or fewer rods"),
+        ));
+    }
+    Ok(())
 }
 
 /// The per-rod `lengths_mm` and `offsets_mm` of every layer, in metres (checked by the core's

@@ -5,6 +5,10 @@
 //! Bad per-rod keys exit 2 naming the dotted key as written (`lattice.layers[1].lengths_mm[1]`),
 //! the value and what is valid, and leave no output directory: a wrong count, a length that is
 //! not > 0, a rod moved off every rod of the adjacent layer, more distinct rods than the limit.
+//! `rod = { modes = 4 }` runs the same lattice on analytic modes (exit 0; the completed scenario
+//! keeps `modes` and no `fe_elements`; the energy kept to 1e-4 at the default peak tolerance);
+//! `fe_elements` and `modes` together, `modes = 0`, and more modes than lie below the rods'
+//! shear cutoff exit 2 naming `lattice.rod.modes`.
 
 use crate::common;
 
@@ -84,7 +88,48 @@ fn staggered_graded_layer_runs_with_its_crossings() {
 }
 
 #[test]
+fn analytic_modes_rod_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = LATTICE.replace("rod = { fe_elements = 2 }", "rod = { modes = 4 }");
+    common::write(dir.path(), "lat.toml", &scenario);
+    let out = common::run_in(
+        dir.path(),
+        &["simulate", "lat.toml", "--out", "out", "--quiet"],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let run = common::json(&dir.path().join("out/run.json"));
+    assert_eq!(run["scenario"]["lattice"]["rod"]["modes"], 4);
+    assert!(run["scenario"]["lattice"]["rod"]
+        .get("fe_elements")
+        .is_none());
+    let summary = common::json(&dir.path().join("out/summary.json"));
+    assert!(summary["energy_max_relative_error"].as_f64().unwrap() < 1e-4);
+}
+
+#[test]
 fn bad_per_rod_keys_exit_2_naming_the_key() {
+    refused(
+        "both rod models",
+        &LATTICE.replace(
+            "rod = { fe_elements = 2 }",
+            "rod = { fe_elements = 2, modes = 3 }",
+        ),
+        &["lattice.rod.modes", "alternatives"],
+    );
+    refused(
+        "no bending mode",
+        &LATTICE.replace("rod = { fe_elements = 2 }", "rod = { modes = 0 }"),
+        &["lattice.rod.modes", "at least 1"],
+    );
+    refused(
+        "above the shear cutoff",
+        &LATTICE.replace("rod = { fe_elements = 2 }", "rod = { modes = 500 }"),
+        &["lattice.rod.modes", "500", "shear cutoff"],
+    );
     refused(
         "count",
         &LATTICE.replace(
