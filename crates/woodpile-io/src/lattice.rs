@@ -182,6 +182,38 @@ pub struct ResolvedLattice {
     pub settings: RunSettings,
 }
 
+/// The built-in lattice scenarios (name, TOML text), listed by `woodpile scenarios` after the
+/// chains' and run by name as they are.
+pub const BUILTIN_LATTICES: &[(&str, &str)] = &[("lattice", BUILTIN_LATTICE)];
+
+/// `lattice`: the 3 × 3-rod, 4-layer quartz woodpile of docs/physics.md §16 struck off its
+/// centre.
+const BUILTIN_LATTICE: &str = r#"description = "lattice: 3 x 3-rod, 4-layer quartz woodpile (80 mm rods, pitch 20 mm) struck at (13, 0) mm, 0.5 ms"
+[lattice]
+layers = [
+  { rods = 3, pitch_mm = 20.0, length_mm = 80.0, diameter_mm = 5.0, material = "fused-quartz" },
+  { rods = 3 },
+  { rods = 3 },
+  { rods = 3 },
+]
+rod = { fe_elements = 8 }
+[excitation]
+kind = "impact"
+at_mm = [13.0, 0.0]
+[wall]
+supports = "centres"
+[run]
+duration_s = 5e-4
+"#;
+
+/// A built-in lattice scenario's TOML text by name.
+pub fn builtin_lattice(name: &str) -> Option<&'static str> {
+    BUILTIN_LATTICES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, text)| *text)
+}
+
 /// Whether a scenario text describes a lattice (has a top-level `lattice` table).
 pub fn is_lattice(text: &str) -> bool {
     text.parse::<toml::Table>()

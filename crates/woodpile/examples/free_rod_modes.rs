@@ -13,7 +13,7 @@
 //!    and shape W_j, `Rod::free_free_modes`; rigid modes: 1/√m and s₀/√J),
 //!
 //! for 2 to 32 elements per half rod; then the same struck rod with `rod = { modes = l }`
-//! (analytic modes, l = 1..8) against the finite-element rod at 32 elements: the striker's
+//! (analytic modes, l = 1..20) against the finite-element rod at 32 elements: the striker's
 //! peak force and the rod's energy held by bending modes.
 //!
 //! Run: `cargo run --release -p woodpile --example free_rod_modes`
@@ -175,7 +175,7 @@ fn main() {
         reference.peak_n,
         ref_bending / ref_total
     );
-    for l in 1..=MODES {
+    for l in [1, 2, 3, 4, 6, 8, 12, 16, 20] {
         let run = struck(&lattice(1, Some(l)), &[]);
         let total: f64 = run.energies_j.iter().sum();
         let bending = (total - run.energies_j[0] - run.energies_j[1]) / total;
