@@ -24,7 +24,9 @@
 //! [`read_lattice_run`] reads `run.json`, `time_s.npy` and `forces_n.npy` back (for figures).
 
 use crate::error::Error;
-use crate::scenario::{material_of, resolve_run_spec, MaterialSpec, RunSpec, StrikerSpec};
+use crate::scenario::{
+    material_of, resolve_run_spec, Key, KeyDefault, KeyType, MaterialSpec, RunSpec, StrikerSpec,
+};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use woodpile::model::{Lattice, LatticeBuilder, LayerSpec, RodOverrides, Supports};
@@ -188,7 +190,7 @@ pub const BUILTIN_LATTICES: &[(&str, &str)] = &[("lattice", BUILTIN_LATTICE)];
 
 /// `lattice`: the 3 × 3-rod, 4-layer quartz woodpile of docs/physics.md §16 struck off its
 /// centre.
-const BUILTIN_LATTICE: &str = r#"description = "lattice: 3 x 3-rod, 4-layer quartz woodpile (80 mm rods, pitch 20 mm) struck at (13, 0) mm, 0.5 ms"
+const BUILTIN_LATTICE: &str = r#"description = "3 x 3-rod, 4-layer quartz woodpile (80 mm rods, pitch 20 mm) struck at (13, 0) mm, 0.5 ms"
 [lattice]
 layers = [
   { rods = 3, pitch_mm = 20.0, length_mm = 80.0, diameter_mm = 5.0, material = "fused-quartz" },
@@ -212,6 +214,49 @@ pub fn builtin_lattice(name: &str) -> Option<&'static str> {
         .iter()
         .find(|(n, _)| *n == name)
         .map(|(_, text)| *text)
+}
+
+/// Every key of a lattice scenario's `[lattice]`, `[excitation]` and `[wall]` tables, in the
+/// order of the file, in the form of the chain's table ([`crate::scenario::keys`]); `[run]` is a
+/// chain's. Defaults are read from [`woodpile::defaults`]; claim `lattice_keys_table`.
+pub fn lattice_keys() -> &'static [Key] {
+    static KEYS: std::sync::LazyLock<Vec<Key>> = std::sync::LazyLock::new(lattice_key_table);
+    &KEYS
+}
+
+#[rustfmt::skip] // one row per key
+fn lattice_key_table() -> Vec<Key> {
+    use woodpile::defaults as d;
+    use KeyDefault::{Derived, Float, Name};
+    let above = || Derived("the layer above's".into());
+    let key = |name, ty, unit, default, valid, doc| Key { name, ty, unit, default, choices: &[], alternatives: &[], valid, doc };
+    vec![
+        key("lattice", KeyType::Table, "", KeyDefault::None, "", "layers of parallel rods, every crossing a contact (instead of [chain])"),
+        key("lattice.layers", KeyType::TableList, "", KeyDefault::None, "at least one layer", "the layers, top to bottom; unset keys take the layer above's"),
+        key("lattice.layers[].rods", KeyType::Integer, "", above(), ">= 1; required in the top layer", "number of parallel rods"),
+        key("lattice.layers[].pitch_mm", KeyType::Float, "mm", above(), "more than diameter_mm; required in the top layer when rods > 1", "distance between neighbouring rods' axes"),
+        key("lattice.layers[].length_mm", KeyType::Float, "mm", above(), "> 0; required in the top layer unless lengths_mm is given", "rod length"),
+        key("lattice.layers[].diameter_mm", KeyType::Float, "mm", Derived(format!("{} in the top layer, else the layer above's", d::ROD_DIAMETER_MM)), "> 0", "rod diameter"),
+        key("lattice.layers[].material", KeyType::Material, "", Derived(format!("\"{}\" in the top layer, else the layer above's", d::ELEMENT_MATERIAL)), "a preset name or a table", "rod material"),
+        key("lattice.layers[].angle_deg", KeyType::Float, "deg", Derived(format!("{}, or the layer above's", d::CROSSING_ANGLE_DEG)), "at least 1 deg from 0 and 180; not in the top layer", "angle of the rods to those of the layer above"),
+        key("lattice.layers[].lengths_mm", KeyType::FloatList, "mm", KeyDefault::None, "one entry per rod, each > 0", "each rod's length, rod 1 first (graded designs; not taken by the layer below)"),
+        key("lattice.layers[].offsets_mm", KeyType::FloatList, "mm", KeyDefault::None, "one entry per rod, finite; every rod must still cross a rod of an adjacent layer", "each rod's shift along its own axis (staggered designs; not taken by the layer below)"),
+        key("lattice.rod", KeyType::Table, "", KeyDefault::None, "", "how every rod moves: { fe_elements = n } or { modes = l }"),
+        Key { alternatives: &["lattice.rod.modes"], ..key("lattice.rod.fe_elements", KeyType::Integer, "", Float(8.0), "1..=64", "finite-element Timoshenko beam elements per half rod") },
+        Key { alternatives: &["lattice.rod.fe_elements"], ..key("lattice.rod.modes", KeyType::Integer, "", KeyDefault::None, ">= 1, at most the rod's bending modes below its shear cutoff", "the l lowest analytic free-free Timoshenko bending modes (and the two rigid modes) instead of finite elements") },
+        key("excitation", KeyType::Table, "", KeyDefault::None, "", "the striker"),
+        Key { choices: &["impact"], ..key("excitation.kind", KeyType::Name, "", Name("impact"), "one of the choices", "a lattice is struck") },
+        key("excitation.at_mm", KeyType::FloatList, "mm", Derived("[0.0, 0.0], the centre".into()), "(x, y) on a rod of the top layer", "where the striker hits the top layer"),
+        Key { alternatives: &["excitation.velocity_m_s"], ..key("excitation.drop_height_m", KeyType::Float, "m", Float(d::DROP_HEIGHT_M), "> 0", "drop height h, v0 = sqrt(2 g h)") },
+        Key { alternatives: &["excitation.drop_height_m"], ..key("excitation.velocity_m_s", KeyType::Float, "m/s", KeyDefault::None, "> 0", "initial striker velocity") },
+        key("excitation.striker", KeyType::Table, "", KeyDefault::None, "", "the striker sphere"),
+        key("excitation.striker.diameter_mm", KeyType::Float, "mm", Float(d::STRIKER_DIAMETER_MM), "> 0", "striker diameter"),
+        key("excitation.striker.material", KeyType::Material, "", Name(d::STRIKER_MATERIAL), "a preset name or a table", "striker material"),
+        key("wall", KeyType::Table, "", KeyDefault::None, "", "the supports under the bottom layer (the paper's sensor each)"),
+        Key { choices: &["centres"], ..key("wall.supports", KeyType::Name, "", Name("centres"), "\"centres\" or a list of { x_mm, y_mm }", "one support under every bottom rod's centre, or at the points given") },
+        key("wall.supports[].x_mm", KeyType::Float, "mm", KeyDefault::None, "under a bottom rod, within its length and radius", "x of a support"),
+        key("wall.supports[].y_mm", KeyType::Float, "mm", KeyDefault::None, "under a bottom rod, within its length and radius", "y of a support"),
+    ]
 }
 
 /// Whether a scenario text describes a lattice (has a top-level `lattice` table).
