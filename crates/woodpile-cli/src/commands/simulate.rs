@@ -114,13 +114,10 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
             return run_lattice(args, file, &text, ctx);
         }
     }
-    if let Some(text) = (args.source.file.is_none())
-        .then(|| args.source.scenario.as_deref())
-        .flatten()
-        .and_then(woodpile_io::lattice::builtin_lattice)
-    {
-        let name = args.source.scenario.as_deref().unwrap_or("lattice");
-        return run_lattice(args, Path::new(name), text, ctx);
+    if let (None, Some(name)) = (&args.source.file, args.source.scenario.as_deref()) {
+        if let Some(text) = woodpile_io::lattice::builtin_lattice(name) {
+            return run_lattice(args, Path::new(name), text, ctx);
+        }
     }
     let loaded = load(&args.source)?;
     let resolved = loaded.resolve()?;
