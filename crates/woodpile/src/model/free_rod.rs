@@ -2,14 +2,14 @@
 //! solutions of the beam equations, not of a mesh, used for `rod = { modes = l }` and as the
 //! reference the finite-element rod ([`super::FreeRodModes`]) converges to.
 //!
-//! On x ∈ [−L/2, L/2] at angular frequency ω (below the shear cutoff, [`Rod::wave`]: wavenumbers
+//! On x ∈ [−L/2, L/2] at angular frequency ω (below the shear cutoff; wavenumbers
 //! α, β and rotation ratios a, b), a symmetric mode is
 //! W = P cosh αx / cosh(αL/2) + Q cos βx, Ψ = P a sinh αx / cosh(αL/2) + Q b sin βx, and an
 //! antisymmetric one W = P sinh αx / cosh(αL/2) + Q sin βx,
 //! Ψ = P a cosh αx / cosh(αL/2) − Q b cos βx. Both ends are free: the bending moment EIΨ' and the
 //! shear force κGA(W' − Ψ) vanish at x = ±L/2. The moment condition fixes (P, Q); the shear
-//! condition is the frequency equation (for symmetric modes [`Rod::free_free`], for
-//! antisymmetric ones [`antisymmetric_equation`]), whose roots are bisected to machine
+//! condition is the frequency equation (for symmetric modes that of §13, for
+//! antisymmetric ones `antisymmetric_equation`), whose roots are bisected to machine
 //! precision. Each mode is mass-normalised, ∫(ρA W² + ρI Ψ²) dx = 1 (composite Simpson rule,
 //! 4000 panels on smooth shapes). Elastic modes are orthogonal to the rigid translation and
 //! rocking by the free ends, so they carry no momentum.
