@@ -39,11 +39,9 @@ def test_key_page_lists_every_key_of_every_builtin_scenario() -> None:
 
 
 def test_key_page_lists_every_lattice_key() -> None:
-    from woodpile.scenario import lattice_keys
-
     page = reference.lattice_keys_markdown()
     listed = set(re.findall(r"^\| `([^`]+)` \|", page, flags=re.M))
-    keys = {k.name for k in lattice_keys()}
+    keys = {k.name for k in woodpile.lattice_keys()}
     assert listed == keys
     assert {"lattice.layers[].lengths_mm", "lattice.layers[].offsets_mm", "lattice.rod.modes"} <= keys
 

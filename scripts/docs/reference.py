@@ -41,9 +41,9 @@ def scenario_keys_markdown() -> str:
 
 def lattice_keys_markdown() -> str:
     """Every key of a lattice scenario's `[lattice]`, `[excitation]` and `[wall]`, one table each."""
-    from woodpile.scenario import lattice_keys
+    import woodpile
 
-    return _keys_markdown(lattice_keys(), "#")
+    return _keys_markdown(woodpile.lattice_keys(), "#")
 
 
 def _keys_markdown(keys: Iterable[Any], deeper: str) -> str:
