@@ -29,7 +29,7 @@ class ScenarioKey:
     #: ``LIST[].KEY`` (``chain.elements[].rod_mm``).
     name: str
     #: Type of the value: ``float``, ``integer``, ``bool``, ``string``, ``name``, ``material``,
-    #: ``list of integers``, ``list of tables`` or ``table``.
+    #: ``list of integers``, ``list of numbers``, ``list of tables`` or ``table``.
     type: str
     #: Unit of the value ("" when dimensionless or not a number).
     unit: str
