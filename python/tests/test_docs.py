@@ -38,6 +38,14 @@ def test_key_page_lists_every_key_of_every_builtin_scenario() -> None:
         assert not missing, f"{name}: keys written but not on the key page: {missing}"
 
 
+def test_key_page_lists_every_lattice_key() -> None:
+    page = reference.lattice_keys_markdown()
+    listed = set(re.findall(r"^\| `([^`]+)` \|", page, flags=re.M))
+    keys = {k.name for k in woodpile.lattice_keys()}
+    assert listed == keys
+    assert {"lattice.layers[].lengths_mm", "lattice.layers[].offsets_mm", "lattice.rod.modes"} <= keys
+
+
 def test_outputs_page_names_every_file_of_a_run_directory(tmp_path: Path) -> None:
     page = (ROOT / "docs" / "reference" / "outputs.md").read_text()
     scenario = woodpile.Scenario.builtin("lab-impact-40mm").replace(

@@ -6,7 +6,8 @@ studies on any ``concurrent.futures`` executor or a ``dask.distributed.Client``.
 
 One module per domain, everything public re-exported here:
 
-- :mod:`woodpile.scenario`: :class:`Scenario`, :func:`builtin_scenarios`, :func:`scenario_keys`
+- :mod:`woodpile.scenario`: :class:`Scenario`, :func:`builtin_scenarios`, :func:`scenario_keys`,
+  :func:`lattice_keys`
 - :mod:`woodpile.run`: :class:`Run`, :func:`simulate`, :func:`load_run`
 - :mod:`woodpile.study`: :func:`evaluate`, :func:`sweep`
 - :mod:`woodpile.analysis`: :func:`cells`, :func:`effective_mass`, :func:`band_gaps`,
@@ -43,7 +44,7 @@ from .errors import (
 )
 from .optimize import BestDesign, BreederGA, GenerationStats, OptimizeResult, ParetoResult, optimize
 from .run import Run, load_run, simulate
-from .scenario import Scenario, ScenarioKey, builtin_scenarios, scenario_keys
+from .scenario import Scenario, ScenarioKey, builtin_scenarios, lattice_keys, scenario_keys
 from .sobol import INDEX_COLUMNS, sensitivity
 from .study import SUMMARY_COLUMNS, evaluate, sweep
 
@@ -66,6 +67,7 @@ __all__ = [
     "SUMMARY_COLUMNS",
     "builtin_scenarios",
     "scenario_keys",
+    "lattice_keys",
     "ScenarioKey",
     "cells",
     "Cell",

@@ -20,6 +20,9 @@ def json_to_toml(json: str) -> str: ...
 def scenario_keys() -> list[
     tuple[str, str, str, Union[float, bool, str, None], Optional[str], list[str], list[str], str, str]
 ]: ...
+def lattice_keys() -> list[
+    tuple[str, str, str, Union[float, bool, str, None], Optional[str], list[str], list[str], str, str]
+]: ...
 
 # run.rs -----------------------------------------------------------------------------------
 

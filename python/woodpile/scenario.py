@@ -12,7 +12,7 @@ from typing import Any, Mapping, Union
 from . import _core
 from .errors import ScenarioError
 
-__all__ = ["Scenario", "ScenarioKey", "builtin_scenarios", "scenario_keys"]
+__all__ = ["Scenario", "ScenarioKey", "builtin_scenarios", "lattice_keys", "scenario_keys"]
 
 
 def builtin_scenarios() -> list[str]:
@@ -29,7 +29,7 @@ class ScenarioKey:
     #: ``LIST[].KEY`` (``chain.elements[].rod_mm``).
     name: str
     #: Type of the value: ``float``, ``integer``, ``bool``, ``string``, ``name``, ``material``,
-    #: ``list of integers``, ``list of tables`` or ``table``.
+    #: ``list of integers``, ``list of numbers``, ``list of tables`` or ``table``.
     type: str
     #: Unit of the value ("" when dimensionless or not a number).
     unit: str
@@ -62,6 +62,15 @@ def scenario_keys() -> list[ScenarioKey]:
     """Every key of the scenario file, in the order of the file: name, type, unit, default,
     choices, alternatives, what is valid and what it is."""
     return list(_key_table().values())
+
+
+def lattice_keys() -> list[ScenarioKey]:
+    """Every key of a lattice scenario's ``[lattice]``, ``[excitation]`` and ``[wall]`` tables
+    (``[run]`` is a chain's), in the order of the file, as :func:`scenario_keys` gives them."""
+    return [
+        ScenarioKey(name, ty, unit, default, rule, tuple(choices), tuple(alternatives), valid, doc)
+        for name, ty, unit, default, rule, choices, alternatives, valid, doc in _core.lattice_keys()
+    ]
 
 
 class Scenario:

@@ -63,9 +63,11 @@ def on_build_error(error: Exception) -> None:
 def _generated(name: str) -> str:
     if name == "scenario-keys":
         return reference.scenario_keys_markdown()
+    if name == "lattice-keys":
+        return reference.lattice_keys_markdown()
     if name == "cli":
         return reference.cli_markdown(_STATE["binary"])
-    raise ValueError(f"unknown generated section {name!r} (scenario-keys, cli)")
+    raise ValueError(f"unknown generated section {name!r} (scenario-keys, lattice-keys, cli)")
 
 
 def on_page_markdown(markdown: str, page: Any, config: Any, files: Any) -> str:

@@ -36,12 +36,24 @@ def scenario_keys_markdown() -> str:
     """Every key of the scenario file, one table per top-level table, in the order of the file."""
     import woodpile
 
+    return _keys_markdown(woodpile.scenario_keys(), "")
+
+
+def lattice_keys_markdown() -> str:
+    """Every key of a lattice scenario's `[lattice]`, `[excitation]` and `[wall]`, one table each."""
+    import woodpile
+
+    return _keys_markdown(woodpile.lattice_keys(), "#")
+
+
+def _keys_markdown(keys: Iterable[Any], deeper: str) -> str:
+    """Keys as one Markdown table per top-level table (headings `##`, or deeper)."""
     sections: dict[str, list[Any]] = {}
-    for key in woodpile.scenario_keys():
+    for key in keys:
         sections.setdefault(key.name.split(".")[0].split("[")[0], []).append(key)
     out = []
     for section, keys in sections.items():
-        out.append(f"## `[{section}]`\n")
+        out.append(f"##{deeper} `[{section}]`\n")
         out.append("| key | type [unit] | default | what it is; valid values |")
         out.append("| --- | --- | --- | --- |")
         for k in keys:

@@ -5,8 +5,9 @@
 pub type Target = (&'static str, fn(&[u8]));
 
 /// The readers under test; the corpus of each lives in `crates/woodpile-fuzz/corpus/<name>/`.
-pub const TARGETS: [Target; 5] = [
+pub const TARGETS: [Target; 6] = [
     ("scenario", fuzz_scenario),
+    ("lattice", fuzz_lattice),
     ("optimize_config", fuzz_optimize_config),
     ("npy", fuzz_npy),
     ("table", fuzz_table),
@@ -43,6 +44,21 @@ pub fn fuzz_scenario(data: &[u8]) {
         .expect("a completed scenario's TOML reads back");
     assert_eq!(again, complete, "completion round-trips");
     let _ = woodpile_io::scenario::resolve(&scenario, scratch());
+}
+
+/// A lattice scenario (`[lattice]`): parse, resolve (the size limits, every geometry check,
+/// the rods' modes and crossings), then compile its equations under the striker.
+pub fn fuzz_lattice(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let Ok(scenario) = woodpile_io::lattice::LatticeScenario::parse(text, "fuzz") else {
+        return;
+    };
+    let Ok(resolved) = scenario.resolve() else {
+        return;
+    };
+    let _ = woodpile::ode::LatticeOde::new(&resolved.lattice, &resolved.striker, resolved.at_m);
 }
 
 /// An optimisation config: parse, then build the problem (design space, constraints, limits).

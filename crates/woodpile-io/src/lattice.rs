@@ -24,10 +24,12 @@
 //! [`read_lattice_run`] reads `run.json`, `time_s.npy` and `forces_n.npy` back (for figures).
 
 use crate::error::Error;
-use crate::scenario::{material_of, resolve_run_spec, MaterialSpec, RunSpec, StrikerSpec};
+use crate::scenario::{
+    material_of, resolve_run_spec, Key, KeyDefault, KeyType, MaterialSpec, RunSpec, StrikerSpec,
+};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
-use woodpile::model::{Lattice, LatticeBuilder, LayerSpec, Supports};
+use woodpile::model::{Lattice, LatticeBuilder, LayerSpec, RodOverrides, Supports};
 use woodpile::simulate::LatticeRun;
 use woodpile::{RunSettings, Striker};
 
@@ -98,14 +100,25 @@ pub struct LayerToml {
     /// Angle to the rods of the layer above \[deg\] (default 90; not for the top layer).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub angle_deg: Option<f64>,
+    /// Each rod's length \[mm\], one per rod (graded designs; not taken by the layer below).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lengths_mm: Option<Vec<f64>>,
+    /// Each rod's shift along its own axis \[mm\], one per rod (staggered designs; not taken by
+    /// the layer below).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub offsets_mm: Option<Vec<f64>>,
 }
 
-/// `rod = { fe_elements = n }`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// `rod = { fe_elements = n }` or `rod = { modes = l }` (alternatives).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RodToml {
     /// Finite elements per half rod.
-    pub fe_elements: usize,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fe_elements: Option<usize>,
+    /// The l lowest analytic free–free bending modes (and the two rigid modes) instead.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modes: Option<usize>,
 }
 
 /// `[excitation]` of a lattice: an impact at a point of the top layer.
@@ -171,6 +184,81 @@ pub struct ResolvedLattice {
     pub settings: RunSettings,
 }
 
+/// The built-in lattice scenarios (name, TOML text), listed by `woodpile scenarios` after the
+/// chains' and run by name as they are.
+pub const BUILTIN_LATTICES: &[(&str, &str)] = &[("lattice", BUILTIN_LATTICE)];
+
+/// `lattice`: the 3 × 3-rod, 4-layer quartz woodpile of docs/physics.md §16 struck off its
+/// centre.
+const BUILTIN_LATTICE: &str = r#"description = "3 x 3-rod, 4-layer quartz woodpile (80 mm rods, pitch 20 mm) struck at (13, 0) mm, 0.5 ms"
+[lattice]
+layers = [
+  { rods = 3, pitch_mm = 20.0, length_mm = 80.0, diameter_mm = 5.0, material = "fused-quartz" },
+  { rods = 3 },
+  { rods = 3 },
+  { rods = 3 },
+]
+rod = { fe_elements = 8 }
+[excitation]
+kind = "impact"
+at_mm = [13.0, 0.0]
+[wall]
+supports = "centres"
+[run]
+duration_s = 5e-4
+"#;
+
+/// A built-in lattice scenario's TOML text by name.
+pub fn builtin_lattice(name: &str) -> Option<&'static str> {
+    BUILTIN_LATTICES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, text)| *text)
+}
+
+/// Every key of a lattice scenario's `[lattice]`, `[excitation]` and `[wall]` tables, in the
+/// order of the file, in the form of the chain's table ([`crate::scenario::keys`]); `[run]` is a
+/// chain's. Defaults are read from [`woodpile::defaults`]; claim `lattice_keys_table`.
+pub fn lattice_keys() -> &'static [Key] {
+    static KEYS: std::sync::LazyLock<Vec<Key>> = std::sync::LazyLock::new(lattice_key_table);
+    &KEYS
+}
+
+#[rustfmt::skip] // one row per key
+fn lattice_key_table() -> Vec<Key> {
+    use woodpile::defaults as d;
+    use KeyDefault::{Derived, Float, Name};
+    let above = || Derived("the layer above's".into());
+    let key = |name, ty, unit, default, valid, doc| Key { name, ty, unit, default, choices: &[], alternatives: &[], valid, doc };
+    vec![
+        key("lattice", KeyType::Table, "", KeyDefault::None, "", "layers of parallel rods, every crossing a contact (instead of [chain])"),
+        key("lattice.layers", KeyType::TableList, "", KeyDefault::None, "at least one layer", "the layers, top to bottom; unset keys take the layer above's"),
+        key("lattice.layers[].rods", KeyType::Integer, "", above(), ">= 1; required in the top layer", "number of parallel rods"),
+        key("lattice.layers[].pitch_mm", KeyType::Float, "mm", above(), "more than diameter_mm; required in the top layer when rods > 1", "distance between neighbouring rods' axes"),
+        key("lattice.layers[].length_mm", KeyType::Float, "mm", above(), "> 0; required in the top layer unless lengths_mm is given", "rod length"),
+        key("lattice.layers[].diameter_mm", KeyType::Float, "mm", Derived(format!("{} in the top layer, else the layer above's", d::ROD_DIAMETER_MM)), "> 0", "rod diameter"),
+        key("lattice.layers[].material", KeyType::Material, "", Derived(format!("\"{}\" in the top layer, else the layer above's", d::ELEMENT_MATERIAL)), "a preset name or a table", "rod material"),
+        key("lattice.layers[].angle_deg", KeyType::Float, "deg", Derived(format!("{}, or the layer above's", d::CROSSING_ANGLE_DEG)), "at least 1 deg from 0 and 180; not in the top layer", "angle of the rods to those of the layer above"),
+        key("lattice.layers[].lengths_mm", KeyType::FloatList, "mm", KeyDefault::None, "one entry per rod, each > 0", "each rod's length, rod 1 first (graded designs; not taken by the layer below)"),
+        key("lattice.layers[].offsets_mm", KeyType::FloatList, "mm", KeyDefault::None, "one entry per rod, finite; every rod must still cross a rod of an adjacent layer", "each rod's shift along its own axis (staggered designs; not taken by the layer below)"),
+        key("lattice.rod", KeyType::Table, "", KeyDefault::None, "", "how every rod moves: { fe_elements = n } or { modes = l }"),
+        Key { alternatives: &["lattice.rod.modes"], ..key("lattice.rod.fe_elements", KeyType::Integer, "", Float(8.0), "1..=64", "finite-element Timoshenko beam elements per half rod") },
+        Key { alternatives: &["lattice.rod.fe_elements"], ..key("lattice.rod.modes", KeyType::Integer, "", KeyDefault::None, ">= 1, at most the rod's bending modes below its shear cutoff", "the l lowest analytic free-free Timoshenko bending modes (and the two rigid modes) instead of finite elements") },
+        key("excitation", KeyType::Table, "", KeyDefault::None, "", "the striker"),
+        Key { choices: &["impact"], ..key("excitation.kind", KeyType::Name, "", Name("impact"), "one of the choices", "a lattice is struck") },
+        key("excitation.at_mm", KeyType::FloatList, "mm", Derived("[0.0, 0.0], the centre".into()), "(x, y) on a rod of the top layer", "where the striker hits the top layer"),
+        Key { alternatives: &["excitation.velocity_m_s"], ..key("excitation.drop_height_m", KeyType::Float, "m", Float(d::DROP_HEIGHT_M), "> 0", "drop height h, v0 = sqrt(2 g h)") },
+        Key { alternatives: &["excitation.drop_height_m"], ..key("excitation.velocity_m_s", KeyType::Float, "m/s", KeyDefault::None, "> 0", "initial striker velocity") },
+        key("excitation.striker", KeyType::Table, "", KeyDefault::None, "", "the striker sphere"),
+        key("excitation.striker.diameter_mm", KeyType::Float, "mm", Float(d::STRIKER_DIAMETER_MM), "> 0", "striker diameter"),
+        key("excitation.striker.material", KeyType::Material, "", Name(d::STRIKER_MATERIAL), "a preset name or a table", "striker material"),
+        key("wall", KeyType::Table, "", KeyDefault::None, "", "the supports under the bottom layer (the paper's sensor each)"),
+        Key { choices: &["centres"], ..key("wall.supports", KeyType::Name, "", Name("centres"), "\"centres\" or a list of { x_mm, y_mm }", "one support under every bottom rod's centre, or at the points given") },
+        key("wall.supports[].x_mm", KeyType::Float, "mm", KeyDefault::None, "under a bottom rod, within its length and radius", "x of a support"),
+        key("wall.supports[].y_mm", KeyType::Float, "mm", KeyDefault::None, "under a bottom rod, within its length and radius", "y of a support"),
+    ]
+}
+
 /// Whether a scenario text describes a lattice (has a top-level `lattice` table).
 pub fn is_lattice(text: &str) -> bool {
     text.parse::<toml::Table>()
@@ -208,7 +296,7 @@ impl LatticeScenario {
             }
             above = Some(layer.clone());
         }
-        s.lattice.rod.get_or_insert(RodToml { fe_elements: 8 });
+        complete_rod(&mut s.lattice.rod);
         let x = &mut s.excitation;
         x.kind.get_or_insert("impact".into());
         x.at_mm.get_or_insert([0.0, 0.0]);
@@ -277,17 +365,24 @@ impl LatticeScenario {
             } else {
                 l.pitch_mm.unwrap_or(0.0)
             };
+            let length_mm = match (&l.lengths_mm, l.length_mm) {
+                (Some(v), None) => v.first().copied().unwrap_or(f64::NAN),
+                _ => required("length_mm", l.length_mm)?,
+            };
             layers.push(LayerSpec {
                 rods,
                 pitch_m: pitch * 1e-3,
-                length_m: required("length_mm", l.length_mm)? * 1e-3,
+                length_m: length_mm * 1e-3,
                 diameter_m: required("diameter_mm", l.diameter_mm)? * 1e-3,
                 material: material_of(&key("material"), l.material.as_ref().expect("completed"))?,
                 angle_deg: l.angle_deg.unwrap_or(0.0),
             });
         }
-        let fe_elements = s.lattice.rod.expect("completed").fe_elements;
+        let (fe_elements, bending_modes) = rod_model(s.lattice.rod.expect("completed"))?;
         check_size(&layers, fe_elements)?;
+        if let Some(l) = bending_modes {
+            check_modes(&layers, l)?;
+        }
         let supports = match s.wall.supports.as_ref().expect("completed") {
             SupportsToml::Named(n) if n == "centres" => Supports::Centres,
             SupportsToml::Named(n) => {
@@ -303,6 +398,9 @@ impl LatticeScenario {
         };
         let mut builder = LatticeBuilder::new(layers, fe_elements);
         builder.supports = supports;
+        builder.overrides = rod_overrides(&s.lattice.layers);
+        builder.bending_modes = bending_modes;
+        check_distinct_rods(&builder.layers, &builder.overrides)?;
         let lattice = builder.build()?;
         let striker = resolve_striker(&s.excitation)?;
         let at = s.excitation.at_mm.expect("completed");
@@ -316,6 +414,91 @@ impl LatticeScenario {
             settings,
         })
     }
+}
+
+/// The default rod: the finite-element rod of 8 elements per half rod, unless `modes` is given.
+fn complete_rod(rod: &mut Option<RodToml>) {
+    let r = rod.get_or_insert_with(RodToml::default);
+    if r.modes.is_none() {
+        r.fe_elements.get_or_insert(8);
+    }
+}
+
+/// (finite elements per half rod, analytic bending modes) of a completed `rod`; `fe_elements`
+/// and `modes` are alternatives (with `modes`, the elements are not used).
+fn rod_model(rod: RodToml) -> Result<(usize, Option<usize>), Error> {
+    match (rod.fe_elements, rod.modes) {
+        (Some(_), Some(l)) => Err(Error::invalid(
+            "lattice.rod.modes",
+            l,
+            "fe_elements and modes are alternatives: give rod = { fe_elements = n } (the finite-element rod) or rod = { modes = l } (its l lowest analytic bending modes), not both",
+        )),
+        (_, Some(l)) => Ok((1, Some(l))),
+        (n, None) => Ok((n.unwrap_or(8), None)),
+    }
+}
+
+/// Refuses more modal coordinates than [`MAX_LATTICE_MODES`] with `rod = { modes = l }`: l + 2
+/// per rod.
+fn check_modes(layers: &[LayerSpec], l: usize) -> Result<(), Error> {
+    let rods = layers.iter().fold(0usize, |n, x| n.saturating_add(x.rods));
+    let modes = rods.saturating_mul(l.saturating_add(2));
+    if modes > MAX_LATTICE_MODES {
+        return Err(Error::invalid(
+            "lattice.rod.modes",
+            l,
+            format!("{rods} rods of {l} bending modes and 2 rigid ones have {modes} modal coordinates, more than {MAX_LATTICE_MODES}: fewer modes or fewer rods"),
+        ));
+    }
+    Ok(())
+}
+
+/// The per-rod `lengths_mm` and `offsets_mm` of every layer, in metres (checked by the core's
+/// builder, whose errors name these keys).
+fn rod_overrides(layers: &[LayerToml]) -> Vec<RodOverrides> {
+    let metres = |v: &Option<Vec<f64>>| {
+        v.as_ref()
+            .map(|v| v.iter().map(|x| x * 1e-3).collect::<Vec<f64>>())
+    };
+    layers
+        .iter()
+        .map(|l| RodOverrides {
+            lengths_m: metres(&l.lengths_mm),
+            offsets_m: metres(&l.offsets_mm),
+        })
+        .collect()
+}
+
+/// Most distinct rods (length, diameter, material) of a lattice: each is one eigenproblem
+/// (identical rods share theirs), as many as [`MAX_LATTICE_LAYERS`] layers of rods of one kind.
+pub const MAX_LATTICE_DISTINCT_RODS: usize = MAX_LATTICE_LAYERS;
+
+/// Refuses more distinct rods than [`MAX_LATTICE_DISTINCT_RODS`] before any rod's modes are
+/// computed (per-rod `lengths_mm` can make every rod different).
+fn check_distinct_rods(layers: &[LayerSpec], overrides: &[RodOverrides]) -> Result<(), Error> {
+    let mut kinds: Vec<(u64, u64, &woodpile::Material)> = Vec::new();
+    for (k, layer) in layers.iter().enumerate() {
+        let lengths = overrides.get(k).and_then(|o| o.lengths_m.as_ref());
+        for i in 0..layer.rods {
+            let length = lengths.and_then(|v| v.get(i)).unwrap_or(&layer.length_m);
+            let kind = (
+                length.to_bits(),
+                layer.diameter_m.to_bits(),
+                &layer.material,
+            );
+            if !kinds.contains(&kind) {
+                kinds.push(kind);
+            }
+            if kinds.len() > MAX_LATTICE_DISTINCT_RODS {
+                return Err(Error::invalid(
+                    format!("lattice.layers[{k}].lengths_mm[{i}]"),
+                    length * 1e3,
+                    format!("more than {MAX_LATTICE_DISTINCT_RODS} distinct rods (length, diameter, material) in the lattice: each is one eigenproblem; use fewer distinct lengths"),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Most layers of a lattice (each layer's rod modes are one eigenproblem: about 0.3 s at 64

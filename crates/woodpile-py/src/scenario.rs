@@ -97,8 +97,18 @@ fn json_pointer(path: &serde_path_to_error::Path) -> Option<String> {
 /// come from `woodpile::defaults` through it.
 #[pyfunction]
 fn scenario_keys(py: Python<'_>) -> Vec<KeyRow> {
-    keys()
-        .iter()
+    key_rows(py, keys())
+}
+
+/// Every key of a lattice scenario's `[lattice]`, `[excitation]` and `[wall]` tables
+/// (woodpile-io's `lattice::lattice_keys()`), in the order of the file.
+#[pyfunction]
+fn lattice_keys(py: Python<'_>) -> Vec<KeyRow> {
+    key_rows(py, woodpile_io::lattice::lattice_keys())
+}
+
+fn key_rows(py: Python<'_>, keys: &'static [woodpile_io::scenario::Key]) -> Vec<KeyRow> {
+    keys.iter()
         .map(|k| {
             let (default, derived) = match &k.default {
                 KeyDefault::Float(x) => (Some(PyFloat::new(py, *x).into_any().unbind()), None),
@@ -134,5 +144,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(toml_to_json, m)?)?;
     m.add_function(wrap_pyfunction!(json_to_toml, m)?)?;
     m.add_function(wrap_pyfunction!(scenario_keys, m)?)?;
+    m.add_function(wrap_pyfunction!(lattice_keys, m)?)?;
     Ok(())
 }

@@ -11,7 +11,8 @@
 //!    theory ([`Rod`], [`UnitCell::from_rod`]), and the [`Chain`] of elements on a [`Wall`],
 //!    built by [`ChainBuilder`].
 //!    Lattices of several rods per layer ([`model::LatticeBuilder`], docs/physics.md §16): every
-//!    crossing a contact, every rod a free–free finite-element beam ([`model::FreeRodModes`]),
+//!    crossing a contact, every rod a free–free finite-element beam ([`model::FreeRodModes`])
+//!    or its analytic Timoshenko bending modes ([`model::free_rod`]),
 //!    run by [`simulate::simulate_lattice`] over the contact graph [`ode::LatticeOde`].
 //!    Lab physics (docs/physics.md §14): contact, resonator and on-site [`Damping`]; a static
 //!    [`Preload`] and gravity, from whose exact equilibrium a run starts.

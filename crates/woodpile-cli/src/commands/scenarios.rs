@@ -31,6 +31,12 @@ pub fn list(_args: &ListArgs, _ctx: &Context) -> Result<(), CliError> {
             b.scenario.description.as_deref().unwrap_or("")
         ))?;
     }
+    for &(name, text) in woodpile_io::lattice::BUILTIN_LATTICES {
+        let description = woodpile_io::lattice::LatticeScenario::parse(text, name)?
+            .description
+            .unwrap_or_default();
+        crate::out::println(format_args!("{name:<width$}  {description}"))?;
+    }
     Ok(())
 }
 
@@ -38,13 +44,24 @@ pub fn list(_args: &ListArgs, _ctx: &Context) -> Result<(), CliError> {
 pub fn lookup(name: &str) -> Result<scenario::Scenario, CliError> {
     builtin(name).ok_or_else(|| CliError::UnknownScenario {
         name: name.to_string(),
-        valid: builtin_names().join(", "),
+        valid: builtin_names()
+            .into_iter()
+            .chain(
+                woodpile_io::lattice::BUILTIN_LATTICES
+                    .iter()
+                    .map(|(n, _)| n.to_string()),
+            )
+            .collect::<Vec<_>>()
+            .join(", "),
     })
 }
 
 /// Prints a built-in scenario as complete, commented TOML.
 pub fn show(args: &ShowArgs, _ctx: &Context) -> Result<(), CliError> {
-    let text = lookup(&args.name)?.to_toml();
+    let text = match woodpile_io::lattice::builtin_lattice(&args.name) {
+        Some(lattice) => lattice.to_string(),
+        None => lookup(&args.name)?.to_toml(),
+    };
     crate::out::print(format_args!(
         "# Run it with `woodpile simulate THIS_FILE.toml --out DIR`.\n{text}"
     ))?;

@@ -114,6 +114,11 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
             return run_lattice(args, file, &text, ctx);
         }
     }
+    if let (None, Some(name)) = (&args.source.file, args.source.scenario.as_deref()) {
+        if let Some(text) = woodpile_io::lattice::builtin_lattice(name) {
+            return run_lattice(args, Path::new(name), text, ctx);
+        }
+    }
     let loaded = load(&args.source)?;
     let resolved = loaded.resolve()?;
     RunSize::estimate(&resolved.settings, resolved.chain.len()).check(

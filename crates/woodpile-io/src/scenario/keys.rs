@@ -32,6 +32,8 @@ pub enum KeyType {
     Material,
     /// An array of integers.
     IntegerList,
+    /// An array of numbers.
+    FloatList,
     /// An array of inline tables, whose keys are listed as `NAME[].KEY`.
     TableList,
     /// A table, whose keys are listed as `NAME.KEY`.
@@ -49,6 +51,7 @@ impl KeyType {
             KeyType::Name => "name",
             KeyType::Material => "material",
             KeyType::IntegerList => "list of integers",
+            KeyType::FloatList => "list of numbers",
             KeyType::TableList => "list of tables",
             KeyType::Table => "table",
         }

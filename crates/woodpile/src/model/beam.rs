@@ -75,15 +75,15 @@ pub struct Rod {
 }
 
 /// The section constants and the flexural parameters of one frequency.
-struct Wave {
+pub(super) struct Wave {
     /// Decaying wavenumber α \[1/m\] (cosh, sinh).
-    alpha: f64,
+    pub(super) alpha: f64,
     /// Oscillating wavenumber β \[1/m\] (cos, sin).
-    beta: f64,
+    pub(super) beta: f64,
     /// Rotation per unit deflection of the e^{αx} branch: Ψ = a sinh when W = cosh.
-    a: f64,
+    pub(super) a: f64,
     /// Rotation per unit deflection of the cos branch: Ψ = b sin when W = cos.
-    b: f64,
+    pub(super) b: f64,
 }
 
 impl Rod {
@@ -156,7 +156,7 @@ impl Rod {
     }
 
     /// The wavenumbers and rotation ratios at angular frequency ω (below the cutoff).
-    fn wave(&self, theory: BeamTheory, omega: f64) -> Wave {
+    pub(super) fn wave(&self, theory: BeamTheory, omega: f64) -> Wave {
         let rho = self.material.density_kg_m3;
         let (area, inertia) = (self.area_m2(), self.second_moment_m4());
         let ei = self.material.youngs_modulus_pa * inertia;
@@ -187,7 +187,7 @@ impl Rod {
     /// The free–free frequency equation for symmetric modes, divided by cosh(αL/2): zero at Ω_j.
     /// Rows: bending moment EIΨ' = 0 and shear force κGA(W' − Ψ) = 0 at the free end x = L/2 of
     /// W = C₁ cosh αx + C₂ cos βx, Ψ = C₁ a sinh αx + C₂ b sin βx.
-    fn free_free(&self, theory: BeamTheory, omega: f64) -> f64 {
+    pub(super) fn free_free(&self, theory: BeamTheory, omega: f64) -> f64 {
         let w = self.wave(theory, omega);
         let half = 0.5 * self.length_m;
         let (s, c) = (w.beta * half).sin_cos();
@@ -217,7 +217,7 @@ impl Rod {
     /// The first `count` roots \[rad/s\] of `equation` below `max_omega` and below the shear
     /// cutoff (fewer if there are fewer), scanned on a grid fine in the slender-beam wavenumber
     /// (so no two roots are skipped) and bisected to machine precision.
-    fn scan(
+    pub(super) fn scan(
         &self,
         theory: BeamTheory,
         count: usize,

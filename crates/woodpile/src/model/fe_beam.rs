@@ -16,6 +16,7 @@
 
 use super::beam::Rod;
 use super::cell::{Resonator, UnitCell};
+use super::free_rod::TimoshenkoMode;
 use crate::error::{Error, Result};
 
 /// The most elements per half rod (the generalized eigenproblem is dense: 2n unknowns).
@@ -249,8 +250,12 @@ pub struct FreeRodModes {
     pub shear_parameter: f64,
     /// Angular frequency ω_j \[rad/s\] per mode, ascending (0 for the two rigid modes).
     pub omega_rad_s: Vec<f64>,
-    /// Mode shapes: `shapes[j][2k]` = w of mode j at node k, `shapes[j][2k + 1]` = θ.
+    /// Mode shapes: `shapes[j][2k]` = w of mode j at node k, `shapes[j][2k + 1]` = θ. For a rod
+    /// of analytic modes ([`FreeRodModes::analytic`]) only the two rigid modes, on one element.
     pub shapes: Vec<Vec<f64>>,
+    /// The analytic bending modes after the rigid ones ([`FreeRodModes::analytic`]); empty for
+    /// the finite-element rod, whose modes are all in `shapes`.
+    pub bending: Vec<TimoshenkoMode>,
     /// ψ_tᵀ M φ_j: the momentum per unit modal velocity [kg^½] (√m for mode 0, 0 otherwise).
     pub translation_participation: Vec<f64>,
     /// ψ_rᵀ M φ_j: the moment of momentum about the centre per unit modal velocity [kg^½ m].
@@ -328,6 +333,44 @@ impl FreeRodModes {
             rocking_participation: participation(&rocking),
             omega_rad_s,
             shapes,
+            bending: Vec::new(),
+        })
+    }
+
+    /// The rod by its two rigid modes and its `count` lowest analytic free–free Timoshenko
+    /// bending modes ([`Rod::free_free_modes`], docs/physics.md §16), mass-normalised against
+    /// the continuous rod: no mesh, no eigenproblem. The rigid modes are those of
+    /// [`FreeRodModes::new`] (w = 1/√m; w = s/√J, θ = 1/√J with J = ρAL³/12 + ρIL); the
+    /// bending modes are orthogonal to them by the free ends and carry no momentum. Errors name
+    /// `rod.modes` (at least 1, and no more than lie below the shear cutoff).
+    pub fn analytic(rod: &Rod, count: usize) -> Result<Self> {
+        if count == 0 {
+            return Err(Error::invalid(
+                "rod.modes",
+                0,
+                "at least 1 bending mode (the two rigid modes are always kept)",
+            ));
+        }
+        let bending = rod.free_free_modes(count)?;
+        let rho = rod.material.density_kg_m3;
+        let half = 0.5 * rod.length_m;
+        let mass = rod.mass_kg();
+        let inertia =
+            mass * rod.length_m.powi(2) / 12.0 + rho * rod.second_moment_m4() * rod.length_m;
+        let (t, r) = (1.0 / mass.sqrt(), 1.0 / inertia.sqrt());
+        let mut omega_rad_s = vec![0.0, 0.0];
+        omega_rad_s.extend(bending.iter().map(|m| m.omega_rad_s));
+        let modes = 2 + count;
+        let unit = |j: usize, v: f64| (0..modes).map(|i| if i == j { v } else { 0.0 }).collect();
+        Ok(FreeRodModes {
+            length_m: rod.length_m,
+            element_m: rod.length_m,
+            shear_parameter: shear_parameter(rod, rod.length_m),
+            omega_rad_s,
+            shapes: vec![vec![t, 0.0, t, 0.0], vec![-half * r, r, half * r, r]],
+            translation_participation: unit(0, mass.sqrt()),
+            rocking_participation: unit(1, inertia.sqrt()),
+            bending,
         })
     }
 
@@ -359,6 +402,7 @@ impl FreeRodModes {
         self.shapes
             .iter()
             .map(|phi| (0..4).map(|k| weights[k] * phi[first + k]).sum())
+            .chain(self.bending.iter().map(|m| m.deflection(s_m)))
             .collect()
     }
 }

@@ -39,6 +39,17 @@ pub struct LayerSpec {
     pub angle_deg: f64,
 }
 
+/// Per-rod overrides of one layer, for graded and staggered designs (`lengths_mm`,
+/// `offsets_mm`): one entry per rod of the layer, rod 1 first.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RodOverrides {
+    /// Each rod's length \[m\], instead of the layer's `length_m`.
+    pub lengths_m: Option<Vec<f64>>,
+    /// Each rod's shift along its own axis \[m\] (its centre moves from the line through the
+    /// origin normal to the rods by this much along the rod).
+    pub offsets_m: Option<Vec<f64>>,
+}
+
 /// Where the supports are.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Supports {
@@ -139,6 +150,9 @@ pub struct Lattice {
     pub layers: usize,
     /// Finite elements per half rod.
     pub fe_elements: usize,
+    /// `rod = { modes = l }`: every rod by its l lowest analytic bending modes (and the rigid
+    /// ones) instead of the finite-element rod.
+    pub bending_modes: Option<usize>,
 }
 
 /// Builds a [`Lattice`]; errors name the scenario keys (`lattice.layers[k].…`, `wall.supports`).
@@ -152,6 +166,13 @@ pub struct LatticeBuilder {
     pub supports: Supports,
     /// The law of every support (the chain's wall).
     pub wall: Wall,
+    /// Per-rod overrides, layer by layer from the top (shorter than `layers`, or empty: none
+    /// for the layers left out).
+    pub overrides: Vec<RodOverrides>,
+    /// `rod = { modes = l }`: every rod by its l lowest analytic free–free Timoshenko bending
+    /// modes and its two rigid modes ([`FreeRodModes::analytic`]); None: the finite-element rod
+    /// of `fe_elements` per half rod.
+    pub bending_modes: Option<usize>,
 }
 
 impl LatticeBuilder {
@@ -162,6 +183,8 @@ impl LatticeBuilder {
             fe_elements,
             supports: Supports::Centres,
             wall: Wall::paper_sensor(),
+            overrides: Vec::new(),
+            bending_modes: None,
         }
     }
 
@@ -187,17 +210,20 @@ impl LatticeBuilder {
                 ));
             }
         }
+        self.check_every_rod_touches(&rods, &contacts)?;
         self.support_contacts(&rods, &mut contacts)?;
         Ok(Lattice {
             rods,
             contacts,
             layers: self.layers.len(),
             fe_elements: self.fe_elements,
+            bending_modes: self.bending_modes,
         })
     }
 
     fn rods(&self) -> Result<Vec<LatticeRod>> {
         let mut rods = Vec::new();
+        let mut cache: Vec<(Rod, FreeRodModes)> = Vec::new();
         let mut angle_rad = 0.0_f64;
         for (k, layer) in self.layers.iter().enumerate() {
             let field = |f: &str| format!("lattice.layers[{k}].{f}");
@@ -208,7 +234,6 @@ impl LatticeBuilder {
                     "a layer has at least 1 rod",
                 ));
             }
-            require_positive(&field("length_mm"), layer.length_m)?;
             require_positive(&field("diameter_mm"), layer.diameter_m)?;
             if layer.rods > 1 && !(layer.pitch_m.is_finite() && layer.pitch_m > layer.diameter_m) {
                 return Err(Error::invalid(
@@ -232,34 +257,125 @@ impl LatticeBuilder {
                 }
                 angle_rad += a.to_radians();
             }
-            let rod = Rod::new(
-                layer.length_m,
-                layer.diameter_m,
-                0.0,
-                layer.material.clone(),
-            )
-            .map_err(|e| super::chain::prefix_field(e, &format!("lattice.layers[{k}].")))?;
-            let modes = FreeRodModes::new(&rod, self.fe_elements)
-                .map_err(|e| super::chain::prefix_field(e, "lattice."))?;
             let axis = [angle_rad.cos(), angle_rad.sin()];
             // The transverse direction, toward +x (toward +y for rods along x).
             let mut normal = [-axis[1], axis[0]];
             if normal[0] < -1e-12 || (normal[0].abs() <= 1e-12 && normal[1] < 0.0) {
                 normal = [-normal[0], -normal[1]];
             }
+            let (lengths, offsets) = self.layer_rods(k)?;
             for i in 0..layer.rods {
+                let rod = Rod::new(lengths[i], layer.diameter_m, 0.0, layer.material.clone())
+                    .map_err(|e| super::chain::prefix_field(e, &format!("lattice.layers[{k}].")))?;
+                let modes = modes_of(&rod, self.fe_elements, self.bending_modes, &mut cache)?;
                 let t = (i as f64 - 0.5 * (layer.rods as f64 - 1.0)) * layer.pitch_m;
                 rods.push(LatticeRod {
                     layer: k + 1,
                     number: i + 1,
-                    centre_m: [t * normal[0], t * normal[1]],
+                    centre_m: [
+                        t * normal[0] + offsets[i] * axis[0],
+                        t * normal[1] + offsets[i] * axis[1],
+                    ],
                     axis,
-                    rod: rod.clone(),
-                    modes: modes.clone(),
+                    rod,
+                    modes,
                 });
             }
         }
         Ok(rods)
+    }
+
+    /// Each rod's length and offset along its axis in layer k (from 0) \[m\]: the layer's
+    /// length and no offset, or the overrides, checked (one per rod, lengths finite and > 0,
+    /// offsets finite).
+    fn layer_rods(&self, k: usize) -> Result<(Vec<f64>, Vec<f64>)> {
+        let layer = &self.layers[k];
+        let n = layer.rods;
+        let none = RodOverrides::default();
+        let over = self.overrides.get(k).unwrap_or(&none);
+        let key = |f: &str| format!("lattice.layers[{k}].{f}");
+        let count = |f: &str, v: &[f64]| {
+            if v.len() == n {
+                Ok(())
+            } else {
+                Err(Error::invalid(
+                    key(f),
+                    format!("{} entries", v.len()),
+                    format!("one entry per rod of the layer: {n} (rods = {n})"),
+                ))
+            }
+        };
+        let lengths = match &over.lengths_m {
+            None => vec![require_positive(&key("length_mm"), layer.length_m)?; n],
+            Some(v) => {
+                count("lengths_mm", v)?;
+                for (i, &l) in v.iter().enumerate() {
+                    if !(l.is_finite() && l > 0.0) {
+                        return Err(Error::invalid(
+                            key(&format!("lengths_mm[{i}]")),
+                            l * 1e3,
+                            "a rod's length must be a finite number of mm > 0",
+                        ));
+                    }
+                }
+                v.clone()
+            }
+        };
+        let offsets = match &over.offsets_m {
+            None => vec![0.0; n],
+            Some(v) => {
+                count("offsets_mm", v)?;
+                if let Some(i) = v.iter().position(|o| !o.is_finite()) {
+                    return Err(Error::invalid(
+                        key(&format!("offsets_mm[{i}]")),
+                        v[i] * 1e3,
+                        "a rod's shift along its axis must be a finite number of mm",
+                    ));
+                }
+                v.clone()
+            }
+        };
+        Ok((lengths, offsets))
+    }
+
+    /// Refuses a rod that crosses no rod of the layers above or below (it would not be part of
+    /// the lattice), naming the override that put it there, or its layer.
+    fn check_every_rod_touches(
+        &self,
+        rods: &[LatticeRod],
+        contacts: &[LatticeContact],
+    ) -> Result<()> {
+        if self.layers.len() < 2 {
+            return Ok(());
+        }
+        let mut touches = vec![false; rods.len()];
+        for c in contacts {
+            touches[c.above.rod] = true;
+            if let Some(b) = c.below {
+                touches[b.rod] = true;
+            }
+        }
+        let Some(r) = touches.iter().position(|t| !t) else {
+            return Ok(());
+        };
+        let (k, i) = (rods[r].layer - 1, rods[r].number - 1);
+        let over = self.overrides.get(k).cloned().unwrap_or_default();
+        let what = format!(
+            "rod {} of this layer crosses no rod of the layers above or below within both lengths, so it would not be part of the lattice: give it a length and offset that put it across a rod of an adjacent layer",
+            i + 1
+        );
+        let key = format!("lattice.layers[{k}]");
+        Err(match (over.offsets_m, over.lengths_m) {
+            (Some(o), _) if o[i] != 0.0 => {
+                Error::invalid(format!("{key}.offsets_mm[{i}]"), o[i] * 1e3, what)
+            }
+            (_, Some(l)) => Error::invalid(format!("{key}.lengths_mm[{i}]"), l[i] * 1e3, what),
+            _ => Error::invalid(
+                key,
+                format!("rod {}", i + 1),
+                format!("{what} (check pitch_mm and length_mm)"),
+            ),
+        })
     }
 
     /// The crossings of layer k (from 0) with layer k − 1 above it.
@@ -384,4 +500,24 @@ impl Lattice {
     pub fn supports(&self) -> impl Iterator<Item = &LatticeContact> {
         self.contacts.iter().filter(|c| c.below.is_none())
     }
+}
+
+/// The free–free modes of `rod` (finite elements, or `bending` analytic modes), computed once
+/// per distinct rod (identical rods share one eigenproblem).
+fn modes_of(
+    rod: &Rod,
+    elements: usize,
+    bending: Option<usize>,
+    cache: &mut Vec<(Rod, FreeRodModes)>,
+) -> Result<FreeRodModes> {
+    if let Some((_, m)) = cache.iter().find(|(r, _)| r == rod) {
+        return Ok(m.clone());
+    }
+    let modes = match bending {
+        Some(l) => FreeRodModes::analytic(rod, l),
+        None => FreeRodModes::new(rod, elements),
+    }
+    .map_err(|e| super::chain::prefix_field(e, "lattice."))?;
+    cache.push((rod.clone(), modes.clone()));
+    Ok(modes)
 }

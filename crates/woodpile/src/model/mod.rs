@@ -5,6 +5,7 @@ pub mod cell;
 pub mod chain;
 pub mod contact;
 pub mod fe_beam;
+pub mod free_rod;
 pub mod lab;
 pub mod lattice;
 pub mod law;
@@ -17,9 +18,11 @@ pub use contact::{
     complete_elliptic_integrals, hertz_beta, hertz_contact, EllipseSolution, HertzContact, Surface,
 };
 pub use fe_beam::FreeRodModes;
+pub use free_rod::TimoshenkoMode;
 pub use lab::{ContactDamping, Damping, Preload, ResonatorDamping};
 pub use lattice::{
-    Lattice, LatticeBuilder, LatticeContact, LatticeRod, LayerSpec, RodPoint, Supports,
+    Lattice, LatticeBuilder, LatticeContact, LatticeRod, LayerSpec, RodOverrides, RodPoint,
+    Supports,
 };
 pub use law::ContactLaw;
 pub use material::Material;

@@ -48,6 +48,8 @@ mod lattice_exact_modes;
 mod lattice_free_rod_modes;
 mod lattice_mirror_symmetry;
 mod lattice_momentum;
+mod lattice_quarter_struck_rod;
+mod lattice_rod_overrides;
 mod lattice_single_column;
 mod nesterenko_solitary_wave;
 mod no_tension;
