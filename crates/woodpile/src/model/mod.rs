@@ -7,6 +7,7 @@ pub mod contact;
 pub mod fe_beam;
 pub mod lab;
 pub mod lattice;
+pub mod lattice_load;
 pub mod law;
 pub mod material;
 
@@ -21,5 +22,6 @@ pub use lab::{ContactDamping, Damping, Preload, ResonatorDamping};
 pub use lattice::{
     Lattice, LatticeBuilder, LatticeContact, LatticeRod, LayerSpec, RodPoint, Supports,
 };
+pub use lattice_load::{LatticeExcitation, LatticeLab, LoadPoints};
 pub use law::ContactLaw;
 pub use material::Material;

@@ -1,6 +1,7 @@
 //! The runner of a lattice (docs/physics.md §16): steps a [`LatticeOde`] with the chain's
 //! integrators, checks every contact after every step, tracks each contact's peak, samples the
-//! contact forces and the energy on the uniform grid, and audits the energy.
+//! contact forces and the energy on the uniform grid, and audits the energy (with lab physics:
+//! E(t) + D(t) − E(0) − W(t) = 0).
 
 use super::{EnergyBalance, RunSettings};
 use crate::error::{Error, Result};
@@ -15,11 +16,13 @@ pub struct LatticeRun {
     pub contact_peak_forces_n: Vec<f64>,
     /// When each peak occurred \[s\].
     pub contact_peak_times_s: Vec<f64>,
-    /// Peak of the striker's contact force \[N\].
+    /// Peak over the steps of the incident force: the striker's contact force, or the sum of
+    /// the load points' forces \[N\].
     pub incident_peak_force_n: f64,
     /// Peak over the steps of the transmitted force, the sum of the support forces \[N\].
     pub transmitted_peak_force_n: f64,
-    /// Energy balance over the samples (lossless: E(t) = E(0)).
+    /// Energy balance over the samples (lossless: E(t) = E(0); with lab physics
+    /// E(t) + D(t) − E(0) − W(t) = 0).
     pub energy: EnergyBalance,
     /// Sample times \[s\].
     pub times_s: Vec<f64>,
@@ -27,6 +30,20 @@ pub struct LatticeRun {
     pub contact_forces_n: Vec<f64>,
     /// Total energy per sample \[J\].
     pub energy_j: Vec<f64>,
+    /// Work of the external forces W per sample \[J\] (empty without lab physics).
+    pub work_j: Vec<f64>,
+    /// Energy dissipated D per sample \[J\] (empty without lab physics).
+    pub dissipated_j: Vec<f64>,
+    /// Energy dissipated at each contact over the run \[J\], in output order (empty without lab
+    /// physics; the rest of D is the rods' modal damping, [`LatticeRun::modal_dissipated_j`]).
+    pub contact_dissipated_j: Vec<f64>,
+    /// Energy dissipated by the damping of the rods' modes over the run \[J\].
+    pub modal_dissipated_j: f64,
+    /// Each contact's force in the static equilibrium the run started from \[N\] (empty
+    /// without lab physics).
+    pub contact_static_forces_n: Vec<f64>,
+    /// The static solve's relative residual |∇Π| / |f| (0 without a static load).
+    pub static_residual: f64,
     /// Momentum audit per sample: (P, H, J, J's moment), see [`LatticeOde::momentum_audit`].
     pub momentum: Vec<(f64, [f64; 2], f64, [f64; 2])>,
     /// Number of contacts per sample.
@@ -94,6 +111,12 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         times_s: Vec::new(),
         contact_forces_n: Vec::new(),
         energy_j: Vec::new(),
+        work_j: Vec::new(),
+        dissipated_j: Vec::new(),
+        contact_dissipated_j: Vec::new(),
+        modal_dissipated_j: 0.0,
+        contact_static_forces_n: ode.static_forces_n().0.to_vec(),
+        static_residual: ode.static_forces_n().1,
         momentum: Vec::new(),
         contacts: nc,
         supports,
@@ -113,7 +136,7 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         let h = integrator.step(ode, settings.duration_s)?;
         let t = integrator.t();
         let y = integrator.y();
-        ode.contact_forces(&y[..q]);
+        ode.contact_forces_at(t, y);
         check(ode, t, y)?;
         for c in 0..nc {
             if ode.force_n[c] > run.contact_peak_forces_n[c] {
@@ -121,6 +144,8 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
                 run.contact_peak_times_s[c] = t;
             }
         }
+        let incident: f64 = ode.force_n[ode.incident_contacts()].iter().sum();
+        run.incident_peak_force_n = run.incident_peak_force_n.max(incident);
         let transmitted: f64 = run.supports.iter().map(|&s| ode.force_n[s]).sum();
         run.transmitted_peak_force_n = run.transmitted_peak_force_n.max(transmitted);
         while let Some(ts) = sample_time(next, interval, settings.duration_s) {
@@ -132,21 +157,32 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
             next += 1;
         }
     }
-    run.incident_peak_force_n = run.contact_peak_forces_n[0];
-    let final_j = *run.energy_j.last().expect("the first sample");
-    run.energy = EnergyBalance {
-        initial_j: e0,
-        final_j,
-        max_relative_error: run
-            .energy_j
-            .iter()
-            .map(|e| (e - e0).abs() / e0)
-            .fold(0.0, f64::max),
-        input_work_j: 0.0,
-        dissipated_j: 0.0,
-    };
+    run.energy = energy_balance(&run, e0);
+    if ode.has_lab() {
+        let y = integrator.y();
+        run.contact_dissipated_j = ode.contact_dissipated_j(y).to_vec();
+        run.modal_dissipated_j = y[2 * (q + 3) + 1];
+    }
     run.stats = integrator.stats();
     Ok(run)
+}
+
+/// The energy balance over the samples: the largest |E(t) + D(t) − E(0) − W(t)| relative to
+/// the larger of E(0) and the largest |W| (E(0) for a lossless impact).
+fn energy_balance(run: &LatticeRun, e0: f64) -> EnergyBalance {
+    let n = run.energy_j.len();
+    let work = |k: usize| run.work_j.get(k).copied().unwrap_or(0.0);
+    let dissipated = |k: usize| run.dissipated_j.get(k).copied().unwrap_or(0.0);
+    let reference = (0..n).map(|k| work(k).abs()).fold(e0, f64::max);
+    EnergyBalance {
+        initial_j: e0,
+        final_j: run.energy_j[n - 1],
+        input_work_j: work(n - 1),
+        dissipated_j: dissipated(n - 1),
+        max_relative_error: (0..n)
+            .map(|k| (run.energy_j[k] + dissipated(k) - e0 - work(k)).abs() / reference)
+            .fold(0.0, f64::max),
+    }
 }
 
 /// Sample k's time, if within the run.
@@ -156,10 +192,15 @@ fn sample_time(k: usize, interval: f64, duration: f64) -> Option<f64> {
 }
 
 fn record(ode: &mut LatticeOde, run: &mut LatticeRun, t: f64, y: &[f64]) {
-    ode.contact_forces(&y[..ode.coordinates()]);
+    ode.contact_forces_at(t, y);
     run.times_s.push(t);
     run.contact_forces_n.extend_from_slice(&ode.force_n);
     run.energy_j.push(ode.energy_j(y));
+    if ode.has_lab() {
+        let (w, d) = ode.work_and_dissipation_j(y);
+        run.work_j.push(w);
+        run.dissipated_j.push(d);
+    }
     run.momentum.push(ode.momentum_audit(y));
 }
 
