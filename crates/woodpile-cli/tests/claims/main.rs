@@ -17,6 +17,7 @@ mod fit_bad_input;
 mod fit_command;
 mod fit_interrupt;
 mod interrupt_within_a_run;
+mod lattice_lab_run;
 mod lattice_run;
 mod meaningless_inputs_refused;
 mod meaningless_results;

@@ -107,6 +107,9 @@ impl LatticeOde {
                 }
                 ode
             }
+            LatticeExcitation::Rest { .. } if lab.preload.force_n == 0.0 => {
+                Self::compile(lattice, None, &[])?
+            }
             _ => {
                 let points = excitation
                     .load_points()

@@ -125,6 +125,8 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
     let e0 = ode.energy_j(&y0);
     let mut sample = y0;
     record(ode, &mut run, 0.0, &sample);
+    // The forces at t = 0 (a blast's F0, the static forces under a static load) count.
+    track_peaks(ode, &mut run, 0.0);
     let interval = settings.sample_interval_s;
     let mut next = 1usize;
     while integrator.t() < settings.duration_s {
@@ -138,16 +140,7 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         let y = integrator.y();
         ode.contact_forces_at(t, y);
         check(ode, t, y)?;
-        for c in 0..nc {
-            if ode.force_n[c] > run.contact_peak_forces_n[c] {
-                run.contact_peak_forces_n[c] = ode.force_n[c];
-                run.contact_peak_times_s[c] = t;
-            }
-        }
-        let incident: f64 = ode.force_n[ode.incident_contacts()].iter().sum();
-        run.incident_peak_force_n = run.incident_peak_force_n.max(incident);
-        let transmitted: f64 = run.supports.iter().map(|&s| ode.force_n[s]).sum();
-        run.transmitted_peak_force_n = run.transmitted_peak_force_n.max(transmitted);
+        track_peaks(ode, &mut run, t);
         while let Some(ts) = sample_time(next, interval, settings.duration_s) {
             if ts > t + 1e-9 * h {
                 break;
@@ -183,6 +176,20 @@ fn energy_balance(run: &LatticeRun, e0: f64) -> EnergyBalance {
             .map(|k| (run.energy_j[k] + dissipated(k) - e0 - work(k)).abs() / reference)
             .fold(0.0, f64::max),
     }
+}
+
+/// Each contact's peak, the incident and the transmitted peak, from the forces in `force_n`.
+fn track_peaks(ode: &LatticeOde, run: &mut LatticeRun, t: f64) {
+    for c in 0..run.contacts {
+        if ode.force_n[c] > run.contact_peak_forces_n[c] {
+            run.contact_peak_forces_n[c] = ode.force_n[c];
+            run.contact_peak_times_s[c] = t;
+        }
+    }
+    let incident: f64 = ode.force_n[ode.incident_contacts()].iter().sum();
+    run.incident_peak_force_n = run.incident_peak_force_n.max(incident);
+    let transmitted: f64 = run.supports.iter().map(|&s| ode.force_n[s]).sum();
+    run.transmitted_peak_force_n = run.transmitted_peak_force_n.max(transmitted);
 }
 
 /// Sample k's time, if within the run.
