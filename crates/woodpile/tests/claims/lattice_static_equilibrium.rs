@@ -88,3 +88,53 @@ fn preloaded_lattice_under_gravity_stays_in_equilibrium() {
     eprintln!("largest drift {drift:e} of the largest static force {largest:.4} N");
     assert!(drift < 1e-7);
 }
+
+/// Gravity alone (no preload, so no load points): the same equilibrium checks.
+#[test]
+fn lattice_under_gravity_alone_stays_at_rest() {
+    let lattice = three_by_four(4);
+    let g = 9.81;
+    let lab = LatticeLab {
+        preload: Preload {
+            force_n: 0.0,
+            gravity_m_s2: g,
+        },
+        ..LatticeLab::default()
+    };
+    let excitation = LatticeExcitation::Rest {
+        points: LoadPoints::TopCrossings,
+    };
+    let mut ode = LatticeOde::build(&lattice, &excitation, &lab).unwrap();
+    assert_eq!(ode.incident_contacts().len(), 0);
+    let (forces, residual) = ode.static_forces_n();
+    let forces = forces.to_vec();
+    let weight = lattice.mass_kg() * g;
+    let supports: f64 = (0..ode.contacts())
+        .filter(|&c| ode.is_support(c))
+        .map(|c| forces[c])
+        .sum();
+    let error = (supports - weight).abs() / weight;
+    eprintln!("gravity alone: residual {residual:e}, supports {error:.2e} off M g");
+    assert!(residual < 1e-12 && error < 1e-9);
+    let settings = RunSettings {
+        duration_s: 1e-3,
+        method: Method::Dopri5 {
+            rtol: 1e-10,
+            atol: 1e-14,
+        },
+        sample_interval_s: 1e-5,
+    };
+    let run = simulate_lattice(&mut ode, &settings).unwrap();
+    let largest = forces.iter().fold(0.0_f64, |a, &b| a.max(b));
+    let drift = run
+        .contact_forces_n
+        .chunks(run.contacts)
+        .flat_map(|row| {
+            row.iter()
+                .zip(&forces)
+                .map(|(f, f0)| (f - f0).abs() / largest)
+        })
+        .fold(0.0_f64, f64::max);
+    eprintln!("gravity alone: largest drift {drift:e} of {largest:.4} N");
+    assert!(drift < 1e-7);
+}
