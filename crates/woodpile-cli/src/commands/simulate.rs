@@ -262,7 +262,11 @@ fn print_lattice_run(
         resolved.lattice.layers,
         run.contacts,
         run.supports.len(),
-        resolved.excitation.as_chain_excitation(),
+        match &resolved.excitation {
+            LatticeExcitation::Rest { .. } =>
+                "rest: the lattice is left alone (a check of its static equilibrium)".to_string(),
+            x => x.as_chain_excitation().to_string(),
+        },
         run.incident_peak_force_n,
         run.transmitted_peak_force_n,
     );
