@@ -168,17 +168,7 @@ impl LatticeOde {
         let (mut striker_mass_kg, mut striker_velocity_m_s) = (0.0, 0.0);
         if let Some((striker, hit)) = striker {
             let top = &lattice.rods[hit.rod];
-            beta.push(match striker.beta_override {
-                Some(b) => require_positive("excitation.beta", b)?,
-                None => hertz_beta(
-                    Surface::Sphere {
-                        radius_m: 0.5 * striker.diameter_m,
-                    },
-                    &striker.material,
-                    top.surface(),
-                    &top.rod.material,
-                )?,
-            });
+            beta.push(striker_beta(striker, top)?);
             above.push(Side {
                 offset: 0,
                 len: 1,
@@ -439,6 +429,21 @@ impl LatticeOde {
                 }
             }
         }
+    }
+}
+
+/// The striker's contact β with the top rod it hits (given, or Hertz theory).
+fn striker_beta(striker: &Striker, top: &crate::model::LatticeRod) -> Result<f64> {
+    match striker.beta_override {
+        Some(b) => require_positive("excitation.beta", b),
+        None => hertz_beta(
+            Surface::Sphere {
+                radius_m: 0.5 * striker.diameter_m,
+            },
+            &striker.material,
+            top.surface(),
+            &top.rod.material,
+        ),
     }
 }
 
