@@ -5,9 +5,9 @@
 //! dissipated energy D equals the striker's initial energy within 1e-7 at every sample
 //! (DOPRI5 at rtol 1e-9, atol 1e-12 over 0.3 ms; an integrator's error, which falls with its
 //! tolerance: measured 2.9e-9, 7.1e-9, 9.3e-9 for restitution, Hunt–Crossley and viscoelastic
-//! contacts, which dissipate 69 %, 56 % and 64 % of E(0) with the modes). The claim cannot pass vacuously: D is more than 5 % of E(0)
-//! in every case, the contacts' and the modes' shares are both positive, and D is the sum of
-//! the per-contact integrals and the modal one.
+//! contacts, which dissipate 69 %, 56 % and 64 % of E(0) with the modes). The claim cannot pass
+//! vacuously: D is more than 5 % of E(0) in every case, the contacts' and the modes' shares are
+//! both positive, and D is the sum of the per-contact integrals and the modal one.
 
 use super::lattice_common::three_by_four;
 use woodpile::model::{ContactDamping, Damping, LatticeExcitation, LatticeLab};
