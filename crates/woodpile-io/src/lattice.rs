@@ -15,12 +15,19 @@
 //! supports = "centres"         # or [{ x_mm = 0.0, y_mm = 20.0 }, …]
 //! ```
 //!
+//! A blast or a force drive (`kind = "blast"` / `"drive"`, the chains' keys) acts on
+//! `points = "top-crossings"` (default) or `points_mm = [[x, y], …]`, the total force split
+//! equally; `[damping]` (the chains' keys and `modal_ratio`) and `[preload]` (gravity, and a
+//! force on the load points) are read by the chains' readers (docs/physics.md §16).
+//!
 //! The run directory holds `run.json` (the completed scenario and the `contacts` in output
 //! order, each `{ layer_above, rod_above, layer_below, rod_below, x_mm, y_mm }`: the striker is
 //! layer 0, the supports layer L + 1 with the support's number as their rod), `summary.json`
 //! (`contact_peak_forces_n` in that order, the transmitted peak, the energy balance),
 //! `forces.csv` / `forces_n.npy` (samples × contacts), `supports.csv` (each support's force and
-//! their sum, `transmitted_n`), `energy.csv` and `time_s.npy`.
+//! their sum, `transmitted_n`), `energy.csv` (with damping or loads also `work_j`,
+//! `dissipated_j`; `summary.json` then has `lab`) and `time_s.npy`. Under a blast or drive the
+//! load points are the contacts of layer 0.
 //! [`read_lattice_run`] reads `run.json`, `time_s.npy` and `forces_n.npy` back (for figures).
 
 use crate::error::Error;
