@@ -15,23 +15,35 @@
 //! supports = "centres"         # or [{ x_mm = 0.0, y_mm = 20.0 }, …]
 //! ```
 //!
+//! A blast or a force drive (`kind = "blast"` / `"drive"`, the chains' keys) acts on
+//! `points = "top-crossings"` (default) or `points_mm = [[x, y], …]`, the total force split
+//! equally; `[damping]` (the chains' keys and `modal_ratio`) and `[preload]` (gravity, and a
+//! force on the load points) are read by the chains' readers (docs/physics.md §16).
+//!
 //! The run directory holds `run.json` (the completed scenario and the `contacts` in output
 //! order, each `{ layer_above, rod_above, layer_below, rod_below, x_mm, y_mm }`: the striker is
 //! layer 0, the supports layer L + 1 with the support's number as their rod), `summary.json`
 //! (`contact_peak_forces_n` in that order, the transmitted peak, the energy balance),
 //! `forces.csv` / `forces_n.npy` (samples × contacts), `supports.csv` (each support's force and
-//! their sum, `transmitted_n`), `energy.csv` and `time_s.npy`.
+//! their sum, `transmitted_n`), `energy.csv` (with damping or loads also `work_j`,
+//! `dissipated_j`; `summary.json` then has `lab`) and `time_s.npy`. Under a blast or drive the
+//! load points are the contacts of layer 0.
 //! [`read_lattice_run`] reads `run.json`, `time_s.npy` and `forces_n.npy` back (for figures).
 
 use crate::error::Error;
 use crate::scenario::{
-    material_of, resolve_run_spec, Key, KeyDefault, KeyType, MaterialSpec, RunSpec, StrikerSpec,
+    material_of, resolve_run_spec, DampingSpec, DriveKind, ExcitationKind, ExcitationSpec, Key,
+    KeyDefault, KeyType, MaterialSpec, PreloadSpec, ProfileKind, RunSpec, Scenario, SignalKind,
+    StrikerSpec, SweepSpec,
 };
 use serde::{Deserialize, Serialize};
 use std::path::Path;
-use woodpile::model::{Lattice, LatticeBuilder, LayerSpec, RodOverrides, Supports};
+use woodpile::model::{
+    Lattice, LatticeBuilder, LatticeExcitation, LatticeLab, LayerSpec, LoadPoints, RodOverrides,
+    Supports,
+};
 use woodpile::simulate::LatticeRun;
-use woodpile::{RunSettings, Striker};
+use woodpile::{Method, RunSettings, Striker};
 
 /// Run-directory format tag of a lattice run.
 pub const LATTICE_RUN_FORMAT: &str = "woodpile-lattice-run/1";
@@ -62,6 +74,12 @@ pub struct LatticeScenario {
     /// `[wall]`: where the supports are.
     #[serde(default)]
     pub wall: LatticeWallSpec,
+    /// `[damping]`: the chains' keys, and `modal_ratio` (default: lossless).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping: Option<DampingSpec>,
+    /// `[preload]`: a static force on the load points and gravity (default: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub preload: Option<PreloadSpec>,
     /// `[run]`, as for a chain (default: a peak tolerance of 1e-5, RKN 6(4)).
     #[serde(default)]
     pub run: RunSpec,
@@ -121,11 +139,12 @@ pub struct RodToml {
     pub modes: Option<usize>,
 }
 
-/// `[excitation]` of a lattice: an impact at a point of the top layer.
+/// `[excitation]` of a lattice: an impact at a point of the top layer, a blast or a force drive
+/// on load points (the chains' keys, and `points` or `points_mm`), or rest.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LatticeExcitationSpec {
-    /// `impact` (the only kind for lattices so far).
+    /// `impact` (default), `blast`, `drive` or `rest`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kind: Option<String>,
     /// (x, y) of the impact \[mm\] (default: the centre).
@@ -140,6 +159,55 @@ pub struct LatticeExcitationSpec {
     /// The striker sphere (default: the paper's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub striker: Option<StrikerSpec>,
+    /// `"top-crossings"` (blast, drive, rest; default): every crossing of the top layer.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub points: Option<String>,
+    /// The load points (x, y) \[mm\], each on a top rod (instead of `points`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub points_mm: Option<Vec<[f64; 2]>>,
+    /// Blast profile, as a chain's `excitation.profile`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile: Option<ProfileKind>,
+    /// Friedlander peak force F0 of the whole lattice \[N\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub peak_force_n: Option<f64>,
+    /// Friedlander duration Td \[s\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub duration_s: Option<f64>,
+    /// Friedlander decay b.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub decay: Option<f64>,
+    /// Table of a blast (`time_s, force_n`) or a drive (`time_s, value`), relative to the
+    /// scenario file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+    /// `force` (the only drive of a lattice).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub drive: Option<DriveKind>,
+    /// `harmonic`, `chirp` or `table` (drive).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub signal: Option<SignalKind>,
+    /// Amplitude of the total force \[N\] (harmonic, chirp).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub amplitude: Option<f64>,
+    /// Frequency \[Hz\] (harmonic).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frequency_hz: Option<f64>,
+    /// Start frequency \[Hz\] (chirp).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub start_hz: Option<f64>,
+    /// End frequency \[Hz\] (chirp).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub end_hz: Option<f64>,
+    /// Sweep duration \[s\] (chirp).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sweep_duration_s: Option<f64>,
+    /// `linear` or `logarithmic` (chirp).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sweep: Option<SweepSpec>,
+    /// Smooth ramp time \[s\] (drive).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ramp_s: Option<f64>,
 }
 
 /// `[wall]` of a lattice: the paper's sensors at the supports.
@@ -182,6 +250,10 @@ pub struct ResolvedLattice {
     pub at_m: [f64; 2],
     /// How to run it.
     pub settings: RunSettings,
+    /// What drives it (an impact: `striker` at `at_m`).
+    pub excitation: LatticeExcitation,
+    /// Damping and static load.
+    pub lab: LatticeLab,
 }
 
 /// The built-in lattice scenarios (name, TOML text), listed by `woodpile scenarios` after the
@@ -298,20 +370,23 @@ impl LatticeScenario {
         }
         complete_rod(&mut s.lattice.rod);
         let x = &mut s.excitation;
-        x.kind.get_or_insert("impact".into());
-        x.at_mm.get_or_insert([0.0, 0.0]);
-        if x.velocity_m_s.is_none() {
-            x.drop_height_m.get_or_insert(DROP_HEIGHT_M);
+        if x.kind.get_or_insert("impact".into()) == "impact" {
+            x.at_mm.get_or_insert([0.0, 0.0]);
+            if x.velocity_m_s.is_none() {
+                x.drop_height_m.get_or_insert(DROP_HEIGHT_M);
+            }
+            let st = x.striker.get_or_insert(StrikerSpec::default());
+            st.diameter_mm.get_or_insert(STRIKER_DIAMETER_MM);
+            st.material
+                .get_or_insert(MaterialSpec::Preset(STRIKER_MATERIAL.into()));
         }
-        let st = x.striker.get_or_insert(StrikerSpec::default());
-        st.diameter_mm.get_or_insert(STRIKER_DIAMETER_MM);
-        st.material
-            .get_or_insert(MaterialSpec::Preset(STRIKER_MATERIAL.into()));
+        complete_lab(&mut s);
         s.wall
             .supports
             .get_or_insert(SupportsToml::Named("centres".into()));
+        let duration_s = default_duration_s(&s.excitation);
         let r = &mut s.run;
-        r.duration_s.get_or_insert(IMPACT_DURATION_S);
+        r.duration_s.get_or_insert(duration_s);
         r.sample_interval_s.get_or_insert(SAMPLE_INTERVAL_S);
         if r.integrator.is_none() && r.time_step_s.is_none() && r.peak_tolerance.is_none() {
             r.peak_tolerance = Some(STUDY_PEAK_TOLERANCE);
@@ -330,8 +405,14 @@ impl LatticeScenario {
     }
 
     /// Checks the scenario and builds the lattice, the striker and the settings; errors name
-    /// the keys.
+    /// the keys. A table file is read relative to the working directory
+    /// ([`LatticeScenario::resolve_in`]: relative to the scenario's).
     pub fn resolve(&self) -> Result<ResolvedLattice, Error> {
+        self.resolve_in(Path::new("."))
+    }
+
+    /// [`LatticeScenario::resolve`] with table files relative to `base_dir`.
+    pub fn resolve_in(&self, base_dir: &Path) -> Result<ResolvedLattice, Error> {
         let s = self.complete();
         if s.lattice.layers.is_empty() {
             return Err(Error::invalid(
@@ -402,16 +483,26 @@ impl LatticeScenario {
         builder.bending_modes = bending_modes;
         check_distinct_rods(&builder.layers, &builder.overrides)?;
         let lattice = builder.build()?;
-        let striker = resolve_striker(&s.excitation)?;
-        let at = s.excitation.at_mm.expect("completed");
-        let at_m = [at[0] * 1e-3, at[1] * 1e-3];
-        lattice.top_point(at_m, "excitation.at_mm")?;
+        let (excitation, lab) = self.resolve_lab(&s, base_dir)?;
+        let (striker, at_m) = match &excitation {
+            LatticeExcitation::Impact { striker, at_m } => {
+                lattice.top_point(*at_m, "excitation.at_mm")?;
+                (striker.clone(), *at_m)
+            }
+            _ => (Striker::paper(), [0.0, 0.0]),
+        };
         let settings = resolve_run_spec(&s.run)?;
+        check_against_run(&excitation, &settings)?;
+        if let Some(points) = excitation.load_points() {
+            points.on(&lattice)?;
+        }
         Ok(ResolvedLattice {
             lattice,
             striker,
             at_m,
             settings,
+            excitation,
+            lab,
         })
     }
 }
@@ -567,16 +658,257 @@ pub fn run_size(r: &ResolvedLattice) -> crate::limits::RunSize {
     crate::limits::RunSize::with_columns(&r.settings, 2 * contacts + 8)
 }
 
-fn resolve_striker(x: &LatticeExcitationSpec) -> Result<Striker, Error> {
-    let kind = x.kind.as_deref().unwrap_or("impact");
-    if kind != "impact" {
+/// The excitation kind of a lattice's `[excitation]`.
+fn kind_of(kind: &str) -> Result<ExcitationKind, Error> {
+    match kind {
+        "impact" => Ok(ExcitationKind::Impact),
+        "blast" => Ok(ExcitationKind::Blast),
+        "drive" => Ok(ExcitationKind::Drive),
+        "rest" => Ok(ExcitationKind::Rest),
+        other => Err(Error::invalid(
+            "excitation.kind",
+            format!("\"{other}\""),
+            "\"impact\", \"blast\", \"drive\" or \"rest\"",
+        )),
+    }
+}
+
+/// The chain's `[excitation]` of the same keys (those a lattice shares with a chain), so that
+/// the chains' readers and completion serve lattices.
+fn chain_spec(x: &LatticeExcitationSpec, kind: ExcitationKind) -> ExcitationSpec {
+    ExcitationSpec {
+        kind,
+        drop_height_m: x.drop_height_m,
+        velocity_m_s: x.velocity_m_s,
+        striker: x.striker.clone(),
+        profile: x.profile,
+        peak_force_n: x.peak_force_n,
+        duration_s: x.duration_s,
+        decay: x.decay,
+        file: x.file.clone(),
+        drive: x.drive,
+        signal: x.signal,
+        amplitude: x.amplitude,
+        frequency_hz: x.frequency_hz,
+        start_hz: x.start_hz,
+        end_hz: x.end_hz,
+        sweep_duration_s: x.sweep_duration_s,
+        sweep: x.sweep,
+        ramp_s: x.ramp_s,
+        ..ExcitationSpec::default()
+    }
+}
+
+/// Writes the defaults of a blast or drive (the chains' completion), of `[damping]` and
+/// `[preload]`, and the load points.
+fn complete_lab(s: &mut LatticeScenario) {
+    let Ok(kind) = kind_of(s.excitation.kind.as_deref().unwrap_or("impact")) else {
+        return;
+    };
+    let chain = Scenario {
+        excitation: chain_spec(&s.excitation, kind),
+        damping: s.damping.clone(),
+        preload: s.preload,
+        ..Scenario::default()
+    }
+    .complete();
+    let (x, c) = (&mut s.excitation, &chain.excitation);
+    match kind {
+        ExcitationKind::Blast => {
+            (x.profile, x.peak_force_n, x.duration_s, x.decay) =
+                (c.profile, c.peak_force_n, c.duration_s, c.decay);
+        }
+        ExcitationKind::Drive => (x.drive, x.sweep, x.ramp_s) = (c.drive, c.sweep, c.ramp_s),
+        _ => {}
+    }
+    if kind != ExcitationKind::Impact && x.points.is_none() && x.points_mm.is_none() {
+        x.points = Some(TOP_CROSSINGS.into());
+    }
+    let given = s.damping.as_ref().and_then(|d| d.resonator_ratio);
+    s.damping = chain.damping;
+    if let Some(d) = &mut s.damping {
+        d.modal_ratio.get_or_insert(0.0);
+        // A chain's key with no meaning for a lattice's rods: written only as the user gave it.
+        d.resonator_ratio = given;
+    }
+    s.preload = chain.preload;
+}
+
+/// `points = "top-crossings"`.
+const TOP_CROSSINGS: &str = "top-crossings";
+
+/// The run duration when `run.duration_s` is not given: the chains' for the same excitation.
+fn default_duration_s(x: &LatticeExcitationSpec) -> f64 {
+    kind_of(x.kind.as_deref().unwrap_or("impact"))
+        .ok()
+        .and_then(|kind| chain_spec(x, kind).default_duration_s())
+        .unwrap_or(woodpile::defaults::IMPACT_DURATION_S)
+}
+
+/// Refuses a blast's decay within one fixed step and a drive above the step's Nyquist
+/// frequency, as for chains.
+fn check_against_run(x: &LatticeExcitation, settings: &RunSettings) -> Result<(), Error> {
+    let fixed = match settings.method {
+        Method::Rk4 { time_step_s } => Some(time_step_s),
+        _ => None,
+    };
+    Ok(x.as_chain_excitation().check_against_run(fixed)?)
+}
+
+impl LatticeScenario {
+    /// The excitation and the lab physics of the completed scenario `s` (keys the user gave
+    /// that do not apply are refused, naming them).
+    fn resolve_lab(
+        &self,
+        s: &LatticeScenario,
+        base_dir: &Path,
+    ) -> Result<(LatticeExcitation, LatticeLab), Error> {
+        use crate::scenario::{blast_profile_of, refuse_excitation_keys, signal_of};
+        let x = &s.excitation;
+        let kind = kind_of(x.kind.as_deref().unwrap_or("impact"))?;
+        let given = &self.excitation;
+        let user = chain_spec(given, kind);
+        let full = chain_spec(x, kind);
+        let why = format!("with excitation.kind = \"{}\"", kind.name());
+        let points = load_points(given, kind, &why)?;
+        let excitation = match kind {
+            ExcitationKind::Impact => {
+                refuse_excitation_keys(&user, &["drop_height_m", "velocity_m_s", "striker"], &why)?;
+                let at = x.at_mm.expect("completed");
+                LatticeExcitation::Impact {
+                    striker: crate::scenario::striker_of(
+                        x.drop_height_m,
+                        x.velocity_m_s,
+                        x.striker.as_ref(),
+                        None,
+                    )?,
+                    at_m: [at[0] * 1e-3, at[1] * 1e-3],
+                }
+            }
+            ExcitationKind::Blast => {
+                refuse_excitation_keys(&user, &crate::scenario::BLAST_KEYS, &why)?;
+                LatticeExcitation::Blast {
+                    profile: blast_profile_of(&full, base_dir)?,
+                    points,
+                }
+            }
+            ExcitationKind::Drive => {
+                refuse_excitation_keys(&user, &crate::scenario::DRIVE_KEYS, &why)?;
+                if full.drive == Some(DriveKind::Displacement) {
+                    return Err(Error::invalid(
+                        "excitation.drive",
+                        "\"displacement\"",
+                        "a lattice is driven by a force (drive = \"force\"), its amplitude the total split equally over the load points",
+                    ));
+                }
+                let ramp_s = full.ramp_s.ok_or_else(|| {
+                    Error::invalid("excitation.ramp_s", "(unset)", "give ramp_s = … [s]")
+                })?;
+                let drive = woodpile::Drive {
+                    quantity: woodpile::DriveQuantity::Force,
+                    ramp_s,
+                    signal: signal_of(&full, base_dir)?,
+                };
+                drive.validate()?;
+                LatticeExcitation::Drive { drive, points }
+            }
+            ExcitationKind::Rest => {
+                refuse_excitation_keys(&user, &[], &format!("{why} (nothing drives the lattice)"))?;
+                LatticeExcitation::Rest { points }
+            }
+        };
+        let lab = lattice_lab(s, kind)?;
+        Ok((excitation, lab))
+    }
+}
+
+/// The load points of a blast, drive or rest: `points = "top-crossings"` or `points_mm`, not
+/// both, and neither with an impact (whose point is `at_mm`); `at_mm` only with an impact.
+fn load_points(
+    x: &LatticeExcitationSpec,
+    kind: ExcitationKind,
+    why: &str,
+) -> Result<LoadPoints, Error> {
+    let not_applicable = |key: &str, value: String, why: &str| {
+        Error::invalid(
+            format!("excitation.{key}"),
+            value,
+            format!("not used {why}"),
+        )
+    };
+    if kind == ExcitationKind::Impact {
+        if let Some(p) = &x.points {
+            return Err(not_applicable(
+                "points",
+                format!("\"{p}\""),
+                &format!("{why} (the striker hits at at_mm)"),
+            ));
+        }
+        if let Some(p) = &x.points_mm {
+            return Err(not_applicable(
+                "points_mm",
+                format!("{p:?}"),
+                &format!("{why} (the striker hits at at_mm)"),
+            ));
+        }
+        return Ok(LoadPoints::TopCrossings);
+    }
+    if let Some(at) = x.at_mm {
+        return Err(not_applicable("at_mm", format!("{at:?}"), &format!("{why}: it is the striker's impact point; a load acts on points = \"top-crossings\" or points_mm = [[x, y], …]")));
+    }
+    match (&x.points, &x.points_mm) {
+        (Some(p), Some(_)) => Err(Error::invalid(
+            "excitation.points",
+            format!("\"{p}\""),
+            "give either points = \"top-crossings\" or points_mm = [[x, y], …], not both",
+        )),
+        (Some(p), None) if p != TOP_CROSSINGS => Err(Error::invalid(
+            "excitation.points",
+            format!("\"{p}\""),
+            "\"top-crossings\" (every crossing of the top layer), or give points_mm = [[x, y], …] (mm, each on a top rod)",
+        )),
+        (_, Some(p)) => Ok(LoadPoints::Points(
+            p.iter().map(|xy| [xy[0] * 1e-3, xy[1] * 1e-3]).collect(),
+        )),
+        _ => Ok(LoadPoints::TopCrossings),
+    }
+}
+
+/// `[damping]` and `[preload]` of a completed lattice scenario: the chains' readers, and
+/// `damping.modal_ratio`. A lattice left at rest needs a static load.
+fn lattice_lab(s: &LatticeScenario, kind: ExcitationKind) -> Result<LatticeLab, Error> {
+    let struck = kind == ExcitationKind::Impact;
+    let (damping, modal_ratio) = match &s.damping {
+        None => (woodpile::Damping::default(), 0.0),
+        Some(d) => {
+            let mut d = d.clone();
+            d.resonator_ratio.get_or_insert(0.0);
+            (
+                crate::scenario::damping_of(&d, struck, true, struck)?,
+                d.modal_ratio.unwrap_or(0.0),
+            )
+        }
+    };
+    let preload = s
+        .preload
+        .map_or(woodpile::Preload::default(), |p| woodpile::Preload {
+            force_n: p.force_n.unwrap_or(0.0),
+            gravity_m_s2: p.gravity_m_s2.unwrap_or(0.0),
+        });
+    if kind == ExcitationKind::Rest && preload.is_none() {
         return Err(Error::invalid(
             "excitation.kind",
-            format!("\"{kind}\""),
-            "a lattice is struck (\"impact\"); blasts and drives on lattices are not modelled yet",
+            "\"rest\"",
+            "nothing would move: a lattice left at rest needs a static load ([preload] force_n or gravity_m_s2); or strike, blast or drive it",
         ));
     }
-    crate::scenario::striker_of(x.drop_height_m, x.velocity_m_s, x.striker.as_ref(), None)
+    let lab = LatticeLab {
+        damping,
+        modal_ratio,
+        preload,
+    };
+    lab.validate()?;
+    Ok(lab)
 }
 
 /// One contact in `run.json`.
@@ -596,22 +928,11 @@ pub struct ContactJson {
     pub y_mm: f64,
 }
 
-/// The contacts in output order: the striker's, the crossings, the supports.
+/// The contacts in output order: the striker's (or the load points, numbered from 1 as the
+/// rods of layer 0), the crossings, the supports.
 pub fn contacts_json(r: &ResolvedLattice) -> Vec<ContactJson> {
     let lattice = &r.lattice;
-    let hit = lattice
-        .top_point(r.at_m, "excitation.at_mm")
-        .expect("checked by resolve");
-    let top = &lattice.rods[hit.rod];
-    let p = top.point_m(hit.s_m);
-    let mut out = vec![ContactJson {
-        layer_above: 0,
-        rod_above: 1,
-        layer_below: 1,
-        rod_below: top.number,
-        x_mm: p[0] * 1e3,
-        y_mm: p[1] * 1e3,
-    }];
+    let mut out = incident_contacts_json(r);
     for c in &lattice.contacts {
         let a = &lattice.rods[c.above.rod];
         let (layer_below, rod_below) = match (c.below, c.support) {
@@ -628,6 +949,40 @@ pub fn contacts_json(r: &ResolvedLattice) -> Vec<ContactJson> {
         });
     }
     out
+}
+
+/// The contacts of layer 0: the striker's, or one per load point (none at rest without a
+/// preload).
+fn incident_contacts_json(r: &ResolvedLattice) -> Vec<ContactJson> {
+    let lattice = &r.lattice;
+    let points = match r.excitation.load_points() {
+        None => vec![lattice
+            .top_point(r.at_m, "excitation.at_mm")
+            .expect("checked by resolve")],
+        Some(_)
+            if matches!(r.excitation, LatticeExcitation::Rest { .. })
+                && r.lab.preload.force_n == 0.0 =>
+        {
+            Vec::new()
+        }
+        Some(p) => p.on(lattice).expect("checked by resolve"),
+    };
+    points
+        .iter()
+        .enumerate()
+        .map(|(k, hit)| {
+            let top = &lattice.rods[hit.rod];
+            let p = top.point_m(hit.s_m);
+            ContactJson {
+                layer_above: 0,
+                rod_above: k + 1,
+                layer_below: 1,
+                rod_below: top.number,
+                x_mm: p[0] * 1e3,
+                y_mm: p[1] * 1e3,
+            }
+        })
+        .collect()
 }
 
 /// `run.json` of a lattice run.
@@ -668,16 +1023,41 @@ pub struct LatticeSummaryJson {
     pub contact_peak_forces_n: Vec<f64>,
     /// When each peak occurred \[s\].
     pub contact_peak_times_s: Vec<f64>,
-    /// Peak of the striker's contact \[N\].
+    /// Peak of the striker's contact, or of the sum of the load points' forces \[N\].
     pub incident_peak_force_n: f64,
     /// Peak of the sum of the support forces \[N\].
     pub transmitted_peak_force_n: f64,
-    /// Largest |E(t) − E(0)| / E(0) over the samples.
+    /// Largest |E(t) + D(t) − E(0) − W(t)| over the samples, relative to the larger of E(0)
+    /// and the largest |W| (lossless impact: |E(t) − E(0)| / E(0)).
     pub energy_max_relative_error: f64,
     /// The method the run stepped with (a stated peak tolerance resolved for the lattice:
     /// `exact-modes` for finite-element rods) and its work.
     #[serde(default)]
     pub integrator: Option<crate::rundir::IntegratorJson>,
+    /// With damping, a static load, a blast or a drive: the energy audit's terms and the
+    /// static state ([`LatticeLabSummary`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lab: Option<LatticeLabSummary>,
+}
+
+/// The lab part of a lattice run's `summary.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LatticeLabSummary {
+    /// Energy E(0) at the start (the static state's strain and contact energy, the striker's
+    /// kinetic energy) \[J\].
+    pub energy_initial_j: f64,
+    /// Work W of the external forces (load, preload, gravity) over the run \[J\].
+    pub energy_input_work_j: f64,
+    /// Energy D dissipated over the run \[J\].
+    pub energy_dissipated_j: f64,
+    /// The part of D dissipated by the damping of the rods' modes \[J\].
+    pub modal_dissipated_j: f64,
+    /// Energy dissipated at each contact, in `run.json`'s order \[J\].
+    pub contact_dissipated_j: Vec<f64>,
+    /// Each contact's force in the static equilibrium the run started from \[N\].
+    pub contact_static_forces_n: Vec<f64>,
+    /// The static solve's relative residual |∇Π| / |f| (0 without a static load).
+    pub static_residual: f64,
 }
 
 /// Reads a lattice run's `summary.json`, whose `contact_peak_forces_n` must list `contacts`
@@ -749,6 +1129,15 @@ pub fn write_lattice_run(
             rejected_steps: run.stats.rejected_steps,
         }),
         energy_max_relative_error: run.energy.max_relative_error,
+        lab: (!run.work_j.is_empty()).then(|| LatticeLabSummary {
+            energy_initial_j: run.energy.initial_j,
+            energy_input_work_j: run.energy.input_work_j,
+            energy_dissipated_j: run.energy.dissipated_j,
+            modal_dissipated_j: run.modal_dissipated_j,
+            contact_dissipated_j: run.contact_dissipated_j.clone(),
+            contact_static_forces_n: run.contact_static_forces_n.clone(),
+            static_residual: run.static_residual,
+        }),
     };
     let header = |names: Vec<String>| {
         std::iter::once("time_s".to_string())
@@ -786,12 +1175,7 @@ pub fn write_lattice_run(
                 v
             }),
     )?;
-    crate::rundir::write_csv(
-        &dir.join("energy.csv"),
-        &header(vec!["total_j".into()]),
-        &run.times_s,
-        run.energy_j.iter().map(|e| vec![*e]),
-    )?;
+    write_energy_csv(dir, run)?;
     let n = run.times_s.len() as u64;
     crate::rundir::write_npy(
         &dir.join("forces_n.npy"),
@@ -801,6 +1185,28 @@ pub fn write_lattice_run(
     crate::rundir::write_npy(&dir.join("time_s.npy"), &[n], &run.times_s)?;
     crate::rundir::write_json(&dir.join("summary.json"), &summary)?;
     crate::rundir::write_json(&dir.join("run.json"), &run_json)
+}
+
+/// `energy.csv`: E(t) (`total_j`), and with lab physics the work W(t) (`work_j`) and the
+/// dissipated energy D(t) (`dissipated_j`).
+fn write_energy_csv(dir: &Path, run: &LatticeRun) -> Result<(), Error> {
+    let lab = !run.work_j.is_empty();
+    let mut header = vec!["time_s".to_string(), "total_j".into()];
+    if lab {
+        header.extend(["work_j".into(), "dissipated_j".into()]);
+    }
+    crate::rundir::write_csv(
+        &dir.join("energy.csv"),
+        &header,
+        &run.times_s,
+        (0..run.times_s.len()).map(|k| {
+            let mut row = vec![run.energy_j[k]];
+            if lab {
+                row.extend([run.work_j[k], run.dissipated_j[k]]);
+            }
+            row
+        }),
+    )
 }
 
 /// A lattice run read back from its directory: `run.json` and the sampled contact forces.

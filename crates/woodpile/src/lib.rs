@@ -13,7 +13,9 @@
 //!    Lattices of several rods per layer ([`model::LatticeBuilder`], docs/physics.md §16): every
 //!    crossing a contact, every rod a free–free finite-element beam ([`model::FreeRodModes`])
 //!    or its analytic Timoshenko bending modes ([`model::free_rod`]),
-//!    run by [`simulate::simulate_lattice`] over the contact graph [`ode::LatticeOde`].
+//!    run by [`simulate::simulate_lattice`] over the contact graph [`ode::LatticeOde`], struck,
+//!    blasted or driven on load points, damped and preloaded ([`model::LatticeExcitation`],
+//!    [`model::LatticeLab`]).
 //!    Lab physics (docs/physics.md §14): contact, resonator and on-site [`Damping`]; a static
 //!    [`Preload`] and gravity, from whose exact equilibrium a run starts.
 //! 2. **Excite it** — [`excitation`]: a [`Striker`] sphere, a [`BlastProfile`] force, or an

@@ -197,15 +197,15 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
 fn run_lattice(args: &Args, file: &Path, text: &str, ctx: &Context) -> Result<(), CliError> {
     use woodpile_io::lattice::{write_lattice_run, LatticeScenario, LATTICE_RUN_FILES};
     let scenario = LatticeScenario::parse(text, &file.display().to_string())?;
-    let resolved = scenario.resolve()?;
+    let (name, base) = super::name_and_base(file, "lattice");
+    let resolved = scenario.resolve_in(&base)?;
     woodpile_io::lattice::run_size(&resolved).check(args.allow_long, args.allow_large, true)?;
-    let (name, _) = super::name_and_base(file, "lattice");
     let out = args
         .out
         .clone()
         .unwrap_or_else(|| Path::new("runs").join(&name));
     let mut ode =
-        woodpile::ode::LatticeOde::new(&resolved.lattice, &resolved.striker, resolved.at_m)
+        woodpile::ode::LatticeOde::build(&resolved.lattice, &resolved.excitation, &resolved.lab)
             .map_err(woodpile_io::Error::from)?;
     let staging = Staging::prepare(&out, args.overwrite)?;
     let progress = (!ctx.quiet).then(|| Progress::new("simulate", 1, ctx.quiet));
@@ -222,7 +222,11 @@ fn run_lattice(args: &Args, file: &Path, text: &str, ctx: &Context) -> Result<()
     if !within && !args.allow_inaccurate {
         return Err(woodpile_io::Error::Inaccurate {
             relative_error: error,
-            reference: "the initial energy",
+            reference: if ode.has_lab() {
+                "the larger of the initial energy and the largest work done"
+            } else {
+                "the initial energy"
+            },
             limit: woodpile::defaults::ENERGY_ERROR_FAIL,
         });
     }
@@ -236,20 +240,71 @@ fn run_lattice(args: &Args, file: &Path, text: &str, ctx: &Context) -> Result<()
     )?;
     let dir = staging.commit(LATTICE_RUN_FILES, RUN_MARKER)?;
     if !ctx.quiet {
-        let rods: usize = resolved.lattice.rods.len();
-        crate::out::print(format!(
-            "scenario     {name}\nlattice      {} layers, {rods} rods, {} contacts ({} supports)\nincident     {:.4} N   (peak of the striker's contact)\ntransmitted  {:.4} N   (peak of the sum of the supports)\nenergy       max relative error {:.2e}\nintegrator   {} steps; {} samples\noutput       {}\n",
-            resolved.lattice.layers,
-            run.contacts,
-            run.supports.len(),
-            run.incident_peak_force_n,
-            run.transmitted_peak_force_n,
-            error,
-            run.stats.steps,
-            run.times_s.len(),
-            dir.display()
-        ))?;
+        print_lattice_run(&name, &resolved, &ode, &run, &dir)?;
     }
+    Ok(())
+}
+
+/// The terminal summary of a lattice run.
+fn print_lattice_run(
+    name: &str,
+    resolved: &woodpile_io::lattice::ResolvedLattice,
+    ode: &woodpile::ode::LatticeOde,
+    run: &woodpile::simulate::LatticeRun,
+    dir: &Path,
+) -> Result<(), CliError> {
+    use woodpile::model::LatticeExcitation;
+    let rods: usize = resolved.lattice.rods.len();
+    let incident = match &resolved.excitation {
+        LatticeExcitation::Impact { .. } => "peak of the striker's contact".to_string(),
+        _ => format!(
+            "peak of the sum of the {} load points",
+            ode.incident_contacts().len()
+        ),
+    };
+    let mut text = format!(
+        "scenario     {name}\nlattice      {} layers, {rods} rods, {} contacts ({} supports)\nexcitation   {}\nincident     {:.4} N   ({incident})\ntransmitted  {:.4} N   (peak of the sum of the supports)\n",
+        resolved.lattice.layers,
+        run.contacts,
+        run.supports.len(),
+        match &resolved.excitation {
+            LatticeExcitation::Rest { .. } =>
+                "rest: the lattice is left alone (a check of its static equilibrium)".to_string(),
+            x => x.as_chain_excitation().to_string(),
+        },
+        run.incident_peak_force_n,
+        run.transmitted_peak_force_n,
+    );
+    let e = &run.energy;
+    if ode.has_lab() {
+        if run.static_residual > 0.0 {
+            let supports: f64 = run
+                .supports
+                .iter()
+                .map(|&s| run.contact_static_forces_n[s])
+                .sum();
+            text += &format!(
+                "static       supports carry {supports:.6} N (relative residual {:.1e})\n",
+                run.static_residual
+            );
+        }
+        text += &format!(
+            "energy       E(0) {:.4e} J, work {:.4e} J, dissipated {:.4e} J; balance error {:.2e}\n",
+            e.initial_j, e.input_work_j, e.dissipated_j, e.max_relative_error
+        );
+    } else {
+        text += &format!(
+            "energy       max relative error {:.2e}\n",
+            e.max_relative_error
+        );
+    }
+    text += &format!(
+        "integrator   {} steps; {} samples\noutput       {}\n",
+        run.stats.steps,
+        run.times_s.len(),
+        dir.display()
+    );
+    crate::out::print(text)?;
     Ok(())
 }
 

@@ -468,6 +468,7 @@ fn damping_keys() -> Vec<Key> {
             int("damping.resonators[].resonator", "", "1.. (the element's resonators)", "resonator of that element, from 1"),
             float("damping.resonators[].ratio", "", NON_NEGATIVE, "its damping ratio zeta"),
             float("damping.on_site_time_s", "s", POSITIVE, on_site),
+            float("damping.modal_ratio", "", NON_NEGATIVE, "damping ratio zeta of every elastic mode of a lattice's rods (lattices only)"),
         ],
     ].concat()
 }

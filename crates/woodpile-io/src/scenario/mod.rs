@@ -33,6 +33,9 @@ pub use keys::{key, keys, Key, KeyDefault, KeyType};
 pub(crate) use resolve::material as material_of;
 pub(crate) use resolve::resolve_run_spec;
 pub(crate) use resolve::striker_of;
+pub(crate) use resolve::{
+    blast_profile_of, damping_of, refuse_excitation_keys, signal_of, BLAST_KEYS, DRIVE_KEYS,
+};
 pub use resolve::{resolve, resolve_element, resolve_with_keys, ChainKeys, Resolved};
 
 use crate::error::Error;
@@ -479,6 +482,10 @@ pub struct DampingSpec {
     /// On-site damping time τ \[s\] of every mass (default: none).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub on_site_time_s: Option<f64>,
+    /// Damping ratio ζ of every elastic mode of every rod of a lattice (lattices only; default
+    /// 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modal_ratio: Option<f64>,
 }
 
 /// `damping.striker` / `damping.wall`: one contact's law.

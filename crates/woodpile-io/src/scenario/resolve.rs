@@ -3,8 +3,9 @@
 use super::keys::toml_float as float;
 use super::keys::{ANGLE, NON_NEGATIVE, POSITIVE};
 use super::{
-    CellSpec, ContactLaw, DriveKind, ElementKind, ElementSpec, ExcitationKind, ExcitationSpec,
-    IntegratorKind, MaterialSpec, ProfileKind, Scenario, SignalKind, WallKind, WallSpec,
+    CellSpec, ContactLaw, DampingSpec, DriveKind, ElementKind, ElementSpec, ExcitationKind,
+    ExcitationSpec, IntegratorKind, MaterialSpec, ProfileKind, Scenario, SignalKind, WallKind,
+    WallSpec,
 };
 use crate::error::Error;
 use crate::table::load_table;
@@ -658,7 +659,11 @@ fn excitation_keys(x: &ExcitationSpec) -> [(&'static str, Option<String>); 19] {
 }
 
 /// Refuses the first key of `[excitation]` that is given and not in `used`, as not used `why`.
-fn refuse_excitation_keys(x: &ExcitationSpec, used: &[&str], why: &str) -> Result<(), Error> {
+pub(crate) fn refuse_excitation_keys(
+    x: &ExcitationSpec,
+    used: &[&str],
+    why: &str,
+) -> Result<(), Error> {
     match excitation_keys(x)
         .into_iter()
         .find(|(k, v)| v.is_some() && !used.contains(k))
@@ -705,40 +710,8 @@ fn resolve_excitation(s: &Scenario, chain: &Chain, base_dir: &Path) -> Result<Ex
             resolve_impact(x, chain)
         }
         ExcitationKind::Blast => {
-            let keys = ["profile", "peak_force_n", "duration_s", "decay", "file"];
-            refuse_excitation_keys(x, &keys, &why)?;
-            Ok(Excitation::Blast(match x.profile.unwrap_or_default() {
-                ProfileKind::Friedlander => {
-                    refuse_excitation_keys(
-                        x,
-                        &keys[..4],
-                        "with excitation.profile = \"friedlander\" (set profile = \"table\")",
-                    )?;
-                    BlastProfile::Friedlander {
-                        peak_force_n: positive(
-                            "excitation.peak_force_n",
-                            completed("excitation.peak_force_n", x.peak_force_n.as_ref())?,
-                        )?,
-                        duration_s: positive(
-                            "excitation.duration_s",
-                            completed("excitation.duration_s", x.duration_s.as_ref())?,
-                        )?,
-                        decay: non_negative(
-                            "excitation.decay",
-                            completed("excitation.decay", x.decay.as_ref())?,
-                        )?,
-                    }
-                }
-                ProfileKind::Table => {
-                    refuse_excitation_keys(
-                        x,
-                        &["profile", "file"],
-                        "with excitation.profile = \"table\" (the table file gives the force)",
-                    )?;
-                    let (t, f) = excitation_table(x, base_dir, "force_n", "profile = \"table\"")?;
-                    BlastProfile::table(t, f)?
-                }
-            }))
+            refuse_excitation_keys(x, &BLAST_KEYS, &why)?;
+            Ok(Excitation::Blast(blast_profile_of(x, base_dir)?))
         }
         ExcitationKind::Drive => resolve_drive(x, chain, base_dir),
         ExcitationKind::Rest => {
@@ -746,6 +719,47 @@ fn resolve_excitation(s: &Scenario, chain: &Chain, base_dir: &Path) -> Result<Ex
             Ok(Excitation::Rest)
         }
     }
+}
+
+/// The keys of a blast in `[excitation]` (besides `kind`).
+pub(crate) const BLAST_KEYS: [&str; 5] = ["profile", "peak_force_n", "duration_s", "decay", "file"];
+
+/// A blast's force history from `[excitation]` (a chain's or a lattice's): the Friedlander
+/// keys or a table file relative to `base_dir`.
+pub(crate) fn blast_profile_of(x: &ExcitationSpec, base_dir: &Path) -> Result<BlastProfile, Error> {
+    let keys = BLAST_KEYS;
+    Ok(match x.profile.unwrap_or_default() {
+        ProfileKind::Friedlander => {
+            refuse_excitation_keys(
+                x,
+                &keys[..4],
+                "with excitation.profile = \"friedlander\" (set profile = \"table\")",
+            )?;
+            BlastProfile::Friedlander {
+                peak_force_n: positive(
+                    "excitation.peak_force_n",
+                    completed("excitation.peak_force_n", x.peak_force_n.as_ref())?,
+                )?,
+                duration_s: positive(
+                    "excitation.duration_s",
+                    completed("excitation.duration_s", x.duration_s.as_ref())?,
+                )?,
+                decay: non_negative(
+                    "excitation.decay",
+                    completed("excitation.decay", x.decay.as_ref())?,
+                )?,
+            }
+        }
+        ProfileKind::Table => {
+            refuse_excitation_keys(
+                x,
+                &["profile", "file"],
+                "with excitation.profile = \"table\" (the table file gives the force)",
+            )?;
+            let (t, f) = excitation_table(x, base_dir, "force_n", "profile = \"table\"")?;
+            BlastProfile::table(t, f)?
+        }
+    })
 }
 
 fn resolve_impact(x: &ExcitationSpec, chain: &Chain) -> Result<Excitation, Error> {
@@ -793,7 +807,24 @@ pub(crate) fn striker_of(
     })
 }
 
-fn resolve_drive(x: &ExcitationSpec, chain: &Chain, base_dir: &Path) -> Result<Excitation, Error> {
+/// The keys of a drive in `[excitation]` (besides `kind`).
+pub(crate) const DRIVE_KEYS: [&str; 11] = [
+    "drive",
+    "signal",
+    "ramp_s",
+    "tip",
+    "amplitude",
+    "start_hz",
+    "end_hz",
+    "sweep_duration_s",
+    "sweep",
+    "frequency_hz",
+    "file",
+];
+
+/// A drive's signal from `[excitation]` (a chain's or a lattice's): harmonic, chirp or a table
+/// file relative to `base_dir`.
+pub(crate) fn signal_of(x: &ExcitationSpec, base_dir: &Path) -> Result<Signal, Error> {
     const COMMON: [&str; 4] = ["drive", "signal", "ramp_s", "tip"];
     const CHIRP: [&str; 5] = [
         "amplitude",
@@ -802,8 +833,6 @@ fn resolve_drive(x: &ExcitationSpec, chain: &Chain, base_dir: &Path) -> Result<E
         "sweep_duration_s",
         "sweep",
     ];
-    let keys = [&COMMON[..], &CHIRP, &["frequency_hz", "file"]].concat();
-    refuse_excitation_keys(x, &keys, "with excitation.kind = \"drive\"")?;
     let Some(kind) = x.signal else {
         return Err(Error::invalid(
             "excitation.signal",
@@ -849,6 +878,12 @@ fn resolve_drive(x: &ExcitationSpec, chain: &Chain, base_dir: &Path) -> Result<E
             Signal::Table { times_s, values }
         }
     };
+    Ok(signal)
+}
+
+fn resolve_drive(x: &ExcitationSpec, chain: &Chain, base_dir: &Path) -> Result<Excitation, Error> {
+    refuse_excitation_keys(x, &DRIVE_KEYS, "with excitation.kind = \"drive\"")?;
+    let signal = signal_of(x, base_dir)?;
     let quantity = match (x.drive.unwrap_or_default(), &x.tip) {
         (DriveKind::Force, Some(_)) => {
             return Err(not_applicable(
@@ -931,12 +966,29 @@ fn resolve_damping(s: &Scenario) -> Result<Damping, Error> {
     let Some(d) = &s.damping else {
         return Ok(Damping::default());
     };
-    let law = completed("damping.contact", d.contact.as_ref())?;
-    let contacts = contact_law("damping", law, d.restitution, d.viscous_time_s)?;
+    if let Some(z) = d.modal_ratio {
+        let why = "in a chain (it damps the modes of a lattice's rods; a chain's rods are damped by resonator_ratio)";
+        return Err(not_applicable("damping.modal_ratio", float(z), why));
+    }
     let x = &s.excitation;
     let has_striker = x.kind == ExcitationKind::Impact
         || (x.kind == ExcitationKind::Drive && x.drive == Some(DriveKind::Displacement));
     let has_wall = s.wall.effective_kind() != WallKind::Free;
+    damping_of(d, has_striker, has_wall, x.kind == ExcitationKind::Impact)
+}
+
+/// A completed `[damping]` (a chain's or a lattice's; `modal_ratio` is left to the caller):
+/// the contact laws, the striker's and wall's overrides (refused where there is no striker or
+/// wall), the Hunt–Crossley impact speed (needed when nothing strikes, refused without a
+/// Hunt–Crossley contact).
+pub(crate) fn damping_of(
+    d: &DampingSpec,
+    has_striker: bool,
+    has_wall: bool,
+    struck: bool,
+) -> Result<Damping, Error> {
+    let law = completed("damping.contact", d.contact.as_ref())?;
+    let contacts = contact_law("damping", law, d.restitution, d.viscous_time_s)?;
     let mut overrides = [None, None];
     for (slot, (name, spec, applies, why)) in [
         (
@@ -972,7 +1024,7 @@ fn resolve_damping(s: &Scenario) -> Result<Damping, Error> {
             return Err(not_applicable("damping.impact_speed_m_s", float(v), why));
         }
         // The core's rule (docs/physics.md §14), checked here to fail before the run.
-        None if hunt(true) && x.kind != ExcitationKind::Impact => {
+        None if hunt(true) && !struck => {
             return Err(Error::invalid(
                 "damping.impact_speed_m_s",
                 "(missing)",

@@ -8,6 +8,7 @@ pub mod fe_beam;
 pub mod free_rod;
 pub mod lab;
 pub mod lattice;
+pub mod lattice_load;
 pub mod law;
 pub mod material;
 
@@ -24,5 +25,6 @@ pub use lattice::{
     Lattice, LatticeBuilder, LatticeContact, LatticeRod, LayerSpec, RodOverrides, RodPoint,
     Supports,
 };
+pub use lattice_load::{LatticeExcitation, LatticeLab, LoadPoints};
 pub use law::ContactLaw;
 pub use material::Material;

@@ -1,4 +1,5 @@
-//! A lattice struck by a sphere as y' = f(t, y) (docs/physics.md §16): a contact graph.
+//! A lattice struck by a sphere, loaded or left at rest, as y' = f(t, y) (docs/physics.md §16):
+//! a contact graph.
 //!
 //! Every body moves in mass-normalised modal coordinates q (the striker: one coordinate
 //! q = √m u; a rod: its free–free modes), so that q̈_j = −ω_j² q_j + Σ_c row_cj F_c: contact c
@@ -17,14 +18,26 @@
 //! supports and its moments about the impact point (x₀, y₀), integrated with the motion so that
 //! momentum and moment of momentum can be audited to the integrator's accuracy. (Their time
 //! integrals ∫J dt are carried only to keep the state of the form x'' = a(x).)
+//! With lab physics (docs/physics.md §16; `ode::lattice_lab`): the contacts follow the chains'
+//! laws (`model::law`), every rod mode is damped, blasts and drives act on load points (contacts
+//! of their own at the head of the list, their force prescribed), the run starts from the static
+//! equilibrium under the preload and gravity, and the state ends in the work W of the external
+//! forces, the energy dissipated by the modes' damping and that dissipated at each contact:
+//!
+//! ```text
+//! y = [ q | ∫J dt (3) | q̇ | J (3) | W | D_modes | D_0 … D_{C−1} ]
+//! ```
 
+use super::lattice_lab::LabTerms;
 use crate::error::{require_positive, Result};
 use crate::excitation::Striker;
 use crate::integrate::OdeSystem;
-use crate::model::{hertz_beta, ContactLaw, Lattice, Surface};
+use crate::model::{
+    hertz_beta, ContactLaw, Lattice, LatticeExcitation, LatticeLab, RodPoint, Surface,
+};
 
 /// One side of a contact: a body's first coordinate, its number of coordinates and where its
-/// row starts in [`LatticeOde::rows`].
+/// row starts in [`LatticeOde::rows`] (a load's side above is empty: `len` 0).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Side {
     pub offset: usize,
@@ -34,7 +47,7 @@ pub(crate) struct Side {
 
 impl Side {
     /// The deflection of this side's point for modal coordinates `q` (all of them) and the
-    /// rows `rows` (all of them) \[m\].
+    /// rows `rows` (all of them) \[m\] (or its rate, given velocities).
     #[inline(always)]
     pub(crate) fn dot(self, rows: &[f64], q: &[f64]) -> f64 {
         rows[self.row..self.row + self.len]
@@ -45,47 +58,109 @@ impl Side {
     }
 }
 
-/// The compiled equations of a lattice under a striker.
+/// The compiled equations of a lattice under a striker, a load or nothing.
 #[derive(Debug, Clone)]
 pub struct LatticeOde {
     /// ω_j² per coordinate [1/s²] (0 for the striker and the rigid modes).
     pub(crate) omega2: Vec<f64>,
-    /// Per contact (striker first, then the lattice's contacts): above, below, β.
+    /// Per contact (the striker's or the loads first, then the lattice's contacts): above,
+    /// below, β (0 for a load).
     pub(crate) above: Vec<Side>,
     pub(crate) below: Vec<Option<Side>>,
     pub(crate) beta: Vec<f64>,
     pub(crate) rows: Vec<f64>,
     /// (support's contact index, x − x₀, y − y₀ \[m\]).
     pub(crate) supports: Vec<(usize, f64, f64)>,
-    /// Per body (striker, rods): offset, count, centre − impact point \[m\], axis.
+    /// Per body (striker, rods): offset, count, centre − reference point \[m\], axis.
     bodies: Vec<(usize, usize, [f64; 2], [f64; 2])>,
     /// ψ_tᵀMφ_j and ψ_rᵀMφ_j per coordinate.
-    translation: Vec<f64>,
+    pub(super) translation: Vec<f64>,
     rocking: Vec<f64>,
-    /// Overlap limit per contact \[m\].
+    /// Overlap limit per contact \[m\] (infinite for a load).
     pub(crate) overlap_limit_m: Vec<f64>,
-    /// The striker's mass \[kg\] and initial velocity \[m/s\].
-    striker_mass_kg: f64,
-    striker_velocity_m_s: f64,
+    /// The striker's mass \[kg\] and initial velocity \[m/s\] (0 and 0 without a striker).
+    pub(crate) striker_mass_kg: f64,
+    pub(crate) striker_velocity_m_s: f64,
+    /// Number of leading contacts whose force is prescribed (a blast's or drive's points).
+    pub(super) loads: usize,
+    /// Whether contact 0 is the striker's.
+    pub(super) struck: bool,
     /// Force and overlap per contact at the last evaluation.
     pub(crate) force_n: Vec<f64>,
     pub(crate) overlap_m: Vec<f64>,
+    /// Damping, static load, blast or drive; None: the lossless impact (the first slice's path).
+    pub(super) lab: Option<Box<LabTerms>>,
 }
 
 impl LatticeOde {
     /// The lattice struck by `striker` at `at_m` = (x, y) \[m\] on its top layer (on the axis
-    /// of the top rod there, within its radius); errors name `excitation.at_mm`.
+    /// of the top rod there, within its radius), lossless and unloaded; errors name
+    /// `excitation.at_mm`.
     pub fn new(lattice: &Lattice, striker: &Striker, at_m: [f64; 2]) -> Result<Self> {
         striker.validate()?;
         let hit = lattice.top_point(at_m, "excitation.at_mm")?;
-        // The striker's force acts on the top rod's axis (a rod neither twists nor rolls in this
-        // model): the impact point is the point of the axis under `at_m`.
-        let at_m = lattice.rods[hit.rod].point_m(hit.s_m);
-        let mut omega2 = vec![0.0];
-        let m_s = striker.mass_kg();
-        let mut translation = vec![m_s.sqrt()];
-        let mut rocking = vec![0.0];
-        let mut bodies = vec![(0, 1, [0.0, 0.0], [1.0, 0.0])];
+        Self::compile(lattice, Some((striker, hit)), &[])
+    }
+
+    /// The lattice under any excitation, with damping and a static load
+    /// (docs/physics.md §16). With `lab` none and an impact this is [`LatticeOde::new`], bit
+    /// for bit. Errors name the scenario keys.
+    pub fn build(
+        lattice: &Lattice,
+        excitation: &LatticeExcitation,
+        lab: &LatticeLab,
+    ) -> Result<Self> {
+        excitation.validate()?;
+        lab.validate()?;
+        let mut ode = match excitation {
+            LatticeExcitation::Impact { striker, at_m } => {
+                let ode = Self::new(lattice, striker, *at_m)?;
+                if lab.is_none() {
+                    return Ok(ode);
+                }
+                ode
+            }
+            LatticeExcitation::Rest { .. } if lab.preload.force_n == 0.0 => {
+                Self::compile(lattice, None, &[])?
+            }
+            _ => {
+                let points = excitation
+                    .load_points()
+                    .expect("a load has points")
+                    .on(lattice)?;
+                Self::compile(lattice, None, &points)?
+            }
+        };
+        let terms = LabTerms::compile(&ode, lattice, excitation, lab)?;
+        ode.lab = Some(Box::new(terms));
+        Ok(ode)
+    }
+
+    /// The equations: the striker's body and contact (if any), a load contact per point, then
+    /// the lattice's contacts.
+    fn compile(
+        lattice: &Lattice,
+        striker: Option<(&Striker, RodPoint)>,
+        load_points: &[RodPoint],
+    ) -> Result<Self> {
+        // The reference point of the moment audit: the impact point on the top rod's axis (a
+        // rod neither twists nor rolls in this model, so an off-axis force would act on the
+        // axis anyway), or the origin under a load.
+        let at_m = striker.map_or([0.0, 0.0], |(_, hit)| {
+            lattice.rods[hit.rod].point_m(hit.s_m)
+        });
+        let (mut omega2, mut translation, mut rocking, mut bodies) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let mut rows = Vec::new();
+        if let Some((striker, _)) = striker {
+            let m_s = striker.mass_kg();
+            omega2.push(0.0);
+            translation.push(m_s.sqrt());
+            rocking.push(0.0);
+            bodies.push((0, 1, [0.0, 0.0], [1.0, 0.0]));
+            rows.push(1.0 / m_s.sqrt());
+        }
+        let first_rod = bodies.len();
         for rod in &lattice.rods {
             let offset = omega2.len();
             let modes = &rod.modes;
@@ -95,34 +170,40 @@ impl LatticeOde {
             let c = [rod.centre_m[0] - at_m[0], rod.centre_m[1] - at_m[1]];
             bodies.push((offset, modes.omega_rad_s.len(), c, rod.axis));
         }
-        let mut rows = vec![1.0 / m_s.sqrt()];
-        let side = |point: crate::model::RodPoint, rows: &mut Vec<f64>| {
-            let (offset, len, _, _) = bodies[point.rod + 1];
+        let side = |point: RodPoint, rows: &mut Vec<f64>| {
+            let (offset, len, _, _) = bodies[point.rod + first_rod];
             let row = rows.len();
             rows.extend(lattice.rods[point.rod].modes.modal_row(point.s_m));
             Side { offset, len, row }
         };
-        let top = &lattice.rods[hit.rod];
-        let striker_beta = match striker.beta_override {
-            Some(b) => require_positive("excitation.beta", b)?,
-            None => hertz_beta(
-                Surface::Sphere {
-                    radius_m: 0.5 * striker.diameter_m,
-                },
-                &striker.material,
-                top.surface(),
-                &top.rod.material,
-            )?,
-        };
-        let mut above = vec![Side {
-            offset: 0,
-            len: 1,
-            row: 0,
-        }];
-        let mut below = vec![Some(side(hit, &mut rows))];
-        let mut beta = vec![striker_beta];
-        let mut overlap_limit_m =
-            vec![0.1 * (0.5 * top.rod.outer_diameter_m).min(0.5 * striker.diameter_m)];
+        let (mut above, mut below, mut beta, mut overlap_limit_m) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let (mut striker_mass_kg, mut striker_velocity_m_s) = (0.0, 0.0);
+        if let Some((striker, hit)) = striker {
+            let top = &lattice.rods[hit.rod];
+            beta.push(striker_beta(striker, top)?);
+            above.push(Side {
+                offset: 0,
+                len: 1,
+                row: 0,
+            });
+            below.push(Some(side(hit, &mut rows)));
+            overlap_limit_m
+                .push(0.1 * (0.5 * top.rod.outer_diameter_m).min(0.5 * striker.diameter_m));
+            striker_mass_kg = striker.mass_kg();
+            striker_velocity_m_s = striker.velocity_m_s;
+        }
+        for &point in load_points {
+            let empty = Side {
+                offset: 0,
+                len: 0,
+                row: rows.len(),
+            };
+            above.push(empty);
+            below.push(Some(side(point, &mut rows)));
+            beta.push(0.0);
+            overlap_limit_m.push(f64::INFINITY);
+        }
         let mut supports = Vec::new();
         for contact in &lattice.contacts {
             above.push(side(contact.above, &mut rows));
@@ -146,20 +227,20 @@ impl LatticeOde {
             translation,
             rocking,
             overlap_limit_m,
-            striker_mass_kg: m_s,
-            striker_velocity_m_s: striker.velocity_m_s,
+            striker_mass_kg,
+            striker_velocity_m_s,
+            loads: load_points.len(),
+            struck: striker.is_some(),
             force_n: vec![0.0; n],
             overlap_m: vec![0.0; n],
+            lab: None,
         })
     }
 
-    /// The striker's Hertz contact time on a rigid half-space \[s\]: 2.94 δ_max / v₀ with
-    /// δ_max = (5 m v₀² / (4 β))^{2/5} (Johnson, *Contact Mechanics*, §11.4), the shortest
-    /// event of the run's scale.
-    pub fn striker_contact_time_s(&self) -> f64 {
-        let (m, v) = (self.striker_mass_kg, self.striker_velocity_m_s);
-        let delta_max = (1.25 * m * v * v / self.beta[0]).powf(0.4);
-        2.94 * delta_max / v
+    /// (first coordinate, number of coordinates) of rod `rod` (its index in the lattice).
+    pub(super) fn rod_coordinates(&self, rod: usize) -> (usize, usize) {
+        let (offset, len, _, _) = self.bodies[rod + usize::from(self.struck)];
+        (offset, len)
     }
 
     /// Number of modal coordinates Q.
@@ -167,7 +248,7 @@ impl LatticeOde {
         self.omega2.len()
     }
 
-    /// β per contact, in output order [N/m^1.5].
+    /// β per contact, in output order [N/m^1.5] (0 for a load point).
     pub fn contact_betas(&self) -> &[f64] {
         &self.beta
     }
@@ -177,22 +258,48 @@ impl LatticeOde {
         self.below[c].is_none()
     }
 
-    /// Number of contacts (the striker's first).
+    /// Number of contacts (the striker's or the load points first).
     pub fn contacts(&self) -> usize {
         self.beta.len()
     }
 
-    /// The state at t = 0: everything at rest, touching, the striker moving down at v₀.
+    /// The contacts that load the lattice from above, whose forces sum to the incident force:
+    /// the striker's, or the load points (none at rest without a preload).
+    pub fn has_striker(&self) -> bool {
+        self.struck
+    }
+
+    /// The contacts that carry the load: the striker's, or the load points.
+    pub fn incident_contacts(&self) -> std::ops::Range<usize> {
+        0..if self.struck { 1 } else { self.loads }
+    }
+
+    /// Whether the run has lab physics (damping, a static load, a blast or a drive): its
+    /// state then ends in W, the modes' and every contact's dissipated energy.
+    pub fn has_lab(&self) -> bool {
+        self.lab.is_some()
+    }
+
+    /// The state at t = 0: everything at rest, touching (in static equilibrium under a static
+    /// load), the striker moving down at v₀.
     pub fn initial_state(&self) -> Vec<f64> {
         let q = self.coordinates();
-        let mut y = vec![0.0; 2 * (q + 3)];
-        y[q + 3] = self.striker_mass_kg.sqrt() * self.striker_velocity_m_s;
+        let mut y = vec![0.0; self.dimension()];
+        if let Some(lab) = &self.lab {
+            y[..q].copy_from_slice(&lab.q0);
+        }
+        if self.struck {
+            // The striker touches the top rod at zero overlap.
+            let hit = self.below[0].expect("the striker's contact has a rod below");
+            y[0] = self.deflection(hit, &y[..q]) / self.rows[0];
+            y[q + 3] = self.striker_mass_kg.sqrt() * self.striker_velocity_m_s;
+        }
         y
     }
 
-    /// The deflection at a contact's side.
+    /// The deflection at a contact's side (or its rate, given velocities).
     #[inline(always)]
-    fn deflection(&self, side: Side, q: &[f64]) -> f64 {
+    pub(super) fn deflection(&self, side: Side, q: &[f64]) -> f64 {
         side.dot(&self.rows, q)
     }
 
@@ -201,27 +308,61 @@ impl LatticeOde {
         self.omega2.iter().fold(0.0, |m: f64, &w2| m.max(w2)).sqrt()
     }
 
-    /// Every contact's force rate dF/dt \[N/s\] in state y into `rate` (after
-    /// [`LatticeOde::contact_forces`] at y's positions): β (3/2) δ₊^{1/2} δ̇.
+    /// The striker's Hertz contact time on a rigid half-space \[s\]: 2.94 δ_max / v₀ with
+    /// δ_max = (5 m v₀² / (4 β))^{2/5} (Johnson, *Contact Mechanics*, §11.4), the shortest
+    /// event of the run's scale; infinite without a striker.
+    pub fn striker_contact_time_s(&self) -> f64 {
+        let (m, v) = (self.striker_mass_kg, self.striker_velocity_m_s);
+        if !self.struck || v <= 0.0 {
+            return f64::INFINITY;
+        }
+        let delta_max = (1.25 * m * v * v / self.beta[0]).powf(0.4);
+        2.94 * delta_max / v
+    }
+
+    /// Every contact's force rate dF/dt \[N/s\] in state y into `rate`, after
+    /// [`LatticeOde::contact_forces`] at y's positions: the elastic (3/2) F δ̇ / δ; 0 with lab
+    /// physics (the peaks are then those of the step ends).
     pub(crate) fn contact_force_rates(&self, y: &[f64], rate: &mut [f64]) {
+        if self.has_lab() {
+            rate.fill(0.0);
+            return;
+        }
         let q = self.coordinates();
         let v = &y[q + 3..2 * q + 3];
         for (c, r) in rate.iter_mut().enumerate() {
-            let mut dv = self.deflection(self.above[c], v);
-            if let Some(b) = self.below[c] {
-                dv -= self.deflection(b, v);
-            }
+            let dv = self.overlap(c, v);
             *r = ContactLaw::elastic_force_rate(self.force_n[c], self.overlap_m[c], dv);
         }
     }
 
-    /// Every contact's overlap and force at positions q into `overlap_m` and `force_n`.
+    /// Contact c's overlap at positions q (or its rate at velocities q̇).
+    #[inline(always)]
+    pub(super) fn overlap(&self, c: usize, q: &[f64]) -> f64 {
+        let mut d = self.deflection(self.above[c], q);
+        if let Some(b) = self.below[c] {
+            d -= self.deflection(b, q);
+        }
+        d
+    }
+
+    /// Every contact's overlap and force at state y (positions, and with lab physics
+    /// velocities and time) into `overlap_m` and `force_n`.
+    pub(crate) fn contact_forces_at(&mut self, t: f64, y: &[f64]) {
+        match self.lab.take() {
+            None => self.contact_forces(&y[..self.coordinates()]),
+            Some(mut lab) => {
+                lab.contact_forces(self, t, y);
+                self.lab = Some(lab);
+            }
+        }
+    }
+
+    /// Every contact's overlap and elastic force at positions q into `overlap_m` and
+    /// `force_n` (the lossless path).
     pub(crate) fn contact_forces(&mut self, q: &[f64]) {
         for c in 0..self.beta.len() {
-            let mut d = self.deflection(self.above[c], q);
-            if let Some(b) = self.below[c] {
-                d -= self.deflection(b, q);
-            }
+            let d = self.overlap(c, q);
             self.overlap_m[c] = d;
             self.force_n[c] = ContactLaw::elastic_force(self.beta[c], d);
         }
@@ -234,20 +375,45 @@ impl LatticeOde {
         let motion: f64 = (0..q)
             .map(|j| 0.5 * (v[j] * v[j] + self.omega2[j] * x[j] * x[j]))
             .sum();
+        // (Load points have no potential: their forces are prescribed, their work is W.)
         let mut contacts = 0.0;
-        for c in 0..self.beta.len() {
-            let mut d = self.deflection(self.above[c], x);
-            if let Some(b) = self.below[c] {
-                d -= self.deflection(b, x);
-            }
-            contacts += ContactLaw::potential_j(self.beta[c], d);
+        for c in self.loads..self.beta.len() {
+            contacts += ContactLaw::potential_j(self.beta[c], self.overlap(c, x));
         }
         motion + contacts
     }
 
+    /// (work of the external forces W, energy dissipated by the modes' damping and at every
+    /// contact D) of a state \[J\]: (0, 0) without lab physics.
+    pub fn work_and_dissipation_j(&self, y: &[f64]) -> (f64, f64) {
+        if self.lab.is_none() {
+            return (0.0, 0.0);
+        }
+        let i = 2 * (self.coordinates() + 3);
+        (y[i], y[i + 1..].iter().sum())
+    }
+
+    /// The energy dissipated at each contact up to a state \[J\], in output order (empty without
+    /// lab physics).
+    pub fn contact_dissipated_j<'a>(&self, y: &'a [f64]) -> &'a [f64] {
+        if self.lab.is_none() {
+            return &[];
+        }
+        &y[2 * (self.coordinates() + 3) + 2..]
+    }
+
+    /// Each contact's static force \[N\] (the equilibrium the run starts from; empty without
+    /// lab physics), and the static solve's relative residual |∇Π| / |f|.
+    pub fn static_forces_n(&self) -> (&[f64], f64) {
+        self.lab.as_ref().map_or((&[][..], 0.0), |l| {
+            (&l.static_force_n[..], l.static_residual)
+        })
+    }
+
     /// The audit of a state: (vertical momentum of every body P \[N s\], its moment about the
     /// impact point H = Σ (r − r₀) p \[N s m\], the supports' impulse J \[N s\] and its moment
-    /// \[N s m\]). Newton: P + J_z and H + J_moment are constant.
+    /// \[N s m\]). Newton: P + J_z and H + J_moment are constant. Under a load the reference
+    /// point is the origin.
     pub fn momentum_audit(&self, y: &[f64]) -> (f64, [f64; 2], f64, [f64; 2]) {
         let q = self.coordinates();
         let v = &y[q + 3..2 * q + 3];
@@ -268,45 +434,33 @@ impl LatticeOde {
             h[0] += c[0] * pb + axis[0] * rb;
             h[1] += c[1] * pb + axis[1] * rb;
         }
-        let j = &y[2 * q + 3..];
+        let j = &y[q + 3 + q..2 * q + 6];
         (p, h, j[0], [j[1], j[2]])
     }
 
     /// Tolerance units per state component for adaptive methods: 1 for every component, so
     /// atol applies to the modal coordinates as given (q = √m u: for rods of a few grams, atol
-    /// on q is about ten times atol on the displacement) and to the supports' impulses.
+    /// on q is about ten times atol on the displacement), to the supports' impulses and to the
+    /// energy integrals W and D (in J).
     pub fn tolerance_units(&self) -> Vec<f64> {
-        vec![1.0; 2 * (self.coordinates() + 3)]
-    }
-}
-
-impl OdeSystem for LatticeOde {
-    fn dimension(&self) -> usize {
-        2 * (self.coordinates() + 3)
+        vec![1.0; self.dimension()]
     }
 
-    fn rhs(&mut self, _t: f64, y: &[f64], dydt: &mut [f64]) {
-        let q = self.coordinates();
-        let n = q + 3;
-        dydt[..n].copy_from_slice(&y[n..2 * n]);
-        self.rhs_accelerations(y, dydt);
-    }
-
-    fn second_order(&self) -> Option<usize> {
-        Some(self.coordinates() + 3)
-    }
-}
-
-impl LatticeOde {
-    /// The accelerations (and the supports' impulse rates) into dydt's second half.
-    fn rhs_accelerations(&mut self, y: &[f64], dydt: &mut [f64]) {
-        let q = self.coordinates();
-        let x = &y[..q];
-        self.contact_forces(x);
-        let a = &mut dydt[q + 3..];
-        for j in 0..q {
-            a[j] = -self.omega2[j] * x[j];
+    /// The supports' impulse rates (Σ F_s, Σ (x_s − x₀) F_s, Σ (y_s − y₀) F_s) from `force_n`.
+    pub(super) fn support_impulse_rates(&self) -> [f64; 3] {
+        let mut impulse = [0.0; 3];
+        for &(c, dx, dy) in &self.supports {
+            let f = self.force_n[c];
+            impulse[0] += f;
+            impulse[1] += dx * f;
+            impulse[2] += dy * f;
         }
+        impulse
+    }
+
+    /// Adds every contact's force (in `force_n`) to the accelerations a through its rows.
+    #[inline(always)]
+    pub(super) fn apply_contact_forces(&self, a: &mut [f64]) {
         for c in 0..self.beta.len() {
             let f = self.force_n[c];
             if f == 0.0 {
@@ -322,13 +476,59 @@ impl LatticeOde {
                 }
             }
         }
-        let mut impulse = [0.0; 3];
-        for &(c, dx, dy) in &self.supports {
-            let f = self.force_n[c];
-            impulse[0] += f;
-            impulse[1] += dx * f;
-            impulse[2] += dy * f;
+    }
+}
+
+/// The striker's contact β with the top rod it hits (given, or Hertz theory).
+fn striker_beta(striker: &Striker, top: &crate::model::LatticeRod) -> Result<f64> {
+    match striker.beta_override {
+        Some(b) => require_positive("excitation.beta", b),
+        None => hertz_beta(
+            Surface::Sphere {
+                radius_m: 0.5 * striker.diameter_m,
+            },
+            &striker.material,
+            top.surface(),
+            &top.rod.material,
+        ),
+    }
+}
+
+impl OdeSystem for LatticeOde {
+    fn dimension(&self) -> usize {
+        2 * (self.coordinates() + 3) + self.lab.as_ref().map_or(0, |_| 2 + self.contacts())
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let q = self.coordinates();
+        let n = q + 3;
+        dydt[..n].copy_from_slice(&y[n..2 * n]);
+        match self.lab.take() {
+            None => self.rhs_accelerations(y, dydt),
+            Some(mut lab) => {
+                lab.rhs(self, t, y, dydt);
+                self.lab = Some(lab);
+            }
         }
+    }
+
+    fn second_order(&self) -> Option<usize> {
+        self.lab.is_none().then(|| self.coordinates() + 3)
+    }
+}
+
+impl LatticeOde {
+    /// The accelerations (and the supports' impulse rates) into dydt's second half.
+    fn rhs_accelerations(&mut self, y: &[f64], dydt: &mut [f64]) {
+        let q = self.coordinates();
+        let x = &y[..q];
+        self.contact_forces(x);
+        let a = &mut dydt[q + 3..];
+        for j in 0..q {
+            a[j] = -self.omega2[j] * x[j];
+        }
+        self.apply_contact_forces(a);
+        let impulse = self.support_impulse_rates();
         a[q..q + 3].copy_from_slice(&impulse);
     }
 }

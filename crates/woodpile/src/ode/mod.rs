@@ -23,6 +23,7 @@
 mod equations;
 mod lab;
 mod lattice;
+mod lattice_lab;
 mod modal;
 
 pub(crate) use equations::{Equations, LabEquations, LabShape, Load};

@@ -1,11 +1,12 @@
 //! The runner of a lattice (docs/physics.md §16): steps a [`LatticeOde`] with the chain's
 //! integrators, checks every contact after every step, tracks each contact's peak, samples the
-//! contact forces and the energy on the uniform grid, and audits the energy.
+//! contact forces and the energy on the uniform grid, and audits the energy (with lab physics:
+//! E(t) + D(t) − E(0) − W(t) = 0).
 
 use super::{EnergyBalance, PeakTracker, RunSettings};
 use crate::error::{Error, Result};
 use crate::integrate::modal_graph::GraphModalIntegrator;
-use crate::integrate::{Integrator, IntegratorStats, Method};
+use crate::integrate::{Integrator, IntegratorStats, Method, OdeSystem};
 use crate::ode::LatticeOde;
 
 /// What a lattice run gives: per-contact peaks, the supports' sum, the energy balance, and the
@@ -16,11 +17,13 @@ pub struct LatticeRun {
     pub contact_peak_forces_n: Vec<f64>,
     /// When each peak occurred \[s\].
     pub contact_peak_times_s: Vec<f64>,
-    /// Peak of the striker's contact force \[N\].
+    /// Peak over the steps of the incident force: the striker's contact force, or the sum of
+    /// the load points' forces \[N\].
     pub incident_peak_force_n: f64,
     /// Peak over the steps of the transmitted force, the sum of the support forces \[N\].
     pub transmitted_peak_force_n: f64,
-    /// Energy balance over the samples (lossless: E(t) = E(0)).
+    /// Energy balance over the samples (lossless: E(t) = E(0); with lab physics
+    /// E(t) + D(t) − E(0) − W(t) = 0).
     pub energy: EnergyBalance,
     /// Sample times \[s\].
     pub times_s: Vec<f64>,
@@ -28,6 +31,20 @@ pub struct LatticeRun {
     pub contact_forces_n: Vec<f64>,
     /// Total energy per sample \[J\].
     pub energy_j: Vec<f64>,
+    /// Work of the external forces W per sample \[J\] (empty without lab physics).
+    pub work_j: Vec<f64>,
+    /// Energy dissipated D per sample \[J\] (empty without lab physics).
+    pub dissipated_j: Vec<f64>,
+    /// Energy dissipated at each contact over the run \[J\], in output order (empty without lab
+    /// physics; the rest of D is the rods' modal damping, [`LatticeRun::modal_dissipated_j`]).
+    pub contact_dissipated_j: Vec<f64>,
+    /// Energy dissipated by the damping of the rods' modes over the run \[J\].
+    pub modal_dissipated_j: f64,
+    /// Each contact's force in the static equilibrium the run started from \[N\] (empty
+    /// without lab physics).
+    pub contact_static_forces_n: Vec<f64>,
+    /// The static solve's relative residual |∇Π| / |f| (0 without a static load).
+    pub static_residual: f64,
     /// Momentum audit per sample: (P, H, J, J's moment), see [`LatticeOde::momentum_audit`].
     pub momentum: Vec<(f64, [f64; 2], f64, [f64; 2])>,
     /// Number of contacts per sample.
@@ -135,11 +152,14 @@ pub const LATTICE_EXACT_MODES_RTOL_OF_TOLERANCE: f64 = 1e-3;
 /// The method a lattice runs: a stated peak tolerance becomes [`Method::ExactModes`] at rtol =
 /// tolerance · [`LATTICE_EXACT_MODES_RTOL_OF_TOLERANCE`] for rods whose stiffest mode is above
 /// [`crate::integrate::EXACT_MODES_ABOVE_RAD_S`] (finite-element rods: RKN 6(4)'s step would be
-/// set by that mode's stability) and RKN 6(4) otherwise ([`Method::resolve`]).
+/// set by that mode's stability) of a lossless impact, and otherwise as [`Method::resolve`] (RKN
+/// 6(4), or DOPRI5 with events under lab physics).
 pub fn lattice_method(ode: &LatticeOde, method: Method) -> Method {
+    let lossless_impact = !ode.has_lab() && ode.has_striker();
     match method {
         Method::PeakTolerance { peak_tolerance }
-            if ode.stiffest_mode_rad_s() > crate::integrate::EXACT_MODES_ABOVE_RAD_S =>
+            if lossless_impact
+                && ode.stiffest_mode_rad_s() > crate::integrate::EXACT_MODES_ABOVE_RAD_S =>
         {
             let rtol = (peak_tolerance * LATTICE_EXACT_MODES_RTOL_OF_TOLERANCE).max(1e-13);
             Method::ExactModes {
@@ -147,18 +167,28 @@ pub fn lattice_method(ode: &LatticeOde, method: Method) -> Method {
                 atol: rtol * 1e-6,
             }
         }
-        _ => method.resolve(true),
+        _ => method.resolve(ode.second_order().is_some()),
     }
 }
 
 /// Runs a lattice: `settings.method` may be RK4, DOPRI5 (with or without events), RKN 6(4), the
-/// exact modal method, or a peak tolerance ([`lattice_method`] chooses).
+/// exact modal method (a lossless impact), or a peak tolerance ([`lattice_method`] chooses).
 pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<LatticeRun> {
     settings.validate()?;
+    if matches!(settings.method, Method::ExactModes { .. }) && (ode.has_lab() || !ode.has_striker())
+    {
+        return Err(Error::invalid(
+            "run.integrator",
+            "exact-modes",
+            "the exact modal method advances a lossless impact of a lattice (no damping, load or \
+             static load); state run.peak_tolerance instead",
+        ));
+    }
     let method = lattice_method(ode, settings.method);
     let mut stepper = Stepper::new(ode, method, settings);
     let y0 = ode.initial_state();
     let nc = ode.contacts();
+    let q = ode.coordinates();
     let supports: Vec<usize> = (0..nc).filter(|&c| ode.is_support(c)).collect();
     let mut run = LatticeRun {
         contact_peak_forces_n: vec![0.0; nc],
@@ -175,6 +205,12 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         times_s: Vec::new(),
         contact_forces_n: Vec::new(),
         energy_j: Vec::new(),
+        work_j: Vec::new(),
+        dissipated_j: Vec::new(),
+        contact_dissipated_j: Vec::new(),
+        modal_dissipated_j: 0.0,
+        contact_static_forces_n: ode.static_forces_n().0.to_vec(),
+        static_residual: ode.static_forces_n().1,
         momentum: Vec::new(),
         contacts: nc,
         supports,
@@ -184,10 +220,12 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
     let e0 = ode.energy_j(&y0);
     let mut sample = y0.clone();
     record(ode, &mut run, 0.0, &sample);
-    // Every contact's peak, and the transmitted force's (the supports' sum) as one more.
-    let mut peaks = PeakTracker::new(nc + 1);
-    let mut forces = vec![0.0; nc + 1];
-    watch_forces(ode, &y0, &run.supports, &mut forces, &mut peaks.rate);
+    // Every contact's peak, then the incident force's (the striker's, or the load points' sum)
+    // and the transmitted force's (the supports' sum) as two more; the forces at t = 0 (a
+    // blast's F0, the static forces under a static load) count.
+    let mut peaks = PeakTracker::new(nc + 2);
+    let mut forces = vec![0.0; nc + 2];
+    watch_forces(ode, 0.0, &y0, &run.supports, &mut forces, &mut peaks.rate);
     peaks.start(&forces);
     let interval = settings.sample_interval_s;
     let mut next = 1usize;
@@ -201,7 +239,7 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         let h = stepper.step(ode, settings.duration_s)?;
         let t = stepper.t();
         let y = stepper.y();
-        watch_forces(ode, y, &run.supports, &mut forces, &mut peaks.rate);
+        watch_forces(ode, t, y, &run.supports, &mut forces, &mut peaks.rate);
         check(ode, t, y)?;
         peaks.update(t0, t, &forces);
         while let Some(ts) = sample_time(next, interval, settings.duration_s) {
@@ -215,39 +253,56 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
     }
     run.contact_peak_forces_n.copy_from_slice(&peaks.peak[..nc]);
     run.contact_peak_times_s.copy_from_slice(&peaks.time[..nc]);
-    run.transmitted_peak_force_n = peaks.peak[nc];
-    run.incident_peak_force_n = run.contact_peak_forces_n[0];
-    let final_j = *run.energy_j.last().expect("the first sample");
-    run.energy = EnergyBalance {
-        initial_j: e0,
-        final_j,
-        max_relative_error: run
-            .energy_j
-            .iter()
-            .map(|e| (e - e0).abs() / e0)
-            .fold(0.0, f64::max),
-        input_work_j: 0.0,
-        dissipated_j: 0.0,
-    };
+    run.incident_peak_force_n = peaks.peak[nc];
+    run.transmitted_peak_force_n = peaks.peak[nc + 1];
+    run.energy = energy_balance(&run, e0);
+    if ode.has_lab() {
+        let y = stepper.y();
+        run.contact_dissipated_j = ode.contact_dissipated_j(y).to_vec();
+        run.modal_dissipated_j = y[2 * (q + 3) + 1];
+    }
     run.stats = stepper.stats();
     Ok(run)
 }
 
-/// Every contact's force and its rate in state y, then the supports' sum and its rate, into
-/// `forces` and `rates` (contacts + 1 each).
+/// The energy balance over the samples: the largest |E(t) + D(t) − E(0) − W(t)| relative to
+/// the larger of E(0) and the largest |W| (E(0) for a lossless impact).
+fn energy_balance(run: &LatticeRun, e0: f64) -> EnergyBalance {
+    let n = run.energy_j.len();
+    let work = |k: usize| run.work_j.get(k).copied().unwrap_or(0.0);
+    let dissipated = |k: usize| run.dissipated_j.get(k).copied().unwrap_or(0.0);
+    let reference = (0..n).map(|k| work(k).abs()).fold(e0, f64::max);
+    EnergyBalance {
+        initial_j: e0,
+        final_j: run.energy_j[n - 1],
+        input_work_j: work(n - 1),
+        dissipated_j: dissipated(n - 1),
+        max_relative_error: (0..n)
+            .map(|k| (run.energy_j[k] + dissipated(k) - e0 - work(k)).abs() / reference)
+            .fold(0.0, f64::max),
+    }
+}
+
+/// Every contact's force and its rate in state y at t, then the incident force (the striker's,
+/// or the load points' sum) and the transmitted force (the supports' sum) and their rates, into
+/// `forces` and `rates` (contacts + 2 each).
 fn watch_forces(
     ode: &mut LatticeOde,
+    t: f64,
     y: &[f64],
     supports: &[usize],
     forces: &mut [f64],
     rates: &mut [f64],
 ) {
     let nc = ode.contacts();
-    ode.contact_forces(&y[..ode.coordinates()]);
+    ode.contact_forces_at(t, y);
     ode.contact_force_rates(y, &mut rates[..nc]);
     forces[..nc].copy_from_slice(&ode.force_n);
-    forces[nc] = supports.iter().map(|&s| forces[s]).sum();
-    rates[nc] = supports.iter().map(|&s| rates[s]).sum();
+    let incident = ode.incident_contacts();
+    forces[nc] = forces[incident.clone()].iter().sum();
+    rates[nc] = rates[incident].iter().sum();
+    forces[nc + 1] = supports.iter().map(|&s| forces[s]).sum();
+    rates[nc + 1] = supports.iter().map(|&s| rates[s]).sum();
 }
 
 /// Sample k's time, if within the run.
@@ -257,10 +312,15 @@ fn sample_time(k: usize, interval: f64, duration: f64) -> Option<f64> {
 }
 
 fn record(ode: &mut LatticeOde, run: &mut LatticeRun, t: f64, y: &[f64]) {
-    ode.contact_forces(&y[..ode.coordinates()]);
+    ode.contact_forces_at(t, y);
     run.times_s.push(t);
     run.contact_forces_n.extend_from_slice(&ode.force_n);
     run.energy_j.push(ode.energy_j(y));
+    if ode.has_lab() {
+        let (w, d) = ode.work_and_dissipation_j(y);
+        run.work_j.push(w);
+        run.dissipated_j.push(d);
+    }
     run.momentum.push(ode.momentum_audit(y));
 }
 

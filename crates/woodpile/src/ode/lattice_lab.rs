@@ -1,0 +1,372 @@
+//! The lab physics of a lattice (docs/physics.md §16): the chains' contact laws at every
+//! contact, damping of the rods' modes, a blast or drive split over load points, gravity and a
+//! preload, the static equilibrium the run starts from (a damped Newton minimisation of the
+//! potential energy), and the energy integrals W and D.
+
+use super::lattice::LatticeOde;
+use crate::error::{Error, Result};
+use crate::model::{
+    ContactDamping, ContactLaw, Lattice, LatticeExcitation, LatticeLab, LoadPoints,
+};
+use nalgebra::{DMatrix, DVector};
+
+/// The static solve stops when |∇Π| ≤ this × |f| (f the static generalised forces).
+const STATIC_RESIDUAL: f64 = 1e-12;
+/// Most Newton steps of the static solve.
+const STATIC_ITERATIONS: usize = 500;
+
+/// The compiled lab terms of a [`LatticeOde`].
+#[derive(Debug, Clone)]
+pub(crate) struct LabTerms {
+    /// Law and coefficient per contact ([`ContactLaw::compile`]; loads: elastic, unused).
+    laws: Vec<ContactLaw>,
+    law_coef: Vec<f64>,
+    allow_pull: bool,
+    /// Damping rate per coordinate [1/s]: 2 ζ ω_j + 1/τ on the rods' modes, 0 on the striker.
+    damping_rate: Vec<f64>,
+    /// Constant generalised force per coordinate: gravity g ψ_tᵀMφ_j on every body, and a
+    /// preload beside a striker (on the top-layer crossings).
+    static_force: Vec<f64>,
+    /// The blast's or drive's history.
+    excitation: LatticeExcitation,
+    /// Preload per load point \[N\], and each point's share 1/N of the load's force.
+    preload_per_point_n: f64,
+    share: f64,
+    /// The state the run starts from (static equilibrium) and each contact's static force.
+    pub(super) q0: Vec<f64>,
+    pub(super) static_force_n: Vec<f64>,
+    pub(super) static_residual: f64,
+    /// Per contact at the last evaluation: overlap rate (a load point's velocity) \[m/s\] and
+    /// dissipated power \[W\].
+    rate_m_s: Vec<f64>,
+    dissipated_w: Vec<f64>,
+}
+
+impl LabTerms {
+    /// Compiles the laws, damping and loads of `lab` on `ode` and solves for the equilibrium.
+    pub(super) fn compile(
+        ode: &LatticeOde,
+        lattice: &Lattice,
+        excitation: &LatticeExcitation,
+        lab: &LatticeLab,
+    ) -> Result<Self> {
+        let nc = ode.contacts();
+        let (laws, law_coef) = contact_laws(ode, excitation, &lab.damping)?;
+        let q = ode.coordinates();
+        let first = usize::from(ode.struck);
+        let on_site = lab.damping.on_site_time_s.map_or(0.0, |tau| 1.0 / tau);
+        let damping_rate: Vec<f64> = (0..q)
+            .map(|j| {
+                if j < first {
+                    0.0
+                } else {
+                    2.0 * lab.modal_ratio * ode.omega2[j].sqrt() + on_site
+                }
+            })
+            .collect();
+        let g = lab.preload.gravity_m_s2;
+        let mut static_force: Vec<f64> = ode.translation.iter().map(|t| g * t).collect();
+        let preload = lab.preload.force_n;
+        if ode.struck && preload != 0.0 {
+            let points = LoadPoints::TopCrossings.on(lattice)?;
+            let per_point = preload / points.len() as f64;
+            for p in points {
+                let (offset, _) = ode.rod_coordinates(p.rod);
+                for (k, r) in lattice.rods[p.rod]
+                    .modes
+                    .modal_row(p.s_m)
+                    .iter()
+                    .enumerate()
+                {
+                    static_force[offset + k] += per_point * r;
+                }
+            }
+        }
+        let loads = ode.loads;
+        let mut terms = LabTerms {
+            laws,
+            law_coef,
+            allow_pull: lab.damping.allow_pull,
+            damping_rate,
+            static_force,
+            excitation: excitation.clone(),
+            preload_per_point_n: if loads > 0 {
+                preload / loads as f64
+            } else {
+                0.0
+            },
+            share: if loads > 0 { 1.0 / loads as f64 } else { 0.0 },
+            q0: vec![0.0; q],
+            static_force_n: vec![0.0; nc],
+            static_residual: 0.0,
+            rate_m_s: vec![0.0; nc],
+            dissipated_w: vec![0.0; nc],
+        };
+        let (q0, residual) = terms.static_equilibrium(ode)?;
+        terms.static_force_n = (0..nc)
+            .map(|c| {
+                if c < loads {
+                    terms.preload_per_point_n
+                } else if ode.struck && c == 0 {
+                    0.0
+                } else {
+                    ContactLaw::elastic_force(ode.beta[c], ode.overlap(c, &q0))
+                }
+            })
+            .collect();
+        terms.q0 = q0;
+        terms.static_residual = residual;
+        Ok(terms)
+    }
+
+    /// Every contact's overlap and force at state y and time t into the ODE's `overlap_m` and
+    /// `force_n`, their rates and dissipated powers into `rate_m_s` and `dissipated_w`.
+    pub(super) fn contact_forces(&mut self, ode: &mut LatticeOde, t: f64, y: &[f64]) {
+        let q = ode.coordinates();
+        let (x, v) = (&y[..q], &y[q + 3..2 * q + 3]);
+        let load_n = self.preload_per_point_n + self.share * self.excitation.total_force_n(t);
+        for c in 0..ode.contacts() {
+            if c < ode.loads {
+                ode.force_n[c] = load_n;
+                ode.overlap_m[c] = 0.0;
+                self.rate_m_s[c] = ode.deflection(ode.below[c].expect("a load's rod"), v);
+                self.dissipated_w[c] = 0.0;
+                continue;
+            }
+            let (d, r) = (ode.overlap(c, x), ode.overlap(c, v));
+            let (f, p) = self.laws[c].force(self.law_coef[c], ode.beta[c], d, r, self.allow_pull);
+            ode.overlap_m[c] = d;
+            ode.force_n[c] = f;
+            self.rate_m_s[c] = r;
+            self.dissipated_w[c] = p;
+        }
+    }
+
+    /// dy/dt's second half: accelerations, the supports' impulse rates, and the rates of W,
+    /// D_modes and every contact's D.
+    pub(super) fn rhs(&mut self, ode: &mut LatticeOde, t: f64, y: &[f64], dydt: &mut [f64]) {
+        self.contact_forces(ode, t, y);
+        let q = ode.coordinates();
+        let (x, v) = (&y[..q], &y[q + 3..2 * q + 3]);
+        let (a, integrals) = dydt[q + 3..].split_at_mut(q + 3);
+        let (mut work, mut modal) = (0.0, 0.0);
+        for j in 0..q {
+            let damping = self.damping_rate[j] * v[j];
+            a[j] = -ode.omega2[j] * x[j] - damping + self.static_force[j];
+            work += self.static_force[j] * v[j];
+            modal += damping * v[j];
+        }
+        ode.apply_contact_forces(a);
+        a[q..q + 3].copy_from_slice(&ode.support_impulse_rates());
+        for c in 0..ode.loads {
+            work += ode.force_n[c] * self.rate_m_s[c];
+        }
+        integrals[0] = work;
+        integrals[1] = modal;
+        integrals[2..].copy_from_slice(&self.dissipated_w);
+    }
+
+    /// The static equilibrium of the rods under gravity and the preload: the minimum of the
+    /// potential Π(q) = ½ Σ ω_j² q_j² + Σ_c (2/5) β_c δ_c₊^{5/2} − fᵀq over the rods'
+    /// coordinates (the striker, if any, excluded), convex because every overlap is linear in
+    /// q. Newton steps on (H + μ diag H) Δ = −∇Π, μ raised until Π falls and lowered after (the
+    /// rigid modes have no stiffness until their contacts close), until |∇Π| ≤ 1e-12 |f|.
+    /// Returns the positions and |∇Π| / |f|.
+    fn static_equilibrium(&self, ode: &LatticeOde) -> Result<(Vec<f64>, f64)> {
+        let q = ode.coordinates();
+        let first = usize::from(ode.struck);
+        let mut f = self.static_force.clone();
+        for c in 0..ode.loads {
+            let s = ode.below[c].expect("a load's rod");
+            for k in 0..s.len {
+                f[s.offset + k] += self.preload_per_point_n * ode.rows[s.row + k];
+            }
+        }
+        f[..first].iter_mut().for_each(|x| *x = 0.0);
+        let f_norm = f.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let mut x = vec![0.0; q];
+        if f_norm == 0.0 {
+            return Ok((x, 0.0));
+        }
+        let hertz = if ode.struck { 1 } else { ode.loads }..ode.contacts();
+        let potential = |x: &[f64]| -> f64 {
+            let mut e = 0.0;
+            for j in first..q {
+                e += 0.5 * ode.omega2[j] * x[j] * x[j] - f[j] * x[j];
+            }
+            for c in hertz.clone() {
+                e += ContactLaw::potential_j(ode.beta[c], ode.overlap(c, x));
+            }
+            e
+        };
+        let gradient = |x: &[f64]| -> Vec<f64> {
+            let mut g: Vec<f64> = (0..q).map(|j| ode.omega2[j] * x[j] - f[j]).collect();
+            let mut forces = vec![0.0; ode.contacts()];
+            for c in hertz.clone() {
+                forces[c] = ContactLaw::elastic_force(ode.beta[c], ode.overlap(c, x));
+            }
+            spread(ode, &forces, hertz.clone(), &mut g);
+            g[..first].iter_mut().for_each(|x| *x = 0.0);
+            g
+        };
+        let norm = |g: &[f64]| g.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let mut mu = 1e-3;
+        let mut g = gradient(&x);
+        for _ in 0..STATIC_ITERATIONS {
+            let residual = norm(&g) / f_norm;
+            if residual <= STATIC_RESIDUAL {
+                return Ok((x, residual));
+            }
+            let h = hessian(ode, &x, first, hertz.clone());
+            let scale = h.diagonal().max().max(f64::MIN_POSITIVE);
+            let rhs = DVector::from_iterator(q - first, g[first..].iter().map(|v| -v));
+            let e0 = potential(&x);
+            loop {
+                let mut a = h.clone();
+                for i in 0..q - first {
+                    a[(i, i)] += mu * a[(i, i)].max(1e-9 * scale);
+                }
+                if let Some(step) = a.cholesky().map(|ch| ch.solve(&rhs)) {
+                    let trial: Vec<f64> = (0..q)
+                        .map(|j| {
+                            if j < first {
+                                0.0
+                            } else {
+                                x[j] + step[j - first]
+                            }
+                        })
+                        .collect();
+                    let g_trial = gradient(&trial);
+                    if potential(&trial) < e0 || norm(&g_trial) < 0.5 * norm(&g) {
+                        x = trial;
+                        g = g_trial;
+                        mu = (mu / 3.0).max(1e-15);
+                        break;
+                    }
+                }
+                mu *= 4.0;
+                if mu > 1e20 {
+                    return Err(no_equilibrium(norm(&g) / f_norm));
+                }
+            }
+        }
+        Err(no_equilibrium(norm(&g) / f_norm))
+    }
+}
+
+/// The static solve found no equilibrium: some rod is not held.
+fn no_equilibrium(residual: f64) -> Error {
+    Error::invalid(
+        "preload",
+        format!("a relative force residual of {residual:.3e}"),
+        format!("the static solve under gravity and the preload did not converge below {STATIC_RESIDUAL:e}: every rod must rest on the rods below or on supports (a rod that touches nothing below falls)"),
+    )
+}
+
+/// Adds every contact's force in `forces` (contacts `range`) to the generalised force `g`
+/// through its rows: +row above, −row below (the gradient of the contacts' potential).
+fn spread(ode: &LatticeOde, forces: &[f64], range: std::ops::Range<usize>, g: &mut [f64]) {
+    for c in range {
+        let f = forces[c];
+        if f == 0.0 {
+            continue;
+        }
+        let s = ode.above[c];
+        for k in 0..s.len {
+            g[s.offset + k] += ode.rows[s.row + k] * f;
+        }
+        if let Some(s) = ode.below[c] {
+            for k in 0..s.len {
+                g[s.offset + k] -= ode.rows[s.row + k] * f;
+            }
+        }
+    }
+}
+
+/// The Hessian of the potential over the coordinates from `first`: diag(ω²) + Σ_c k_c G_c G_cᵀ
+/// with k_c = (3/2) β δ₊^{1/2} and G_c the contact's rows (+ above, − below).
+fn hessian(
+    ode: &LatticeOde,
+    x: &[f64],
+    first: usize,
+    range: std::ops::Range<usize>,
+) -> DMatrix<f64> {
+    let n = ode.coordinates() - first;
+    let mut h = DMatrix::from_diagonal(&DVector::from_iterator(
+        n,
+        ode.omega2[first..].iter().copied(),
+    ));
+    for c in range {
+        let k = ContactLaw::stiffness_n_per_m(ode.beta[c], ode.overlap(c, x));
+        if k == 0.0 {
+            continue;
+        }
+        let mut entries: Vec<(usize, f64)> = Vec::new();
+        let s = ode.above[c];
+        entries.extend((0..s.len).map(|i| (s.offset + i - first, ode.rows[s.row + i])));
+        if let Some(s) = ode.below[c] {
+            entries.extend((0..s.len).map(|i| (s.offset + i - first, -ode.rows[s.row + i])));
+        }
+        for &(i, gi) in &entries {
+            for &(j, gj) in &entries {
+                h[(i, j)] += k * gi * gj;
+            }
+        }
+    }
+    h
+}
+
+/// The law and coefficient of every contact (the chains' [`ContactLaw::compile`]): the
+/// striker's law at the striker, the wall's at every support, `damping.contacts` at every
+/// crossing; m_eff the reduced mass of the two bodies' whole masses (a rod's alone at a
+/// support).
+fn contact_laws(
+    ode: &LatticeOde,
+    excitation: &LatticeExcitation,
+    damping: &crate::model::Damping,
+) -> Result<(Vec<ContactLaw>, Vec<f64>)> {
+    let v_in = match (damping.impact_speed_m_s, excitation) {
+        (Some(v), _) => v,
+        (None, LatticeExcitation::Impact { striker, .. }) => striker.velocity_m_s,
+        (None, _) => f64::NAN,
+    };
+    let lossy_hc = |l: &ContactDamping| matches!(l, ContactDamping::HuntCrossley { restitution } if *restitution < 1.0);
+    if [damping.contacts, damping.striker_law(), damping.wall_law()]
+        .iter()
+        .any(lossy_hc)
+        && v_in.is_nan()
+    {
+        return Err(Error::invalid(
+            "damping.impact_speed_m_s",
+            "(none)",
+            "the Hunt–Crossley law needs the impact speed v_in of its contacts: give it, or use a striker (its speed is the default)",
+        ));
+    }
+    // A body's mass: Σ_j (ψ_tᵀMφ_j)² over its coordinates = ψ_tᵀMψ_t.
+    let mass = |s: super::lattice::Side| -> f64 {
+        ode.translation[s.offset..s.offset + s.len]
+            .iter()
+            .map(|t| t * t)
+            .sum()
+    };
+    Ok((0..ode.contacts())
+        .map(|c| {
+            if c < ode.loads {
+                return (ContactLaw::Elastic, 0.0);
+            }
+            let (law, m) = match ode.below[c] {
+                None => (damping.wall_law(), mass(ode.above[c])),
+                Some(b) => {
+                    let (ma, mb) = (mass(ode.above[c]), mass(b));
+                    let law = if ode.struck && c == 0 {
+                        damping.striker_law()
+                    } else {
+                        damping.contacts
+                    };
+                    (law, ma * mb / (ma + mb))
+                }
+            };
+            ContactLaw::compile(law, ode.beta[c], m, v_in)
+        })
+        .unzip())
+}
