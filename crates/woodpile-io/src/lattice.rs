@@ -161,6 +161,8 @@ pub struct PointToml {
 /// A lattice scenario resolved into the core's types.
 #[derive(Debug, Clone)]
 pub struct ResolvedLattice {
+    /// What built the lattice (its layers, elements, supports and wall).
+    pub builder: LatticeBuilder,
     /// The lattice.
     pub lattice: Lattice,
     /// The striker.
@@ -317,6 +319,7 @@ impl LatticeScenario {
             ));
         }
         Ok(ResolvedLattice {
+            builder,
             lattice,
             striker,
             at_m,

@@ -57,6 +57,7 @@ pub mod cells;
 pub mod error;
 pub mod fit;
 pub mod lattice;
+pub mod lattice_study;
 pub mod limits;
 pub mod npy;
 pub mod optimize;

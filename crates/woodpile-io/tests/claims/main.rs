@@ -10,6 +10,7 @@ mod errors_speak_no_front_end;
 mod fit_modulus_scale;
 mod fuzz_corpus;
 mod lab_scenario_keys;
+mod lattice_study;
 mod pareto_checkpoint_resume;
 mod peak_tolerance_key;
 mod rod_range_catalogue;

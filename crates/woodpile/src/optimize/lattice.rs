@@ -7,7 +7,7 @@
 //! number of choices (a layer with one length choice, or a pitch with one, is fixed). Every
 //! design of the space is proven buildable when the space is made: longer rods only add
 //! crossings and cover more of the impact point and the supports, so a lattice of the shortest
-//! rods that builds at a pitch proves every lattice at that pitch ([`LatticeDesignSpace::new`]).
+//! rods that builds at a pitch proves every lattice at that pitch ([`LatticeDesignSpace::validate`]).
 //! Mutation is the breeder GA's BGA step gene by gene in index units
 //! ([`super::operators::mutate_choices`]); no repair is needed.
 //!
@@ -46,7 +46,8 @@ pub struct LatticeDesignSpace {
     pub settings: RunSettings,
     /// Rod length choices of each layer, top to bottom \[m\] (one value: the layer is fixed).
     pub lengths_m: Vec<Vec<f64>>,
-    /// Pitch choices \[m\], every layer's of more than one rod (one value: fixed).
+    /// Pitch choices \[m\], every layer's of more than one rod (empty: each layer keeps its
+    /// own; the pitch gene then has one choice).
     pub pitches_m: Vec<f64>,
 }
 
@@ -56,7 +57,7 @@ impl LatticeDesignSpace {
         self.lengths_m
             .iter()
             .map(Vec::len)
-            .chain(std::iter::once(self.pitches_m.len()))
+            .chain(std::iter::once(self.pitches_m.len().max(1)))
             .collect()
     }
 
@@ -70,14 +71,21 @@ impl LatticeDesignSpace {
     /// The lattice builder of a design.
     pub fn builder(&self, genome: &[u8]) -> LatticeBuilder {
         let mut b = self.base.clone();
-        let pitch = self.pitches_m[usize::from(genome[self.lengths_m.len()])];
+        let pitch = self.pitch_m(genome);
         for (k, layer) in b.layers.iter_mut().enumerate() {
             layer.length_m = self.lengths_m[k][usize::from(genome[k])];
-            if layer.rods > 1 {
-                layer.pitch_m = pitch;
+            if let (true, Some(p)) = (layer.rods > 1, pitch) {
+                layer.pitch_m = p;
             }
         }
         b
+    }
+
+    /// A design's pitch \[m\] (None: every layer keeps its own).
+    pub fn pitch_m(&self, genome: &[u8]) -> Option<f64> {
+        self.pitches_m
+            .get(usize::from(genome[self.lengths_m.len()]))
+            .copied()
     }
 
     /// The lattice of a design.
@@ -90,8 +98,14 @@ impl LatticeDesignSpace {
         let lengths: Vec<String> = (0..self.lengths_m.len())
             .map(|k| format!("{}", self.lengths_m[k][usize::from(genome[k])] * 1e3))
             .collect();
-        let pitch = self.pitches_m[usize::from(genome[self.lengths_m.len()])] * 1e3;
-        format!("lengths_mm = [{}], pitch_mm = {pitch}", lengths.join(", "))
+        match self.pitch_m(genome) {
+            Some(p) => format!(
+                "lengths_mm = [{}], pitch_mm = {}",
+                lengths.join(", "),
+                p * 1e3
+            ),
+            None => format!("lengths_mm = [{}]", lengths.join(", ")),
+        }
     }
 
     /// Checks the choices (one list per layer, each of 1..=256 distinct positive values) and
@@ -110,24 +124,30 @@ impl LatticeDesignSpace {
         for (k, list) in self.lengths_m.iter().enumerate() {
             check_choices(&format!("design.length_mm[{k}]"), list)?;
         }
-        check_choices("design.pitch_mm", &self.pitches_m)?;
+        if !self.pitches_m.is_empty() {
+            check_choices("design.pitch_mm", &self.pitches_m)?;
+        }
         let shortest: Vec<u8> = self
             .lengths_m
             .iter()
             .map(|l| index_of_min(l) as u8)
             .collect();
-        for (i, &pitch) in self.pitches_m.iter().enumerate() {
+        for i in 0..self.pitches_m.len().max(1) {
             let mut genome = shortest.clone();
             genome.push(i as u8);
+            let (field, value) = match self.pitch_m(&genome) {
+                Some(p) => (format!("design.pitch_mm[{i}]"), format!("{}", p * 1e3)),
+                None => ("design.length_mm".to_string(), "(the shortest)".to_string()),
+            };
             let built = self
                 .lattice(&genome)
                 .and_then(|l| l.top_point(self.at_m, "excitation.at_mm").map(|_| ()));
             if let Err(e) = built {
                 return Err(Error::invalid(
-                    format!("design.pitch_mm[{i}]"),
-                    pitch * 1e3,
+                    field,
+                    value,
                     format!(
-                        "the lattice of the shortest rods at this pitch ({}) cannot be built: {e}",
+                        "the lattice of the shortest rods ({}) cannot be built: {e}",
                         self.label(&genome)
                     ),
                 )
