@@ -165,3 +165,63 @@ def test_a_lattice_run_pickles_with_its_arrays():
     back = pickle.loads(pickle.dumps(run))
     np.testing.assert_array_equal(back.forces_n, run.forces_n)
     assert back.contacts.equals(run.contacts) and back.scenario == run.scenario
+
+
+STUDY = """[lattice]
+layers = [
+  { rods = 3, pitch_mm = 16.0, length_mm = 60.0, diameter_mm = 5.0, material = "fused-quartz" },
+  { rods = 3 },
+]
+rod = { fe_elements = 2 }
+[run]
+duration_s = 1e-4
+peak_tolerance = 1e-4
+[design]
+length_mm = { from_mm = 50.0, to_mm = 70.0, step_mm = 10.0 }
+pitch_mm = [12.0, 16.0]
+[ga]
+population = 6
+generations = 4
+seed = 1
+"""
+
+
+def test_a_lattice_study_gives_the_command_lines_front(tmp_path):
+    """woodpile.optimize of a lattice study and `woodpile optimize` give the same pareto.csv
+    (every value exactly) and history (but wall time); each front scenario is a LatticeScenario
+    whose run gives its row's transmitted force and mass exactly."""
+    import pandas as pd
+
+    config = tmp_path / "study.toml"
+    config.write_text(STUDY)
+    out = tmp_path / "o"
+    done = subprocess.run(
+        [_cli(), "optimize", str(config), "--out", str(out), "--seed", "3", "--quiet"],
+        capture_output=True,
+        text=True,
+    )
+    assert done.returncode == 0, done.stderr
+    result = woodpile.optimize(config, seed=3, checkpoint=tmp_path / "cp.json")
+    assert isinstance(result, woodpile.ParetoResult)
+    pd.testing.assert_frame_equal(result.front, pd.read_csv(out / "pareto.csv"), check_exact=True)
+    cli_history = pd.read_csv(out / "history.csv").set_index("generation")
+    pd.testing.assert_frame_equal(
+        result.history.drop(columns=["elapsed_s"]), cli_history.drop(columns=["elapsed_s"]), check_exact=True
+    )
+    assert list(result.front.columns) == [
+        "transmitted-force", "total-mass", "layer_1_length_mm", "layer_2_length_mm", "pitch_mm"
+    ]
+    scenario = result.scenarios[0]
+    assert isinstance(scenario, woodpile.LatticeScenario)
+    run = woodpile.simulate(scenario)
+    assert run.transmitted_peak_force_n == result.front["transmitted-force"].iloc[0]
+    assert run.lattice_mass_kg == result.front["total-mass"].iloc[0]
+    again = woodpile.optimize(config, seed=3, checkpoint=tmp_path / "cp.json")
+    pd.testing.assert_frame_equal(again.front, result.front, check_exact=True)
+
+
+def test_bad_lattice_study_input_names_the_keyword():
+    """An objective a lattice study cannot minimise is refused naming the keyword argument."""
+    with pytest.raises(ScenarioError) as e:
+        woodpile.optimize({"lattice": {"layers": [{"rods": 1, "length_mm": 60.0}]}}, objectives=["layers"])
+    assert e.value.field == "objectives[0]"

@@ -5,7 +5,8 @@
 //! Space: two layers of three 5 mm quartz rods crossed at 90°, struck at the centre, each
 //! layer's rods 50, 60 or 70 mm long, the pitch 12 or 16 mm: 3 × 3 × 2 = 18 designs, each a
 //! 0.1 ms impact at 2 elements per half rod and a peak tolerance of 1e-4 (a few ms per run).
-//! NSGA-II: μ = 6 (a third of the space), 12 generations.
+//! NSGA-II: μ = 6 (a third of the space), 12 generations. Measured: the exhaustive front holds 3
+//! designs; each seed keeps all 3 (hypervolume ratio 1.000000) after simulating 12–13 of the 18.
 //!
 //! Tolerance: 99 % of the exhaustive front's hypervolume (the design studies' acceptance
 //! figure; NSGA-II evaluates with the same deterministic runs as the enumeration, so the
