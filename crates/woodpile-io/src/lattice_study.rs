@@ -123,7 +123,7 @@ pub struct LatticeGaSpec {
     /// Generations after the first.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub generations: Option<usize>,
-    /// Stop after this many generations without a larger hypervolume.
+    /// Stop after this many generations without a larger hypervolume (0: no stall limit).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stall_generations: Option<usize>,
     /// Seed.
@@ -182,9 +182,8 @@ impl LatticeStudyConfig {
             .get_or_insert_with(|| vec!["transmitted-force".to_string(), "total-mass".to_string()]);
         ga.population.get_or_insert(d.population);
         ga.generations.get_or_insert(d.generations);
-        if let Some(s) = d.stall_generations {
-            ga.stall_generations.get_or_insert(s);
-        }
+        ga.stall_generations
+            .get_or_insert(d.stall_generations.unwrap_or(0));
         ga.seed.get_or_insert(d.seed);
         LatticeStudyConfig {
             description: base.description,
@@ -224,7 +223,7 @@ impl LatticeStudyConfig {
         let settings = Nsga2Settings {
             population: ga.population.expect("completed"),
             generations: ga.generations.expect("completed"),
-            stall_generations: ga.stall_generations,
+            stall_generations: ga.stall_generations.filter(|&s| s > 0),
             seed: ga.seed.expect("completed"),
             mutation_range: ga.mutation_range,
             threads,

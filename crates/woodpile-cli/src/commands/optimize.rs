@@ -15,7 +15,8 @@ use woodpile_io::scenario::ModelSpec;
 /// Arguments of `woodpile optimize`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct Args {
-    /// Config file (TOML): a scenario's excitation, wall and run tables plus design and ga tables.
+    /// Config file (TOML): a scenario's excitation, wall and run tables plus design and ga tables
+    /// (with a lattice table: a lattice study over rod lengths per layer and the pitch).
     #[arg(value_name = "CONFIG.toml", conflicts_with = "scenario")]
     pub file: Option<PathBuf>,
     /// A built-in problem: paper-impact or paper-blast (20 rods, Table 1 catalogue).
@@ -424,18 +425,23 @@ fn run_lattice(args: &Args, ctx: &Context, file: &Path, text: &str) -> Result<()
     use woodpile_io::lattice_study::{
         prepare_output, write_final_outputs, write_generation, LatticeStudyConfig,
     };
-    for (flag, set) in [
-        ("--model", args.model.is_some()),
-        ("--allow-large", args.allow_large),
-        ("--paper-settings", args.paper_settings),
-    ] {
-        if set {
-            return Err(CliError::invalid(
-                flag,
-                "(given)",
-                "is for chains' studies; a lattice study states its run in [run]",
-            ));
-        }
+    let chain_flags = [
+        ("--model", args.model.clone()),
+        (
+            "--allow-large",
+            args.allow_large.then(|| "true".to_string()),
+        ),
+        (
+            "--paper-settings",
+            args.paper_settings.then(|| "true".to_string()),
+        ),
+    ];
+    if let Some((flag, Some(value))) = chain_flags.into_iter().find(|(_, v)| v.is_some()) {
+        return Err(CliError::invalid(
+            flag,
+            value,
+            "is for chains' studies; a lattice study's rods are FE beams and its run is its [run] table",
+        ));
     }
     let mut cfg = LatticeStudyConfig::parse(text, &file.display().to_string())?;
     if let Some(seed) = args.seed {
