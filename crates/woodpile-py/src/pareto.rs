@@ -446,8 +446,8 @@ impl LatticeParetoSession {
 
     /// Continues from a checkpoint's text (`run(checkpoint=…)` or `woodpile optimize`'s).
     fn restore(&mut self, json: &str) -> PyResult<()> {
-        let state = restore_checkpoint(json, Path::new("checkpoint"), &self.study.config)
-            .map_err(|e| {
+        let state =
+            restore_checkpoint(json, Path::new("checkpoint"), &self.study.config).map_err(|e| {
                 PyErr::from(Failure::invalid(
                     "checkpoint",
                     "(as given)",
