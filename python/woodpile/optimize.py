@@ -445,7 +445,11 @@ def optimize(
     or ``algorithm="nsga2"``: NSGA-II in this process (all cores or ``threads``, SIMD lanes),
     returning a :class:`ParetoResult`. With ``checkpoint`` the state is saved after every
     generation (the command line's checkpoint format of that algorithm) and a run resumes from
-    an existing file exactly. For a seed the result is the command line's. Bad keywords raise
+    an existing file exactly. For a seed the result is the command line's. A config with a
+    ``[lattice]`` table is a lattice design study (rod length per layer and the pitch,
+    docs/optimization.md): NSGA-II in this process, a :class:`ParetoResult` whose ``scenarios``
+    are lattice scenarios (:class:`~woodpile.LatticeScenario`; ``executor`` and
+    ``algorithm="breeder"`` are refused). Bad keywords raise
     :class:`~woodpile.errors.ScenarioError` naming them (``objectives[1]``, ``algorithm``,
     ``executor``).
     """
