@@ -6,9 +6,10 @@ studies on any ``concurrent.futures`` executor or a ``dask.distributed.Client``.
 
 One module per domain, everything public re-exported here:
 
-- :mod:`woodpile.scenario`: :class:`Scenario`, :func:`builtin_scenarios`, :func:`scenario_keys`,
-  :func:`lattice_keys`
+- :mod:`woodpile.scenario`: :class:`Scenario`, :class:`LatticeScenario`, :func:`builtin_scenarios`,
+  :func:`scenario_keys`, :func:`lattice_keys`
 - :mod:`woodpile.run`: :class:`Run`, :func:`simulate`, :func:`load_run`
+- :mod:`woodpile.lattice`: :class:`LatticeRun` (a :class:`LatticeScenario`'s run), :func:`load_lattice_run`
 - :mod:`woodpile.study`: :func:`evaluate`, :func:`sweep`
 - :mod:`woodpile.analysis`: :func:`cells`, :func:`effective_mass`, :func:`band_gaps`,
   :func:`spectrum`, :func:`transmission`
@@ -43,14 +44,26 @@ from .errors import (
     WoodpileError,
 )
 from .optimize import BestDesign, BreederGA, GenerationStats, OptimizeResult, ParetoResult, optimize
+from .lattice import CONTACT_COLUMNS, LatticeRun, load_lattice_run
 from .run import Run, load_run, simulate
-from .scenario import Scenario, ScenarioKey, builtin_scenarios, lattice_keys, scenario_keys
+from .scenario import (
+    LatticeScenario,
+    Scenario,
+    ScenarioKey,
+    builtin_scenarios,
+    lattice_keys,
+    scenario_keys,
+)
 from .sobol import INDEX_COLUMNS, sensitivity
 from .study import SUMMARY_COLUMNS, evaluate, sweep
 
 __all__ = [
     "Scenario",
+    "LatticeScenario",
     "Run",
+    "LatticeRun",
+    "load_lattice_run",
+    "CONTACT_COLUMNS",
     "WoodpileError",
     "ScenarioError",
     "FileError",

@@ -76,6 +76,13 @@ def _problem_source(problem: Problem) -> tuple[str, str, Path]:
     return "builtin", str(problem), Path(".")
 
 
+def _is_lattice_study(problem: Problem, kind: str, text: str) -> bool:
+    """Whether a problem is a lattice design study (its config has a ``lattice`` table)."""
+    if kind == "json":
+        return isinstance(problem, Mapping) and "lattice" in problem
+    return kind == "toml" and _core.is_lattice(text)
+
+
 def _check_count(name: str, value: int | None, valid: str) -> None:
     """Refuses a keyword argument that must be a non-negative integer below 2**64 (or None)."""
     ok = value is None or (isinstance(value, int) and not isinstance(value, bool) and 0 <= value < 2**64)
@@ -304,7 +311,7 @@ class ParetoResult:
     stop_reason: str | None
     seed: int
 
-    def __init__(self, session: _core.ParetoSession):
+    def __init__(self, session: _core.ParetoSession | _core.LatticeParetoSession):
         import io
 
         import pandas as pd
@@ -438,7 +445,11 @@ def optimize(
     or ``algorithm="nsga2"``: NSGA-II in this process (all cores or ``threads``, SIMD lanes),
     returning a :class:`ParetoResult`. With ``checkpoint`` the state is saved after every
     generation (the command line's checkpoint format of that algorithm) and a run resumes from
-    an existing file exactly. For a seed the result is the command line's. Bad keywords raise
+    an existing file exactly. For a seed the result is the command line's. A config with a
+    ``[lattice]`` table is a lattice design study (rod length per layer and the pitch,
+    docs/optimization.md): NSGA-II in this process, a :class:`ParetoResult` whose ``scenarios``
+    are lattice scenarios (:class:`~woodpile.LatticeScenario`; ``executor`` and
+    ``algorithm="breeder"`` are refused). Bad keywords raise
     :class:`~woodpile.errors.ScenarioError` naming them (``objectives[1]``, ``algorithm``,
     ``executor``).
     """
@@ -447,6 +458,19 @@ def optimize(
     _check_count("seed", seed, "the GA's seed: an integer 0 ≤ seed < 2**64")
     kind, text, base_dir = _problem_source(problem)
     obj = None if objectives is None else list(objectives)
+    if _is_lattice_study(problem, kind, text):
+        if executor is not None or algorithm not in (None, "nsga2"):
+            raise ScenarioError(
+                "invalid executor/algorithm: a lattice study runs NSGA-II in this process",
+                "executor" if executor is not None else "algorithm",
+                repr(executor if executor is not None else algorithm),
+                "leave executor and algorithm unset (or algorithm=\"nsga2\") for a lattice study",
+            )
+        session = _core.LatticeParetoSession(kind, text, seed, threads, obj)
+        if checkpoint is not None and Path(checkpoint).exists():
+            session.restore(Path(checkpoint).read_text())
+        session.run(None if checkpoint is None else str(checkpoint))
+        return ParetoResult(session)
     if _core.study_algorithm(kind, text, str(base_dir), obj, algorithm) == "nsga2":
         if executor is not None:
             raise ScenarioError(

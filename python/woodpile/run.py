@@ -5,14 +5,15 @@ from __future__ import annotations
 import json
 import os
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, overload
 
 import numpy as np
 import numpy.typing as npt
 
 from . import _core
 from .errors import StateError
-from .scenario import Scenario
+from .lattice import LatticeRun
+from .scenario import LatticeScenario, Scenario
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -164,11 +165,42 @@ class Run:
         )
 
 
+@overload
+def simulate(  # type: ignore[overload-overlap]
+    scenario: LatticeScenario,
+    *,
+    allow_long: bool = False,
+    allow_large: bool = False,
+    allow_inaccurate: bool = False,
+) -> LatticeRun: ...
+
+
+@overload
 def simulate(
-    scenario: Scenario | str, *, allow_long: bool = False, allow_large: bool = False
-) -> Run:
+    scenario: Scenario | str,
+    *,
+    allow_long: bool = False,
+    allow_large: bool = False,
+    allow_inaccurate: bool = False,
+) -> Run: ...
+
+
+def simulate(
+    scenario: Scenario | str,
+    *,
+    allow_long: bool = False,
+    allow_large: bool = False,
+    allow_inaccurate: bool = False,
+) -> Run | LatticeRun:
     """Runs a scenario (or a built-in scenario's name); the GIL is released while Rust runs,
     and Ctrl-C stops it within a step (``KeyboardInterrupt``).
+
+    A lattice's scenario (a :class:`LatticeScenario`, which :class:`Scenario` gives for a text
+    with a ``[lattice]`` table) returns a :class:`~woodpile.LatticeRun`; as ``woodpile
+    simulate``, a lattice run whose energy balance is off by more than 1e-2 of the initial
+    energy raises :class:`~woodpile.errors.InaccurateRunError` unless ``allow_inaccurate``
+    (chains' runs report theirs in ``summary``). Type checkers see the lattice's return type
+    when the argument is typed :class:`LatticeScenario` (``LatticeScenario.load``).
 
     The command line's up-front limits apply: a run of more integration steps than the limit
     (``woodpile simulate --allow-long``) raises :class:`~woodpile.errors.LimitError` unless
@@ -183,9 +215,14 @@ def simulate(
         raise TypeError(
             f"simulate takes a Scenario or a built-in scenario's name, not {type(scenario).__name__}"
         )
-    for name, flag in (("allow_long", allow_long), ("allow_large", allow_large)):
+    flags = (("allow_long", allow_long), ("allow_large", allow_large), ("allow_inaccurate", allow_inaccurate))
+    for name, flag in flags:
         if not isinstance(flag, bool):
             raise TypeError(f"{name} must be True or False, not {flag!r}")
+    if isinstance(scenario, LatticeScenario):
+        return LatticeRun(
+            _core.simulate_lattice(scenario.to_toml(), scenario.name, allow_long, allow_large, allow_inaccurate)
+        )
     return Run(
         _core.simulate(
             scenario.to_toml(), str(scenario.base_dir), scenario.name, allow_long, allow_large

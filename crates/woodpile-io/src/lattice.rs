@@ -242,6 +242,8 @@ pub struct PointToml {
 /// A lattice scenario resolved into the core's types.
 #[derive(Debug, Clone)]
 pub struct ResolvedLattice {
+    /// What built the lattice (its layers, elements, supports and wall).
+    pub builder: LatticeBuilder,
     /// The lattice.
     pub lattice: Lattice,
     /// The striker.
@@ -497,6 +499,7 @@ impl LatticeScenario {
             points.on(&lattice)?;
         }
         Ok(ResolvedLattice {
+            builder,
             lattice,
             striker,
             at_m,

@@ -20,7 +20,8 @@
 //!    [`transmission`] (a transmission spectrum's directory).
 //! 4. **Optimise** — [`optimize`]: the optimisation config, the problem it defines, its
 //!    checksummed checkpoint and outputs; [`pareto`]: NSGA-II's checkpoint and its Pareto
-//!    outputs (`pareto.csv`, `pareto/NNN.toml`, hypervolume history); [`uncertainty`]: a
+//!    outputs (`pareto.csv`, `pareto/NNN.toml`, hypervolume history); [`lattice_study`]: a
+//!    `[lattice]` config's design study (rod lengths and pitch) and its files; [`uncertainty`]: a
 //!    scenario's `[uncertainty]` (manufacturing scatter as per-parameter distributions);
 //!    [`robust`]: `ga.robust`, the GA's objective as a statistic over that scatter.
 //!    [`sensitivity`]: a Saltelli design of that scatter and the Sobol' indices' files.
@@ -57,6 +58,7 @@ pub mod cells;
 pub mod error;
 pub mod fit;
 pub mod lattice;
+pub mod lattice_study;
 pub mod limits;
 pub mod npy;
 pub mod optimize;

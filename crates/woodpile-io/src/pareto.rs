@@ -21,9 +21,12 @@ pub const PARETO_CHECKPOINT_FORMAT: &str = "woodpile-optimize-nsga2-checkpoint/1
 /// `checkpoint.json` of an NSGA-II run: the completed config and the whole state, floats in
 /// shortest round-trip digits, with the version that wrote it and an FNV-1a 64 checksum of its
 /// compact JSON with `checksum` empty (as the breeder's checkpoint).
+///
+/// `C` is the completed config: a chain study's [`OptimizeConfig`], or a lattice study's
+/// ([`crate::lattice_study`], its own format tag).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct ParetoCheckpoint {
+pub struct ParetoCheckpoint<C = OptimizeConfig> {
     /// [`PARETO_CHECKPOINT_FORMAT`].
     pub format: String,
     /// Version of woodpile that wrote it.
@@ -31,7 +34,7 @@ pub struct ParetoCheckpoint {
     /// FNV-1a 64 of the content, 16 hex digits.
     pub checksum: String,
     /// The completed config.
-    pub config: OptimizeConfig,
+    pub config: C,
     /// Generations completed.
     pub generation: usize,
     /// Generations since the hypervolume grew.
@@ -55,10 +58,17 @@ pub struct ParetoCheckpoint {
 impl ParetoCheckpoint {
     /// The checkpoint of a state for `config`, its checksum computed.
     pub fn new(config: &OptimizeConfig, s: &Nsga2State) -> Self {
+        Self::tagged(PARETO_CHECKPOINT_FORMAT, config, s)
+    }
+}
+
+impl<C: Clone + Serialize> ParetoCheckpoint<C> {
+    /// The checkpoint of a state for `config` in format `format`, its checksum computed.
+    pub fn tagged(format: &str, config: &C, s: &Nsga2State) -> Self {
         let mut cache: Vec<MoIndividual> = s.cache.values().cloned().collect();
         cache.sort_by(|a, b| a.genome.cmp(&b.genome));
         let mut cp = ParetoCheckpoint {
-            format: PARETO_CHECKPOINT_FORMAT.into(),
+            format: format.into(),
             tool_version: env!("CARGO_PKG_VERSION").into(),
             checksum: String::new(),
             config: config.clone(),
@@ -115,6 +125,25 @@ pub fn prepare_output(
     if !resume {
         return require_empty(out).map(|()| None);
     }
+    let (cp, path) = read_checkpoint::<OptimizeConfig>(out, PARETO_CHECKPOINT_FORMAT)?;
+    if !cp.config.same_problem(config) {
+        return Err(Error::ResumeRefused {
+            path,
+            reason: "the checkpoint belongs to a different problem (config, model or seed differ); resume with the same ones".into(),
+        });
+    }
+    Ok(Some(cp.into_state()))
+}
+
+/// Reads and checks `out`'s NSGA-II checkpoint of format `format`: present, parsed, written by
+/// this version, its checksum intact. The config is the caller's to compare.
+pub(crate) fn read_checkpoint<C>(
+    out: &Path,
+    format: &str,
+) -> Result<(ParetoCheckpoint<C>, std::path::PathBuf), Error>
+where
+    C: Clone + Serialize + serde::de::DeserializeOwned,
+{
     let path = out.join(CHECKPOINT_FILE);
     if !path.is_file() {
         return Err(Error::NothingToResume {
@@ -126,6 +155,20 @@ pub fn prepare_output(
         path: path.clone(),
         source: e,
     })?;
+    parse_checkpoint(&text, &path, format).map(|cp| (cp, path))
+}
+
+/// Parses and checks an NSGA-II checkpoint's text (read from `path`) of format `format`:
+/// written by this version, its checksum intact. The config is the caller's to compare.
+pub(crate) fn parse_checkpoint<C>(
+    text: &str,
+    path: &Path,
+    format: &str,
+) -> Result<ParetoCheckpoint<C>, Error>
+where
+    C: Clone + Serialize + serde::de::DeserializeOwned,
+{
+    let path = path.to_path_buf();
     let corrupt = |message: String| {
         Error::Parse {
         source_name: path.display().to_string(),
@@ -134,12 +177,12 @@ pub fn prepare_output(
         ),
     }
     };
-    let cp: ParetoCheckpoint = serde_json::from_str(&text).map_err(|e| corrupt(e.to_string()))?;
+    let cp: ParetoCheckpoint<C> = serde_json::from_str(text).map_err(|e| corrupt(e.to_string()))?;
     let refuse = |reason: String| Error::ResumeRefused {
         path: path.clone(),
         reason,
     };
-    if cp.format != PARETO_CHECKPOINT_FORMAT {
+    if cp.format != format {
         return Err(corrupt(format!("format `{}`", cp.format)));
     }
     let ours = env!("CARGO_PKG_VERSION");
@@ -156,12 +199,7 @@ pub fn prepare_output(
             cp.content_checksum()
         )));
     }
-    if !cp.config.same_problem(config) {
-        return Err(refuse(
-            "the checkpoint belongs to a different problem (config, model or seed differ); resume with the same ones".into(),
-        ));
-    }
-    Ok(Some(cp.into_state()))
+    Ok(cp)
 }
 
 /// `history.csv` of an NSGA-II run: one line per generation.

@@ -9,6 +9,7 @@
 //! | --- | --- | --- |
 //! | [`scenario`] | `woodpile.scenario` | built-in scenarios, completion, TOML ↔ JSON |
 //! | [`run`] | `woodpile.run` | one simulation, its arrays, its run directory |
+//! | [`lattice`] | `woodpile.lattice` | one lattice run, its contacts and arrays, its run directory |
 //! | [`study`] | `woodpile.study` | many scenarios at once (rayon, SIMD lanes) |
 //! | [`analysis`] | `woodpile.analysis` | cells, effective mass, band gaps, spectra |
 //! | [`optimize`] | `woodpile.optimize` | the breeder GA as ask/tell |
@@ -23,6 +24,7 @@ mod analysis;
 mod errors;
 mod fit;
 mod interrupt;
+mod lattice;
 mod optimize;
 mod pareto;
 mod run;
@@ -38,6 +40,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     scenario::register(m)?;
     run::register(m)?;
+    lattice::register(m)?;
     study::register(m)?;
     analysis::register(m)?;
     optimize::register(m)?;

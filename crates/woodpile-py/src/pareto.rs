@@ -2,12 +2,15 @@
 //! exactly as `woodpile optimize` runs it, its front and history, and a population's objectives
 //! and constraints evaluated in one call into the SIMD lanes for other optimisers.
 
-use crate::errors::{ga_err, Failure, Kind};
+use crate::errors::{classify, ga_err, py_err, Failure, Kind};
 use crate::optimize::load_problem;
 use pyo3::prelude::*;
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
-use woodpile::optimize::{Nsga2, Nsga2State, StopReason};
+use woodpile::optimize::{GenomeSpace, Nsga2, Nsga2State, StopReason};
+use woodpile_io::lattice_study::{
+    checkpoint_json, restore_checkpoint, LatticeStudy, LatticeStudyConfig,
+};
 use woodpile_io::optimize::{Algorithm, Problem};
 use woodpile_io::pareto::{pareto_csv, ParetoCheckpoint};
 
@@ -321,8 +324,210 @@ impl ParetoSession {
     }
 }
 
+/// One lattice design study (a config with a `[lattice]` table): NSGA-II over rod lengths per
+/// layer and the pitch, exactly as `woodpile optimize` runs it; the same methods as
+/// [`ParetoSession`] for `woodpile.ParetoResult`.
+#[pyclass(module = "woodpile._core")]
+struct LatticeParetoSession {
+    study: LatticeStudy,
+    state: Option<Nsga2State>,
+    reason: Option<StopReason>,
+}
+
+impl LatticeParetoSession {
+    fn state(&self) -> PyResult<&Nsga2State> {
+        self.state
+            .as_ref()
+            .ok_or_else(|| Failure::new(Kind::State, "no generation yet: run() first").into())
+    }
+}
+
+#[pymethods]
+impl LatticeParetoSession {
+    /// A study of a lattice config (`kind` "toml" or "json" text) with `woodpile.optimize`'s
+    /// keyword arguments.
+    #[new]
+    #[pyo3(signature = (kind, text, seed=None, threads=0, objectives=None))]
+    fn new(
+        kind: &str,
+        text: &str,
+        seed: Option<u64>,
+        threads: usize,
+        objectives: Option<Vec<String>>,
+    ) -> PyResult<Self> {
+        let mut config = if kind == "json" {
+            serde_json::from_str::<LatticeStudyConfig>(text).map_err(|e| {
+                PyErr::from(Failure::new(Kind::Scenario, format!("lattice study: {e}")))
+            })?
+        } else {
+            LatticeStudyConfig::parse(text, "config").map_err(py_err)?
+        };
+        if let Some(seed) = seed {
+            config.ga.seed = Some(seed);
+        }
+        if let Some(o) = objectives {
+            config.ga.objectives = Some(o);
+        }
+        let study = config
+            .resolve(threads)
+            .map_err(|e| classify(e).keyword("ga.objectives", "objectives"))?;
+        Ok(LatticeParetoSession {
+            study,
+            state: None,
+            reason: None,
+        })
+    }
+
+    /// The completed config as JSON.
+    fn config_json(&self) -> PyResult<String> {
+        serde_json::to_string(&self.study.config)
+            .map_err(|e| Failure::new(Kind::Run, format!("problem: {e}")).into())
+    }
+
+    /// (name, unit) of each objective, in column order.
+    fn objectives(&self) -> Vec<(String, String)> {
+        self.study
+            .ga
+            .designs()
+            .objectives()
+            .iter()
+            .map(|f| (f.as_str().to_string(), f.unit().to_string()))
+            .collect()
+    }
+
+    /// The seed.
+    fn seed(&self) -> u64 {
+        self.study.ga.settings().seed
+    }
+
+    /// Runs NSGA-II from the current state (or a fresh start), GIL released; with
+    /// `checkpoint`, its state is written there after every generation (the command line's
+    /// lattice checkpoint). Ctrl-C keeps the last complete generation, then raises.
+    #[pyo3(signature = (checkpoint=None))]
+    fn run(&mut self, py: Python<'_>, checkpoint: Option<PathBuf>) -> PyResult<()> {
+        let stop = std::sync::atomic::AtomicBool::new(false);
+        let initial = self.state.take();
+        let study = &self.study;
+        let (outcome, raised) = crate::interrupt::detach_polling(py, || {
+            let mut write_error: Option<woodpile_io::Error> = None;
+            let mut observer = |s: &Nsga2State| {
+                let Some(path) = &checkpoint else {
+                    return ControlFlow::Continue(());
+                };
+                match write_file(path, &checkpoint_json(&study.config, s)) {
+                    Ok(()) => ControlFlow::Continue(()),
+                    Err(e) => {
+                        write_error = Some(e);
+                        ControlFlow::Break(())
+                    }
+                }
+            };
+            let outcome = study.ga.run(initial, &stop, &mut observer);
+            (outcome, write_error)
+        });
+        woodpile::interrupt::clear();
+        let (outcome, write_error) = outcome;
+        let result = match outcome {
+            Ok((state, reason)) => {
+                self.state = Some(state);
+                self.reason = Some(reason);
+                Ok(())
+            }
+            Err(e) => Err(ga_err(e)),
+        };
+        if let Some(e) = write_error {
+            return Err(crate::errors::py_err(e));
+        }
+        match (result, raised) {
+            (_, Some(raised)) => Err(raised),
+            (result, None) => result,
+        }
+    }
+
+    /// Continues from a checkpoint's text (`run(checkpoint=…)` or `woodpile optimize`'s).
+    fn restore(&mut self, json: &str) -> PyResult<()> {
+        let state =
+            restore_checkpoint(json, Path::new("checkpoint"), &self.study.config).map_err(|e| {
+                PyErr::from(Failure::invalid(
+                    "checkpoint",
+                    "(as given)",
+                    format!("not a checkpoint of this lattice study: {e}"),
+                ))
+            })?;
+        self.study.ga.check_state(&state).map_err(ga_err)?;
+        self.state = Some(state);
+        self.reason = None;
+        Ok(())
+    }
+
+    /// Why the study stopped, None before.
+    fn stop_reason(&self) -> Option<&'static str> {
+        self.reason.map(|r| match r {
+            StopReason::GenerationLimit => "generation-limit",
+            StopReason::Stalled => "stalled",
+            StopReason::Interrupted => "interrupted",
+            _ => "stopped",
+        })
+    }
+
+    /// The feasible non-dominated designs, in the rows of `pareto.csv`: (genes, objectives,
+    /// each layer's rod length in mm then the pitch in mm, as text).
+    fn front(&self) -> PyResult<Vec<FrontRow>> {
+        Ok(self
+            .state()?
+            .front()
+            .into_iter()
+            .map(|i| {
+                let s = self.study.scenario(&i.genome);
+                let mut labels: Vec<String> = s
+                    .lattice
+                    .layers
+                    .iter()
+                    .map(|l| format!("{}", l.length_mm.unwrap_or(f64::NAN)))
+                    .collect();
+                if let Some(p) = self.study.ga.designs().space().pitch_m(&i.genome) {
+                    labels.push(format!("{}", p * 1e3));
+                }
+                (i.genome.clone(), i.objectives.clone(), labels)
+            })
+            .collect())
+    }
+
+    /// `pareto.csv` of the front, as `woodpile optimize` writes it.
+    fn pareto_csv(&self) -> PyResult<String> {
+        Ok(self.study.pareto_csv(&self.state()?.front()))
+    }
+
+    /// `history.csv` as `woodpile optimize` writes it.
+    fn history_csv(&self) -> PyResult<String> {
+        Ok(woodpile_io::pareto::history_csv(&self.state()?.history))
+    }
+
+    /// The hypervolume's reference point (one value per objective, SI units).
+    fn reference_point(&self) -> PyResult<Vec<f64>> {
+        Ok(self.state()?.reference_point.clone())
+    }
+
+    /// The lattice scenario of a design, as complete TOML.
+    fn scenario_toml(&self, design: Vec<u8>) -> PyResult<String> {
+        if !self.study.ga.designs().contains(&design) {
+            return Err(Failure::invalid(
+                "design",
+                format!("{design:?}"),
+                format!(
+                    "one choice index per gene, below {:?}",
+                    self.study.ga.designs().space().choice_counts()
+                ),
+            )
+            .into());
+        }
+        crate::lattice::complete_toml(&self.study.scenario(&design))
+    }
+}
+
 /// Adds this module's class to the extension.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<ParetoSession>()?;
+    m.add_class::<LatticeParetoSession>()?;
     Ok(())
 }

@@ -5,6 +5,7 @@ use crate::errors::{py_err, Failure, Kind};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyFloat, PyString};
 use std::path::PathBuf;
+use woodpile_io::lattice::LatticeScenario;
 use woodpile_io::scenario::{builtin, builtin_names, keys, resolve, KeyDefault, Scenario};
 
 /// One key of the scenario file, as Python's `ScenarioKey` takes it (its fields in order):
@@ -44,6 +45,10 @@ fn builtin_toml(name: &str) -> PyResult<String> {
 /// it as complete TOML.
 #[pyfunction]
 fn complete_toml(text: &str, base_dir: PathBuf) -> PyResult<String> {
+    if woodpile_io::lattice::is_lattice(text) {
+        let (scenario, _) = crate::lattice::parse_and_resolve(text)?;
+        return crate::lattice::complete_toml(&scenario);
+    }
     let scenario = Scenario::parse(text).map_err(py_err)?;
     resolve(&scenario, &base_dir).map_err(py_err)?;
     Ok(scenario.to_toml())
@@ -52,12 +57,17 @@ fn complete_toml(text: &str, base_dir: PathBuf) -> PyResult<String> {
 /// The scenario as JSON text (the TOML file's structure), for Python dictionaries.
 #[pyfunction]
 fn toml_to_json(text: &str) -> PyResult<String> {
-    let scenario = Scenario::parse(text).map_err(py_err)?;
-    serde_json::to_string(&scenario)
-        .map_err(|e| Failure::new(Kind::Scenario, format!("scenario: {e}")).into())
+    let json = if woodpile_io::lattice::is_lattice(text) {
+        let scenario = LatticeScenario::parse(text, "scenario").map_err(py_err)?;
+        serde_json::to_string(&scenario)
+    } else {
+        serde_json::to_string(&Scenario::parse(text).map_err(py_err)?)
+    };
+    json.map_err(|e| Failure::new(Kind::Scenario, format!("scenario: {e}")).into())
 }
 
-/// A scenario from JSON text (as [`toml_to_json`] writes it) as complete TOML. A value of the
+/// A scenario (a chain's, or a lattice's when the tree has a `lattice` table) from JSON text
+/// (as [`toml_to_json`] writes it) as complete TOML. A value of the
 /// wrong type or an unknown key is refused naming its dotted key (`chain.rods_mm[2]`) and the
 /// value, not a place in the JSON text.
 #[pyfunction]
@@ -65,7 +75,18 @@ fn json_to_toml(json: &str) -> PyResult<String> {
     let not_json =
         |e: serde_json::Error| PyErr::from(Failure::new(Kind::Scenario, format!("scenario: {e}")));
     let tree: serde_json::Value = serde_json::from_str(json).map_err(not_json)?;
-    let scenario: Scenario = serde_path_to_error::deserialize(&tree).map_err(|e| {
+    if tree.get("lattice").is_some() {
+        let scenario: LatticeScenario = from_tree(&tree)?;
+        return crate::lattice::complete_toml(&scenario);
+    }
+    let scenario: Scenario = from_tree(&tree)?;
+    Ok(scenario.to_toml())
+}
+
+/// A scenario deserialised from a JSON tree; a value of the wrong type or an unknown key is
+/// refused naming its dotted key and the value.
+fn from_tree<T: serde::de::DeserializeOwned>(tree: &serde_json::Value) -> PyResult<T> {
+    serde_path_to_error::deserialize(tree).map_err(|e| {
         let value = json_pointer(e.path())
             .and_then(|p| tree.pointer(&p))
             .map_or_else(|| "(as given)".to_string(), |v| v.to_string());
@@ -76,8 +97,7 @@ fn json_to_toml(json: &str) -> PyResult<String> {
         } else {
             Failure::invalid(field, value, reason)
         })
-    })?;
-    Ok(scenario.to_toml())
+    })
 }
 
 /// The JSON pointer (`/chain/rods_mm/2`) of a deserialisation path, when every segment is a

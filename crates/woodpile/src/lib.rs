@@ -38,7 +38,9 @@
 //!    layer-by-layer experimental protocol ([`LayerByLayer`]).
 //! 6. **Optimise** — [`optimize`]: the breeder genetic algorithm ([`BreederGa`]) over a
 //!    [`DesignSpace`] of catalogue elements, with a user-extensible [`Objective`]; NSGA-II
-//!    ([`optimize::Nsga2`]) for the Pareto front of several [`optimize::DesignFigure`]s.
+//!    ([`optimize::Nsga2`]) for the Pareto front of several [`optimize::DesignFigure`]s, over
+//!    any [`optimize::GenomeSpace`]: chains' catalogues or a lattice's rod lengths and pitch
+//!    ([`optimize::LatticeDesigns`]).
 //!    Scatter: [`uncertainty`] draws scrambled Sobol' points, maps them through inverse CDFs and
 //!    sums up the figures of a design's samples (mean, sd, quantiles, CVaR); [`sensitivity`]
 //!    apportions a figure's variance to the scattered parameters (Sobol' indices, Saltelli

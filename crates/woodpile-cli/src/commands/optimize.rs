@@ -15,7 +15,8 @@ use woodpile_io::scenario::ModelSpec;
 /// Arguments of `woodpile optimize`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct Args {
-    /// Config file (TOML): a scenario's excitation, wall and run tables plus design and ga tables.
+    /// Config file (TOML): a scenario's excitation, wall and run tables plus design and ga tables
+    /// (with a lattice table: a lattice study over rod lengths per layer and the pitch).
     #[arg(value_name = "CONFIG.toml", conflicts_with = "scenario")]
     pub file: Option<PathBuf>,
     /// A built-in problem: paper-impact or paper-blast (20 rods, Table 1 catalogue).
@@ -102,6 +103,15 @@ pub fn load_config(args: &Args) -> Result<(OptimizeConfig, String, PathBuf), Cli
 
 /// Runs `woodpile optimize`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
+    if let Some(file) = &args.file {
+        let text = fs::read_to_string(file).map_err(|e| CliError::Read {
+            path: file.clone(),
+            source: e,
+        })?;
+        if woodpile_io::lattice_study::is_lattice_study(&text) {
+            return run_lattice(args, ctx, file, &text);
+        }
+    }
     let (cfg, name, base_dir) = load_config(args)?;
     let threads = args.workers.checked()?;
     let problem = Problem::new(&cfg, &base_dir, threads)?;
@@ -397,6 +407,104 @@ fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Resul
             state.elapsed_s,
             problem.config.accuracy_text(),
             names.join(", "),
+            summary.hypervolume,
+            summary.reference_point,
+            out.display()
+        ))?;
+    }
+    if reason == StopReason::Interrupted {
+        return Err(interrupted_at(state.generation, out));
+    }
+    Ok(())
+}
+
+/// Runs a lattice study (a config with a `[lattice]` table, docs/optimization.md): NSGA-II over
+/// rod lengths per layer and the pitch, a checkpoint and `history.csv` after every generation,
+/// then `pareto.csv`, `pareto/NNN.toml` and `summary.json`.
+fn run_lattice(args: &Args, ctx: &Context, file: &Path, text: &str) -> Result<(), CliError> {
+    use woodpile_io::lattice_study::{
+        prepare_output, write_final_outputs, write_generation, LatticeStudyConfig,
+    };
+    let chain_flags = [
+        ("--model", args.model.clone()),
+        (
+            "--allow-large",
+            args.allow_large.then(|| "true".to_string()),
+        ),
+        (
+            "--paper-settings",
+            args.paper_settings.then(|| "true".to_string()),
+        ),
+    ];
+    if let Some((flag, Some(value))) = chain_flags.into_iter().find(|(_, v)| v.is_some()) {
+        return Err(CliError::invalid(
+            flag,
+            value,
+            "is for chains' studies; a lattice study's rods are FE beams and its run is its [run] table",
+        ));
+    }
+    let mut cfg = LatticeStudyConfig::parse(text, &file.display().to_string())?;
+    if let Some(seed) = args.seed {
+        cfg.ga.seed = Some(seed);
+    }
+    let threads = args.workers.checked()?;
+    let study = cfg.resolve(threads)?;
+    let (name, _) = super::name_and_base(file, "optimize");
+    let out = &args.out;
+    let initial = prepare_output(out, args.resume, &study.config)?;
+    if let Some(state) = &initial {
+        study.ga.check_state(state).map_err(optimize_error)?;
+    }
+    fs::create_dir_all(out).map_err(io_err(out))?;
+    crate::interrupt::cooperative(true);
+    let stop = crate::interrupt::stop_flag();
+    let bar = generations_progress(
+        study.ga.settings().generations,
+        initial.as_ref().map(|s| s.generation),
+        ctx.quiet,
+    );
+    let mut write_error: Option<CliError> = None;
+    let mut observer = |s: &Nsga2State| {
+        if let Err(e) = write_generation(out, &study.config, s) {
+            write_error = Some(e);
+            return ControlFlow::Break(());
+        }
+        let h = s.history.last().expect("a generation's line");
+        generation_done(&bar, s.generation);
+        bar.detail(format!(
+            "generation {}: hypervolume {:.6e} | front {} | {} evaluations, {} cache hits",
+            s.generation, h.hypervolume, h.front_size, s.evaluations, s.cache_hits
+        ));
+        ControlFlow::Continue(())
+    };
+    let outcome = study.ga.run(initial, stop, &mut observer);
+    bar.finish();
+    woodpile::interrupt::clear();
+    if let Some(e) = write_error {
+        return Err(e);
+    }
+    let (state, reason) = match outcome {
+        Err(e) if e.is_interrupted() => return Err(interrupted_in_generation_zero()),
+        other => other.map_err(optimize_error)?,
+    };
+    let summary = write_final_outputs(out, &study, &state, reason)?;
+    if !ctx.quiet {
+        crate::out::print(format_args!(
+            "problem      {name} (lattice: {} designs, seed {}, NSGA-II)\n\
+             stopped      {} after generation {}: {} evaluations, {} cache hits, {:.1} s\n\
+             objectives   {}\n\
+             front        {} designs (pareto.csv, pareto/001.toml ...)\n\
+             hypervolume  {:.6e} (reference point {:?})\n\
+             output       {}\n",
+            summary.designs_in_space,
+            summary.seed,
+            stop_text(reason),
+            state.generation,
+            state.evaluations,
+            state.cache_hits,
+            state.elapsed_s,
+            summary.objectives.join(", "),
+            summary.front.len(),
             summary.hypervolume,
             summary.reference_point,
             out.display()

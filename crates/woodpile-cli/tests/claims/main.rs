@@ -27,6 +27,7 @@ mod optimize_bad_input;
 mod optimize_best_reruns;
 #[cfg(unix)]
 mod optimize_interrupt_resume;
+mod optimize_lattice;
 mod optimize_layers;
 mod optimize_pareto;
 mod optimize_robust;

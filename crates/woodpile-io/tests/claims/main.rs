@@ -11,6 +11,7 @@ mod fit_modulus_scale;
 mod fuzz_corpus;
 mod lab_scenario_keys;
 mod lattice_keys_table;
+mod lattice_study;
 mod pareto_checkpoint_resume;
 mod peak_tolerance_key;
 mod rod_range_catalogue;

@@ -14,6 +14,9 @@
 //!   excitations); [`Nsga2`]: NSGA-II over the same genomes, operators and repair, with
 //!   [`pareto`]'s sorting, crowding distance and hypervolume, its figures from a
 //!   [`FigureEvaluator`] (default [`NominalFigures`]; a front end may supply robust ones).
+//!   NSGA-II is written over a [`GenomeSpace`] (genes with their choice counts, variation and
+//!   repair, a batch evaluator): the chains' [`ChainDesigns`] and the lattices'
+//!   [`LatticeDesigns`] (rod length per layer and the pitch, docs/physics.md §16).
 //! - [`operators`]: truncation selection, discrete recombination, BGA mutation, as plain
 //!   functions of (population, rng).
 //! - [`BreederGa`]: one generation at a time ([`BreederGa::next_generation`]) on a detachable
@@ -47,6 +50,7 @@
 
 mod figures;
 mod ga;
+mod lattice;
 mod nsga2;
 mod objective;
 pub mod operators;
@@ -61,7 +65,10 @@ pub use ga::{
     BreederGa, GaSettings, GaState, GenerationStats, Individual, Ledger, Outcome, StopReason,
     STOP_EARLY_MARGIN,
 };
-pub use nsga2::{MoIndividual, Nsga2, Nsga2Settings, Nsga2State, Nsga2Stats};
+pub use lattice::{LatticeDesignSpace, LatticeDesigns, LATTICE_FIGURES, MAX_LATTICE_CHOICES};
+pub use nsga2::{
+    ChainDesigns, GenomeSpace, MoIndividual, Nsga2, Nsga2Settings, Nsga2State, Nsga2Stats,
+};
 pub use objective::{ContactImpulse, LayerEnergyPeak, Objective, StandardObjective, Valued};
 pub use space::{
     Constraints, DesignSpace, FeasibleSet, Genome, MAX_CATALOGUE_LEN, MAX_VARIABLE_POSITIONS,

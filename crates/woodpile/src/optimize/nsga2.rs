@@ -152,24 +152,102 @@ fn front_of(population: &[MoIndividual]) -> Vec<&MoIndividual> {
     front
 }
 
-/// NSGA-II over a [`DesignSpace`] (see the module documentation).
-pub struct Nsga2 {
+/// What NSGA-II searches: genomes of choice indices (a chain's catalogue entries, a lattice's
+/// rod lengths and pitch), drawn, varied and repaired into the feasible set by the space, and
+/// evaluated in batches. Every random draw is made on the calling thread from the generator
+/// handed in, so a search is reproducible whatever the evaluation's threads.
+pub trait GenomeSpace: Send + Sync {
+    /// A random feasible genome.
+    fn random(&self, rng: &mut ChaCha8Rng) -> Genome;
+    /// Mutates a recombined child and repairs it into the feasible set; `range` is
+    /// [`Nsga2Settings::mutation_range`] (choice indices; None: the space's default).
+    fn vary(&self, child: &mut Genome, range: Option<f64>, rng: &mut ChaCha8Rng);
+    /// Whether `genome` is a feasible design of this space (a saved state's check).
+    fn contains(&self, genome: &[u8]) -> bool;
+    /// Number of objectives each evaluation gives.
+    fn objective_count(&self) -> usize;
+    /// Evaluates designs, in order: their objectives and constraint violation.
+    fn evaluate(&self, genomes: &[&[u8]]) -> Result<Vec<MoIndividual>, OptimizeError>;
+}
+
+/// The chains' design space as NSGA-II searches it: a [`DesignSpace`], its [`FeasibleSet`],
+/// the objectives as [`DesignFigure`]s, evaluated in SIMD lanes on a thread pool by a
+/// [`FigureEvaluator`].
+pub struct ChainDesigns {
     space: DesignSpace,
     set: FeasibleSet,
     objectives: Vec<DesignFigure>,
-    settings: Nsga2Settings,
     pool: rayon::ThreadPool,
     lanes: LaneWidth,
     evaluator: Box<dyn FigureEvaluator>,
 }
 
-impl std::fmt::Debug for Nsga2 {
+/// NSGA-II over a [`GenomeSpace`] (see the module documentation); by default the chains'
+/// [`ChainDesigns`], built by [`Nsga2::new`].
+pub struct Nsga2<S = ChainDesigns> {
+    designs: S,
+    settings: Nsga2Settings,
+}
+
+impl std::fmt::Debug for ChainDesigns {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ChainDesigns")
+            .field("objectives", &self.objectives)
+            .finish()
+    }
+}
+
+impl<S: std::fmt::Debug> std::fmt::Debug for Nsga2<S> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Nsga2")
-            .field("objectives", &self.objectives)
+            .field("designs", &self.designs)
             .field("settings", &self.settings)
             .finish()
     }
+}
+
+/// The checks of NSGA-II's settings every space shares, for `objectives` objectives.
+pub(crate) fn check_settings(
+    settings: &Nsga2Settings,
+    objectives: usize,
+) -> Result<(), OptimizeError> {
+    if settings.population < 4 {
+        return Err(Error::invalid(
+            "ga.population",
+            settings.population,
+            "NSGA-II needs at least 4",
+        )
+        .into());
+    }
+    if let Some(r) = settings.mutation_range {
+        if !(r.is_finite() && r > 0.0) {
+            return Err(
+                Error::invalid("ga.mutation_range", r, "must be a finite number > 0").into(),
+            );
+        }
+    }
+    if let Some(r) = &settings.reference_point {
+        if r.len() != objectives || r.iter().any(|x| !x.is_finite()) {
+            return Err(Error::invalid(
+                "ga.reference_point",
+                format!("{r:?}"),
+                format!("give {objectives} finite numbers, one per objective"),
+            )
+            .into());
+        }
+    }
+    Ok(())
+}
+
+/// A thread pool of `threads` workers (0: one per core).
+pub(crate) fn thread_pool(threads: usize) -> Result<rayon::ThreadPool, OptimizeError> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| OptimizeError::ThreadPool {
+            threads,
+            reason: e.to_string(),
+        })
 }
 
 impl Nsga2 {
@@ -193,87 +271,54 @@ impl Nsga2 {
             )
             .into());
         }
-        if settings.population < 4 {
-            return Err(Error::invalid(
-                "ga.population",
-                settings.population,
-                "NSGA-II needs at least 4",
-            )
-            .into());
-        }
-        if let Some(r) = settings.mutation_range {
-            if !(r.is_finite() && r > 0.0) {
-                return Err(
-                    Error::invalid("ga.mutation_range", r, "must be a finite number > 0").into(),
-                );
-            }
-        }
-        if let Some(r) = &settings.reference_point {
-            if r.len() != objectives.len() || r.iter().any(|x| !x.is_finite()) {
-                return Err(Error::invalid(
-                    "ga.reference_point",
-                    format!("{r:?}"),
-                    format!(
-                        "give {} finite numbers, one per objective",
-                        objectives.len()
-                    ),
-                )
-                .into());
-            }
-        }
+        check_settings(&settings, objectives.len())?;
         let set = FeasibleSet::new(&space)?;
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(settings.threads)
-            .build()
-            .map_err(|e| OptimizeError::ThreadPool {
-                threads: settings.threads,
-                reason: e.to_string(),
-            })?;
-        Ok(Nsga2 {
+        let pool = thread_pool(settings.threads)?;
+        let designs = ChainDesigns {
             space,
             set,
             objectives,
-            settings,
             pool,
             lanes: LaneWidth::detect(),
             evaluator: Box::new(NominalFigures),
-        })
+        };
+        Ok(Nsga2 { designs, settings })
     }
 
     /// Advances designs `lanes` at a time; results are the same at every width.
     pub fn with_lanes(mut self, lanes: LaneWidth) -> Self {
-        self.lanes = lanes;
+        self.designs.lanes = lanes;
         self
     }
 
     /// Evaluates the figures with `evaluator` instead of [`NominalFigures`] (a robust study's
     /// statistics over scattered scenarios).
     pub fn with_evaluator(mut self, evaluator: Box<dyn FigureEvaluator>) -> Self {
-        self.evaluator = evaluator;
+        self.designs.evaluator = evaluator;
         self
     }
 
     /// The design space.
     pub fn space(&self) -> &DesignSpace {
-        &self.space
+        &self.designs.space
     }
 
     /// The objectives, in order.
     pub fn objectives(&self) -> &[DesignFigure] {
-        &self.objectives
+        &self.designs.objectives
     }
 
-    /// The settings.
-    pub fn settings(&self) -> &Nsga2Settings {
-        &self.settings
+    /// Evaluates designs at the run's settings, in order (no cache).
+    pub fn evaluate_designs<G: AsRef<[u8]> + Sync>(
+        &self,
+        genomes: &[G],
+    ) -> Result<Vec<MoIndividual>, OptimizeError> {
+        let refs: Vec<&[u8]> = genomes.iter().map(|g| g.as_ref()).collect();
+        self.designs.evaluate(&refs)
     }
+}
 
-    fn rng(&self, generation: usize) -> ChaCha8Rng {
-        let mut rng = ChaCha8Rng::seed_from_u64(self.settings.seed);
-        rng.set_stream(generation as u64);
-        rng
-    }
-
+impl ChainDesigns {
     /// The figures each evaluation computes: the objectives, then the worst contact pressure
     /// where it is constrained and not an objective.
     fn evaluated_figures(&self) -> Vec<DesignFigure> {
@@ -285,17 +330,33 @@ impl Nsga2 {
         }
         f
     }
+}
 
-    /// Evaluates designs at the run's settings, in order (no cache).
-    pub fn evaluate_designs<G: AsRef<[u8]> + Sync>(
-        &self,
-        genomes: &[G],
-    ) -> Result<Vec<MoIndividual>, OptimizeError> {
+impl GenomeSpace for ChainDesigns {
+    fn random(&self, rng: &mut ChaCha8Rng) -> Genome {
+        self.set.random(rng)
+    }
+
+    /// BGA mutation (default range: the catalogue's span), then the feasible set's repair.
+    fn vary(&self, child: &mut Genome, range: Option<f64>, rng: &mut ChaCha8Rng) {
+        let range = range.unwrap_or(((self.set.catalogue_len() - 1) as f64).max(1.0));
+        mutate(child, &self.set, range, rng);
+        self.set.repair(child, rng);
+    }
+
+    fn contains(&self, genome: &[u8]) -> bool {
+        self.set.contains(genome)
+    }
+
+    fn objective_count(&self) -> usize {
+        self.objectives.len()
+    }
+
+    fn evaluate(&self, refs: &[&[u8]]) -> Result<Vec<MoIndividual>, OptimizeError> {
         let figures = self.evaluated_figures();
-        let refs: Vec<&[u8]> = genomes.iter().map(|g| g.as_ref()).collect();
         let values = self.pool.install(|| {
             self.evaluator
-                .figures_many(&self.space, &figures, &refs, self.lanes)
+                .figures_many(&self.space, &figures, refs, self.lanes)
         });
         let pressure_at = figures
             .iter()
@@ -329,6 +390,30 @@ impl Nsga2 {
             })
             .collect()
     }
+}
+
+impl<S: GenomeSpace> Nsga2<S> {
+    /// NSGA-II over any [`GenomeSpace`] (a lattice's designs); the settings are checked.
+    pub fn over(designs: S, settings: Nsga2Settings) -> Result<Self, OptimizeError> {
+        check_settings(&settings, designs.objective_count())?;
+        Ok(Nsga2 { designs, settings })
+    }
+
+    /// The searched space.
+    pub fn designs(&self) -> &S {
+        &self.designs
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &Nsga2Settings {
+        &self.settings
+    }
+
+    fn rng(&self, generation: usize) -> ChaCha8Rng {
+        let mut rng = ChaCha8Rng::seed_from_u64(self.settings.seed);
+        rng.set_stream(generation as u64);
+        rng
+    }
 
     /// The individuals of `genomes`, simulating only designs the cache does not hold.
     fn evaluate_cached(
@@ -339,11 +424,12 @@ impl Nsga2 {
         cache_hits: &mut u64,
     ) -> Result<Vec<MoIndividual>, OptimizeError> {
         let mut seen = std::collections::HashSet::new();
-        let new: Vec<&Genome> = genomes
+        let new: Vec<&[u8]> = genomes
             .iter()
             .filter(|g| !(self.settings.cache && state_cache.contains_key(*g)) && seen.insert(*g))
+            .map(|g| g.as_slice())
             .collect();
-        let values = self.evaluate_designs(&new)?;
+        let values = self.designs.evaluate(&new)?;
         *evaluations += new.len() as u64;
         *cache_hits += (genomes.len() - new.len()) as u64;
         let mut fresh: HashMap<Genome, MoIndividual> = HashMap::new();
@@ -380,7 +466,7 @@ impl Nsga2 {
         } else {
             feasible
         };
-        (0..self.objectives.len())
+        (0..self.designs.objective_count())
             .map(|k| {
                 let hi = pool
                     .iter()
@@ -407,7 +493,7 @@ impl Nsga2 {
         let started = Instant::now();
         let mut rng = self.rng(0);
         let genomes: Vec<Genome> = (0..self.settings.population)
-            .map(|_| self.set.random(&mut rng))
+            .map(|_| self.designs.random(&mut rng))
             .collect();
         let mut cache = HashMap::new();
         let (mut evaluations, mut cache_hits) = (0, 0);
@@ -439,10 +525,6 @@ impl Nsga2 {
     pub fn offspring(&self, state: &Nsga2State) -> Vec<Genome> {
         let mut rng = self.rng(state.generation + 1);
         let keys = rank_and_crowding(&state.population);
-        let range = self
-            .settings
-            .mutation_range
-            .unwrap_or(((self.set.catalogue_len() - 1) as f64).max(1.0));
         let n = state.population.len();
         let tournament = |rng: &mut ChaCha8Rng| {
             let a = rng.random_range(0..n);
@@ -464,8 +546,8 @@ impl Nsga2 {
                     &state.population[b].genome,
                     &mut rng,
                 );
-                mutate(&mut child, &self.set, range, &mut rng);
-                self.set.repair(&mut child, &mut rng);
+                self.designs
+                    .vary(&mut child, self.settings.mutation_range, &mut rng);
                 child
             })
             .collect()
@@ -598,7 +680,7 @@ impl Nsga2 {
             state.history.len(),
             state.generation,
         )?;
-        let m = self.objectives.len();
+        let m = self.designs.objective_count();
         if state.reference_point.len() != m {
             return mismatch(format!(
                 "the reference point has {} values for {m} objectives",
@@ -611,7 +693,7 @@ impl Nsga2 {
             .chain(state.cache.values())
             .enumerate()
         {
-            if !self.set.contains(&ind.genome) {
+            if !self.designs.contains(&ind.genome) {
                 return mismatch(format!(
                     "individual {k} ({:?}) is not a feasible design of this problem",
                     ind.genome

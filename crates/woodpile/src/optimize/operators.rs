@@ -139,3 +139,30 @@ pub fn breed(
     set.repair(&mut child, rng);
     child
 }
+
+/// The BGA mutation for genes of different choice counts (a lattice's rod lengths and pitch):
+/// each gene of more than one choice is mutated with probability 1/n (n = such genes) by
+/// ± round(range·δ) indices, at least one, the sign + or − with probability ½, clamped to its
+/// choices 0..count. `range` is in index units (None: each gene's span, count − 1).
+pub fn mutate_choices(genome: &mut [u8], counts: &[usize], range: Option<f64>, rng: &mut impl Rng) {
+    let free = counts.iter().filter(|&&c| c > 1).count();
+    if free == 0 {
+        return;
+    }
+    let p = 1.0 / free as f64;
+    for (g, &count) in genome.iter_mut().zip(counts) {
+        if count < 2 || !rng.random_bool(p) {
+            continue;
+        }
+        let top = count - 1;
+        let span = range.unwrap_or(top as f64);
+        let step = ((span * bga_delta(rng)).round() as usize).max(1);
+        let at = usize::from(*g);
+        let to = if rng.random_bool(0.5) {
+            (at + step).min(top)
+        } else {
+            at.saturating_sub(step)
+        };
+        *g = to as u8;
+    }
+}

@@ -61,6 +61,7 @@ mod optimize_cache_transparent;
 mod optimize_common;
 mod optimize_exhaustive_tiny;
 mod optimize_height_constraint;
+mod optimize_lattice_front;
 mod optimize_layers_operators;
 mod optimize_layers_runs;
 mod optimize_nsga2_determinism;
