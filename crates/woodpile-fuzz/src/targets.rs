@@ -58,7 +58,8 @@ pub fn fuzz_lattice(data: &[u8]) {
     let Ok(resolved) = scenario.resolve() else {
         return;
     };
-    let _ = woodpile::ode::LatticeOde::new(&resolved.lattice, &resolved.striker, resolved.at_m);
+    let _ =
+        woodpile::ode::LatticeOde::build(&resolved.lattice, &resolved.excitation, &resolved.lab);
 }
 
 /// An optimisation config: parse, then build the problem (design space, constraints, limits).

@@ -1092,6 +1092,34 @@ pub fn read_lattice_summary(dir: &Path, contacts: usize) -> Result<LatticeSummar
     Ok(summary)
 }
 
+impl LatticeSummaryJson {
+    /// The summary of a run.
+    pub fn of(run: &LatticeRun) -> Self {
+        LatticeSummaryJson {
+            contact_peak_forces_n: run.contact_peak_forces_n.clone(),
+            contact_peak_times_s: run.contact_peak_times_s.clone(),
+            incident_peak_force_n: run.incident_peak_force_n,
+            transmitted_peak_force_n: run.transmitted_peak_force_n,
+            integrator: Some(crate::rundir::IntegratorJson {
+                method: crate::rundir::method_label(run.method).to_string(),
+                steps: run.stats.steps,
+                rhs_evaluations: run.stats.rhs_evaluations,
+                rejected_steps: run.stats.rejected_steps,
+            }),
+            energy_max_relative_error: run.energy.max_relative_error,
+            lab: (!run.work_j.is_empty()).then(|| LatticeLabSummary {
+                energy_initial_j: run.energy.initial_j,
+                energy_input_work_j: run.energy.input_work_j,
+                energy_dissipated_j: run.energy.dissipated_j,
+                modal_dissipated_j: run.modal_dissipated_j,
+                contact_dissipated_j: run.contact_dissipated_j.clone(),
+                contact_static_forces_n: run.contact_static_forces_n.clone(),
+                static_residual: run.static_residual,
+            }),
+        }
+    }
+}
+
 /// Writes a lattice run's files into `dir` (a staging directory).
 pub fn write_lattice_run(
     dir: &Path,
@@ -1120,28 +1148,7 @@ pub fn write_lattice_run(
         n_samples: run.times_s.len(),
         contacts,
     };
-    let summary = LatticeSummaryJson {
-        contact_peak_forces_n: run.contact_peak_forces_n.clone(),
-        contact_peak_times_s: run.contact_peak_times_s.clone(),
-        incident_peak_force_n: run.incident_peak_force_n,
-        transmitted_peak_force_n: run.transmitted_peak_force_n,
-        integrator: Some(crate::rundir::IntegratorJson {
-            method: crate::rundir::method_label(run.method).to_string(),
-            steps: run.stats.steps,
-            rhs_evaluations: run.stats.rhs_evaluations,
-            rejected_steps: run.stats.rejected_steps,
-        }),
-        energy_max_relative_error: run.energy.max_relative_error,
-        lab: (!run.work_j.is_empty()).then(|| LatticeLabSummary {
-            energy_initial_j: run.energy.initial_j,
-            energy_input_work_j: run.energy.input_work_j,
-            energy_dissipated_j: run.energy.dissipated_j,
-            modal_dissipated_j: run.modal_dissipated_j,
-            contact_dissipated_j: run.contact_dissipated_j.clone(),
-            contact_static_forces_n: run.contact_static_forces_n.clone(),
-            static_residual: run.static_residual,
-        }),
-    };
+    let summary = LatticeSummaryJson::of(run);
     let header = |names: Vec<String>| {
         std::iter::once("time_s".to_string())
             .chain(names)

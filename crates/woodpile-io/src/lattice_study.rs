@@ -38,6 +38,7 @@ use crate::pareto::{history_csv, parse_checkpoint, read_checkpoint, ParetoCheckp
 use crate::scenario::RunSpec;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+use woodpile::model::LatticeExcitation;
 use woodpile::optimize::{
     DesignFigure, LatticeDesignSpace, LatticeDesigns, MoIndividual, Nsga2, Nsga2Settings,
     Nsga2State, StopReason, MAX_LATTICE_CHOICES,
@@ -169,6 +170,8 @@ impl LatticeStudyConfig {
             lattice: self.lattice.clone(),
             excitation: self.excitation.clone(),
             wall: self.wall.clone(),
+            damping: None,
+            preload: None,
             run: self.run.clone(),
         }
     }
@@ -202,6 +205,17 @@ impl LatticeStudyConfig {
         let config = self.complete();
         let base = config.base();
         let resolved = base.resolve()?;
+        if !matches!(resolved.excitation, LatticeExcitation::Impact { .. }) {
+            return Err(Error::invalid(
+                "excitation.kind",
+                format!(
+                    "\"{}\"",
+                    config.excitation.kind.as_deref().unwrap_or("impact")
+                ),
+                "a lattice design study strikes its lattices (\"impact\"); blasts and drives \
+                 are simulated one lattice at a time (woodpile simulate)",
+            ));
+        }
         let space = design_space(&config.design, &resolved)?;
         let ga = &config.ga;
         let objectives = ga

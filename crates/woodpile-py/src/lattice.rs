@@ -44,15 +44,7 @@ struct LatticeRun {
 impl LatticeRun {
     /// `summary.json` of this run, as JSON text.
     fn summary_json(&self) -> PyResult<String> {
-        let r = &self.run;
-        let summary = LatticeSummaryJson {
-            contact_peak_forces_n: r.contact_peak_forces_n.clone(),
-            contact_peak_times_s: r.contact_peak_times_s.clone(),
-            incident_peak_force_n: r.incident_peak_force_n,
-            transmitted_peak_force_n: r.transmitted_peak_force_n,
-            energy_max_relative_error: r.energy.max_relative_error,
-        };
-        serde_json::to_string(&summary)
+        serde_json::to_string(&LatticeSummaryJson::of(&self.run))
             .map_err(|e| Failure::new(Kind::Run, format!("summary.json: {e}")).into())
     }
 
@@ -177,7 +169,7 @@ fn simulate_lattice(
         .check(allow_long, allow_large, true)
         .map_err(py_err)?;
     crate::interrupt::detach_interruptibly(py, || {
-        let mut ode = LatticeOde::new(&resolved.lattice, &resolved.striker, resolved.at_m)
+        let mut ode = LatticeOde::build(&resolved.lattice, &resolved.excitation, &resolved.lab)
             .map_err(core_err)?;
         let run = run_lattice(&mut ode, &resolved.settings).map_err(core_err)?;
         let error = run.energy.max_relative_error;
