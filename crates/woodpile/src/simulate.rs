@@ -12,7 +12,9 @@ use crate::record::{Layout, Recorder, Sample};
 mod lattice;
 mod modal;
 
-pub use lattice::{lattice_method, simulate_lattice, LatticeRun};
+pub use lattice::{
+    lattice_method, simulate_lattice, LatticeRun, LATTICE_EXACT_MODES_RTOL_OF_TOLERANCE,
+};
 
 /// How long, how and how often to sample.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -142,10 +142,10 @@ impl Stepper {
 const FIRST_STEP_OF_SAMPLE: f64 = 0.01;
 
 /// The exact modal method's rtol on a lattice, as a fraction of a stated peak tolerance. On the
-/// chains the rule is tolerance / (3 · 1.3) (docs/physics.md §8); on lattices the error of the
-/// smallest loaded contacts' peaks (1–4 % of the largest) does not fall as rtol: on the 10-layer
-/// × 5-rod lattice of 16-element rods it was 29, 154 and 266 rtol at rtol 2.6e-6, 1e-7 and 1e-8
-/// (examples/lattice_exact.rs). 1e-3 keeps that lattice's worst peak 3.8 times inside the
+/// chains the rule is tolerance / (3 · 1.3) (docs/physics.md §8); on lattices the error of small
+/// peaks deep in the lattice (1–4 % of the largest) does not fall as rtol: on the 10-layer ×
+/// 5-rod lattice of 16-element rods it was 29 and 369 rtol at rtol 2.6e-6 and 1e-8
+/// (examples/lattice_exact.rs). 1e-3 keeps that lattice's worst peak 2.7 times inside the
 /// tolerance.
 pub const LATTICE_EXACT_MODES_RTOL_OF_TOLERANCE: f64 = 1e-3;
 
