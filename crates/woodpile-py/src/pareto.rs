@@ -111,46 +111,17 @@ impl ParetoSession {
     /// NSGA-II checkpoint). Ctrl-C keeps the last complete generation, then raises.
     #[pyo3(signature = (checkpoint=None))]
     fn run(&mut self, py: Python<'_>, checkpoint: Option<PathBuf>) -> PyResult<()> {
-        let stop = std::sync::atomic::AtomicBool::new(false);
         let config = &self.problem.config;
         let initial = self.state.take();
-        let ga = &self.ga;
-        let (outcome, raised) = crate::interrupt::detach_polling(py, || {
-            let mut write_error: Option<woodpile_io::Error> = None;
-            let mut observer = |s: &Nsga2State| {
-                let Some(path) = &checkpoint else {
-                    return ControlFlow::Continue(());
-                };
-                let json = serde_json::to_vec(&ParetoCheckpoint::new(config, s))
-                    .map_err(|e| woodpile_io::atomic::io_err(path)(std::io::Error::other(e)));
-                match json.and_then(|json| write_file(path, &json)) {
-                    Ok(()) => ControlFlow::Continue(()),
-                    Err(e) => {
-                        write_error = Some(e);
-                        ControlFlow::Break(())
-                    }
-                }
-            };
-            let outcome = ga.run(initial, &stop, &mut observer);
-            (outcome, write_error)
+        let (state, result) = run_nsga2(py, &self.ga, initial, checkpoint, |path, s| {
+            serde_json::to_vec(&ParetoCheckpoint::new(config, s))
+                .map_err(|e| woodpile_io::atomic::io_err(path)(std::io::Error::other(e)))
         });
-        woodpile::interrupt::clear();
-        let (outcome, write_error) = outcome;
-        let result = match outcome {
-            Ok((state, reason)) => {
-                self.state = Some(state);
-                self.reason = Some(reason);
-                Ok(())
-            }
-            Err(e) => Err(ga_err(e)),
-        };
-        if let Some(e) = write_error {
-            return Err(crate::errors::py_err(e));
+        if let Some((state, reason)) = state {
+            self.state = Some(state);
+            self.reason = Some(reason);
         }
-        match (result, raised) {
-            (_, Some(raised)) => Err(raised),
-            (result, None) => result,
-        }
+        result
     }
 
     /// Why the study stopped ("generation-limit", "stalled", "interrupted"...), None before.
@@ -405,43 +376,16 @@ impl LatticeParetoSession {
     /// lattice checkpoint). Ctrl-C keeps the last complete generation, then raises.
     #[pyo3(signature = (checkpoint=None))]
     fn run(&mut self, py: Python<'_>, checkpoint: Option<PathBuf>) -> PyResult<()> {
-        let stop = std::sync::atomic::AtomicBool::new(false);
         let initial = self.state.take();
-        let study = &self.study;
-        let (outcome, raised) = crate::interrupt::detach_polling(py, || {
-            let mut write_error: Option<woodpile_io::Error> = None;
-            let mut observer = |s: &Nsga2State| {
-                let Some(path) = &checkpoint else {
-                    return ControlFlow::Continue(());
-                };
-                match write_file(path, &checkpoint_json(&study.config, s)) {
-                    Ok(()) => ControlFlow::Continue(()),
-                    Err(e) => {
-                        write_error = Some(e);
-                        ControlFlow::Break(())
-                    }
-                }
-            };
-            let outcome = study.ga.run(initial, &stop, &mut observer);
-            (outcome, write_error)
+        let config = &self.study.config;
+        let (state, result) = run_nsga2(py, &self.study.ga, initial, checkpoint, |_, s| {
+            Ok(checkpoint_json(config, s))
         });
-        woodpile::interrupt::clear();
-        let (outcome, write_error) = outcome;
-        let result = match outcome {
-            Ok((state, reason)) => {
-                self.state = Some(state);
-                self.reason = Some(reason);
-                Ok(())
-            }
-            Err(e) => Err(ga_err(e)),
-        };
-        if let Some(e) = write_error {
-            return Err(crate::errors::py_err(e));
+        if let Some((state, reason)) = state {
+            self.state = Some(state);
+            self.reason = Some(reason);
         }
-        match (result, raised) {
-            (_, Some(raised)) => Err(raised),
-            (result, None) => result,
-        }
+        result
     }
 
     /// Continues from a checkpoint's text (`run(checkpoint=…)` or `woodpile optimize`'s).
@@ -530,4 +474,47 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<ParetoSession>()?;
     m.add_class::<LatticeParetoSession>()?;
     Ok(())
+}
+
+/// Runs NSGA-II from `initial` (or a fresh start) with the GIL released, its state written to
+/// `checkpoint` after every generation as `to_json` makes it. Returns the final state and why it
+/// stopped (kept even when an error is returned) and the error to raise: a failed checkpoint
+/// write first, then a Python exception (Ctrl-C), then the algorithm's own.
+fn run_nsga2<S: GenomeSpace>(
+    py: Python<'_>,
+    ga: &Nsga2<S>,
+    initial: Option<Nsga2State>,
+    checkpoint: Option<PathBuf>,
+    to_json: impl Fn(&Path, &Nsga2State) -> Result<Vec<u8>, woodpile_io::Error> + Sync,
+) -> (Option<(Nsga2State, StopReason)>, PyResult<()>) {
+    let stop = std::sync::atomic::AtomicBool::new(false);
+    let (outcome, raised) = crate::interrupt::detach_polling(py, || {
+        let mut write_error: Option<woodpile_io::Error> = None;
+        let mut observer = |s: &Nsga2State| {
+            let Some(path) = &checkpoint else {
+                return ControlFlow::Continue(());
+            };
+            match to_json(path, s).and_then(|json| write_file(path, &json)) {
+                Ok(()) => ControlFlow::Continue(()),
+                Err(e) => {
+                    write_error = Some(e);
+                    ControlFlow::Break(())
+                }
+            }
+        };
+        let outcome = ga.run(initial, &stop, &mut observer);
+        (outcome, write_error)
+    });
+    woodpile::interrupt::clear();
+    let (outcome, write_error) = outcome;
+    let (state, result) = match outcome {
+        Ok(done) => (Some(done), Ok(())),
+        Err(e) => (None, Err(ga_err(e))),
+    };
+    let result = match (write_error, raised) {
+        (Some(e), _) => Err(crate::errors::py_err(e)),
+        (None, Some(raised)) => Err(raised),
+        (None, None) => result,
+    };
+    (state, result)
 }
