@@ -130,9 +130,13 @@ struct Scratch {
 }
 
 impl GraphModalIntegrator {
-    /// A stepper for the lattice `ode` from its initial state, with tolerances rtol and atol
-    /// \[m\] on the contacts' points and a first step `h0`.
-    pub fn new(ode: &LatticeOde, rtol: f64, atol: f64, h0: f64) -> Self {
+    /// A stepper for the lattice `ode` from its initial state over `duration_s`, with
+    /// tolerances rtol and atol \[m\] on the contacts' points. The first step tried is a
+    /// hundredth of the longest (of the run, if shorter): the steps do not depend on how the
+    /// run is sampled, so a design study's runs, which take one sample, give `simulate`'s bits.
+    pub fn new(ode: &LatticeOde, rtol: f64, atol: f64, duration_s: f64) -> Self {
+        let max_step_s = MAX_STEP_OF_CONTACT_TIME * ode.striker_contact_time_s();
+        let h0 = 0.01 * max_step_s.min(duration_s);
         let q = ode.coordinates();
         let (mut frequencies, mut frequency_index) = (Vec::<f64>::new(), Vec::with_capacity(q));
         for &w2 in &ode.omega2 {
@@ -164,7 +168,7 @@ impl GraphModalIntegrator {
             largest_overlap: ode.overlap_m.iter().map(|d| d.max(0.0)).collect(),
             overlap: ode.overlap_m.clone(),
             control: StepControl::new(h0),
-            max_step_s: MAX_STEP_OF_CONTACT_TIME * ode.striker_contact_time_s(),
+            max_step_s,
             ladder: Ladder::default(),
             lagrange: lagrange(),
             stats: IntegratorStats {

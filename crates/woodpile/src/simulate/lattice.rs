@@ -84,10 +84,9 @@ enum Stepper {
 impl Stepper {
     fn new(ode: &mut LatticeOde, method: Method, settings: &RunSettings) -> Self {
         match method {
-            Method::ExactModes { rtol, atol } => {
-                let h0 = FIRST_STEP_OF_SAMPLE * settings.sample_interval_s.min(settings.duration_s);
-                Stepper::ExactModes(Box::new(GraphModalIntegrator::new(ode, rtol, atol, h0)))
-            }
+            Method::ExactModes { rtol, atol } => Stepper::ExactModes(Box::new(
+                GraphModalIntegrator::new(ode, rtol, atol, settings.duration_s),
+            )),
             _ => {
                 let (y0, units) = (ode.initial_state(), ode.tolerance_units());
                 Stepper::Explicit(Box::new(Integrator::new(
@@ -137,9 +136,6 @@ impl Stepper {
         }
     }
 }
-
-/// The first step the exact modal method tries \[s\]: a hundredth of the sample interval.
-const FIRST_STEP_OF_SAMPLE: f64 = 0.01;
 
 /// The exact modal method's rtol on a lattice, as a fraction of a stated peak tolerance. On the
 /// chains the rule is tolerance / (3 · 1.3) (docs/physics.md §8); on lattices the error of small
