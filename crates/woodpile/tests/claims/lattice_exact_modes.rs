@@ -25,7 +25,7 @@ fn run(method: Method, duration_s: f64) -> LatticeRun {
 /// 1e-12 to 3e-10, examples/lattice_exact.rs), every contact peak above 1 % of the largest is
 /// within the stated 1e-5 (smaller peaks are the far supports', whose relative error is not what
 /// the tolerance states), in at most a quarter of the steps RKN 6(4) takes at the rtol that
-/// tolerance gives it (their step is set by the stiffest mode's stability; measured 1,376
+/// tolerance gives it (their step is set by the stiffest mode's stability; measured 1,374
 /// against 6,434).
 #[test]
 fn exact_modes_meets_the_peak_tolerance_in_fewer_steps() {
