@@ -26,7 +26,8 @@
 //! (`contact_peak_forces_n` in that order, the transmitted peak, the energy balance),
 //! `forces.csv` / `forces_n.npy` (samples × contacts), `supports.csv` (each support's force and
 //! their sum, `transmitted_n`), `energy.csv` (with damping or loads also `work_j`,
-//! `dissipated_j`; `summary.json` then has `lab`) and `time_s.npy`. Under a blast or drive the
+//! `dissipated_j`; `summary.json` then has `lab`), each body's energy (`rod_energies.csv`,
+//! `energy_j.npy`, `support_energy_j.npy`) and `time_s.npy`. Under a blast or drive the
 //! load points are the contacts of layer 0.
 //! [`read_lattice_run`] reads `run.json`, `time_s.npy` and `forces_n.npy` back (for figures).
 
@@ -55,8 +56,11 @@ pub const LATTICE_RUN_FILES: &[&str] = &[
     "forces.csv",
     "supports.csv",
     "energy.csv",
+    "rod_energies.csv",
     "forces_n.npy",
     "time_s.npy",
+    "energy_j.npy",
+    "support_energy_j.npy",
 ];
 
 /// A whole lattice scenario file.
@@ -1186,6 +1190,7 @@ pub fn write_lattice_run(
             }),
     )?;
     write_energy_csv(dir, run)?;
+    write_body_energies(dir, lattice, run)?;
     let n = run.times_s.len() as u64;
     crate::rundir::write_npy(
         &dir.join("forces_n.npy"),
@@ -1195,6 +1200,49 @@ pub fn write_lattice_run(
     crate::rundir::write_npy(&dir.join("time_s.npy"), &[n], &run.times_s)?;
     crate::rundir::write_json(&dir.join("summary.json"), &summary)?;
     crate::rundir::write_json(&dir.join("run.json"), &run_json)
+}
+
+/// Each body's energy as a chain's layer energy (kinetic, strain and half of each of its
+/// contacts' potential): `rod_energies.csv` (`striker_j` when struck, `layer_{k}_rod_{i}_j`,
+/// `supports_j`: the supports' halves) and `energy_j.npy` (samples × bodies) with
+/// `support_energy_j.npy`.
+fn write_body_energies(dir: &Path, lattice: &Lattice, run: &LatticeRun) -> Result<(), Error> {
+    let struck = run.bodies > lattice.rods.len();
+    let mut header = vec!["time_s".to_string()];
+    if struck {
+        header.push("striker_j".into());
+    }
+    header.extend(
+        lattice
+            .rods
+            .iter()
+            .map(|r| format!("layer_{}_rod_{}_j", r.layer, r.number)),
+    );
+    header.push("supports_j".into());
+    crate::rundir::write_csv(
+        &dir.join("rod_energies.csv"),
+        &header,
+        &run.times_s,
+        run.body_energies_j
+            .chunks(run.bodies)
+            .zip(&run.support_energy_j)
+            .map(|(row, &s)| {
+                let mut v = row.to_vec();
+                v.push(s);
+                v
+            }),
+    )?;
+    let n = run.times_s.len() as u64;
+    crate::rundir::write_npy(
+        &dir.join("energy_j.npy"),
+        &[n, run.bodies as u64],
+        &run.body_energies_j,
+    )?;
+    crate::rundir::write_npy(
+        &dir.join("support_energy_j.npy"),
+        &[n],
+        &run.support_energy_j,
+    )
 }
 
 /// `energy.csv`: E(t) (`total_j`), and with lab physics the work W(t) (`work_j`) and the

@@ -209,3 +209,52 @@ fn bad_lattices_exit_2_naming_the_key() {
         &["unknown field `colour`"],
     );
 }
+
+/// Each body's energy (`rod_energies.csv`: the striker, every rod as `layer_{k}_rod_{i}_j`, the
+/// supports' halves) adds up to `energy.csv`'s total at every sample (1e-12 of the largest: both
+/// are sums of the same terms in another order), and `energy_j.npy` holds samples × (1 + rods).
+#[test]
+fn rod_energies_add_up_to_the_total() {
+    let dir = tempfile::tempdir().unwrap();
+    common::write(dir.path(), "lat.toml", LATTICE);
+    let out = common::run_in(
+        dir.path(),
+        &["simulate", "lat.toml", "--out", "out", "--quiet"],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let read = |name: &str| -> (String, Vec<Vec<f64>>) {
+        let text = std::fs::read_to_string(dir.path().join("out").join(name)).unwrap();
+        let mut lines = text.lines();
+        let header = lines.next().unwrap().to_string();
+        let rows = lines
+            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+            .collect();
+        (header, rows)
+    };
+    let (header, bodies) = read("rod_energies.csv");
+    assert_eq!(
+        header,
+        "time_s,striker_j,layer_1_rod_1_j,layer_1_rod_2_j,layer_1_rod_3_j,layer_2_rod_1_j,layer_2_rod_2_j,supports_j"
+    );
+    let (_, totals) = read("energy.csv");
+    assert_eq!(bodies.len(), totals.len());
+    let largest = totals.iter().fold(0.0_f64, |m, r| m.max(r[1]));
+    for (b, t) in bodies.iter().zip(&totals) {
+        let sum: f64 = b[1..].iter().sum();
+        assert!(
+            (sum - t[1]).abs() <= 1e-12 * largest,
+            "{sum} against {}",
+            t[1]
+        );
+    }
+    let npy = std::fs::read(dir.path().join("out/energy_j.npy")).unwrap();
+    let header = String::from_utf8_lossy(&npy[10..npy.len().min(128)]).to_string();
+    assert!(
+        header.contains(&format!("({}, 6)", bodies.len())),
+        "{header}"
+    );
+}

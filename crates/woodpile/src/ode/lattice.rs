@@ -368,6 +368,37 @@ impl LatticeOde {
         }
     }
 
+    /// Number of bodies: the striker (if any) and the rods.
+    pub fn bodies(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// Each body's energy in state y into `out` (one per body: the striker first, if any, then
+    /// the rods in the lattice's order), as a chain's layer energies (docs/physics.md §7): its
+    /// modes' kinetic and strain energy Σ ½ (q̇_j² + ω_j² q_j²) plus half of the Hertz potential
+    /// of every contact it takes part in. Returns the supports' halves \[J\]; the sum of both
+    /// is [`LatticeOde::energy_j`].
+    pub fn body_energies_j(&self, y: &[f64], out: &mut [f64]) -> f64 {
+        let q = self.coordinates();
+        let (x, v) = (&y[..q], &y[q + 3..2 * q + 3]);
+        for (e, &(offset, len, _, _)) in out.iter_mut().zip(&self.bodies) {
+            *e = (offset..offset + len)
+                .map(|j| 0.5 * (v[j] * v[j] + self.omega2[j] * x[j] * x[j]))
+                .sum();
+        }
+        let body = |side: Side| self.bodies.partition_point(|b| b.0 <= side.offset) - 1;
+        let mut supports = 0.0;
+        for c in self.loads..self.beta.len() {
+            let half = 0.5 * ContactLaw::potential_j(self.beta[c], self.overlap(c, x));
+            out[body(self.above[c])] += half;
+            match self.below[c] {
+                Some(b) => out[body(b)] += half,
+                None => supports += half,
+            }
+        }
+        supports
+    }
+
     /// Kinetic, modal strain and contact energy of a state \[J\].
     pub fn energy_j(&self, y: &[f64]) -> f64 {
         let q = self.coordinates();

@@ -51,6 +51,13 @@ pub struct LatticeRun {
     pub contacts: usize,
     /// Indices of the support contacts.
     pub supports: Vec<usize>,
+    /// Each body's energy, sample by sample (`bodies` per sample: the striker first, if any,
+    /// then the rods; [`LatticeOde::body_energies_j`]) \[J\].
+    pub body_energies_j: Vec<f64>,
+    /// The supports' halves of their contacts' potential, per sample \[J\].
+    pub support_energy_j: Vec<f64>,
+    /// Number of bodies per sample.
+    pub bodies: usize,
     /// Integrator counters.
     pub stats: IntegratorStats,
     /// The method the run took ([`lattice_method`]).
@@ -210,6 +217,9 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         momentum: Vec::new(),
         contacts: nc,
         supports,
+        body_energies_j: Vec::new(),
+        support_energy_j: Vec::new(),
+        bodies: ode.bodies(),
         stats: IntegratorStats::default(),
         method,
     };
@@ -312,6 +322,10 @@ fn record(ode: &mut LatticeOde, run: &mut LatticeRun, t: f64, y: &[f64]) {
     run.times_s.push(t);
     run.contact_forces_n.extend_from_slice(&ode.force_n);
     run.energy_j.push(ode.energy_j(y));
+    let start = run.body_energies_j.len();
+    run.body_energies_j.resize(start + run.bodies, 0.0);
+    let supports = ode.body_energies_j(y, &mut run.body_energies_j[start..]);
+    run.support_energy_j.push(supports);
     if ode.has_lab() {
         let (w, d) = ode.work_and_dissipation_j(y);
         run.work_j.push(w);
