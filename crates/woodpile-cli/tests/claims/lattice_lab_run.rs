@@ -39,15 +39,7 @@ duration_s = 3e-4
 fn damped_blast_run_writes_the_lattice_format() {
     let dir = tempfile::tempdir().unwrap();
     common::write(dir.path(), "lat.toml", BLAST);
-    let out = common::run_in(
-        dir.path(),
-        &["simulate", "lat.toml", "--out", "out", "--quiet"],
-    );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    common::simulate_ok(dir.path(), "lat.toml");
     let run = common::json(&dir.path().join("out/run.json"));
     let contacts = run["contacts"].as_array().unwrap();
     // 6 load points + 3 × 2 crossings + 2 supports.
@@ -104,23 +96,10 @@ fn damped_blast_run_writes_the_lattice_format() {
     assert!(balance < 1e-6, "{balance}");
 }
 
-fn refused(name: &str, scenario: &str, expected: &[&str]) {
-    let dir = tempfile::tempdir().unwrap();
-    common::write(dir.path(), "s.toml", scenario);
-    let out = common::run_in(dir.path(), &["simulate", "s.toml", "--out", "out"]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
-    assert!(stderr.starts_with("error: "), "{name}: {stderr}");
-    for e in expected {
-        assert!(stderr.contains(e), "{name}: expected `{e}` in: {stderr}");
-    }
-    assert!(!dir.path().join("out").exists(), "{name}: output dir left");
-}
-
 #[test]
 fn bad_lab_input_exits_2_naming_the_key() {
     let blast = |old: &str, new: &str| BLAST.replace(old, new);
-    refused(
+    common::refused_scenario(
         "point off the top layer",
         &blast(
             "kind = \"blast\"",
@@ -132,7 +111,7 @@ fn bad_lab_input_exits_2_naming_the_key() {
             "no rod of the top layer",
         ],
     );
-    refused(
+    common::refused_scenario(
         "unknown points",
         &blast(
             "kind = \"blast\"",
@@ -140,12 +119,12 @@ fn bad_lab_input_exits_2_naming_the_key() {
         ),
         &["excitation.points", "\"everywhere\"", "top-crossings"],
     );
-    refused(
+    common::refused_scenario(
         "at_mm with a blast",
         &blast("kind = \"blast\"", "kind = \"blast\"\nat_mm = [0.0, 0.0]"),
         &["excitation.at_mm", "striker's impact point", "points_mm"],
     );
-    refused(
+    common::refused_scenario(
         "displacement drive",
         &blast(
             "kind = \"blast\"\npeak_force_n = 60.0\nduration_s = 1e-4",
@@ -153,22 +132,22 @@ fn bad_lab_input_exits_2_naming_the_key() {
         ),
         &["excitation.drive", "\"displacement\"", "drive = \"force\""],
     );
-    refused(
+    common::refused_scenario(
         "negative modal ratio",
         &blast("modal_ratio = 0.01", "modal_ratio = -0.01"),
         &["damping.modal_ratio", "-0.01", ">= 0"],
     );
-    refused(
+    common::refused_scenario(
         "resonator damping",
         &blast("modal_ratio = 0.01", "resonator_ratio = 0.05"),
         &["damping.resonator_ratio", "0.05", "damping.modal_ratio"],
     );
-    refused(
+    common::refused_scenario(
         "hunt-crossley without v_in",
         &blast("contact = \"restitution\"", "contact = \"hunt-crossley\""),
         &["damping.impact_speed_m_s", "v_in"],
     );
-    refused(
+    common::refused_scenario(
         "rest without a load",
         &blast(
             "kind = \"blast\"\npeak_force_n = 60.0\nduration_s = 1e-4",
@@ -177,7 +156,7 @@ fn bad_lab_input_exits_2_naming_the_key() {
         .replace("gravity_m_s2 = 9.81", ""),
         &["excitation.kind", "\"rest\"", "[preload]"],
     );
-    refused(
+    common::refused_scenario(
         "points with an impact",
         &blast(
             "kind = \"blast\"\npeak_force_n = 60.0\nduration_s = 1e-4",
@@ -185,7 +164,7 @@ fn bad_lab_input_exits_2_naming_the_key() {
         ),
         &["excitation.points", "at_mm"],
     );
-    refused(
+    common::refused_scenario(
         "modal ratio in a chain",
         "[chain]\nrods_mm = [40, 40]\n[damping]\nmodal_ratio = 0.01\n",
         &["damping.modal_ratio", "0.01", "resonator_ratio"],

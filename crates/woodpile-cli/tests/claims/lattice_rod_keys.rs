@@ -26,32 +26,11 @@ at_mm = [0.0, 0.0]
 duration_s = 1e-4
 "#;
 
-fn refused(name: &str, scenario: &str, expected: &[&str]) {
-    let dir = tempfile::tempdir().unwrap();
-    common::write(dir.path(), "s.toml", scenario);
-    let out = common::run_in(dir.path(), &["simulate", "s.toml", "--out", "out"]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
-    assert!(stderr.starts_with("error: "), "{name}: {stderr}");
-    for e in expected {
-        assert!(stderr.contains(e), "{name}: expected `{e}` in: {stderr}");
-    }
-    assert!(!dir.path().join("out").exists(), "{name}: output dir left");
-}
-
 #[test]
 fn staggered_graded_layer_runs_with_its_crossings() {
     let dir = tempfile::tempdir().unwrap();
     common::write(dir.path(), "lat.toml", LATTICE);
-    let out = common::run_in(
-        dir.path(),
-        &["simulate", "lat.toml", "--out", "out", "--quiet"],
-    );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    common::simulate_ok(dir.path(), "lat.toml");
     let run = common::json(&dir.path().join("out/run.json"));
     let contacts = run["contacts"].as_array().unwrap();
     let crossings: Vec<_> = contacts
@@ -92,15 +71,7 @@ fn analytic_modes_rod_runs() {
     let dir = tempfile::tempdir().unwrap();
     let scenario = LATTICE.replace("rod = { fe_elements = 2 }", "rod = { modes = 4 }");
     common::write(dir.path(), "lat.toml", &scenario);
-    let out = common::run_in(
-        dir.path(),
-        &["simulate", "lat.toml", "--out", "out", "--quiet"],
-    );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    common::simulate_ok(dir.path(), "lat.toml");
     let run = common::json(&dir.path().join("out/run.json"));
     assert_eq!(run["scenario"]["lattice"]["rod"]["modes"], 4);
     assert!(run["scenario"]["lattice"]["rod"]
@@ -112,7 +83,7 @@ fn analytic_modes_rod_runs() {
 
 #[test]
 fn bad_per_rod_keys_exit_2_naming_the_key() {
-    refused(
+    common::refused_scenario(
         "both rod models",
         &LATTICE.replace(
             "rod = { fe_elements = 2 }",
@@ -120,17 +91,17 @@ fn bad_per_rod_keys_exit_2_naming_the_key() {
         ),
         &["lattice.rod.modes", "alternatives"],
     );
-    refused(
+    common::refused_scenario(
         "no bending mode",
         &LATTICE.replace("rod = { fe_elements = 2 }", "rod = { modes = 0 }"),
         &["lattice.rod.modes", "at least 1"],
     );
-    refused(
+    common::refused_scenario(
         "above the shear cutoff",
         &LATTICE.replace("rod = { fe_elements = 2 }", "rod = { modes = 500 }"),
         &["lattice.rod.modes", "500", "shear cutoff"],
     );
-    refused(
+    common::refused_scenario(
         "count",
         &LATTICE.replace(
             "lengths_mm = [80.0, 30.0, 80.0]",
@@ -142,7 +113,7 @@ fn bad_per_rod_keys_exit_2_naming_the_key() {
             "one entry per rod of the layer: 3",
         ],
     );
-    refused(
+    common::refused_scenario(
         "length",
         &LATTICE.replace(
             "lengths_mm = [80.0, 30.0, 80.0]",
@@ -150,7 +121,7 @@ fn bad_per_rod_keys_exit_2_naming_the_key() {
         ),
         &["lattice.layers[1].lengths_mm[1]", "> 0"],
     );
-    refused(
+    common::refused_scenario(
         "rod moved off",
         &LATTICE.replace(
             "offsets_mm = [-15.0, 0.0, 15.0]",
@@ -165,7 +136,7 @@ fn bad_per_rod_keys_exit_2_naming_the_key() {
     let lengths: Vec<String> = (0..101)
         .map(|i| format!("{}", 60.0 + 0.1 * i as f64))
         .collect();
-    refused(
+    common::refused_scenario(
         "distinct rods",
         &LATTICE
             .replace(

@@ -35,15 +35,7 @@ duration_s = 3e-4
 fn lattice_run_directory_lists_its_contacts() {
     let dir = tempfile::tempdir().unwrap();
     common::write(dir.path(), "lat.toml", LATTICE);
-    let out = common::run_in(
-        dir.path(),
-        &["simulate", "lat.toml", "--out", "out", "--quiet"],
-    );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    common::simulate_ok(dir.path(), "lat.toml");
     let run = common::json(&dir.path().join("out/run.json"));
     let contacts = run["contacts"].as_array().unwrap();
     // 1 striker + 3 × 2 crossings + 2 supports.
@@ -142,27 +134,14 @@ fn lattice_run_directory_lists_its_contacts() {
     assert!(stderr.contains("forces_n.npy"), "{stderr}");
 }
 
-fn refused(name: &str, scenario: &str, expected: &[&str]) {
-    let dir = tempfile::tempdir().unwrap();
-    common::write(dir.path(), "s.toml", scenario);
-    let out = common::run_in(dir.path(), &["simulate", "s.toml", "--out", "out"]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
-    assert!(stderr.starts_with("error: "), "{name}: {stderr}");
-    for e in expected {
-        assert!(stderr.contains(e), "{name}: expected `{e}` in: {stderr}");
-    }
-    assert!(!dir.path().join("out").exists(), "{name}: output dir left");
-}
-
 #[test]
 fn bad_lattices_exit_2_naming_the_key() {
-    refused(
+    common::refused_scenario(
         "layers apart",
         &LATTICE.replace("{ rods = 2 }", "{ rods = 2, pitch_mm = 100.0 }"),
         &["lattice.layers[1]", "do not touch"],
     );
-    refused(
+    common::refused_scenario(
         "support",
         &LATTICE.replace(
             "supports = \"centres\"",
@@ -170,12 +149,12 @@ fn bad_lattices_exit_2_naming_the_key() {
         ),
         &["wall.supports[1]", "y_mm = 50"],
     );
-    refused(
+    common::refused_scenario(
         "impact",
         &LATTICE.replace("at_mm = [10.0, 0.0]", "at_mm = [10.0, 10.0]"),
         &["excitation.at_mm", "[10, 10]"],
     );
-    refused(
+    common::refused_scenario(
         "drop height",
         &LATTICE.replace(
             "kind = \"impact\"",
@@ -183,19 +162,19 @@ fn bad_lattices_exit_2_naming_the_key() {
         ),
         &["excitation.drop_height_m", "-0.2"],
     );
-    refused(
+    common::refused_scenario(
         "too many rods",
         &LATTICE.replace("{ rods = 2 }", "{ rods = 100000 }"),
         &["lattice.layers", "100003 rods in all", "at most 10000"],
     );
-    refused(
+    common::refused_scenario(
         "too many crossings",
         &LATTICE
             .replace("rods = 3, pitch_mm = 20.0", "rods = 4000, pitch_mm = 20.0")
             .replace("{ rods = 2 }", "{ rods = 4000 }"),
         &["lattice.layers", "16000000 crossings", "at most 100000"],
     );
-    refused(
+    common::refused_scenario(
         "output size",
         &LATTICE.replace(
             "duration_s = 3e-4",
@@ -203,7 +182,7 @@ fn bad_lattices_exit_2_naming_the_key() {
         ),
         &["run.sample_interval_s", "GB of output", "--allow-large"],
     );
-    refused(
+    common::refused_scenario(
         "unknown key",
         &LATTICE.replace("{ rods = 2 }", "{ rods = 2, colour = \"red\" }"),
         &["unknown field `colour`"],
@@ -217,15 +196,7 @@ fn bad_lattices_exit_2_naming_the_key() {
 fn rod_energies_add_up_to_the_total() {
     let dir = tempfile::tempdir().unwrap();
     common::write(dir.path(), "lat.toml", LATTICE);
-    let out = common::run_in(
-        dir.path(),
-        &["simulate", "lat.toml", "--out", "out", "--quiet"],
-    );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    common::simulate_ok(dir.path(), "lat.toml");
     let read = |name: &str| -> (String, Vec<Vec<f64>>) {
         let text = std::fs::read_to_string(dir.path().join("out").join(name)).unwrap();
         let mut lines = text.lines();

@@ -14,10 +14,11 @@
 //! force and mass of all 18 designs. Thread independence is exact: every design is one
 //! scalar run, and every random draw is made on the calling thread.
 
+use super::optimize_nsga2_exhaustive::exhaustive_front;
 use std::ops::ControlFlow;
 use std::sync::atomic::AtomicBool;
 use woodpile::model::{LatticeBuilder, LayerSpec};
-use woodpile::optimize::pareto::{hypervolume, non_dominated_fronts};
+use woodpile::optimize::pareto::hypervolume;
 use woodpile::optimize::{
     DesignFigure, GenomeSpace, LatticeDesignSpace, LatticeDesigns, Nsga2, Nsga2Settings,
     Nsga2State, StandardObjective,
@@ -83,18 +84,7 @@ fn nsga2_finds_the_exhaustive_lattice_front_whatever_the_threads() {
     assert_eq!(all.len(), 18);
     let refs: Vec<&[u8]> = all.iter().map(Vec::as_slice).collect();
     let values = enumerator.evaluate(&refs).unwrap();
-    let points: Vec<Vec<f64>> = values.iter().map(|i| i.objectives.clone()).collect();
-    let worst = |k: usize| points.iter().map(|p| p[k]).fold(f64::MIN, f64::max);
-    let best = |k: usize| points.iter().map(|p| p[k]).fold(f64::MAX, f64::min);
-    let reference: Vec<f64> = (0..2)
-        .map(|k| worst(k) + 0.1 * (worst(k) - best(k)))
-        .collect();
-    let zeros = vec![0.0; points.len()];
-    let exhaustive: Vec<Vec<f64>> = non_dominated_fronts(&points, &zeros)[0]
-        .iter()
-        .map(|&k| points[k].clone())
-        .collect();
-    let exhaustive_hv = hypervolume(&exhaustive, &reference);
+    let (reference, exhaustive, exhaustive_hv) = exhaustive_front(&values);
     assert!(
         exhaustive.len() >= 3,
         "a front of {} designs is too small for the claim to mean anything",

@@ -14,7 +14,9 @@
 use std::ops::ControlFlow;
 use std::sync::atomic::AtomicBool;
 use woodpile::optimize::pareto::{hypervolume, non_dominated_fronts};
-use woodpile::optimize::{DesignFigure, DesignSpace, Nsga2, Nsga2Settings, StandardObjective};
+use woodpile::optimize::{
+    DesignFigure, DesignSpace, MoIndividual, Nsga2, Nsga2Settings, StandardObjective,
+};
 use woodpile::{CellModel, Element, Method, RunSettings};
 
 fn space() -> DesignSpace {
@@ -53,18 +55,7 @@ fn nsga2_front_holds_99_percent_of_the_exhaustive_hypervolume() {
         .collect();
     let enumerator = Nsga2::new(space(), objectives(), settings.clone()).unwrap();
     let values = enumerator.evaluate_designs(&all).unwrap();
-    let points: Vec<Vec<f64>> = values.iter().map(|i| i.objectives.clone()).collect();
-    let worst = |k: usize| points.iter().map(|p| p[k]).fold(f64::MIN, f64::max);
-    let best = |k: usize| points.iter().map(|p| p[k]).fold(f64::MAX, f64::min);
-    let reference: Vec<f64> = (0..2)
-        .map(|k| worst(k) + 0.1 * (worst(k) - best(k)))
-        .collect();
-    let zeros = vec![0.0; points.len()];
-    let exhaustive: Vec<Vec<f64>> = non_dominated_fronts(&points, &zeros)[0]
-        .iter()
-        .map(|&k| points[k].clone())
-        .collect();
-    let exhaustive_hv = hypervolume(&exhaustive, &reference);
+    let (reference, exhaustive, exhaustive_hv) = exhaustive_front(&values);
     assert!(
         exhaustive.len() >= 3,
         "a front of {} designs is too small for the claim to mean anything",
@@ -109,4 +100,22 @@ fn nsga2_front_holds_99_percent_of_the_exhaustive_hypervolume() {
             "history.csv's last hypervolume is the final front's"
         );
     }
+}
+
+/// The exhaustive front of every design's two objectives, the reference point (each objective's
+/// worst plus a tenth of its range) and the front's hypervolume.
+pub(crate) fn exhaustive_front(values: &[MoIndividual]) -> (Vec<f64>, Vec<Vec<f64>>, f64) {
+    let points: Vec<Vec<f64>> = values.iter().map(|i| i.objectives.clone()).collect();
+    let worst = |k: usize| points.iter().map(|p| p[k]).fold(f64::MIN, f64::max);
+    let best = |k: usize| points.iter().map(|p| p[k]).fold(f64::MAX, f64::min);
+    let reference: Vec<f64> = (0..2)
+        .map(|k| worst(k) + 0.1 * (worst(k) - best(k)))
+        .collect();
+    let zeros = vec![0.0; points.len()];
+    let exhaustive: Vec<Vec<f64>> = non_dominated_fronts(&points, &zeros)[0]
+        .iter()
+        .map(|&k| points[k].clone())
+        .collect();
+    let hv = hypervolume(&exhaustive, &reference);
+    (reference, exhaustive, hv)
 }

@@ -44,3 +44,28 @@ pub fn leftovers(dir: &Path) -> Vec<String> {
 pub fn json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).expect("read json")).expect("valid json")
 }
+
+/// `woodpile simulate NAME --out out --quiet` in `dir`, which must succeed.
+pub fn simulate_ok(dir: &Path, name: &str) {
+    let out = run_in(dir, &["simulate", name, "--out", "out", "--quiet"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// `woodpile simulate` of `scenario` must exit 2 with an error holding every `expected` text
+/// and leave no output directory (`name` labels the case).
+pub fn refused_scenario(name: &str, scenario: &str, expected: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "s.toml", scenario);
+    let out = run_in(dir.path(), &["simulate", "s.toml", "--out", "out"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
+    assert!(stderr.starts_with("error: "), "{name}: {stderr}");
+    for e in expected {
+        assert!(stderr.contains(e), "{name}: expected `{e}` in: {stderr}");
+    }
+    assert!(!dir.path().join("out").exists(), "{name}: output dir left");
+}
