@@ -147,9 +147,10 @@ pub fn kernel(theta: f64, z: f64) -> Kernel {
     kern
 }
 
-/// The weights of one step size h for a chain, per mode (contiguous, so that the passes over the
-/// modes are plain vector loops): the free motion at the nodes, the end-of-step update, and per
-/// primary its response to the force polynomial summed over its modes.
+/// The weights of one step size h for a chain, per mode of each distinct element (equal cells
+/// share theirs; contiguous, so that the passes over the modes are plain vector loops): the free
+/// motion at the nodes, the end-of-step update, and per distinct element its primary's response
+/// to the force polynomial summed over its modes.
 #[derive(Debug, Clone)]
 pub(crate) struct StepWeights {
     /// Per node σ = c₁, c₂, 1 and mode: cos(σz) and h sin(σz)/z.
@@ -160,9 +161,9 @@ pub(crate) struct StepWeights {
     /// Per n = 0..3 and mode: h² S_n(1, z)/μ and h C_n(1, z)/μ, the end state's response to σⁿ.
     pub pos_force: [Vec<f64>; 4],
     pub vel_force: [Vec<f64>; 4],
-    /// Per primary: Σ_k S_n(c_j, z_k)/μ_k, node j = 1..3 (rows), n = 0..3.
+    /// Per distinct element: Σ_k S_n(c_j, z_k)/μ_k, node j = 1..3 (rows), n = 0..3.
     pub response: Vec<[[f64; 4]; 3]>,
-    /// Per primary: the position and velocity error weights, Σ_k W(z_k)/μ_k with W the kernels
+    /// Per distinct element: the position and velocity error weights, Σ_k W(z_k)/μ_k with W the kernels
     /// against σ(σ − ½)(σ − 1) (the cubic's part its quadratic through 0, ½, 1 lacks).
     pub error: Vec<(f64, f64)>,
 }
@@ -172,7 +173,7 @@ pub(crate) const ERROR_POLY: [f64; 4] = [0.0, 0.5, -1.5, 1.0];
 
 impl StepWeights {
     /// The weights for step h of a chain with distinct frequencies `frequencies`, per mode its
-    /// frequency index and 1/μ, per primary its range of modes.
+    /// frequency index and 1/μ, per distinct element its range of modes.
     pub fn new(
         h: f64,
         frequencies: &[f64],
@@ -231,8 +232,9 @@ impl StepWeights {
         }
     }
 
-    /// Σ over the modes `range` of cos(σ_j z) c + h sin(σ_j z)/z ċ: a primary's free position at
-    /// node j (four partial sums, so that the loop runs in vectors).
+    /// Σ over the modes of a distinct element (`range`, its primary's amplitudes and rates
+    /// `c`, `cdot`) of cos(σ_j z) c + h sin(σ_j z)/z ċ: the primary's free position at node j
+    /// (four partial sums, so that the loop runs in vectors).
     pub fn free_position(
         &self,
         j: usize,
@@ -240,8 +242,7 @@ impl StepWeights {
         c: &[f64],
         cdot: &[f64],
     ) -> f64 {
-        let (cos, hsinc) = (&self.cos[j][range.clone()], &self.hsinc[j][range.clone()]);
-        let (c, cdot) = (&c[range.clone()], &cdot[range]);
+        let (cos, hsinc) = (&self.cos[j][range.clone()], &self.hsinc[j][range]);
         let mut acc = [0.0; 4];
         let mut chunks = cos
             .chunks_exact(4)
@@ -259,15 +260,18 @@ impl StepWeights {
         (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
     }
 
-    /// Advances the modes `range` of one primary over the step under its force polynomial `a`
-    /// (monomials in σ, \[N\]): (c, ċ) into (c1, ċ1).
+    /// Advances the modes of one primary (its distinct element's `range`; μ_k and Ω_k² of
+    /// those modes in `modes`) over the step under its force polynomial `a` (monomials in σ,
+    /// \[N\]): (c, ċ) into (c1, ċ1). Returns, at the end, Σ c, Σ ċ, Σ Ω² c and the modes'
+    /// energy Σ ½ μ (ċ² + Ω² c²), summed in the same pass.
     pub fn advance(
         &self,
         range: std::ops::Range<usize>,
         a: &[f64; 4],
+        modes: (&[f64], &[f64]),
         (c, cdot): (&[f64], &[f64]),
         (c1, cdot1): (&mut [f64], &mut [f64]),
-    ) {
+    ) -> [f64; 4] {
         let r = range;
         let (cos, hsinc, vp) = (
             &self.cos[2][r.clone()],
@@ -276,15 +280,22 @@ impl StepWeights {
         );
         let [p0, p1, p2, p3] = [0, 1, 2, 3].map(|n| &self.pos_force[n][r.clone()]);
         let [v0, v1, v2, v3] = [0, 1, 2, 3].map(|n| &self.vel_force[n][r.clone()]);
-        let (c, cdot) = (&c[r.clone()], &cdot[r.clone()]);
-        let (c1, cdot1) = (&mut c1[r.clone()], &mut cdot1[r]);
+        let (mu, w2) = modes;
+        let mut sums = [0.0; 4];
         for m in 0..c.len() {
-            c1[m] = cos[m] * c[m]
+            let x = cos[m] * c[m]
                 + hsinc[m] * cdot[m]
                 + (p0[m] * a[0] + p1[m] * a[1] + p2[m] * a[2] + p3[m] * a[3]);
-            cdot1[m] = vp[m] * c[m]
+            let v = vp[m] * c[m]
                 + cos[m] * cdot[m]
                 + (v0[m] * a[0] + v1[m] * a[1] + v2[m] * a[2] + v3[m] * a[3]);
+            c1[m] = x;
+            cdot1[m] = v;
+            sums[0] += x;
+            sums[1] += v;
+            sums[2] += w2[m] * x;
+            sums[3] += 0.5 * mu[m] * (v * v + w2[m] * x * x);
         }
+        sums
     }
 }

@@ -52,6 +52,8 @@ pub(crate) struct ModalIntegrator {
     scratch: Scratch,
     /// Each primary at the start and the end of the last step.
     ends: [Vec<PrimaryEnd>; 2],
+    /// Per distinct element: Σ_k 1/μ_k \[1/kg\] (its primary's acceleration per newton).
+    inv_mass_sum: Vec<f64>,
 }
 
 /// Buffers of an attempt.
@@ -222,6 +224,11 @@ impl ModalIntegrator {
                 vec![PrimaryEnd::default(); p],
                 vec![PrimaryEnd::default(); p],
             ],
+            inv_mass_sum: modal
+                .kind_ranges
+                .iter()
+                .map(|r| modal.inv_modal_mass[r.clone()].iter().sum())
+                .collect(),
             modal,
         };
         let x: Vec<f64> = me
@@ -277,7 +284,7 @@ impl ModalIntegrator {
                 &m.frequencies,
                 &m.frequency_index,
                 &m.inv_modal_mass,
-                &m.ranges,
+                &m.kind_ranges,
             )
         });
     }
@@ -298,8 +305,9 @@ impl ModalIntegrator {
         self.weights(h, rung);
         let (m, weights) = (&self.modal, self.ladder_or_off(rung));
         for (i, range) in m.ranges.iter().enumerate() {
-            sc.free[i] =
-                [0, 1, 2].map(|j| weights.free_position(j, range.clone(), &self.c, &self.cdot));
+            let (c, cdot) = (&self.c[range.clone()], &self.cdot[range.clone()]);
+            let modes = m.kind_ranges[m.kind[i]].clone();
+            sc.free[i] = [0, 1, 2].map(|j| weights.free_position(j, modes.clone(), c, cdot));
             let f = &mut sc.node_force[i];
             f[0] = self.force_net[i];
             for j in 1..4 {
@@ -317,9 +325,9 @@ impl ModalIntegrator {
         let mut sum = 0.0;
         for i in 0..p {
             let a3 = sc.coef[i][3];
-            let (ex, ev) = weights.error[i];
+            let (ex, ev) = weights.error[m.kind[i]];
             let x = sc.node_x[i][2];
-            let v: f64 = self.cdot[m.ranges[i].clone()].iter().sum();
+            let v = self.ends[1][i].v;
             let sx = self.atol + self.rtol * x.abs();
             let sv = self.atol * VELOCITY_UNIT + self.rtol * v.abs();
             sum += (h * h * a3 * ex / sx).powi(2) + (h * a3 * ev / sv).powi(2);
@@ -361,7 +369,7 @@ impl ModalIntegrator {
                 for ((x, free), g) in sc.node_x[i]
                     .iter_mut()
                     .zip(&sc.free[i])
-                    .zip(&weights.response[i])
+                    .zip(&weights.response[self.modal.kind[i]])
                 {
                     *x = free + h * h * (g[0] * a[0] + g[1] * a[1] + g[2] * a[2] + g[3] * a[3]);
                 }
@@ -409,18 +417,28 @@ impl ModalIntegrator {
         std::mem::swap(&mut self.cdot, &mut self.cdot_prev);
         let sc = std::mem::replace(&mut self.scratch, Scratch::empty());
         let weights = self.ladder.get(rung);
-        for (range, a) in self.modal.ranges.iter().zip(&sc.coef) {
-            weights.advance(
-                range.clone(),
+        let m = &self.modal;
+        self.ends.swap(0, 1);
+        for (i, (range, a)) in m.ranges.iter().zip(&sc.coef).enumerate() {
+            let kind = m.kind_ranges[m.kind[i]].clone();
+            let [x, v, w2c, energy] = weights.advance(
+                kind.clone(),
                 a,
-                (&self.c_prev, &self.cdot_prev),
-                (&mut self.c, &mut self.cdot),
+                (&m.modal_mass[kind.clone()], &m.omega2[kind]),
+                (&self.c_prev[range.clone()], &self.cdot_prev[range.clone()]),
+                (&mut self.c[range.clone()], &mut self.cdot[range.clone()]),
             );
+            let f = sc.node_force[i][3];
+            self.force_net[i] = f;
+            self.ends[1][i] = PrimaryEnd {
+                x,
+                v,
+                a: f * self.inv_mass_sum[m.kind[i]] - w2c,
+                energy,
+                power: f * v,
+            };
         }
         self.coef.copy_from_slice(&sc.coef);
-        for (i, f) in sc.node_force.iter().enumerate() {
-            self.force_net[i] = f[3];
-        }
         for (s, d) in sc.node_overlap.iter().enumerate() {
             self.overlap[s] = d[3];
         }
@@ -428,15 +446,15 @@ impl ModalIntegrator {
         self.h_last = h;
         self.t_prev = self.t;
         self.t += h;
-        self.ends.swap(0, 1);
-        let mut ends = std::mem::take(&mut self.ends[1]);
-        self.primary_ends(&mut ends);
-        self.ends[1] = ends;
     }
 
     /// The primaries' positions and velocities now into y (the rest of y is left).
     pub fn primaries_into(&self, y: &mut [f64]) {
-        self.modal.primaries_to_state(&self.c, &self.cdot, y);
+        let nd = y.len() / 2;
+        for (i, e) in self.ends[1].iter().enumerate() {
+            y[i] = e.x;
+            y[nd + i] = e.v;
+        }
     }
 
     /// The primaries' positions and velocities at ts within the last step into y (the rest of
@@ -478,20 +496,18 @@ impl ModalIntegrator {
         let m = &self.modal;
         for (i, range) in m.ranges.iter().enumerate() {
             let f = self.force_net[i];
-            let r = range.clone();
-            let (c, cd) = (&self.c[r.clone()], &self.cdot[r.clone()]);
-            let (w2, mu, inv_mu) = (
-                &m.omega2[r.clone()],
-                &m.modal_mass[r.clone()],
-                &m.inv_modal_mass[r],
-            );
+            let kind = m.kind_ranges[m.kind[i]].clone();
+            let (c, cd) = (&self.c[range.clone()], &self.cdot[range.clone()]);
+            let (w2, mu) = (&m.omega2[kind.clone()], &m.modal_mass[kind]);
             let mut e = PrimaryEnd::default();
+            let mut w2c = 0.0;
             for k in 0..c.len() {
                 e.x += c[k];
                 e.v += cd[k];
-                e.a += f * inv_mu[k] - w2[k] * c[k];
+                w2c += w2[k] * c[k];
                 e.energy += 0.5 * mu[k] * (cd[k] * cd[k] + w2[k] * c[k] * c[k]);
             }
+            e.a = f * self.inv_mass_sum[m.kind[i]] - w2c;
             e.power = f * e.v;
             out[i] = e;
         }

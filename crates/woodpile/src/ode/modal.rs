@@ -159,13 +159,17 @@ pub(crate) struct ModalChain {
     pub ranges: Vec<std::ops::Range<usize>>,
     /// Per primary: the range of its resonators in the chain's state.
     res_ranges: Vec<std::ops::Range<usize>>,
-    /// Per mode: the index of its frequency in [`ModalChain::frequencies`].
+    /// Per primary: its distinct element (equal cells are one), whose modes are
+    /// `kind_ranges[kind[i]]` of the per-mode lists below.
+    pub kind: Vec<usize>,
+    pub kind_ranges: Vec<std::ops::Range<usize>>,
+    /// Per mode of a distinct element: the index of its frequency in
+    /// [`ModalChain::frequencies`].
     pub frequency_index: Vec<usize>,
     /// The distinct Ω \[rad/s\] of the chain (equal cells share theirs).
     pub frequencies: Vec<f64>,
-    /// Per mode: 1/μ_k \[1/kg\].
+    /// Per mode of a distinct element: 1/μ_k \[1/kg\], μ_k \[kg\] and Ω_k² \[1/s²\].
     pub inv_modal_mass: Vec<f64>,
-    /// Per mode: μ_k \[kg\] and Ω_k² \[1/s²\].
     pub modal_mass: Vec<f64>,
     pub omega2: Vec<f64>,
 }
@@ -204,12 +208,32 @@ impl ModalChain {
             start = end;
         }
         let mut ranges = Vec::with_capacity(p);
-        let (mut frequencies, mut frequency_index, mut inv_modal_mass) =
-            (Vec::<f64>::new(), Vec::new(), Vec::new());
         let mut n = 0;
         for e in &elements {
             ranges.push(n..n + e.len());
             n += e.len();
+        }
+        // The distinct elements (equal cells share one `Arc`), their modes in one list.
+        let mut distinct: Vec<&std::sync::Arc<ElementModes>> = Vec::new();
+        let kind: Vec<usize> = elements
+            .iter()
+            .map(|e| {
+                distinct
+                    .iter()
+                    .position(|d| std::sync::Arc::ptr_eq(d, e))
+                    .unwrap_or_else(|| {
+                        distinct.push(e);
+                        distinct.len() - 1
+                    })
+            })
+            .collect();
+        let (mut frequencies, mut frequency_index, mut inv_modal_mass) =
+            (Vec::<f64>::new(), Vec::new(), Vec::new());
+        let mut kind_ranges = Vec::with_capacity(distinct.len());
+        let mut start = 0;
+        for e in &distinct {
+            kind_ranges.push(start..start + e.len());
+            start += e.len();
             for (&w, &mu) in e.omega.iter().zip(&e.modal_mass) {
                 let index = frequencies.iter().position(|&f| f == w).unwrap_or_else(|| {
                     frequencies.push(w);
@@ -230,6 +254,8 @@ impl ModalChain {
             elements,
             ranges,
             res_ranges,
+            kind,
+            kind_ranges,
             frequency_index,
             frequencies,
             inv_modal_mass,
@@ -238,7 +264,7 @@ impl ModalChain {
 
     /// Number of modes of the chain.
     pub fn n_modes(&self) -> usize {
-        self.frequency_index.len()
+        self.ranges.last().map_or(0, |r| r.end)
     }
 
     /// Modal amplitudes and rates (c, ċ) of the chain's state y = [x | w | v | ẇ].
@@ -250,15 +276,6 @@ impl ModalChain {
             let (ra, rb) = (p + res.start, p + res.end);
             e.project(y[i], &y[ra..rb], &mut c[modes.clone()]);
             e.project(y[nd + i], &y[nd + ra..nd + rb], &mut cdot[modes]);
-        }
-    }
-
-    /// The primaries' positions and velocities only (the rest of y is left as it is).
-    pub fn primaries_to_state(&self, c: &[f64], cdot: &[f64], y: &mut [f64]) {
-        let nd = y.len() / 2;
-        for (i, modes) in self.ranges.iter().enumerate() {
-            y[i] = c[modes.clone()].iter().sum();
-            y[nd + i] = cdot[modes.clone()].iter().sum();
         }
     }
 }
