@@ -183,6 +183,17 @@ fn bad_lattices_exit_2_naming_the_key() {
         &["run.sample_interval_s", "GB of output", "--allow-large"],
     );
     common::refused_scenario(
+        "no support",
+        &LATTICE.replace("supports = \"centres\"", "supports = []"),
+        &["wall.supports", "at least one support"],
+    );
+    // The value is shown in the unit the user wrote it in (mm), not in SI.
+    common::refused_scenario(
+        "negative length",
+        &LATTICE.replace("length_mm = 80.0", "length_mm = -80.0"),
+        &["lattice.layers[0].length_mm", "= -80:", "mm > 0"],
+    );
+    common::refused_scenario(
         "unknown key",
         &LATTICE.replace("{ rods = 2 }", "{ rods = 2, colour = \"red\" }"),
         &["unknown field `colour`"],

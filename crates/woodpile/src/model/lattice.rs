@@ -19,7 +19,7 @@ use super::contact::{hertz_beta, Surface};
 use super::fe_beam::FreeRodModes;
 use super::material::Material;
 use super::{Rod, Wall};
-use crate::error::{require_positive, Error, Result};
+use crate::error::{Error, Result};
 
 /// One layer of parallel rods, as the user gives it.
 #[derive(Debug, Clone, PartialEq)]
@@ -234,7 +234,7 @@ impl LatticeBuilder {
                     "a layer has at least 1 rod",
                 ));
             }
-            require_positive(&field("diameter_mm"), layer.diameter_m)?;
+            require_positive_mm(&field("diameter_mm"), layer.diameter_m)?;
             if layer.rods > 1 && !(layer.pitch_m.is_finite() && layer.pitch_m > layer.diameter_m) {
                 return Err(Error::invalid(
                     field("pitch_mm"),
@@ -306,7 +306,7 @@ impl LatticeBuilder {
             }
         };
         let lengths = match &over.lengths_m {
-            None => vec![require_positive(&key("length_mm"), layer.length_m)?; n],
+            None => vec![require_positive_mm(&key("length_mm"), layer.length_m)?; n],
             Some(v) => {
                 count("lengths_mm", v)?;
                 for (i, &l) in v.iter().enumerate() {
@@ -433,6 +433,13 @@ impl LatticeBuilder {
             .collect();
         let points: Vec<[f64; 2]> = match &self.supports {
             Supports::Centres => bottom.iter().map(|&r| rods[r].centre_m).collect(),
+            Supports::Points(p) if p.is_empty() => {
+                return Err(Error::invalid(
+                    "wall.supports",
+                    "[]",
+                    "a lattice stands on at least one support: give points ([{ x_mm = …, y_mm = … }, …]) or \"centres\"",
+                ))
+            }
             Supports::Points(p) => p.clone(),
         };
         let cap_radius = match &self.wall {
@@ -520,4 +527,14 @@ fn modes_of(
     .map_err(|e| super::chain::prefix_field(e, "lattice."))?;
     cache.push((rod.clone(), modes.clone()));
     Ok(modes)
+}
+
+/// A length given in mm (`value_m` in metres) is finite and > 0; the error shows it in mm, as
+/// the user wrote it.
+fn require_positive_mm(field: &str, value_m: f64) -> Result<f64> {
+    if value_m.is_finite() && value_m > 0.0 {
+        Ok(value_m)
+    } else {
+        Err(Error::invalid(field, value_m * 1e3, "must be a finite number of mm > 0"))
+    }
 }
