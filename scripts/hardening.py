@@ -48,6 +48,14 @@ def drive(extra: str) -> str:
     )
 
 
+def lattice(layers: str = '{ rods = 3 },', extra: str = "") -> str:
+    return (
+        "[lattice]\nlayers = [\n"
+        '  { rods = 3, pitch_mm = 20.0, length_mm = 80.0, diameter_mm = 5.0, material = "fused-quartz" },\n'
+        "  " + layers + "\n]\nrod = { fe_elements = 2 }\n" + extra + "[run]\nduration_s = 2e-4\n"
+    )
+
+
 def blast(extra: str) -> str:
     return (
         '[chain]\nrods_mm = [40, 30, 20]\n[excitation]\nkind = "blast"\nprofile = "friedlander"\n'
@@ -105,6 +113,20 @@ CLI_CASES = [
          files={"s.toml": "[chain]\nrods_mm = [40, 30, 20]\n[run]\npeak_tolerance = 1e-15\n"}),
     Case("duplicate resonator damping", ["simulate", "s.toml", "--out", "o"], (2,), ("damping.resonators",),
          files={"s.toml": "[chain]\nrods_mm = [40, 30, 20]\n[damping]\nresonators = [{ element = 1, resonator = 1, ratio = 0.1 }, { element = 1, resonator = 1, ratio = 0.2 }]\n"}),
+    Case("lattice: supports = []", ["simulate", "s.toml", "--out", "o"], (2,), ("wall.supports",), absent=("transmitted",),
+         files={"s.toml": lattice(extra='[wall]\nsupports = []\n')}),
+    Case("lattice: length -80 mm", ["simulate", "s.toml", "--out", "o"], (2,), ("lattice.layers[1].length_mm", "-80"),
+         files={"s.toml": lattice('{ rods = 3, length_mm = -80.0 },')}),
+    Case("lattice: parallel layers", ["simulate", "s.toml", "--out", "o"], (2,), ("lattice.layers[1].angle_deg",),
+         files={"s.toml": lattice('{ rods = 3, angle_deg = 180.0 },')}),
+    Case("lattice: impact off the top layer", ["simulate", "s.toml", "--out", "o"], (2,), ("excitation.at_mm",),
+         files={"s.toml": lattice(extra='[excitation]\nat_mm = [500.0, 0.0]\n')}),
+    Case("lattice: displacement drive", ["simulate", "s.toml", "--out", "o"], (0, 2), ("excitation",),
+         files={"s.toml": lattice(extra='[excitation]\nkind = "drive"\ndrive = "displacement"\nsignal = "harmonic"\namplitude = 1e-7\nfrequency_hz = 2000.0\nramp_s = 1e-4\n')}),
+    Case("SIGINT during a long lattice simulate", ["simulate", "s.toml", "--out", "o"], (130,), ("interrupted",),
+         files={"s.toml": lattice().replace("duration_s = 2e-4", "duration_s = 10.0\nsample_interval_s = 10.0")}, interrupt_after_s=2.0),
+    Case("lattice study: objective pressure", ["optimize", "c.toml", "--out", "o"], (2,), ("ga.objectives[0]",),
+         files={"c.toml": lattice() + '[design]\nlength_mm = [60.0, 80.0]\n[ga]\nobjectives = ["pressure"]\n'}),
     Case("plot of a deleted run.json", ["simulate s.toml --out r --quiet && rm r/run.json && $W plot r"], (2,), ("run.json",), absent=("optimize output",),
          files={"s.toml": SHORT}, shell=True),
 ]
@@ -122,6 +144,7 @@ PY_CASES = [
     ("sweep: a refused value is an error row", 't = woodpile.sweep(s.replace(**{"run.duration_s": 1e-4, "run.sample_interval_s": 1e-4}), {"excitation.velocity_m_s": [1.0, "fast"]})\nassert "excitation.velocity_m_s" in t["error"][1]; print("ok")'),
     ("optimize(seed=-1) names seed", 'try:\n    woodpile.optimize("paper-impact", seed=-1)\nexcept woodpile.ScenarioError as e:\n    assert e.field == "seed"; print("ok")'),
     ("errors pickle", 'try:\n    s.replace(**{"run.duration_s": "x"})\nexcept woodpile.ScenarioError as e:\n    b = pickle.loads(pickle.dumps(e)); assert b.field == e.field; print("ok")'),
+    ("a lattice's bad key names it", 'try:\n    woodpile.Scenario(\'[lattice]\\nlayers = [{ rods = 0, pitch_mm = 20.0, length_mm = 80.0 }]\\n\')\nexcept woodpile.ScenarioError as e:\n    assert e.field == "lattice.layers[0].rods", e.field; print("ok")'),
     ("10 s at 1 ns is refused", 'try:\n    woodpile.simulate(s.replace(**{"run.duration_s": 10.0, "run.time_step_s": 1e-9, "run.sample_interval_s": 10.0}))\nexcept woodpile.LimitError as e:\n    assert "allow_long" in str(e); print("ok")'),
 ]
 
