@@ -45,6 +45,7 @@ mod lattice_bad_geometry;
 mod lattice_blast;
 mod lattice_common;
 mod lattice_damped_energy_balance;
+mod lattice_displacement_drive;
 mod lattice_drive;
 mod lattice_energy_balance;
 mod lattice_exact_modes;
