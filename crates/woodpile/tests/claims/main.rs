@@ -44,6 +44,7 @@ mod lanes_lab_physics;
 mod lattice_bad_geometry;
 mod lattice_blast;
 mod lattice_common;
+mod lattice_contact_energies;
 mod lattice_damped_energy_balance;
 mod lattice_displacement_drive;
 mod lattice_drive;
