@@ -155,8 +155,11 @@ fn displacement_drive_runs_and_writes_contact_energies() {
     assert!(worst < 1e-12, "{worst:e}");
     assert!(lowest > -1e-12 * scale, "{lowest:e}");
     let totals = numbers(&lab["contact_dissipated_j"]);
-    assert_eq!(&dissipated.last().unwrap()[1..], &totals[..]);
-    assert!(totals.iter().sum::<f64>() > 0.0);
+    let sum: f64 = totals.iter().sum();
+    assert!(sum > 0.0);
+    for (a, b) in dissipated.last().unwrap()[1..].iter().zip(&totals) {
+        assert!((a - b).abs() <= 1e-12 * sum, "{a} against {b}");
+    }
 }
 
 #[test]

@@ -257,11 +257,14 @@ fn centred_displacement_drive_is_mirror_symmetric_and_accounted_for() {
         sample_interval_s: 2e-6,
     };
     let run = simulate_lattice(&mut ode, &settings).unwrap();
+    let mut worst_tip = 0.0_f64;
     for c in 0..loads {
         let f = run.contact_static_forces_n[c];
         assert!((f - 1.0).abs() < 1e-12, "tip {c} carries {f} N at rest");
-        assert!((run.contact_force_n(c)[0] - 1.0).abs() < 1e-12);
+        worst_tip = worst_tip.max((run.contact_force_n(c)[0] - 1.0).abs());
     }
+    eprintln!("tips at t = 0: largest |F − 1 N| = {worst_tip:e} N");
+    assert!(worst_tip < 1e-12);
     // Mirror images: contacts of the same kind and layer at (∓x, y) and (x, ∓y); the tips are
     // the top rods' crossings, at the points of the first-layer crossings.
     let point = |c: usize| -> ([f64; 2], usize, bool) {
