@@ -682,7 +682,8 @@ fn check_size(layers: &[LayerSpec], fe_elements: usize) -> Result<(), Error> {
 /// dissipated energy too, the supports and their sum, each rod's energy, time).
 pub fn run_size(r: &ResolvedLattice) -> crate::limits::RunSize {
     let contacts = r.lattice.contacts.len();
-    let per_contact = if r.lab.is_none() && matches!(r.excitation, LatticeExcitation::Impact { .. }) {
+    let per_contact = if r.lab.is_none() && matches!(r.excitation, LatticeExcitation::Impact { .. })
+    {
         4
     } else {
         6
@@ -1292,7 +1293,11 @@ fn write_contact_energies(dir: &Path, run: &LatticeRun) -> Result<(), Error> {
         .chain((0..run.contacts).map(|c| format!("contact_{c}_j")))
         .collect();
     let n = run.times_s.len() as u64;
-    let mut series = vec![("contact_energies.csv", "contact_energy_j.npy", &run.contact_energies_j)];
+    let mut series = vec![(
+        "contact_energies.csv",
+        "contact_energy_j.npy",
+        &run.contact_energies_j,
+    )];
     if !run.work_j.is_empty() {
         series.push((
             "contact_dissipated.csv",

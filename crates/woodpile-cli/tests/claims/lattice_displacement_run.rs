@@ -132,15 +132,14 @@ fn displacement_drive_runs_and_writes_contact_energies() {
         let mut modes: Vec<f64> = row[1..row.len() - 1].to_vec();
         let u = &potentials[k][1..];
         for (c, contact) in contacts.iter().enumerate() {
-            let side = |l: &str, r: &str| {
-                body(
-                    contact[l].as_u64().unwrap(),
-                    contact[r].as_u64().unwrap(),
-                )
-            };
-            for b in [side("layer_above", "rod_above"), side("layer_below", "rod_below")]
-                .into_iter()
-                .flatten()
+            let side =
+                |l: &str, r: &str| body(contact[l].as_u64().unwrap(), contact[r].as_u64().unwrap());
+            for b in [
+                side("layer_above", "rod_above"),
+                side("layer_below", "rod_below"),
+            ]
+            .into_iter()
+            .flatten()
             {
                 modes[b] -= 0.5 * u[c];
             }

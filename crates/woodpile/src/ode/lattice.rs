@@ -479,7 +479,11 @@ impl LatticeOde {
                 continue;
             }
             // A load contact's side above is the actuator (layer 0).
-            out[if c < self.loads { 0 } else { body(self.above[c]) }] += half;
+            out[if c < self.loads {
+                0
+            } else {
+                body(self.above[c])
+            }] += half;
             match self.below[c] {
                 Some(b) => out[body(b)] += half,
                 None => supports += half,

@@ -155,7 +155,8 @@ impl LabTerms {
                 // side above is empty).
                 let d = self.tip_rest_m[c] + tip.0 + ode.overlap(c, x);
                 let r = tip.1 + ode.overlap(c, v);
-                let (f, p) = self.laws[c].force(self.law_coef[c], ode.beta[c], d, r, self.allow_pull);
+                let (f, p) =
+                    self.laws[c].force(self.law_coef[c], ode.beta[c], d, r, self.allow_pull);
                 ode.overlap_m[c] = d;
                 ode.force_n[c] = f;
                 // The load's power is F u̇ (W); a damped tip law dissipates p.

@@ -60,7 +60,10 @@ fn contact_energies_are_the_hertz_potentials_of_the_forces() {
         held.iter().filter(|&&h| h).count()
     );
     assert!(worst < 1e-12, "{worst:e}");
-    assert!(worst_excess <= 1e-12, "the contacts hold more than the total");
+    assert!(
+        worst_excess <= 1e-12,
+        "the contacts hold more than the total"
+    );
     for layer in 1..=4 {
         assert!(
             lattice
@@ -117,7 +120,10 @@ fn contact_dissipation_over_time_adds_up_to_the_runs() {
         run.energy.dissipated_j / e0
     );
     assert!(run.energy.dissipated_j > 0.05 * e0);
-    assert!(fall <= 1e-15, "a contact's dissipated energy fell by {fall:e}");
+    assert!(
+        fall <= 1e-15,
+        "a contact's dissipated energy fell by {fall:e}"
+    );
     assert!(sum_error < 1e-12);
     assert!(last_error < 1e-12);
 }

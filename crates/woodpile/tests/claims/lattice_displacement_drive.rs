@@ -157,10 +157,17 @@ fn one_rod_per_layer_under_a_displacement_drive_is_the_fe_rod_chain() {
     // The tip lifts off: its force falls to zero at some samples, after the ramp.
     let tip = run.contact_force_n(0);
     assert!(tip.iter().any(|&f| f == 0.0), "the tip stays closed");
-    assert!(run.contact_peak_forces_n[3] > 0.5 * PRELOAD_N, "the wall feels the drive");
+    assert!(
+        run.contact_peak_forces_n[3] > 0.5 * PRELOAD_N,
+        "the wall feels the drive"
+    );
     let mut worst_force = 0.0_f64;
     for c in 0..run.contacts {
-        for (x, y) in run.contact_force_n(c).iter().zip(&trajectory.contact_force_n(c)) {
+        for (x, y) in run
+            .contact_force_n(c)
+            .iter()
+            .zip(&trajectory.contact_force_n(c))
+        {
             worst_force = worst_force.max((x - y).abs() / peak);
         }
     }
@@ -213,7 +220,10 @@ fn one_rod_per_layer_under_a_displacement_drive_is_the_fe_rod_chain() {
     assert!(worst_force < BOUND, "forces differ by {worst_force:e}");
     assert!(worst_energy < BOUND, "energies differ by {worst_energy:e}");
     assert!(worst_body < BOUND, "body energies differ by {worst_body:e}");
-    assert!(worst_contact < BOUND, "contact energies differ by {worst_contact:e}");
+    assert!(
+        worst_contact < BOUND,
+        "contact energies differ by {worst_contact:e}"
+    );
 }
 
 #[test]
@@ -278,7 +288,11 @@ fn centred_displacement_drive_is_mirror_symmetric_and_accounted_for() {
             (k.point_m, 0, false)
         } else {
             let k = &lattice.contacts[c - loads];
-            (k.point_m, lattice.rods[k.above.rod].layer, k.support.is_some())
+            (
+                k.point_m,
+                lattice.rods[k.above.rod].layer,
+                k.support.is_some(),
+            )
         }
     };
     let peak = largest(&run.contact_peak_forces_n);
