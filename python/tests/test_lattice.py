@@ -230,7 +230,7 @@ def test_bad_lattice_study_input_names_the_keyword():
 DRIVEN = LATTICE.replace(
     'kind = "impact"\nat_mm = [0.0, 0.0]',
     'kind = "drive"\ndrive = "displacement"\nsignal = "harmonic"\namplitude = 3e-7\nfrequency_hz = 1e4\n'
-    'ramp_s = 3e-5\ntip = { kind = "flat", material = "steel" }\n'
+    'ramp_s = 3e-5\ntip = { kind = "cap", material = "steel", cap_radius_mm = 5.0 }\n'
     '[damping]\ncontact = "viscoelastic"\nviscous_time_s = 1e-7\n[preload]\nforce_n = 9.0',
 )
 
@@ -265,5 +265,5 @@ def test_contact_energies_and_dissipation_over_time(tmp_path):
 def test_a_bad_actuator_tip_names_the_key():
     """A free tip under a displacement drive raises ScenarioError naming ``excitation.tip.kind``."""
     with pytest.raises(ScenarioError) as e:
-        woodpile.Scenario(DRIVEN.replace('tip = { kind = "flat", material = "steel" }', 'tip = { kind = "free" }'))
+        woodpile.Scenario(DRIVEN.replace('tip = { kind = "cap", material = "steel", cap_radius_mm = 5.0 }', 'tip = { kind = "free" }'))
     assert e.value.field == "excitation.tip.kind"

@@ -17,7 +17,8 @@
 //! order; measured 2.3e-16); the last row of `contact_dissipated.csv` is `summary.json`'s `lab.contact_dissipated_j`
 //! (exact: both print the shortest round-trip decimal).
 //!
-//! Bad input — a free tip, a tip under a force drive, a negative ramp, a cap of zero radius —
+//! Bad input — a free tip, a tip under a force drive, a negative ramp, a flat tip (a line contact
+//! on a rod), a cap of zero radius —
 //! exits 2 naming the dotted key.
 
 use crate::common;
@@ -181,6 +182,14 @@ fn bad_displacement_drive_input_exits_2_naming_the_key() {
         "negative ramp",
         &drive("ramp_s = 5e-5", "ramp_s = -5e-5"),
         &["excitation.ramp_s", "-0.00005"],
+    );
+    common::refused_scenario(
+        "flat tip on a rod (a line contact)",
+        &drive(
+            "tip = { kind = \"cap\", material = \"steel\", cap_radius_mm = 5.0 }",
+            "tip = { kind = \"flat\", material = \"steel\" }",
+        ),
+        &["excitation.tip", "not a point contact"],
     );
     common::refused_scenario(
         "cap of zero radius",
