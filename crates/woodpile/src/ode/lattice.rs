@@ -398,7 +398,7 @@ impl LatticeOde {
 
     /// Every contact's overlap and force at state y (positions, and with lab physics
     /// velocities and time) into `overlap_m` and `force_n`.
-    pub(crate) fn contact_forces_at(&mut self, t: f64, y: &[f64]) {
+    pub fn contact_forces_at(&mut self, t: f64, y: &[f64]) {
         match self.lab.take() {
             None => self.contact_forces(&y[..self.coordinates()]),
             Some(mut lab) => {
