@@ -9,7 +9,8 @@ scenario NAME` does.
 Claim 2: the output-file page (docs/reference/outputs.md) names every file a run directory holds,
 every key of its summary.json and every column of its CSV files (a numbered column by its first
 number: `contact_0_n`), for a preloaded impact with damping (the case with the most of them: the
-striker's files, the static forces and the dissipated energy).
+striker's files, the static forces and the dissipated energy); and its lattice section names
+every file, summary key and CSV column of a damped lattice run under a displacement drive.
 """
 
 from __future__ import annotations
@@ -77,3 +78,48 @@ def test_outputs_page_names_every_file_of_a_run_directory(tmp_path: Path) -> Non
         columns |= {f"{a}_{i}_{b}" for (a, b), i in first.items()}
     unnamed = sorted(c for c in columns if c not in page)
     assert not unnamed, f"CSV columns not on docs/reference/outputs.md: {unnamed}"
+
+
+def test_outputs_page_names_every_file_of_a_lattice_run(tmp_path: Path) -> None:
+    """The lattice section of the output-file page names every file of a damped lattice run
+    under a displacement drive (the case with the most files: the actuator's column, the contacts'
+    dissipated energies) and every column of its CSV files, a numbered column by its first
+    numbers (`contact_0_n`, `layer_1_rod_1_j`)."""
+    page = (ROOT / "docs" / "reference" / "outputs.md").read_text()
+    section = page.split("## A lattice run directory", 1)[1].split("\n## ", 1)[0]
+    scenario = woodpile.Scenario(
+        """[lattice]
+layers = [{ rods = 2, pitch_mm = 20.0, length_mm = 40.0 }, { rods = 2 }]
+rod = { fe_elements = 2 }
+[excitation]
+kind = "drive"
+drive = "displacement"
+signal = "harmonic"
+amplitude = 1e-7
+frequency_hz = 1e4
+[damping]
+modal_ratio = 0.01
+[preload]
+force_n = 2.0
+[run]
+duration_s = 5e-5
+"""
+    )
+    directory = woodpile.simulate(scenario).save(tmp_path / "lat")
+    files = sorted(p.name for p in directory.iterdir())
+    assert "contact_dissipated_j.npy" in files and "contact_energy_j.npy" in files
+    unnamed = [f for f in files if f"`{f}`" not in section]
+    assert not unnamed, f"files of a lattice run not in the lattice section of outputs.md: {unnamed}"
+    summary = json.loads((directory / "summary.json").read_text())
+    keys = list(summary) + [k for v in summary.values() if isinstance(v, dict) for k in v]
+    unnamed = [k for k in keys if f"`{k}`" not in section]
+    assert not unnamed, f"lattice summary.json keys not in outputs.md: {unnamed}"
+    first: dict[str, tuple[tuple[int, ...], str]] = {}
+    for csv in directory.glob("*.csv"):
+        for name in csv.read_text().splitlines()[0].split(","):
+            numbers = tuple(int(n) for n in re.findall(r"\d+", name))
+            shape = re.sub(r"\d+", "#", name)
+            if shape not in first or numbers < first[shape][0]:
+                first[shape] = (numbers, name)
+    unnamed = sorted(name for _, name in first.values() if name not in section)
+    assert not unnamed, f"lattice CSV columns not in outputs.md: {unnamed}"

@@ -38,6 +38,9 @@ class LatticeRun:
     - ``time_s`` (S,) [s]; ``forces_n`` (S, C) [N], column c contact c;
     - ``support_forces_n`` (S, supports) [N] and ``transmitted_n`` (S,) [N], their sum;
     - ``energy_j`` (S,) [J], the lattice's and striker's total energy;
+    - ``contact_energy_j`` (S, C) [J], each contact's Hertz potential (0 at a load point of a
+      prescribed force), and ``contact_dissipated_j`` (S, C) [J], the energy each contact has
+      dissipated since the start (None without damping, a static load, a blast or a drive);
     - ``contacts``: a DataFrame indexed by ``contact`` with :data:`CONTACT_COLUMNS`;
     - ``summary``: ``summary.json`` (``contact_peak_forces_n`` in output order, the incident and
       transmitted peaks, ``energy_max_relative_error``);
@@ -55,6 +58,8 @@ class LatticeRun:
     time_s: FloatArray
     forces_n: FloatArray
     energy_j: FloatArray
+    contact_energy_j: FloatArray
+    contact_dissipated_j: FloatArray | None
     supports: list[int]
     directory: Path | None
 
@@ -66,6 +71,8 @@ class LatticeRun:
         self.time_s = core_run.time_s
         self.forces_n = core_run.forces_n
         self.energy_j = core_run.energy_j
+        self.contact_energy_j = core_run.contact_energy_j
+        self.contact_dissipated_j = core_run.contact_dissipated_j
         self.supports = list(core_run.supports)
         self._contacts = [list(c) for c in core_run.contacts]
         self.rods_per_layer = list(core_run.rods_per_layer)
@@ -93,6 +100,9 @@ class LatticeRun:
         forces: FloatArray = np.load(directory / "forces_n.npy")
         energy: FloatArray = np.loadtxt(directory / "energy.csv", delimiter=",", skiprows=1, ndmin=2)[:, 1]
         run.time_s, run.forces_n, run.energy_j = times, forces, energy
+        run.contact_energy_j = np.load(directory / "contact_energy_j.npy")
+        dissipated = directory / "contact_dissipated_j.npy"
+        run.contact_dissipated_j = np.load(dissipated) if dissipated.is_file() else None
         return run
 
     @property

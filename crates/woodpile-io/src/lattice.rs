@@ -15,9 +15,10 @@
 //! supports = "centres"         # or [{ x_mm = 0.0, y_mm = 20.0 }, …]
 //! ```
 //!
-//! A blast or a force drive (`kind = "blast"` / `"drive"`, the chains' keys) acts on
-//! `points = "top-crossings"` (default) or `points_mm = [[x, y], …]`, the total force split
-//! equally; `[damping]` (the chains' keys and `modal_ratio`) and `[preload]` (gravity, and a
+//! A blast or a drive (`kind = "blast"` / `"drive"`, the chains' keys) acts on
+//! `points = "top-crossings"` (default) or `points_mm = [[x, y], …]`: a force split equally, or
+//! a displacement actuator's tip (`excitation.tip`, keys as in a chain's `[wall]`) pressing on
+//! each point; `[damping]` (the chains' keys and `modal_ratio`) and `[preload]` (gravity, and a
 //! force on the load points) are read by the chains' readers (docs/physics.md §16).
 //!
 //! The run directory holds `run.json` (the completed scenario and the `contacts` in output
@@ -27,8 +28,11 @@
 //! `forces.csv` / `forces_n.npy` (samples × contacts), `supports.csv` (each support's force and
 //! their sum, `transmitted_n`), `energy.csv` (with damping or loads also `work_j`,
 //! `dissipated_j`; `summary.json` then has `lab`), each body's energy (`rod_energies.csv`,
-//! `energy_j.npy`, `support_energy_j.npy`) and `time_s.npy`. Under a blast or drive the
-//! load points are the contacts of layer 0.
+//! `energy_j.npy`, `support_energy_j.npy`), each contact's Hertz potential
+//! (`contact_energies.csv`, `contact_energy_j.npy`, samples × contacts), with lab physics each
+//! contact's dissipated energy since the start (`contact_dissipated.csv`,
+//! `contact_dissipated_j.npy`), and `time_s.npy`. Under a blast or drive the load points (a
+//! displacement actuator's tip contacts) are the contacts of layer 0.
 //! [`read_lattice_run`] reads `run.json`, `time_s.npy` and `forces_n.npy` back (for figures).
 
 use crate::error::Error;
@@ -61,6 +65,10 @@ pub const LATTICE_RUN_FILES: &[&str] = &[
     "time_s.npy",
     "energy_j.npy",
     "support_energy_j.npy",
+    "contact_energies.csv",
+    "contact_energy_j.npy",
+    "contact_dissipated.csv",
+    "contact_dissipated_j.npy",
 ];
 
 /// A whole lattice scenario file.
@@ -185,9 +193,14 @@ pub struct LatticeExcitationSpec {
     /// scenario file.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub file: Option<String>,
-    /// `force` (the only drive of a lattice).
+    /// `force` (default: the total, split over the points) or `displacement` (an actuator
+    /// pressing on every point through its tip).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub drive: Option<DriveKind>,
+    /// A displacement actuator's tip, keys as in a chain's `[wall]` (default: the paper's
+    /// sensor).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tip: Option<crate::scenario::WallSpec>,
     /// `harmonic`, `chirp` or `table` (drive).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub signal: Option<SignalKind>,
@@ -502,6 +515,13 @@ impl LatticeScenario {
         if let Some(points) = excitation.load_points() {
             points.on(&lattice)?;
         }
+        if let Some(tip) = excitation.actuator_tip() {
+            // Fails early (as a usage error) when the tip cannot touch a top rod.
+            for rod in lattice.rods.iter().filter(|r| r.layer == 1) {
+                tip.beta_against(rod.surface(), &rod.rod.material)
+                    .map_err(Error::at("excitation.tip"))?;
+            }
+        }
         Ok(ResolvedLattice {
             builder,
             lattice,
@@ -658,11 +678,20 @@ fn check_size(layers: &[LayerSpec], fe_elements: usize) -> Result<(), Error> {
 }
 
 /// The run-size estimate of a resolved lattice: its steps and the values its run directory
-/// holds per sample (each contact's force in CSV and NPY, the supports and their sum, the
-/// energies, time).
+/// holds per sample (each contact's force and energy in CSV and NPY, with lab physics its
+/// dissipated energy too, the supports and their sum, each rod's energy, time).
 pub fn run_size(r: &ResolvedLattice) -> crate::limits::RunSize {
     let contacts = r.lattice.contacts.len();
-    crate::limits::RunSize::with_columns(&r.settings, 2 * contacts + 8)
+    let per_contact = if r.lab.is_none() && matches!(r.excitation, LatticeExcitation::Impact { .. })
+    {
+        4
+    } else {
+        6
+    };
+    crate::limits::RunSize::with_columns(
+        &r.settings,
+        per_contact * contacts + 2 * r.lattice.rods.len() + 8,
+    )
 }
 
 /// The excitation kind of a lattice's `[excitation]`.
@@ -702,6 +731,7 @@ fn chain_spec(x: &LatticeExcitationSpec, kind: ExcitationKind) -> ExcitationSpec
         sweep_duration_s: x.sweep_duration_s,
         sweep: x.sweep,
         ramp_s: x.ramp_s,
+        tip: x.tip.clone(),
         ..ExcitationSpec::default()
     }
 }
@@ -725,7 +755,10 @@ fn complete_lab(s: &mut LatticeScenario) {
             (x.profile, x.peak_force_n, x.duration_s, x.decay) =
                 (c.profile, c.peak_force_n, c.duration_s, c.decay);
         }
-        ExcitationKind::Drive => (x.drive, x.sweep, x.ramp_s) = (c.drive, c.sweep, c.ramp_s),
+        ExcitationKind::Drive => {
+            (x.drive, x.sweep, x.ramp_s) = (c.drive, c.sweep, c.ramp_s);
+            x.tip.clone_from(&c.tip);
+        }
         _ => {}
     }
     if kind != ExcitationKind::Impact && x.points.is_none() && x.points_mm.is_none() {
@@ -801,20 +834,14 @@ impl LatticeScenario {
             }
             ExcitationKind::Drive => {
                 refuse_excitation_keys(&user, &crate::scenario::DRIVE_KEYS, &why)?;
-                if full.drive == Some(DriveKind::Displacement) {
-                    return Err(Error::invalid(
-                        "excitation.drive",
-                        "\"displacement\"",
-                        "a lattice is driven by a force (drive = \"force\"), its amplitude the total split equally over the load points",
-                    ));
-                }
+                let signal = signal_of(&full, base_dir)?;
                 let ramp_s = full.ramp_s.ok_or_else(|| {
                     Error::invalid("excitation.ramp_s", "(unset)", "give ramp_s = … [s]")
                 })?;
                 let drive = woodpile::Drive {
-                    quantity: woodpile::DriveQuantity::Force,
+                    quantity: crate::scenario::drive_quantity_of(&full)?,
                     ramp_s,
-                    signal: signal_of(&full, base_dir)?,
+                    signal,
                 };
                 drive.validate()?;
                 LatticeExcitation::Drive { drive, points }
@@ -824,7 +851,7 @@ impl LatticeScenario {
                 LatticeExcitation::Rest { points }
             }
         };
-        let lab = lattice_lab(s, kind)?;
+        let lab = lattice_lab(s, kind, excitation.actuator_tip().is_some())?;
         Ok((excitation, lab))
     }
 }
@@ -882,8 +909,13 @@ fn load_points(
 }
 
 /// `[damping]` and `[preload]` of a completed lattice scenario: the chains' readers, and
-/// `damping.modal_ratio`. A lattice left at rest needs a static load.
-fn lattice_lab(s: &LatticeScenario, kind: ExcitationKind) -> Result<LatticeLab, Error> {
+/// `damping.modal_ratio` (`damping.striker` is the striker's or a displacement actuator's
+/// tips'). A lattice left at rest needs a static load.
+fn lattice_lab(
+    s: &LatticeScenario,
+    kind: ExcitationKind,
+    actuator: bool,
+) -> Result<LatticeLab, Error> {
     let struck = kind == ExcitationKind::Impact;
     let (damping, modal_ratio) = match &s.damping {
         None => (woodpile::Damping::default(), 0.0),
@@ -891,7 +923,7 @@ fn lattice_lab(s: &LatticeScenario, kind: ExcitationKind) -> Result<LatticeLab, 
             let mut d = d.clone();
             d.resonator_ratio.get_or_insert(0.0);
             (
-                crate::scenario::damping_of(&d, struck, true, struck)?,
+                crate::scenario::damping_of(&d, struck || actuator, true, struck)?,
                 d.modal_ratio.unwrap_or(0.0),
             )
         }
@@ -1190,7 +1222,8 @@ pub fn write_lattice_run(
             }),
     )?;
     write_energy_csv(dir, run)?;
-    write_body_energies(dir, lattice, run)?;
+    write_body_energies(dir, resolved, run)?;
+    write_contact_energies(dir, run)?;
     let n = run.times_s.len() as u64;
     crate::rundir::write_npy(
         &dir.join("forces_n.npy"),
@@ -1203,14 +1236,21 @@ pub fn write_lattice_run(
 }
 
 /// Each body's energy as a chain's layer energy (kinetic, strain and half of each of its
-/// contacts' potential): `rod_energies.csv` (`striker_j` when struck, `layer_{k}_rod_{i}_j`,
-/// `supports_j`: the supports' halves) and `energy_j.npy` (samples × bodies) with
-/// `support_energy_j.npy`.
-fn write_body_energies(dir: &Path, lattice: &Lattice, run: &LatticeRun) -> Result<(), Error> {
-    let struck = run.bodies > lattice.rods.len();
+/// contacts' potential): `rod_energies.csv` (`striker_j` when struck, `actuator_j` under a
+/// displacement drive (its halves of the tip contacts), `layer_{k}_rod_{i}_j`, `supports_j`:
+/// the supports' halves) and `energy_j.npy` (samples × bodies) with `support_energy_j.npy`.
+fn write_body_energies(
+    dir: &Path,
+    resolved: &ResolvedLattice,
+    run: &LatticeRun,
+) -> Result<(), Error> {
+    let lattice = &resolved.lattice;
     let mut header = vec!["time_s".to_string()];
-    if struck {
-        header.push("striker_j".into());
+    if run.bodies > lattice.rods.len() {
+        header.push(match resolved.excitation.actuator_tip() {
+            Some(_) => "actuator_j".into(),
+            None => "striker_j".into(),
+        });
     }
     header.extend(
         lattice
@@ -1243,6 +1283,38 @@ fn write_body_energies(dir: &Path, lattice: &Lattice, run: &LatticeRun) -> Resul
         &[n],
         &run.support_energy_j,
     )
+}
+
+/// Each contact's Hertz potential (`contact_energies.csv`, `contact_{c}_j` in `run.json`'s
+/// order, and `contact_energy_j.npy`, samples × contacts) and, with lab physics, its dissipated
+/// energy since the start (`contact_dissipated.csv`, `contact_dissipated_j.npy`).
+fn write_contact_energies(dir: &Path, run: &LatticeRun) -> Result<(), Error> {
+    let header: Vec<String> = std::iter::once("time_s".to_string())
+        .chain((0..run.contacts).map(|c| format!("contact_{c}_j")))
+        .collect();
+    let n = run.times_s.len() as u64;
+    let mut series = vec![(
+        "contact_energies.csv",
+        "contact_energy_j.npy",
+        &run.contact_energies_j,
+    )];
+    if !run.work_j.is_empty() {
+        series.push((
+            "contact_dissipated.csv",
+            "contact_dissipated_j.npy",
+            &run.contact_dissipated_samples_j,
+        ));
+    }
+    for (csv, npy, values) in series {
+        crate::rundir::write_csv(
+            &dir.join(csv),
+            &header,
+            &run.times_s,
+            values.chunks(run.contacts).map(<[f64]>::to_vec),
+        )?;
+        crate::rundir::write_npy(&dir.join(npy), &[n, run.contacts as u64], values)?;
+    }
+    Ok(())
 }
 
 /// `energy.csv`: E(t) (`total_j`), and with lab physics the work W(t) (`work_j`) and the

@@ -129,6 +129,30 @@ impl LatticeRun {
         PyArray1::from_slice(py, &self.run.energy_j)
     }
 
+    /// Each contact's Hertz potential [J], shape (S, C), columns in output order
+    /// (`contact_energy_j.npy`).
+    #[getter]
+    fn contact_energy_j<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let r = &self.run;
+        PyArray1::from_slice(py, &r.contact_energies_j).reshape([r.times_s.len(), r.contacts])
+    }
+
+    /// Each contact's energy dissipated since the start [J], shape (S, C), columns in output
+    /// order (`contact_dissipated_j.npy`); None without lab physics.
+    #[getter]
+    fn contact_dissipated_j<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<Option<Bound<'py, PyArray2<f64>>>> {
+        let r = &self.run;
+        if r.work_j.is_empty() {
+            return Ok(None);
+        }
+        PyArray1::from_slice(py, &r.contact_dissipated_samples_j)
+            .reshape([r.times_s.len(), r.contacts])
+            .map(Some)
+    }
+
     /// Writes the run directory `dir` exactly as `woodpile simulate --out dir` does (staged, then
     /// moved into place; an earlier run there is replaced only with `overwrite`).
     fn save(&self, py: Python<'_>, dir: PathBuf, overwrite: bool) -> PyResult<String> {

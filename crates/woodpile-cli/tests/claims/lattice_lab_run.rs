@@ -7,8 +7,8 @@
 //! at its last row is below 1e-6 of the largest W (the run's own audit, in `summary.json`);
 //! `summary.json`'s `lab` holds per-contact dissipated energies (the supports' positive) and
 //! the static forces, whose supports carry the rods' weight within 1e-9. Bad lab input — a
-//! blast point on no top rod, an unknown `points`, `at_mm` with a blast, a displacement drive,
-//! a negative modal ratio, resonator damping, Hunt–Crossley without an impact speed under a
+//! blast point on no top rod, an unknown `points`, `at_mm` with a blast, a negative modal
+//! ratio, resonator damping, Hunt–Crossley without an impact speed under a
 //! blast, rest without a static load, `points` with an impact, `modal_ratio` in a chain — exits
 //! with code 2 naming the dotted key as written, the value and what is valid.
 
@@ -123,14 +123,6 @@ fn bad_lab_input_exits_2_naming_the_key() {
         "at_mm with a blast",
         &blast("kind = \"blast\"", "kind = \"blast\"\nat_mm = [0.0, 0.0]"),
         &["excitation.at_mm", "striker's impact point", "points_mm"],
-    );
-    common::refused_scenario(
-        "displacement drive",
-        &blast(
-            "kind = \"blast\"\npeak_force_n = 60.0\nduration_s = 1e-4",
-            "kind = \"drive\"\ndrive = \"displacement\"\nsignal = \"harmonic\"\namplitude = 1e-6\nfrequency_hz = 2e3",
-        ),
-        &["excitation.drive", "\"displacement\"", "drive = \"force\""],
     );
     common::refused_scenario(
         "negative modal ratio",

@@ -18,6 +18,7 @@ mod fit_command;
 mod fit_interrupt;
 mod interrupt_within_a_run;
 mod lattice_builtin;
+mod lattice_displacement_run;
 mod lattice_lab_run;
 mod lattice_rod_keys;
 mod lattice_run;

@@ -34,7 +34,8 @@ pub(crate) use resolve::material as material_of;
 pub(crate) use resolve::resolve_run_spec;
 pub(crate) use resolve::striker_of;
 pub(crate) use resolve::{
-    blast_profile_of, damping_of, refuse_excitation_keys, signal_of, BLAST_KEYS, DRIVE_KEYS,
+    blast_profile_of, damping_of, drive_quantity_of, refuse_excitation_keys, signal_of, BLAST_KEYS,
+    DRIVE_KEYS,
 };
 pub use resolve::{resolve, resolve_element, resolve_with_keys, ChainKeys, Resolved};
 

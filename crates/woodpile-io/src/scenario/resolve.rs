@@ -884,7 +884,25 @@ pub(crate) fn signal_of(x: &ExcitationSpec, base_dir: &Path) -> Result<Signal, E
 fn resolve_drive(x: &ExcitationSpec, chain: &Chain, base_dir: &Path) -> Result<Excitation, Error> {
     refuse_excitation_keys(x, &DRIVE_KEYS, "with excitation.kind = \"drive\"")?;
     let signal = signal_of(x, base_dir)?;
-    let quantity = match (x.drive.unwrap_or_default(), &x.tip) {
+    let quantity = drive_quantity_of(x)?;
+    if let DriveQuantity::Displacement { tip } = &quantity {
+        // Fails early (as a usage error) when the tip cannot touch the top element.
+        tip.beta_against(chain.top_surface(), &chain.elements()[0].material)
+            .map_err(Error::at("excitation.tip"))?;
+    }
+    let drive = Drive {
+        quantity,
+        ramp_s: completed("excitation.ramp_s", x.ramp_s.as_ref())?,
+        signal,
+    };
+    drive.validate()?;
+    Ok(Excitation::Drive(drive))
+}
+
+/// What a drive prescribes (a chain's or a lattice's, completed `[excitation]`): a force, or a
+/// displacement through `excitation.tip` (keys as in `[wall]`, not free).
+pub(crate) fn drive_quantity_of(x: &ExcitationSpec) -> Result<DriveQuantity, Error> {
+    Ok(match (x.drive.unwrap_or_default(), &x.tip) {
         (DriveKind::Force, Some(_)) => {
             return Err(not_applicable(
                 "excitation.tip",
@@ -905,19 +923,9 @@ fn resolve_drive(x: &ExcitationSpec, chain: &Chain, base_dir: &Path) -> Result<E
                     "a displacement actuator pushes through its tip: give kind = \"cap\", \"flat\" or \"beta\"",
                 ));
             }
-            // Fails early (as a usage error) when the tip cannot touch the top element.
-            tip.beta_against(chain.top_surface(), &chain.elements()[0].material)
-                .map_err(Error::at("excitation.tip"))?;
             DriveQuantity::Displacement { tip }
         }
-    };
-    let drive = Drive {
-        quantity,
-        ramp_s: completed("excitation.ramp_s", x.ramp_s.as_ref())?,
-        signal,
-    };
-    drive.validate()?;
-    Ok(Excitation::Drive(drive))
+    })
 }
 
 /// One contact's law; `key` names its table (`damping`, `damping.striker`, `damping.wall`).

@@ -1,10 +1,12 @@
 //! What loads and dissipates a lattice (docs/physics.md §16): the striker, a blast or a force
-//! drive split equally over load points of the top layer, or nothing; the chains' contact laws
+//! drive split equally over load points of the top layer, a displacement actuator pressing on
+//! them through a tip at each, or nothing; the chains' contact laws
 //! at every contact, damping of the rods' modes, and a static load (a preload on the load points
 //! and gravity) that the run starts in equilibrium with.
 
 use super::lab::{Damping, Preload};
 use super::lattice::{Lattice, RodPoint};
+use super::Wall;
 use crate::error::{require_non_negative, Error, Result};
 use crate::excitation::{BlastProfile, Drive, DriveQuantity, Excitation, Striker};
 
@@ -82,9 +84,13 @@ pub enum LatticeExcitation {
         /// Where it acts.
         points: LoadPoints,
     },
-    /// A force drive: the ramped signal is the total force, 1/N of it on each point.
+    /// A drive. A force: the ramped signal is the total force, 1/N of it on each point. A
+    /// displacement: one rigid actuator whose prescribed position u(t) (the ramped signal,
+    /// downward) presses on every point through a Hertz contact of its tip (a fixed-geometry
+    /// support like the sensor, the chains' `excitation.tip`), tension-free, overlap
+    /// δ_c = δ_c⁰ + u(t) − w_top(point) (δ_c⁰: the share 1/N of a preload).
     Drive {
-        /// The drive (a force).
+        /// The drive (a force or a displacement).
         drive: Drive,
         /// Where it acts.
         points: LoadPoints,
@@ -118,28 +124,42 @@ impl LatticeExcitation {
         }
     }
 
-    /// Validates the excitation: a drive on a lattice is a force (a displacement actuator would
-    /// need a tip at every point).
+    /// The tip of a displacement drive's actuator (None for any other excitation).
+    pub fn actuator_tip(&self) -> Option<&Wall> {
+        match self {
+            LatticeExcitation::Drive {
+                drive:
+                    Drive {
+                        quantity: DriveQuantity::Displacement { tip },
+                        ..
+                    },
+                ..
+            } => Some(tip),
+            _ => None,
+        }
+    }
+
+    /// Validates the excitation: a displacement actuator needs a tip that touches (not free).
     pub fn validate(&self) -> Result<()> {
-        if let LatticeExcitation::Drive { drive, .. } = self {
-            if drive.quantity != DriveQuantity::Force {
-                return Err(Error::invalid(
-                    "excitation.drive",
-                    "\"displacement\"",
-                    "a lattice is driven by a force (drive = \"force\"), split over its load points",
-                ));
-            }
+        if self.actuator_tip() == Some(&Wall::Free) {
+            return Err(Error::invalid(
+                "excitation.tip.kind",
+                "\"free\"",
+                "a displacement actuator pushes through its tip: give kind = \"cap\", \"flat\" or \"beta\"",
+            ));
         }
         self.as_chain_excitation().validate()
     }
 
-    /// The total prescribed force at t \[N\] (a blast's F(t), a drive's ramped signal; 0 for an
-    /// impact or rest), before the preload is added.
+    /// The total prescribed force at t \[N\] (a blast's F(t), a force drive's ramped signal; 0
+    /// for an impact, rest or a displacement drive), before the preload is added.
     #[inline]
     pub fn total_force_n(&self, t: f64) -> f64 {
         match self {
             LatticeExcitation::Blast { profile, .. } => profile.force_n(t),
-            LatticeExcitation::Drive { drive, .. } => drive.value_and_rate(t).0,
+            LatticeExcitation::Drive { drive, .. } if drive.quantity == DriveQuantity::Force => {
+                drive.value_and_rate(t).0
+            }
             _ => 0.0,
         }
     }
@@ -150,14 +170,15 @@ impl LatticeExcitation {
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct LatticeLab {
     /// The chain's damping: contact laws (`contacts` at every crossing, `striker` at the
-    /// striker's contact, `wall` at every support), `allow_pull`, the Hunt–Crossley
+    /// striker's contact or a displacement actuator's tips, `wall` at every support), `allow_pull`, the Hunt–Crossley
     /// `impact_speed_m_s`, and `on_site_time_s` (−m u̇/τ on every point of every rod: in modal
     /// coordinates −q̇_j/τ on every mode). Its resonator ratios must be zero (a lattice's rods
     /// have no resonators: [`LatticeLab::modal_ratio`] damps their modes).
     pub damping: Damping,
     /// Damping ratio ζ of every elastic free–free mode of every rod: −2 ζ ω_j q̇_j.
     pub modal_ratio: f64,
-    /// Preload (on the load points, or every top-layer crossing beside a striker) and gravity.
+    /// Preload (on the load points — through the actuator's tips under a displacement drive, 1/N
+    /// on each — or every top-layer crossing beside a striker) and gravity.
     pub preload: Preload,
 }
 

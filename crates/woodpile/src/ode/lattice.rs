@@ -20,7 +20,8 @@
 //! integrals ∫J dt are carried only to keep the state of the form x'' = a(x).)
 //! With lab physics (docs/physics.md §16; `ode::lattice_lab`): the contacts follow the chains'
 //! laws (`model::law`), every rod mode is damped, blasts and drives act on load points (contacts
-//! of their own at the head of the list, their force prescribed), the run starts from the static
+//! of their own at the head of the list, their force prescribed; under a displacement drive
+//! each the Hertz contact of the actuator's tip, δ_c = δ_c⁰ + u(t) − w(point)), the run starts from the static
 //! equilibrium under the preload and gravity, and the state ends in the work W of the external
 //! forces, the energy dissipated by the modes' damping and that dissipated at each contact:
 //!
@@ -85,6 +86,8 @@ pub struct LatticeOde {
     pub(super) loads: usize,
     /// Whether contact 0 is the striker's.
     pub(super) struck: bool,
+    /// Whether the load points are a displacement actuator's tip contacts (their β the tip's).
+    pub(super) actuator: bool,
     /// Force and overlap per contact at the last evaluation.
     pub(crate) force_n: Vec<f64>,
     pub(crate) overlap_m: Vec<f64>,
@@ -128,7 +131,11 @@ impl LatticeOde {
                     .load_points()
                     .expect("a load has points")
                     .on(lattice)?;
-                Self::compile(lattice, None, &points)?
+                let mut ode = Self::compile(lattice, None, &points)?;
+                if let Some(tip) = excitation.actuator_tip() {
+                    ode.attach_actuator(lattice, tip, &points)?;
+                }
+                ode
             }
         };
         let terms = LabTerms::compile(&ode, lattice, excitation, lab)?;
@@ -231,10 +238,53 @@ impl LatticeOde {
             striker_velocity_m_s,
             loads: load_points.len(),
             struck: striker.is_some(),
+            actuator: false,
             force_n: vec![0.0; n],
             overlap_m: vec![0.0; n],
             lab: None,
         })
+    }
+
+    /// Makes the load contacts the Hertz contacts of a displacement actuator's tip on each
+    /// point: β of the tip against the top rod there (errors name `excitation.tip`), and an
+    /// overlap limit of a tenth of the smaller radius, as at a support.
+    fn attach_actuator(
+        &mut self,
+        lattice: &Lattice,
+        tip: &crate::model::Wall,
+        points: &[RodPoint],
+    ) -> Result<()> {
+        let tip_radius = match tip {
+            crate::model::Wall::Cap { radius_m, .. } => *radius_m,
+            _ => f64::INFINITY,
+        };
+        for (c, p) in points.iter().enumerate() {
+            let rod = &lattice.rods[p.rod];
+            let beta = tip
+                .beta_against(rod.surface(), &rod.rod.material)
+                .map_err(|e| match e {
+                    crate::error::Error::InvalidParameter {
+                        field,
+                        value,
+                        reason,
+                    } => crate::error::Error::InvalidParameter {
+                        field: field.replacen("wall", "excitation.tip", 1),
+                        value,
+                        reason,
+                    },
+                    e => e,
+                })?
+                .expect("a free tip is refused by LatticeExcitation::validate");
+            self.beta[c] = beta;
+            self.overlap_limit_m[c] = 0.1 * (0.5 * rod.rod.outer_diameter_m).min(tip_radius);
+        }
+        self.actuator = true;
+        Ok(())
+    }
+
+    /// Whether the load points are a displacement actuator's tip contacts.
+    pub fn has_actuator(&self) -> bool {
+        self.actuator
     }
 
     /// (first coordinate, number of coordinates) of rod `rod` (its index in the lattice).
@@ -248,7 +298,7 @@ impl LatticeOde {
         self.omega2.len()
     }
 
-    /// β per contact, in output order [N/m^1.5] (0 for a load point).
+    /// β per contact, in output order [N/m^1.5] (0 for a load point of a prescribed force).
     pub fn contact_betas(&self) -> &[f64] {
         &self.beta
     }
@@ -348,7 +398,7 @@ impl LatticeOde {
 
     /// Every contact's overlap and force at state y (positions, and with lab physics
     /// velocities and time) into `overlap_m` and `force_n`.
-    pub(crate) fn contact_forces_at(&mut self, t: f64, y: &[f64]) {
+    pub fn contact_forces_at(&mut self, t: f64, y: &[f64]) {
         match self.lab.take() {
             None => self.contact_forces(&y[..self.coordinates()]),
             Some(mut lab) => {
@@ -373,24 +423,67 @@ impl LatticeOde {
         self.bodies.len()
     }
 
-    /// Each body's energy in state y into `out` (one per body: the striker first, if any, then
-    /// the rods in the lattice's order), as a chain's layer energies (docs/physics.md §7): its
-    /// modes' kinetic and strain energy Σ ½ (q̇_j² + ω_j² q_j²) plus half of the Hertz potential
-    /// of every contact it takes part in. Returns the supports' halves \[J\]; the sum of both
-    /// is [`LatticeOde::energy_j`].
+    /// Number of entries of [`LatticeOde::body_energies_j`]: layer 0 (the striker, or a
+    /// displacement actuator) if any, then the rods.
+    pub fn energy_bodies(&self) -> usize {
+        self.bodies.len() + usize::from(self.actuator)
+    }
+
+    /// Contact c's Hertz potential (2/5) β δ₊^{5/2} at positions q \[J\]: 0 at a load point of
+    /// a prescribed force (its work is W); at an actuator's tip, of the overlap of the last
+    /// evaluation ([`LatticeOde::contact_forces_at`], which knows the time).
+    #[inline]
+    fn contact_potential_j(&self, c: usize, q: &[f64]) -> f64 {
+        if c < self.loads {
+            return if self.actuator {
+                ContactLaw::potential_j(self.beta[c], self.overlap_m[c])
+            } else {
+                0.0
+            };
+        }
+        ContactLaw::potential_j(self.beta[c], self.overlap(c, q))
+    }
+
+    /// Every contact's Hertz potential in state y into `out` (one per contact, output order)
+    /// \[J\], after [`LatticeOde::contact_forces_at`] at the state's time (an actuator's tip
+    /// overlaps depend on it).
+    pub fn contact_energies_j(&self, y: &[f64], out: &mut [f64]) {
+        let x = &y[..self.coordinates()];
+        for (c, e) in out.iter_mut().enumerate() {
+            *e = self.contact_potential_j(c, x);
+        }
+    }
+
+    /// Each body's energy in state y into `out` ([`LatticeOde::energy_bodies`] entries: the
+    /// striker or a displacement actuator first, if any, then the rods in the lattice's order),
+    /// as a chain's layer energies (docs/physics.md §7): its modes' kinetic and strain energy
+    /// Σ ½ (q̇_j² + ω_j² q_j²) plus half of the Hertz potential of every contact it takes part
+    /// in (the actuator: half of each tip contact's). Returns the supports' halves \[J\]; the
+    /// sum of both is [`LatticeOde::energy_j`]. Call after [`LatticeOde::contact_forces_at`]
+    /// at the state's time.
     pub fn body_energies_j(&self, y: &[f64], out: &mut [f64]) -> f64 {
         let q = self.coordinates();
         let (x, v) = (&y[..q], &y[q + 3..2 * q + 3]);
-        for (e, &(offset, len, _, _)) in out.iter_mut().zip(&self.bodies) {
+        let first = usize::from(self.actuator);
+        out[..first].fill(0.0);
+        for (e, &(offset, len, _, _)) in out[first..].iter_mut().zip(&self.bodies) {
             *e = (offset..offset + len)
                 .map(|j| 0.5 * (v[j] * v[j] + self.omega2[j] * x[j] * x[j]))
                 .sum();
         }
-        let body = |side: Side| self.bodies.partition_point(|b| b.0 <= side.offset) - 1;
+        let body = |side: Side| first + self.bodies.partition_point(|b| b.0 <= side.offset) - 1;
         let mut supports = 0.0;
-        for c in self.loads..self.beta.len() {
-            let half = 0.5 * ContactLaw::potential_j(self.beta[c], self.overlap(c, x));
-            out[body(self.above[c])] += half;
+        for c in 0..self.beta.len() {
+            let half = 0.5 * self.contact_potential_j(c, x);
+            if half == 0.0 {
+                continue;
+            }
+            // A load contact's side above is the actuator (layer 0).
+            out[if c < self.loads {
+                0
+            } else {
+                body(self.above[c])
+            }] += half;
             match self.below[c] {
                 Some(b) => out[body(b)] += half,
                 None => supports += half,
@@ -399,18 +492,18 @@ impl LatticeOde {
         supports
     }
 
-    /// Kinetic, modal strain and contact energy of a state \[J\].
+    /// Kinetic, modal strain and contact energy of a state \[J\] (an actuator's tip contacts
+    /// included: call after [`LatticeOde::contact_forces_at`] at the state's time).
     pub fn energy_j(&self, y: &[f64]) -> f64 {
         let q = self.coordinates();
         let (x, v) = (&y[..q], &y[q + 3..2 * q + 3]);
         let motion: f64 = (0..q)
             .map(|j| 0.5 * (v[j] * v[j] + self.omega2[j] * x[j] * x[j]))
             .sum();
-        // (Load points have no potential: their forces are prescribed, their work is W.)
-        let mut contacts = 0.0;
-        for c in self.loads..self.beta.len() {
-            contacts += ContactLaw::potential_j(self.beta[c], self.overlap(c, x));
-        }
+        // (Load points of a prescribed force have no potential: their work is W.)
+        let contacts: f64 = (0..self.beta.len())
+            .map(|c| self.contact_potential_j(c, x))
+            .sum();
         motion + contacts
     }
 

@@ -1,6 +1,6 @@
 //! The lab physics of a lattice (docs/physics.md §16): the chains' contact laws at every
-//! contact, damping of the rods' modes, a blast or drive split over load points, gravity and a
-//! preload, the static equilibrium the run starts from (a damped Newton minimisation of the
+//! contact, damping of the rods' modes, a blast or force drive split over load points or a
+//! displacement actuator pressing on them, gravity and a preload, the static equilibrium the run starts from (a damped Newton minimisation of the
 //! potential energy), and the energy integrals W and D.
 
 use super::lattice::LatticeOde;
@@ -32,6 +32,10 @@ pub(crate) struct LabTerms {
     /// Preload per load point \[N\], and each point's share 1/N of the load's force.
     preload_per_point_n: f64,
     share: f64,
+    /// A displacement actuator's rest overlap δ_c⁰ per load point \[m\] (its tip contact
+    /// carries the point's preload in the static state): δ_c = δ_c⁰ + u(t) − w_c. Empty
+    /// without an actuator.
+    tip_rest_m: Vec<f64>,
     /// The state the run starts from (static equilibrium) and each contact's static force.
     pub(super) q0: Vec<f64>,
     pub(super) static_force_n: Vec<f64>,
@@ -96,6 +100,7 @@ impl LabTerms {
                 0.0
             },
             share: if loads > 0 { 1.0 / loads as f64 } else { 0.0 },
+            tip_rest_m: Vec::new(),
             q0: vec![0.0; q],
             static_force_n: vec![0.0; nc],
             static_residual: 0.0,
@@ -114,6 +119,21 @@ impl LabTerms {
                 }
             })
             .collect();
+        if ode.actuator {
+            // As the chains' actuator: at rest each tip overlaps its point by the Hertz overlap
+            // of the point's preload, (F/β)^{2/3}.
+            let f = terms.preload_per_point_n;
+            terms.tip_rest_m = (0..loads)
+                .map(|c| {
+                    let static_overlap = if f > 0.0 {
+                        (f / ode.beta[c]).powf(2.0 / 3.0)
+                    } else {
+                        0.0
+                    };
+                    static_overlap + ode.deflection(ode.below[c].expect("a load's rod"), &q0)
+                })
+                .collect();
+        }
         terms.q0 = q0;
         terms.static_residual = residual;
         Ok(terms)
@@ -125,7 +145,25 @@ impl LabTerms {
         let q = ode.coordinates();
         let (x, v) = (&y[..q], &y[q + 3..2 * q + 3]);
         let load_n = self.preload_per_point_n + self.share * self.excitation.total_force_n(t);
+        let tip = match &self.excitation {
+            LatticeExcitation::Drive { drive, .. } if ode.actuator => drive.value_and_rate(t),
+            _ => (0.0, 0.0),
+        };
         for c in 0..ode.contacts() {
+            if c < ode.loads && ode.actuator {
+                // The tip presses down by u(t); the point's deflection w is −overlap(c) (the
+                // side above is empty).
+                let d = self.tip_rest_m[c] + tip.0 + ode.overlap(c, x);
+                let r = tip.1 + ode.overlap(c, v);
+                let (f, p) =
+                    self.laws[c].force(self.law_coef[c], ode.beta[c], d, r, self.allow_pull);
+                ode.overlap_m[c] = d;
+                ode.force_n[c] = f;
+                // The load's power is F u̇ (W); a damped tip law dissipates p.
+                self.rate_m_s[c] = tip.1;
+                self.dissipated_w[c] = p;
+                continue;
+            }
             if c < ode.loads {
                 ode.force_n[c] = load_n;
                 ode.overlap_m[c] = 0.0;
@@ -317,7 +355,7 @@ fn hessian(
 }
 
 /// The law and coefficient of every contact (the chains' [`ContactLaw::compile`]): the
-/// striker's law at the striker, the wall's at every support, `damping.contacts` at every
+/// striker's law at the striker and at a displacement actuator's tips, the wall's at every support, `damping.contacts` at every
 /// crossing; m_eff the reduced mass of the two bodies' whole masses (a rod's alone at a
 /// support).
 fn contact_laws(
@@ -352,7 +390,14 @@ fn contact_laws(
     Ok((0..ode.contacts())
         .map(|c| {
             if c < ode.loads {
-                return (ContactLaw::Elastic, 0.0);
+                // A displacement actuator's tip: the striker's law (as the chains' actuator),
+                // m_eff the rod's mass.
+                return match ode.below[c] {
+                    Some(b) if ode.actuator => {
+                        ContactLaw::compile(damping.striker_law(), ode.beta[c], mass(b), v_in)
+                    }
+                    _ => (ContactLaw::Elastic, 0.0),
+                };
             }
             let (law, m) = match ode.below[c] {
                 None => (damping.wall_law(), mass(ode.above[c])),

@@ -38,6 +38,13 @@ pub struct LatticeRun {
     /// Energy dissipated at each contact over the run \[J\], in output order (empty without lab
     /// physics; the rest of D is the rods' modal damping, [`LatticeRun::modal_dissipated_j`]).
     pub contact_dissipated_j: Vec<f64>,
+    /// Each contact's Hertz potential, sample by sample (`contacts` per sample, output order;
+    /// 0 at a load point of a prescribed force) \[J\] ([`LatticeOde::contact_energies_j`]).
+    pub contact_energies_j: Vec<f64>,
+    /// Energy dissipated at each contact from the start to each sample (`contacts` per sample,
+    /// output order; empty without lab physics) \[J\]: its last row is
+    /// [`LatticeRun::contact_dissipated_j`] at the last sample.
+    pub contact_dissipated_samples_j: Vec<f64>,
     /// Energy dissipated by the damping of the rods' modes over the run \[J\].
     pub modal_dissipated_j: f64,
     /// Each contact's force in the static equilibrium the run started from \[N\] (empty
@@ -51,12 +58,13 @@ pub struct LatticeRun {
     pub contacts: usize,
     /// Indices of the support contacts.
     pub supports: Vec<usize>,
-    /// Each body's energy, sample by sample (`bodies` per sample: the striker first, if any,
-    /// then the rods; [`LatticeOde::body_energies_j`]) \[J\].
+    /// Each body's energy, sample by sample (`bodies` per sample: the striker or a
+    /// displacement actuator first, if any, then the rods; [`LatticeOde::body_energies_j`])
+    /// \[J\].
     pub body_energies_j: Vec<f64>,
     /// The supports' halves of their contacts' potential, per sample \[J\].
     pub support_energy_j: Vec<f64>,
-    /// Number of bodies per sample.
+    /// Number of bodies per sample ([`LatticeOde::energy_bodies`]).
     pub bodies: usize,
     /// Integrator counters.
     pub stats: IntegratorStats,
@@ -211,6 +219,8 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         work_j: Vec::new(),
         dissipated_j: Vec::new(),
         contact_dissipated_j: Vec::new(),
+        contact_energies_j: Vec::new(),
+        contact_dissipated_samples_j: Vec::new(),
         modal_dissipated_j: 0.0,
         contact_static_forces_n: ode.static_forces_n().0.to_vec(),
         static_residual: ode.static_forces_n().1,
@@ -219,13 +229,14 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         supports,
         body_energies_j: Vec::new(),
         support_energy_j: Vec::new(),
-        bodies: ode.bodies(),
+        bodies: ode.energy_bodies(),
         stats: IntegratorStats::default(),
         method,
     };
-    let e0 = ode.energy_j(&y0);
     let mut sample = y0.clone();
     record(ode, &mut run, 0.0, &sample);
+    // (After the forces at t = 0: an actuator's tip overlaps depend on the time.)
+    let e0 = run.energy_j[0];
     // Every contact's peak, then the incident force's (the striker's, or the load points' sum)
     // and the transmitted force's (the supports' sum) as two more; the forces at t = 0 (a
     // blast's F0, the static forces under a static load) count.
@@ -330,6 +341,13 @@ fn record(ode: &mut LatticeOde, run: &mut LatticeRun, t: f64, y: &[f64]) {
         let (w, d) = ode.work_and_dissipation_j(y);
         run.work_j.push(w);
         run.dissipated_j.push(d);
+    }
+    let start = run.contact_energies_j.len();
+    run.contact_energies_j.resize(start + run.contacts, 0.0);
+    ode.contact_energies_j(y, &mut run.contact_energies_j[start..]);
+    if ode.has_lab() {
+        run.contact_dissipated_samples_j
+            .extend_from_slice(ode.contact_dissipated_j(y));
     }
     run.momentum.push(ode.momentum_audit(y));
 }

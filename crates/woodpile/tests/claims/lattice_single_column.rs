@@ -9,8 +9,9 @@
 //! and the sums in a different order, carried through 5,000 steps of a nonlinear system. Every
 //! sampled contact force agrees within 1e-12 of the largest force, and every sampled energy —
 //! the total, each body's (the striker's and each rod's: kinetic, strain and half of each of its
-//! contacts' potential, the chain's layer energy) and the support's half — within 1e-12 of the
-//! initial energy.
+//! contacts' potential, the chain's layer energy), the support's half, and each contact's Hertz
+//! potential against (2/5) β δ₊^{5/2} of the chain's overlaps (its primaries' and striker's
+//! displacements) — within 1e-12 of the initial energy.
 
 use woodpile::model::{LatticeBuilder, LayerSpec};
 use woodpile::ode::LatticeOde;
@@ -111,8 +112,29 @@ fn one_rod_per_layer_is_the_fe_rod_chain() {
     for (a, b) in run.support_energy_j.iter().zip(&trajectory.wall_energy_j) {
         worst_body = worst_body.max((a - b).abs() / e0);
     }
+    // Each contact's Hertz potential against the chain's overlaps: the striker's x_s − u_1,
+    // u_i − u_{i+1} between rods, u_N at the sensor.
+    let n = trajectory.n_elements;
+    let u = |k: usize, i: usize| trajectory.displacements_m[k * n + i];
+    let mut worst_contact = 0.0_f64;
+    for k in 0..run.times_s.len() {
+        for c in 0..run.contacts {
+            let overlap = match c {
+                0 => trajectory.striker_position_m[k] - u(k, 0),
+                c if c == n => u(k, n - 1),
+                c => u(k, c - 1) - u(k, c),
+            };
+            let hertz = 0.4 * ode.contact_betas()[c] * overlap.max(0.0).powf(2.5);
+            let value = run.contact_energies_j[k * run.contacts + c];
+            worst_contact = worst_contact.max((value - hertz).abs() / e0);
+        }
+    }
     eprintln!(
-        "largest force difference {worst_force:e} of the peak, energy {worst_energy:e}, per body {worst_body:e}"
+        "largest force difference {worst_force:e} of the peak, energy {worst_energy:e}, per body {worst_body:e}, per contact {worst_contact:e}"
+    );
+    assert!(
+        worst_contact < 1e-12,
+        "contact energies differ by {worst_contact:e}"
     );
     assert!(worst_body < 1e-12, "body energies differ by {worst_body:e}");
     assert!(
