@@ -335,19 +335,81 @@ fn lattice_key_table() -> Vec<Key> {
         key("lattice.rod", KeyType::Table, "", KeyDefault::None, "", "how every rod moves: { fe_elements = n } or { modes = l }"),
         Key { alternatives: &["lattice.rod.modes"], ..key("lattice.rod.fe_elements", KeyType::Integer, "", Float(8.0), "1..=64", "finite-element Timoshenko beam elements per half rod") },
         Key { alternatives: &["lattice.rod.fe_elements"], ..key("lattice.rod.modes", KeyType::Integer, "", KeyDefault::None, ">= 1, at most the rod's bending modes below its shear cutoff", "the l lowest analytic free-free Timoshenko bending modes (and the two rigid modes) instead of finite elements") },
-        key("excitation", KeyType::Table, "", KeyDefault::None, "", "the striker"),
-        Key { choices: &["impact"], ..key("excitation.kind", KeyType::Name, "", Name("impact"), "one of the choices", "a lattice is struck") },
+        key("excitation", KeyType::Table, "", KeyDefault::None, "", "what loads the lattice: a striker, a blast, a drive, or nothing (a static load alone)"),
+        Key { choices: &["impact", "blast", "drive", "rest"], ..key("excitation.kind", KeyType::Name, "", Name("impact"), "one of the choices", "a striker, a blast or a drive on the load points, or rest (a [preload] alone)") },
         key("excitation.at_mm", KeyType::FloatList, "mm", Derived("[0.0, 0.0], the centre".into()), "(x, y) on a rod of the top layer", "where the striker hits the top layer"),
         Key { alternatives: &["excitation.velocity_m_s"], ..key("excitation.drop_height_m", KeyType::Float, "m", Float(d::DROP_HEIGHT_M), "> 0", "drop height h, v0 = sqrt(2 g h)") },
         Key { alternatives: &["excitation.drop_height_m"], ..key("excitation.velocity_m_s", KeyType::Float, "m/s", KeyDefault::None, "> 0", "initial striker velocity") },
         key("excitation.striker", KeyType::Table, "", KeyDefault::None, "", "the striker sphere"),
         key("excitation.striker.diameter_mm", KeyType::Float, "mm", Float(d::STRIKER_DIAMETER_MM), "> 0", "striker diameter"),
         key("excitation.striker.material", KeyType::Material, "", Name(d::STRIKER_MATERIAL), "a preset name or a table", "striker material"),
+        Key { choices: &["top-crossings"], alternatives: &["excitation.points_mm"], ..key("excitation.points", KeyType::Name, "", Name("top-crossings"), "one of the choices", "blast and drive: the load points, every crossing under the top layer's rods (the load split equally)") },
+        Key { alternatives: &["excitation.points"], ..key("excitation.points_mm", KeyType::FloatList, "mm", KeyDefault::None, "a list of [x, y], each on a rod of the top layer", "blast and drive: the load points (the load split equally)") },
+        doc("excitation.profile", "blast: F0 (1 - t/Td) exp(-b t/Td), or a CSV table; the total over the load points"),
+        doc("excitation.peak_force_n", "blast: peak total force F0, split equally over the load points"),
+        chain("excitation.duration_s"),
+        chain("excitation.decay"),
+        chain("excitation.file"),
+        doc("excitation.drive", "drive: a total force (N, split over the load points) or a displacement (m, of one rigid actuator pressing through a tip at every load point)"),
+        chain("excitation.signal"),
+        chain("excitation.amplitude"),
+        chain("excitation.frequency_hz"),
+        chain("excitation.start_hz"),
+        chain("excitation.end_hz"),
+        chain("excitation.sweep_duration_s"),
+        chain("excitation.sweep"),
+        chain("excitation.ramp_s"),
+        doc("excitation.tip", "displacement drive: the actuator's tip at every load point, keys as in a chain's [wall]"),
+        chain("excitation.tip.kind"),
+        chain("excitation.tip.material"),
+        chain("excitation.tip.cap_radius_mm"),
+        chain("excitation.tip.beta"),
         key("wall", KeyType::Table, "", KeyDefault::None, "", "the supports under the bottom layer (the paper's sensor each)"),
         Key { choices: &["centres"], ..key("wall.supports", KeyType::Name, "", Name("centres"), "\"centres\" or a list of { x_mm, y_mm }", "one support under every bottom rod's centre, or at the points given") },
         key("wall.supports[].x_mm", KeyType::Float, "mm", KeyDefault::None, "under a bottom rod, within its length and radius", "x of a support"),
         key("wall.supports[].y_mm", KeyType::Float, "mm", KeyDefault::None, "under a bottom rod, within its length and radius", "y of a support"),
+        doc("damping", "contact laws at every crossing, striker, tip and support; modal and on-site damping of the rods (docs/physics.md §16); none: lossless"),
+        chain("damping.contact"),
+        chain("damping.restitution"),
+        chain("damping.viscous_time_s"),
+        chain("damping.striker"),
+        chain("damping.striker.contact"),
+        chain("damping.striker.restitution"),
+        chain("damping.striker.viscous_time_s"),
+        doc("damping.wall", "the supports' contacts, when they differ"),
+        chain("damping.wall.contact"),
+        chain("damping.wall.restitution"),
+        chain("damping.wall.viscous_time_s"),
+        chain("damping.allow_pull"),
+        chain("damping.impact_speed_m_s"),
+        chain("damping.on_site_time_s"),
+        doc("damping.modal_ratio", "damping ratio zeta of every elastic mode of every rod"),
+        doc("preload", "a static force on the load points and gravity; the run starts from the static equilibrium (docs/physics.md §16); none: unloaded"),
+        doc("preload.force_n", "static total force on the load points (or through the actuator's tips), split equally"),
+        doc("preload.gravity_m_s2", "gravity, downward through the layers"),
+        chain("run"),
+        chain("run.duration_s"),
+        chain("run.peak_tolerance"),
+        chain("run.integrator"),
+        chain("run.time_step_s"),
+        chain("run.rtol"),
+        chain("run.atol"),
+        chain("run.sample_interval_s"),
     ]
+}
+
+/// The chain's row of `name` (a key whose meaning is the same in a lattice).
+fn chain(name: &str) -> Key {
+    crate::scenario::keys()
+        .iter()
+        .find(|k| k.name == name)
+        .unwrap_or_else(|| panic!("{name} is a key of the chain's table"))
+        .clone()
+}
+
+/// The chain's row of `name` with the lattice's meaning `doc`.
+fn doc(name: &str, doc: &'static str) -> Key {
+    Key { doc, ..chain(name) }
 }
 
 /// Whether a scenario text describes a lattice (has a top-level `lattice` table).

@@ -535,6 +535,10 @@ fn require_positive_mm(field: &str, value_m: f64) -> Result<f64> {
     if value_m.is_finite() && value_m > 0.0 {
         Ok(value_m)
     } else {
-        Err(Error::invalid(field, value_m * 1e3, "must be a finite number of mm > 0"))
+        Err(Error::invalid(
+            field,
+            value_m * 1e3,
+            "must be a finite number of mm > 0",
+        ))
     }
 }

@@ -143,7 +143,10 @@ fn one_objective_finds_the_exhaustive_minimum() {
     let all = enumerator.all_designs();
     let refs: Vec<&[u8]> = all.iter().map(Vec::as_slice).collect();
     let values = enumerator.evaluate(&refs).unwrap();
-    let least = values.iter().map(|v| v.objectives[0]).fold(f64::INFINITY, f64::min);
+    let least = values
+        .iter()
+        .map(|v| v.objectives[0])
+        .fold(f64::INFINITY, f64::min);
     let ties = values.iter().filter(|v| v.objectives[0] == least).count();
     for seed in 1..=3 {
         let ga = LatticeDesigns::new(space(), objectives.clone(), 2).unwrap();
