@@ -199,6 +199,7 @@ impl<'a> Potential<'a> {
         g
     }
 
+    /// H's diagonal and every touching contact's stiffness k_c = (3/2) β δ^½ at x.
     fn tangent(&self, x: &[f64]) -> Tangent {
         let ode = self.ode;
         let mut diagonal: Vec<f64> = ode.omega2.clone();
@@ -234,18 +235,19 @@ impl<'a> Potential<'a> {
         let d: Vec<f64> = (0..b.len())
             .map(|j| ode.omega2[j] + mu * t.diagonal[j].max(1e-9 * t.scale))
             .collect();
-        let (p, bt, h) = self.condensed(t, &d, b);
+        // coupling = B = G_r K^½ (rigid modes × contacts).
+        let (p, coupling, h) = self.condensed(t, &d, b);
         let p = p.cholesky()?;
-        let y = p.solve(&bt.transpose());
+        let y = p.solve(&coupling.transpose());
         let z = p.solve(&h);
-        let mut s = &bt * &y;
+        let mut s = &coupling * &y;
         for (i, &j) in self.rigid_coordinates.iter().enumerate() {
             s[(i, i)] += d[j];
         }
         let rhs = DVector::from_iterator(
             self.rigid_coordinates.len(),
             self.rigid_coordinates.iter().map(|&j| b[j]),
-        ) - &bt * &z;
+        ) - &coupling * &z;
         let rigid_step = if rhs.is_empty() {
             rhs
         } else {
@@ -285,7 +287,7 @@ impl<'a> Potential<'a> {
         let ode = self.ode;
         let m = t.root_stiffness.len();
         let mut p = DMatrix::identity(m, m);
-        let mut bt = DMatrix::zeros(self.rigid_coordinates.len(), m);
+        let mut coupling = DMatrix::zeros(self.rigid_coordinates.len(), m);
         let mut h = DVector::zeros(m);
         let mut touching: Vec<(usize, f64, Side)> = Vec::new();
         for body in &self.bodies {
@@ -299,7 +301,7 @@ impl<'a> Potential<'a> {
                 for (i, &r) in row_a.iter().enumerate() {
                     let j = sa.offset + i;
                     match self.rigid[j] {
-                        Some(k) => bt[(k, a)] += wa * r,
+                        Some(k) => coupling[(k, a)] += wa * r,
                         None => h[a] += wa * r * b[j] / d[j],
                     }
                 }
@@ -317,7 +319,7 @@ impl<'a> Potential<'a> {
                 }
             }
         }
-        (p, bt, h)
+        (p, coupling, h)
     }
 }
 
