@@ -1,19 +1,19 @@
 //! The lab physics of a lattice (docs/physics.md §16): the chains' contact laws at every
+<<<<<<< HEAD
 //! contact, damping of the rods' modes, a blast or force drive split over load points or a
 //! displacement actuator pressing on them, gravity and a preload, the static equilibrium the run starts from (a damped Newton minimisation of the
 //! potential energy), and the energy integrals W and D.
+=======
+//! contact, damping of the rods' modes, a blast or drive split over load points, gravity and a
+//! preload, the static equilibrium the run starts from (a damped Newton minimisation of the
+//! potential energy, `ode::lattice_static`), and the energy integrals W and D.
+>>>>>>> latstatic
 
 use super::lattice::LatticeOde;
 use crate::error::{Error, Result};
 use crate::model::{
     ContactDamping, ContactLaw, Lattice, LatticeExcitation, LatticeLab, LoadPoints,
 };
-use nalgebra::{DMatrix, DVector};
-
-/// The static solve stops when |∇Π| ≤ this × |f| (f the static generalised forces).
-const STATIC_RESIDUAL: f64 = 1e-12;
-/// Most Newton steps of the static solve.
-const STATIC_ITERATIONS: usize = 500;
 
 /// The compiled lab terms of a [`LatticeOde`].
 #[derive(Debug, Clone)]
@@ -204,14 +204,10 @@ impl LabTerms {
         integrals[2..].copy_from_slice(&self.dissipated_w);
     }
 
-    /// The static equilibrium of the rods under gravity and the preload: the minimum of the
-    /// potential Π(q) = ½ Σ ω_j² q_j² + Σ_c (2/5) β_c δ_c₊^{5/2} − fᵀq over the rods'
-    /// coordinates (the striker, if any, excluded), convex because every overlap is linear in
-    /// q. Newton steps on (H + μ diag H) Δ = −∇Π, μ raised until Π falls and lowered after (the
-    /// rigid modes have no stiffness until their contacts close), until |∇Π| ≤ 1e-12 |f|.
-    /// Returns the positions and |∇Π| / |f|.
+    /// The static equilibrium of the rods under gravity and the preload
+    /// (`ode::lattice_static`): the static forces f, the load points' preload included, and
+    /// the minimum of the potential for them. Returns the positions and |∇Π| / |f|.
     fn static_equilibrium(&self, ode: &LatticeOde) -> Result<(Vec<f64>, f64)> {
-        let q = ode.coordinates();
         let first = usize::from(ode.struck);
         let mut f = self.static_force.clone();
         for c in 0..ode.loads {
@@ -221,137 +217,8 @@ impl LabTerms {
             }
         }
         f[..first].iter_mut().for_each(|x| *x = 0.0);
-        let f_norm = f.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let mut x = vec![0.0; q];
-        if f_norm == 0.0 {
-            return Ok((x, 0.0));
-        }
-        let hertz = if ode.struck { 1 } else { ode.loads }..ode.contacts();
-        let potential = |x: &[f64]| -> f64 {
-            let mut e = 0.0;
-            for j in first..q {
-                e += 0.5 * ode.omega2[j] * x[j] * x[j] - f[j] * x[j];
-            }
-            for c in hertz.clone() {
-                e += ContactLaw::potential_j(ode.beta[c], ode.overlap(c, x));
-            }
-            e
-        };
-        let gradient = |x: &[f64]| -> Vec<f64> {
-            let mut g: Vec<f64> = (0..q).map(|j| ode.omega2[j] * x[j] - f[j]).collect();
-            let mut forces = vec![0.0; ode.contacts()];
-            for c in hertz.clone() {
-                forces[c] = ContactLaw::elastic_force(ode.beta[c], ode.overlap(c, x));
-            }
-            spread(ode, &forces, hertz.clone(), &mut g);
-            g[..first].iter_mut().for_each(|x| *x = 0.0);
-            g
-        };
-        let norm = |g: &[f64]| g.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let mut mu = 1e-3;
-        let mut g = gradient(&x);
-        for _ in 0..STATIC_ITERATIONS {
-            let residual = norm(&g) / f_norm;
-            if residual <= STATIC_RESIDUAL {
-                return Ok((x, residual));
-            }
-            let h = hessian(ode, &x, first, hertz.clone());
-            let scale = h.diagonal().max().max(f64::MIN_POSITIVE);
-            let rhs = DVector::from_iterator(q - first, g[first..].iter().map(|v| -v));
-            let e0 = potential(&x);
-            loop {
-                let mut a = h.clone();
-                for i in 0..q - first {
-                    a[(i, i)] += mu * a[(i, i)].max(1e-9 * scale);
-                }
-                if let Some(step) = a.cholesky().map(|ch| ch.solve(&rhs)) {
-                    let trial: Vec<f64> = (0..q)
-                        .map(|j| {
-                            if j < first {
-                                0.0
-                            } else {
-                                x[j] + step[j - first]
-                            }
-                        })
-                        .collect();
-                    let g_trial = gradient(&trial);
-                    if potential(&trial) < e0 || norm(&g_trial) < 0.5 * norm(&g) {
-                        x = trial;
-                        g = g_trial;
-                        mu = (mu / 3.0).max(1e-15);
-                        break;
-                    }
-                }
-                mu *= 4.0;
-                if mu > 1e20 {
-                    return Err(no_equilibrium(norm(&g) / f_norm));
-                }
-            }
-        }
-        Err(no_equilibrium(norm(&g) / f_norm))
+        super::lattice_static::static_equilibrium(ode, &f)
     }
-}
-
-/// The static solve found no equilibrium: some rod is not held.
-fn no_equilibrium(residual: f64) -> Error {
-    Error::invalid(
-        "preload",
-        format!("a relative force residual of {residual:.3e}"),
-        format!("the static solve under gravity and the preload did not converge below {STATIC_RESIDUAL:e}: every rod must rest on the rods below or on supports (a rod that touches nothing below falls)"),
-    )
-}
-
-/// Adds every contact's force in `forces` (contacts `range`) to the generalised force `g`
-/// through its rows: +row above, −row below (the gradient of the contacts' potential).
-fn spread(ode: &LatticeOde, forces: &[f64], range: std::ops::Range<usize>, g: &mut [f64]) {
-    for c in range {
-        let f = forces[c];
-        if f == 0.0 {
-            continue;
-        }
-        let s = ode.above[c];
-        for k in 0..s.len {
-            g[s.offset + k] += ode.rows[s.row + k] * f;
-        }
-        if let Some(s) = ode.below[c] {
-            for k in 0..s.len {
-                g[s.offset + k] -= ode.rows[s.row + k] * f;
-            }
-        }
-    }
-}
-
-/// The Hessian of the potential over the coordinates from `first`: diag(ω²) + Σ_c k_c G_c G_cᵀ
-/// with k_c = (3/2) β δ₊^{1/2} and G_c the contact's rows (+ above, − below).
-fn hessian(
-    ode: &LatticeOde,
-    x: &[f64],
-    first: usize,
-    range: std::ops::Range<usize>,
-) -> DMatrix<f64> {
-    let n = ode.coordinates() - first;
-    let mut h = DMatrix::from_diagonal(&DVector::from_iterator(
-        n,
-        ode.omega2[first..].iter().copied(),
-    ));
-    for c in range {
-        let k = ContactLaw::stiffness_n_per_m(ode.beta[c], ode.overlap(c, x));
-        if k == 0.0 {
-            continue;
-        }
-        let mut entries: Vec<(usize, f64)> = Vec::new();
-        let s = ode.above[c];
-        entries.extend((0..s.len).map(|i| (s.offset + i - first, ode.rows[s.row + i])));
-        if let Some(s) = ode.below[c] {
-            entries.extend((0..s.len).map(|i| (s.offset + i - first, -ode.rows[s.row + i])));
-        }
-        for &(i, gi) in &entries {
-            for &(j, gj) in &entries {
-                h[(i, j)] += k * gi * gj;
-            }
-        }
-    }
-    h
 }
 
 /// The law and coefficient of every contact (the chains' [`ContactLaw::compile`]): the

@@ -24,6 +24,7 @@ mod equations;
 mod lab;
 mod lattice;
 mod lattice_lab;
+mod lattice_static;
 mod modal;
 
 pub(crate) use equations::{Equations, LabEquations, LabShape, Load};

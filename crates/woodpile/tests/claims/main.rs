@@ -57,6 +57,7 @@ mod lattice_quarter_struck_rod;
 mod lattice_rod_overrides;
 mod lattice_single_column;
 mod lattice_static_equilibrium;
+mod lattice_static_solve;
 mod nesterenko_solitary_wave;
 mod no_tension;
 mod optimize_cache_transparent;
