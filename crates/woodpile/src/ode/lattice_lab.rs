@@ -1,13 +1,8 @@
 //! The lab physics of a lattice (docs/physics.md §16): the chains' contact laws at every
-<<<<<<< HEAD
 //! contact, damping of the rods' modes, a blast or force drive split over load points or a
-//! displacement actuator pressing on them, gravity and a preload, the static equilibrium the run starts from (a damped Newton minimisation of the
-//! potential energy), and the energy integrals W and D.
-=======
-//! contact, damping of the rods' modes, a blast or drive split over load points, gravity and a
-//! preload, the static equilibrium the run starts from (a damped Newton minimisation of the
-//! potential energy, `ode::lattice_static`), and the energy integrals W and D.
->>>>>>> latstatic
+//! displacement actuator pressing on them, gravity and a preload, the static equilibrium the
+//! run starts from (a damped Newton minimisation of the potential energy,
+//! `ode::lattice_static`), and the energy integrals W and D.
 
 use super::lattice::LatticeOde;
 use crate::error::{Error, Result};
