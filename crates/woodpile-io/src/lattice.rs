@@ -554,6 +554,15 @@ impl LatticeScenario {
                     "\"centres\" or a list of points [{ x_mm = …, y_mm = … }, …]",
                 ))
             }
+            // The library takes a free lattice (no support: a rod struck in flight); a file
+            // without supports would print a transmitted force of nothing.
+            SupportsToml::Points(p) if p.is_empty() => {
+                return Err(Error::invalid(
+                    "wall.supports",
+                    "[]",
+                    "a lattice stands on at least one support: give points [{ x_mm = …, y_mm = … }, …] or \"centres\"",
+                ))
+            }
             SupportsToml::Points(p) => {
                 Supports::Points(p.iter().map(|p| [p.x_mm * 1e-3, p.y_mm * 1e-3]).collect())
             }

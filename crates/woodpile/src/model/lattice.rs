@@ -433,13 +433,6 @@ impl LatticeBuilder {
             .collect();
         let points: Vec<[f64; 2]> = match &self.supports {
             Supports::Centres => bottom.iter().map(|&r| rods[r].centre_m).collect(),
-            Supports::Points(p) if p.is_empty() => {
-                return Err(Error::invalid(
-                    "wall.supports",
-                    "[]",
-                    "a lattice stands on at least one support: give points ([{ x_mm = …, y_mm = … }, …]) or \"centres\"",
-                ))
-            }
             Supports::Points(p) => p.clone(),
         };
         let cap_radius = match &self.wall {
