@@ -72,8 +72,8 @@ def scenario_keys() -> list[ScenarioKey]:
 
 
 def lattice_keys() -> list[ScenarioKey]:
-    """Every key of a lattice scenario's ``[lattice]``, ``[excitation]`` and ``[wall]`` tables
-    (``[run]`` is a chain's), in the order of the file, as :func:`scenario_keys` gives them."""
+    """Every key of a lattice scenario (``[lattice]``, ``[excitation]``, ``[wall]``, ``[damping]``,
+    ``[preload]``, ``[run]``), in the order of the file, as :func:`scenario_keys` gives them."""
     return [
         ScenarioKey(name, ty, unit, default, rule, tuple(choices), tuple(alternatives), valid, doc)
         for name, ty, unit, default, rule, choices, alternatives, valid, doc in _core.lattice_keys()

@@ -307,9 +307,10 @@ pub fn builtin_lattice(name: &str) -> Option<&'static str> {
         .map(|(_, text)| *text)
 }
 
-/// Every key of a lattice scenario's `[lattice]`, `[excitation]` and `[wall]` tables, in the
-/// order of the file, in the form of the chain's table ([`crate::scenario::keys`]); `[run]` is a
-/// chain's. Defaults are read from [`woodpile::defaults`]; claim `lattice_keys_table`.
+/// Every key of a lattice scenario (`[lattice]`, `[excitation]`, `[wall]`, `[damping]`,
+/// `[preload]`, `[run]`), in the order of the file, in the form of the chain's table
+/// ([`crate::scenario::keys`], whose rows it reuses where a key means the same). Defaults are
+/// read from [`woodpile::defaults`]; claim `lattice_keys_table`.
 pub fn lattice_keys() -> &'static [Key] {
     static KEYS: std::sync::LazyLock<Vec<Key>> = std::sync::LazyLock::new(lattice_key_table);
     &KEYS

@@ -120,8 +120,8 @@ fn scenario_keys(py: Python<'_>) -> Vec<KeyRow> {
     key_rows(py, keys())
 }
 
-/// Every key of a lattice scenario's `[lattice]`, `[excitation]` and `[wall]` tables
-/// (woodpile-io's `lattice::lattice_keys()`), in the order of the file.
+/// Every key of a lattice scenario (woodpile-io's `lattice::lattice_keys()`), in the order of
+/// the file.
 #[pyfunction]
 fn lattice_keys(py: Python<'_>) -> Vec<KeyRow> {
     key_rows(py, woodpile_io::lattice::lattice_keys())
