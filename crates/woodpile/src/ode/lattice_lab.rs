@@ -370,3 +370,35 @@ fn contact_laws(
         })
         .unzip())
 }
+
+/// What the exact modal method on the contact graph reads of the lab terms
+/// (`integrate::modal_graph`, docs/physics.md §8).
+impl LabTerms {
+    /// Whether the lab terms keep the equations linear in the modes between the contacts'
+    /// elastic forces: every contact law elastic, no gravity, no preload (damping of the modes
+    /// and prescribed load forces are what the method advances exactly).
+    pub(super) fn linear_modes_only(&self) -> bool {
+        self.laws.iter().all(|&l| l == ContactLaw::Elastic)
+            && self.static_force.iter().all(|&f| f == 0.0)
+            && self.preload_per_point_n == 0.0
+    }
+
+    /// Damping rate per coordinate, 2 ζ ω_j + 1/τ [1/s].
+    pub(super) fn damping_rates(&self) -> &[f64] {
+        &self.damping_rate
+    }
+
+    /// Each load point's prescribed force at t \[N\].
+    pub(super) fn load_per_point_n(&self, t: f64) -> f64 {
+        self.preload_per_point_n + self.share * self.excitation.total_force_n(t)
+    }
+
+    /// Each load point's force rate at t \[N/s\]: a drive's; 0 for a blast (a Friedlander
+    /// blast's peak is its start, a table's at its breakpoints).
+    pub(super) fn load_rate_per_point_n_s(&self, t: f64) -> f64 {
+        match &self.excitation {
+            LatticeExcitation::Drive { drive, .. } => self.share * drive.value_and_rate(t).1,
+            _ => 0.0,
+        }
+    }
+}
