@@ -415,7 +415,11 @@ fn damped_series(theta: f64, a: f64, z: f64, n: usize) -> (f64, f64) {
     let (mut e0, mut e1) = (0.0_f64, 0.0_f64);
     let (mut y, mut dy) = (0.0, 0.0);
     for k in 0..60 {
-        let src = if k == n { theta.powi(n as i32 + 2) } else { 0.0 };
+        let src = if k == n {
+            theta.powi(n as i32 + 2)
+        } else {
+            0.0
+        };
         let kf = k as f64;
         let e2 = (src - 2.0 * at * (kf + 1.0) * e1 - zt2 * e0) / ((kf + 2.0) * (kf + 1.0));
         y += e2;

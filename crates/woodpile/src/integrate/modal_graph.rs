@@ -11,7 +11,9 @@
 //! contact among hundreds at rest is held to the tolerance. A step in which a contact opens or closes is
 //! retaken to end there; samples inside a step are the exact flow at their time.
 
-use super::exponential::{damped_kernel, kernel, lagrange, nodes, DampedKernel, Kernel, ERROR_POLY};
+use super::exponential::{
+    damped_kernel, kernel, lagrange, nodes, DampedKernel, Kernel, ERROR_POLY,
+};
 use super::modal_step::{
     adaptive_step, first_crossing, Attempt, ExactStepper, Ladder, FIXED_POINT_TOLERANCE,
     MAX_ITERATIONS, VELOCITY_UNIT,
@@ -171,6 +173,8 @@ pub(crate) struct GraphModalIntegrator {
     /// Where W and D_modes sit in the state (lab physics), and whether any mode is damped.
     lab: Option<usize>,
     damped: bool,
+    /// The load's kinks \[s\], ascending: steps end on them, so that no step's cubic straddles one.
+    kinks: Vec<f64>,
     /// Per contact: force and overlap now, and the largest overlap at any node so far \[m\].
     force: Vec<f64>,
     largest_overlap: Vec<f64>,
@@ -216,10 +220,13 @@ impl GraphModalIntegrator {
         let (mut frequencies, mut frequency_index) = (Vec::new(), Vec::with_capacity(q));
         for (&w2, &rate) in ode.omega2.iter().zip(&rates) {
             let key = (w2.sqrt(), rate);
-            let index = frequencies.iter().position(|&f| f == key).unwrap_or_else(|| {
-                frequencies.push(key);
-                frequencies.len() - 1
-            });
+            let index = frequencies
+                .iter()
+                .position(|&f| f == key)
+                .unwrap_or_else(|| {
+                    frequencies.push(key);
+                    frequencies.len() - 1
+                });
             frequency_index.push(index);
         }
         let n = ode.contacts();
@@ -245,6 +252,7 @@ impl GraphModalIntegrator {
             overlap_coef: vec![[0.0; 4]; n],
             lab: ode.has_lab().then_some(2 * (q + 3)),
             damped: rates.iter().any(|&r| r > 0.0),
+            kinks: ode.load_kinks_s(),
             force: ode.force_n.clone(),
             largest_overlap: ode.overlap_m.iter().map(|d| d.max(0.0)).collect(),
             overlap: ode.overlap_m.clone(),
@@ -282,9 +290,11 @@ impl GraphModalIntegrator {
         self.stats
     }
 
-    /// One accepted step toward t_end; returns its size.
+    /// One accepted step toward t_end (or the load's next kink before it); returns its size.
     pub fn step(&mut self, t_end: f64) -> Result<f64> {
-        adaptive_step(self, t_end)
+        let t = self.t;
+        let kink = self.kinks.iter().find(|&&k| k - t > 1e-12 * k).copied();
+        adaptive_step(self, kink.map_or(t_end, |k| k.min(t_end)))
     }
 
     /// The overlap of contact c for coordinates `x` \[m\].

@@ -572,10 +572,7 @@ impl LatticeOde {
     /// `damping.on_site_time_s`): every contact elastic, no gravity or preload.
     pub fn fits_exact_modes(&self) -> bool {
         (self.struck || self.loads > 0)
-            && self
-                .lab
-                .as_ref()
-                .is_none_or(|lab| lab.linear_modes_only())
+            && self.lab.as_ref().is_none_or(|lab| lab.linear_modes_only())
     }
 
     /// Damping rate per coordinate, 2 ζ ω_j + 1/τ [1/s] (None without lab physics).
@@ -586,6 +583,14 @@ impl LatticeOde {
     /// Number of leading contacts whose force is prescribed (a blast's or a drive's points).
     pub(crate) fn load_contacts(&self) -> usize {
         self.loads
+    }
+
+    /// The times where the load's force or its first two derivatives jump \[s\], ascending
+    /// (none without a load).
+    pub(crate) fn load_kinks_s(&self) -> Vec<f64> {
+        self.lab
+            .as_ref()
+            .map_or_else(Vec::new, |lab| lab.load_kinks_s())
     }
 
     /// Each load point's prescribed force at t \[N\] (0 without a load).
@@ -599,7 +604,10 @@ impl LatticeOde {
     pub(crate) fn exact_modes_force_rates(&self, t: f64, y: &[f64], rate: &mut [f64]) {
         let q = self.coordinates();
         let v = &y[q + 3..2 * q + 3];
-        let load = self.lab.as_ref().map_or(0.0, |l| l.load_rate_per_point_n_s(t));
+        let load = self
+            .lab
+            .as_ref()
+            .map_or(0.0, |l| l.load_rate_per_point_n_s(t));
         for (c, r) in rate.iter_mut().enumerate() {
             *r = if c < self.loads {
                 load

@@ -393,6 +393,34 @@ impl LabTerms {
         self.preload_per_point_n + self.share * self.excitation.total_force_n(t)
     }
 
+    /// The times where the load's force or its first or second derivative jumps \[s\],
+    /// ascending: a Friedlander blast's end, a table's times, a drive's ramp ends and a chirp's
+    /// end.
+    pub(super) fn load_kinks_s(&self) -> Vec<f64> {
+        use crate::excitation::{BlastProfile, Signal};
+        let mut kinks = match &self.excitation {
+            LatticeExcitation::Blast { profile, .. } => match profile {
+                BlastProfile::Friedlander { duration_s, .. } => vec![*duration_s],
+                BlastProfile::Table { times_s, .. } => times_s.clone(),
+            },
+            LatticeExcitation::Drive { drive, .. } => {
+                let mut k = vec![drive.ramp_s];
+                match &drive.signal {
+                    Signal::Chirp { duration_s, .. } => {
+                        k.extend([duration_s - drive.ramp_s, *duration_s]);
+                    }
+                    Signal::Table { times_s, .. } => k.extend_from_slice(times_s),
+                    Signal::Harmonic { .. } => {}
+                }
+                k
+            }
+            _ => Vec::new(),
+        };
+        kinks.retain(|&t| t > 0.0);
+        kinks.sort_by(f64::total_cmp);
+        kinks
+    }
+
     /// Each load point's force rate at t \[N/s\]: a drive's; 0 for a blast (a Friedlander
     /// blast's peak is its start, a table's at its breakpoints).
     pub(super) fn load_rate_per_point_n_s(&self, t: f64) -> f64 {

@@ -154,14 +154,15 @@ pub const LATTICE_EXACT_MODES_RTOL_OF_TOLERANCE: f64 = 1e-3;
 
 /// The method a lattice runs: a stated peak tolerance becomes [`Method::ExactModes`] at rtol =
 /// tolerance · [`LATTICE_EXACT_MODES_RTOL_OF_TOLERANCE`] for rods whose stiffest mode is above
-/// [`crate::integrate::EXACT_MODES_ABOVE_RAD_S`] (finite-element rods: RKN 6(4)'s step would be
-/// set by that mode's stability) of a lossless impact, and otherwise as [`Method::resolve`] (RKN
-/// 6(4), or DOPRI5 with events under lab physics).
+/// [`crate::integrate::EXACT_MODES_ABOVE_RAD_S`] (finite-element rods: RKN 6(4)'s or DOPRI5's
+/// step would be set by that mode's stability) under an impact, a blast or a force drive, lossless
+/// or with the rods' modes damped (elastic contacts, no gravity or preload:
+/// [`LatticeOde::fits_exact_modes`]); otherwise as [`Method::resolve`] (RKN 6(4), or DOPRI5
+/// with events under lab physics).
 pub fn lattice_method(ode: &LatticeOde, method: Method) -> Method {
-    let lossless_impact = !ode.has_lab() && ode.has_striker();
     match method {
         Method::PeakTolerance { peak_tolerance }
-            if lossless_impact
+            if ode.fits_exact_modes()
                 && ode.stiffest_mode_rad_s() > crate::integrate::EXACT_MODES_ABOVE_RAD_S =>
         {
             let rtol = (peak_tolerance * LATTICE_EXACT_MODES_RTOL_OF_TOLERANCE).max(1e-13);
@@ -175,7 +176,8 @@ pub fn lattice_method(ode: &LatticeOde, method: Method) -> Method {
 }
 
 /// Runs a lattice: `settings.method` may be RK4, DOPRI5 (with or without events), RKN 6(4), the
-/// exact modal method (a lossless impact), or a peak tolerance ([`lattice_method`] chooses).
+/// exact modal method ([`LatticeOde::fits_exact_modes`]), or a peak tolerance
+/// ([`lattice_method`] chooses).
 pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<LatticeRun> {
     settings.validate()?;
     if matches!(settings.method, Method::ExactModes { .. }) && !ode.fits_exact_modes() {
@@ -235,7 +237,15 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
     // blast's F0, the static forces under a static load) count.
     let mut peaks = PeakTracker::new(nc + 2);
     let mut forces = vec![0.0; nc + 2];
-    watch_forces(ode, 0.0, &y0, &run.supports, elastic_rates, &mut forces, &mut peaks.rate);
+    watch_forces(
+        ode,
+        0.0,
+        &y0,
+        &run.supports,
+        elastic_rates,
+        &mut forces,
+        &mut peaks.rate,
+    );
     peaks.start(&forces);
     let interval = settings.sample_interval_s;
     let mut next = 1usize;
@@ -249,7 +259,15 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         let h = stepper.step(ode, settings.duration_s)?;
         let t = stepper.t();
         let y = stepper.y();
-        watch_forces(ode, t, y, &run.supports, elastic_rates, &mut forces, &mut peaks.rate);
+        watch_forces(
+            ode,
+            t,
+            y,
+            &run.supports,
+            elastic_rates,
+            &mut forces,
+            &mut peaks.rate,
+        );
         check(ode, t, y)?;
         peaks.update(t0, t, &forces);
         while let Some(ts) = sample_time(next, interval, settings.duration_s) {

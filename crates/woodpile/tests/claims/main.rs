@@ -47,6 +47,7 @@ mod lattice_common;
 mod lattice_damped_energy_balance;
 mod lattice_drive;
 mod lattice_energy_balance;
+mod lattice_exact_damped;
 mod lattice_exact_modes;
 mod lattice_free_rod_modes;
 mod lattice_mirror_symmetry;
