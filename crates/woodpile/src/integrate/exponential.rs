@@ -385,11 +385,11 @@ pub fn damped_kernel(theta: f64, a: f64, z: f64) -> DampedKernel {
     } else {
         let half = damped_kernel(0.5 * theta, a, z);
         let tau = 0.5 * theta;
-        for n in 0..4 {
+        for (n, binomial) in BINOMIAL.iter().enumerate() {
             // σⁿ on the second half, σ = τ + s: Σ_j C(n, j) τ^{n−j} s^j.
             let (mut y, mut dy) = (0.0, 0.0);
-            for j in 0..=n {
-                let w = BINOMIAL[n][j] * tau.powi((n - j) as i32);
+            for (j, b) in binomial.iter().enumerate().take(n + 1) {
+                let w = b * tau.powi((n - j) as i32);
                 y += w * half.s[j];
                 dy += w * half.c[j];
             }

@@ -336,8 +336,8 @@ impl GraphModalIntegrator {
             }
         }
         for c in 0..self.ode.load_contacts() {
-            for j in 1..4 {
-                self.sc.node_force[c][j] = self.ode.load_per_point_n(self.t + c_nodes[j] * h);
+            for (f, s) in self.sc.node_force[c].iter_mut().zip(c_nodes).skip(1) {
+                *f = self.ode.load_per_point_n(self.t + s * h);
             }
         }
     }

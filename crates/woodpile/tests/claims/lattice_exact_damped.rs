@@ -91,7 +91,11 @@ fn damped_free_modes_decay_exactly() {
             // Rounding per step: 4 ε; where the roots meet (ζ ≥ 1) the flow is a Jordan block
             // (or nearly): a rounding of its entries, whose rate–position coupling is a², grows
             // with σ as the block's powers do, so 32 ε (1 + a²).
-            let per_step = if zeta < 1.0 { 4.0 } else { 32.0 * (1.0 + a * a) };
+            let per_step = if zeta < 1.0 {
+                4.0
+            } else {
+                32.0 * (1.0 + a * a)
+            };
             assert!(
                 err < per_step * f64::EPSILON * s,
                 "z = {z}, ζ = {zeta}: error {err:.2e} after {n} steps"
