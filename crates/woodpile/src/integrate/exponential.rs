@@ -347,7 +347,7 @@ fn damped_free(theta: f64, a: f64, z: f64) -> [f64; 4] {
     [ec + a * es, es, -z * z * es, ec - a * es]
 }
 
-/// [`DampedKernel`] at θ ∈ (0, 1] for a = γh ≥ 0, z = hΩ ≥ 0. The responses S_n, C_n: where the
+/// [`DampedKernel`] at θ ∈ [0, 1] for a = γh ≥ 0, z = hΩ ≥ 0 (θ = 0: the identity). The responses S_n, C_n: where the
 /// roots of λ² + 2aλ + z² are small on [0, θ] (r θ ≤ 1, r the larger root's modulus), the Taylor
 /// series of the response (its coefficients by the equation's recurrence); where the mode is
 /// stiff (z²θ² ≥ 16 and z²θ ≥ 8a), the polynomial particular solution p (p'' + 2ap' + z²p = σⁿ,
@@ -355,6 +355,13 @@ fn damped_free(theta: f64, a: f64, z: f64) -> [f64; 4] {
 /// its initial values; otherwise the kernels at θ/2 composed with themselves (the second half's
 /// force σⁿ re-expanded about θ/2), recursively down to the series.
 pub fn damped_kernel(theta: f64, a: f64, z: f64) -> DampedKernel {
+    if theta == 0.0 {
+        return DampedKernel {
+            pos_of_pos: 1.0,
+            rate_of_rate: 1.0,
+            ..DampedKernel::default()
+        };
+    }
     let free = damped_free(theta, a, z);
     let mut k = DampedKernel {
         pos_of_pos: free[0],
