@@ -175,6 +175,9 @@ pub(crate) struct GraphModalIntegrator {
     damped: bool,
     /// The load's kinks \[s\], ascending: steps end on them, so that no step's cubic straddles one.
     kinks: Vec<f64>,
+    /// Per coordinate: the constant modal force of gravity and a striker's preload \[N/√kg\]
+    /// (zeros without).
+    static_force: Vec<f64>,
     /// Per contact: force and overlap now, and the largest overlap at any node so far \[m\].
     force: Vec<f64>,
     largest_overlap: Vec<f64>,
@@ -253,6 +256,9 @@ impl GraphModalIntegrator {
             lab: ode.has_lab().then_some(2 * (q + 3)),
             damped: rates.iter().any(|&r| r > 0.0),
             kinks: ode.load_kinks_s(),
+            static_force: ode
+                .static_modal_forces()
+                .map_or_else(|| vec![0.0; q], |f| f.to_vec()),
             force: ode.force_n.clone(),
             largest_overlap: ode.overlap_m.iter().map(|d| d.max(0.0)).collect(),
             overlap: ode.overlap_m.clone(),
@@ -346,8 +352,8 @@ impl GraphModalIntegrator {
     fn cubics(&mut self) {
         let o = &self.ode;
         let sc = &mut self.sc;
-        for b in sc.modal_force.iter_mut() {
-            *b = [0.0; 4];
+        for (b, &f) in sc.modal_force.iter_mut().zip(&self.static_force) {
+            *b = [f, 0.0, 0.0, 0.0];
         }
         for (c, (a, f)) in sc.coef.iter_mut().zip(&sc.node_force).enumerate() {
             for (an, l) in a.iter_mut().zip(&self.lagrange) {
@@ -534,11 +540,18 @@ impl GraphModalIntegrator {
                 w_loads += w;
             }
         }
-        out[i] = self.y_prev[i] + w_loads;
+        // Gravity's and a striker's preload's constant modal forces: their work is f Δq.
+        let w_static: f64 = self
+            .static_force
+            .iter()
+            .zip(out.iter().zip(&self.y_prev))
+            .map(|(f, (q1, q0))| f * (q1 - q0))
+            .sum();
+        out[i] = self.y_prev[i] + w_loads + w_static;
         out[i + 1] = if self.damped {
             let e0 = modal_energy_j(&self.y_prev, &self.ode.omega2);
             let e1 = modal_energy_j(out, &self.ode.omega2);
-            self.y_prev[i + 1] - (e1 - e0) + w_all
+            self.y_prev[i + 1] - (e1 - e0) + w_all + w_static
         } else {
             self.y_prev[i + 1]
         };

@@ -568,11 +568,17 @@ impl LatticeOde {
 /// (`integrate::modal_graph`, docs/physics.md §8).
 impl LatticeOde {
     /// Whether the exact modal method advances this run: an impact, a blast or a force drive on
-    /// the lossless lattice or with only its modes damped (`damping.modal_ratio`,
-    /// `damping.on_site_time_s`): every contact elastic, no gravity or preload.
+    /// the lossless lattice, or with its modes damped (`damping.modal_ratio`,
+    /// `damping.on_site_time_s`), gravity and a preload: every contact elastic.
     pub fn fits_exact_modes(&self) -> bool {
         (self.struck || self.loads > 0)
             && self.lab.as_ref().is_none_or(|lab| lab.linear_modes_only())
+    }
+
+    /// Per coordinate: the constant modal force of gravity and a striker's preload (None without
+    /// lab physics; a load's preload is in its points' force).
+    pub(crate) fn static_modal_forces(&self) -> Option<&[f64]> {
+        self.lab.as_ref().map(|lab| lab.static_modal_force())
     }
 
     /// Damping rate per coordinate, 2 ζ ω_j + 1/τ [1/s] (None without lab physics).

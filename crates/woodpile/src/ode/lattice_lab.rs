@@ -375,12 +375,15 @@ fn contact_laws(
 /// (`integrate::modal_graph`, docs/physics.md §8).
 impl LabTerms {
     /// Whether the lab terms keep the equations linear in the modes between the contacts'
-    /// elastic forces: every contact law elastic, no gravity, no preload (damping of the modes
-    /// and prescribed load forces are what the method advances exactly).
+    /// elastic forces: every contact law elastic (damping of the modes, prescribed load forces,
+    /// gravity and a preload — constant modal forces — are what the method advances exactly).
     pub(super) fn linear_modes_only(&self) -> bool {
         self.laws.iter().all(|&l| l == ContactLaw::Elastic)
-            && self.static_force.iter().all(|&f| f == 0.0)
-            && self.preload_per_point_n == 0.0
+    }
+
+    /// Per coordinate: the constant generalised force of gravity and a striker's preload.
+    pub(super) fn static_modal_force(&self) -> &[f64] {
+        &self.static_force
     }
 
     /// Damping rate per coordinate, 2 ζ ω_j + 1/τ [1/s].

@@ -156,7 +156,7 @@ pub const LATTICE_EXACT_MODES_RTOL_OF_TOLERANCE: f64 = 1e-3;
 /// tolerance · [`LATTICE_EXACT_MODES_RTOL_OF_TOLERANCE`] for rods whose stiffest mode is above
 /// [`crate::integrate::EXACT_MODES_ABOVE_RAD_S`] (finite-element rods: RKN 6(4)'s or DOPRI5's
 /// step would be set by that mode's stability) under an impact, a blast or a force drive, lossless
-/// or with the rods' modes damped (elastic contacts, no gravity or preload:
+/// or with the rods' modes damped, gravity and a preload (every contact elastic:
 /// [`LatticeOde::fits_exact_modes`]); otherwise as [`Method::resolve`] (RKN 6(4), or DOPRI5
 /// with events under lab physics).
 pub fn lattice_method(ode: &LatticeOde, method: Method) -> Method {
@@ -185,8 +185,8 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
             "run.integrator",
             "exact-modes",
             "the exact modal method advances an impact, a blast or a force drive of a lattice \
-             with elastic contacts, its modes undamped or damped (modal ratio, on-site time), \
-             without gravity or a preload; state run.peak_tolerance instead",
+             with elastic contacts (its modes may be damped, under gravity and a preload); \
+             state run.peak_tolerance instead",
         ));
     }
     let method = lattice_method(ode, settings.method);
