@@ -299,3 +299,167 @@ impl StepWeights {
         sums
     }
 }
+
+/// What the variation-of-constants formula needs of one damped mode c'' + 2a c' + z² c = f(σ)
+/// (σ = t/h; a = γh with γ half the mode's damping rate, z = hΩ) at one point θ of a step: the
+/// free flow e^{−aθ}(C + aS), e^{−aθ}S, −z² e^{−aθ}S, e^{−aθ}(C − aS), with C(θ) = cos(√D θ),
+/// S(θ) = sin(√D θ)/√D, D = z² − a² (cosh and sinh when D < 0, the series through D = 0), and
+/// the responses S_n(θ), C_n(θ) (position and its σ-rate) to f = σⁿ from rest, n = 0..3.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct DampedKernel {
+    /// The position's response to the initial position, e^{−aθ}(C + aS).
+    pub pos_of_pos: f64,
+    /// The position's response to the initial σ-rate c'(0) = h ċ(0), e^{−aθ} S.
+    pub pos_of_rate: f64,
+    /// The σ-rate's response to the initial position, −z² e^{−aθ} S.
+    pub rate_of_pos: f64,
+    /// The σ-rate's response to the initial σ-rate, e^{−aθ}(C − aS).
+    pub rate_of_rate: f64,
+    /// S_n(θ) = ∫₀^θ G(θ − σ) σⁿ dσ, G the impulse response e^{−aσ} S(σ), n = 0..3.
+    pub s: [f64; 4],
+    /// C_n(θ) = ∫₀^θ G'(θ − σ) σⁿ dσ, n = 0..3.
+    pub c: [f64; 4],
+}
+
+/// The free flow of c'' + 2a c' + z² c = 0 over θ: (e^{−aθ}(C + aS), e^{−aθ}S, −z² e^{−aθ}S,
+/// e^{−aθ}(C − aS)). Near D = 0 (|D| θ² < 1/4) C and S are their series in D; for D < 0 the
+/// exponentials e^{−(a∓κ)θ} (κ = √−D, a − κ = z²/(a + κ) without cancellation) are combined so
+/// that neither overflows nor cancels.
+fn damped_free(theta: f64, a: f64, z: f64) -> [f64; 4] {
+    let d = (z - a) * (z + a);
+    let x2 = d.abs() * theta * theta;
+    let decay = (-a * theta).exp();
+    let (ec, es) = if x2 < 0.25 {
+        // C = Σ (−Dθ²)^m/(2m)!, S = θ Σ (−Dθ²)^m/(2m+1)!: 12 terms reach 1e-19 at |Dθ²| = 1/4.
+        let y = -d * theta * theta;
+        let (mut c, mut s) = (0.0, 0.0);
+        let (mut tc, mut ts) = (1.0, 1.0);
+        for m in 0..12 {
+            c += tc;
+            s += ts;
+            let k = (2 * m + 1) as f64;
+            tc *= y / (k * (k + 1.0));
+            ts *= y / ((k + 1.0) * (k + 2.0));
+        }
+        (decay * c, decay * theta * s)
+    } else if d > 0.0 {
+        let w = d.sqrt();
+        let (s, c) = (w * theta).sin_cos();
+        (decay * c, decay * s / w)
+    } else {
+        let kappa = (-d).sqrt();
+        let slow = (-z * z / (a + kappa) * theta).exp();
+        let fast = (-(a + kappa) * theta).exp();
+        let pos = 0.5 * (slow * (kappa + a) - fast * z * z / (a + kappa)) / kappa;
+        let rate = 0.5 * (fast * (kappa + a) - slow * z * z / (a + kappa)) / kappa;
+        let es = 0.5 * (slow - fast) / kappa;
+        return [pos, es, -z * z * es, rate];
+    };
+    [ec + a * es, es, -z * z * es, ec - a * es]
+}
+
+/// [`DampedKernel`] at θ ∈ [0, 1] for a = γh ≥ 0, z = hΩ ≥ 0 (θ = 0: the identity). The responses S_n, C_n: where the
+/// roots of λ² + 2aλ + z² are small on [0, θ] (r θ ≤ 1, r the larger root's modulus), the Taylor
+/// series of the response (its coefficients by the equation's recurrence); where the mode is
+/// stiff (z²θ² ≥ 16 and z²θ ≥ 8a), the polynomial particular solution p (p'' + 2ap' + z²p = σⁿ,
+/// by back-substitution: coefficients in powers of 1/z², no cancellation) less the free flow of
+/// its initial values; otherwise the kernels at θ/2 composed with themselves (the second half's
+/// force σⁿ re-expanded about θ/2), recursively down to the series.
+pub fn damped_kernel(theta: f64, a: f64, z: f64) -> DampedKernel {
+    if theta == 0.0 {
+        return DampedKernel {
+            pos_of_pos: 1.0,
+            rate_of_rate: 1.0,
+            ..DampedKernel::default()
+        };
+    }
+    let free = damped_free(theta, a, z);
+    let mut k = DampedKernel {
+        pos_of_pos: free[0],
+        pos_of_rate: free[1],
+        rate_of_pos: free[2],
+        rate_of_rate: free[3],
+        ..DampedKernel::default()
+    };
+    let d = (z - a) * (z + a);
+    let r = if d >= 0.0 { z } else { a + (-d).sqrt() };
+    if r * theta <= 1.0 {
+        for n in 0..4 {
+            (k.s[n], k.c[n]) = damped_series(theta, a, z, n);
+        }
+    } else if z * z * theta * theta >= 16.0 && z * z * theta >= 8.0 * a {
+        for n in 0..4 {
+            let p = particular(a, z, n);
+            let (mut y, mut dy) = (0.0, 0.0);
+            for i in (0..=n).rev() {
+                y = y * theta + p[i];
+                if i > 0 {
+                    dy = dy * theta + i as f64 * p[i];
+                }
+            }
+            k.s[n] = y - (free[0] * p[0] + free[1] * p[1]);
+            k.c[n] = dy - (free[2] * p[0] + free[3] * p[1]);
+        }
+    } else {
+        let half = damped_kernel(0.5 * theta, a, z);
+        let tau = 0.5 * theta;
+        for (n, binomial) in BINOMIAL.iter().enumerate() {
+            // σⁿ on the second half, σ = τ + s: Σ_j C(n, j) τ^{n−j} s^j.
+            let (mut y, mut dy) = (0.0, 0.0);
+            for (j, b) in binomial.iter().enumerate().take(n + 1) {
+                let w = b * tau.powi((n - j) as i32);
+                y += w * half.s[j];
+                dy += w * half.c[j];
+            }
+            k.s[n] = half.pos_of_pos * half.s[n] + half.pos_of_rate * half.c[n] + y;
+            k.c[n] = half.rate_of_pos * half.s[n] + half.rate_of_rate * half.c[n] + dy;
+        }
+    }
+    k
+}
+
+const BINOMIAL: [[f64; 4]; 4] = [
+    [1.0, 0.0, 0.0, 0.0],
+    [1.0, 1.0, 0.0, 0.0],
+    [1.0, 2.0, 1.0, 0.0],
+    [1.0, 3.0, 3.0, 1.0],
+];
+
+/// The response y(θ), y'(θ) to σⁿ from rest by its Taylor series: with e_k = d_k θ^k,
+/// (k + 2)(k + 1) e_{k+2} = [k = n] θ^{n+2} − 2aθ (k + 1) e_{k+1} − z²θ² e_k; for rθ ≤ 1 the
+/// terms fall faster than 1/k!, summed until two in a row are below 1e-18 of the sum.
+fn damped_series(theta: f64, a: f64, z: f64, n: usize) -> (f64, f64) {
+    let (at, zt2) = (a * theta, z * z * theta * theta);
+    let (mut e0, mut e1) = (0.0_f64, 0.0_f64);
+    let (mut y, mut dy) = (0.0, 0.0);
+    for k in 0..60 {
+        let src = if k == n {
+            theta.powi(n as i32 + 2)
+        } else {
+            0.0
+        };
+        let kf = k as f64;
+        let e2 = (src - 2.0 * at * (kf + 1.0) * e1 - zt2 * e0) / ((kf + 2.0) * (kf + 1.0));
+        y += e2;
+        dy += (kf + 2.0) * e2;
+        if k > n + 2 && e2.abs() <= 1e-18 * y.abs() && e1.abs() <= 1e-18 * y.abs() {
+            break;
+        }
+        e0 = e1;
+        e1 = e2;
+    }
+    (y, dy / theta)
+}
+
+/// The polynomial p = Σ p_k σ^k of degree n with p'' + 2a p' + z² p = σⁿ (z > 0): from the top,
+/// z² p_k = [k = n] − 2a (k + 1) p_{k+1} − (k + 2)(k + 1) p_{k+2}.
+fn particular(a: f64, z: f64, n: usize) -> [f64; 4] {
+    let mut p = [0.0; 6];
+    let z2 = z * z;
+    for k in (0..=n).rev() {
+        let kf = k as f64;
+        let src = if k == n { 1.0 } else { 0.0 };
+        p[k] = (src - 2.0 * a * (kf + 1.0) * p[k + 1] - (kf + 2.0) * (kf + 1.0) * p[k + 2]) / z2;
+    }
+    [p[0], p[1], p[2], p[3]]
+}

@@ -11,7 +11,9 @@
 //! contact among hundreds at rest is held to the tolerance. A step in which a contact opens or closes is
 //! retaken to end there; samples inside a step are the exact flow at their time.
 
-use super::exponential::{kernel, lagrange, nodes, Kernel, ERROR_POLY};
+use super::exponential::{
+    damped_kernel, kernel, lagrange, nodes, DampedKernel, Kernel, ERROR_POLY,
+};
 use super::modal_step::{
     adaptive_step, first_crossing, Attempt, ExactStepper, Ladder, FIXED_POINT_TOLERANCE,
     MAX_ITERATIONS, VELOCITY_UNIT,
@@ -26,24 +28,51 @@ use crate::ode::LatticeOde;
 /// while the contacts are open; a contact that closes and opens again between two of a step's
 /// nodes would then go unseen.
 const MAX_STEP_OF_CONTACT_TIME: f64 = 0.25;
+/// Under a blast or a drive (no striker), the speed \[m/s\] at which the shortest Hertz contact
+/// time of the lattice's contacts is taken ([`LatticeOde::contact_time_s`]): the time grows as
+/// the speed falls (∝ v^{−1/5}), so slower contacts are only longer than the step limit assumes.
+const LOAD_CONTACT_SPEED_M_S: f64 = 1.0;
 
 /// What a step of size h needs of one frequency ω (z = hω): per node σ = c₁, c₂, 1 the free
 /// motion cos(σz), h sin(σz)/z and the response h² S_n(σ, z) to σⁿ; at the end the velocity's
-/// −(z/h) sin z and h C_n(1, z); the error weights h² Σ E_n S_n(1, z), h Σ E_n C_n(1, z).
+/// −(z/h) sin z and h C_n(1, z); the error weights h² Σ E_n S_n(1, z), h Σ E_n C_n(1, z). A
+/// damped mode (damping rate 2γ > 0) has the damped kernels' ([`damped_kernel`]) in their
+/// places: `cos` the position's response to the position, `vel_of_vel` the velocity's to the
+/// velocity (cos z undamped).
 #[derive(Debug, Clone, Copy, Default)]
 struct FrequencyWeights {
     cos: [f64; 3],
     hsinc: [f64; 3],
     pos: [[f64; 4]; 3],
     vel_of_pos: f64,
+    vel_of_vel: f64,
     vel: [f64; 4],
     err_pos: f64,
     err_vel: f64,
 }
 
 impl FrequencyWeights {
-    fn new(h: f64, omega: f64) -> Self {
+    fn new(h: f64, omega: f64, rate: f64) -> Self {
         let c = nodes();
+        if rate > 0.0 {
+            let (a, z) = (0.5 * rate * h, h * omega);
+            let k: [DampedKernel; 3] = [
+                damped_kernel(c[1], a, z),
+                damped_kernel(c[2], a, z),
+                damped_kernel(1.0, a, z),
+            ];
+            let end = &k[2];
+            return FrequencyWeights {
+                cos: k.map(|k| k.pos_of_pos),
+                hsinc: k.map(|k| h * k.pos_of_rate),
+                pos: k.map(|k| k.s.map(|s| h * h * s)),
+                vel_of_pos: end.rate_of_pos / h,
+                vel_of_vel: end.rate_of_rate,
+                vel: end.c.map(|c| h * c),
+                err_pos: h * h * (0..4).map(|n| ERROR_POLY[n] * end.s[n]).sum::<f64>(),
+                err_vel: h * (0..4).map(|n| ERROR_POLY[n] * end.c[n]).sum::<f64>(),
+            };
+        }
         let k: [Kernel; 3] = [
             kernel(c[1], h * omega),
             kernel(c[2], h * omega),
@@ -55,9 +84,48 @@ impl FrequencyWeights {
             hsinc: k.map(|k| h * k.sinc),
             pos: k.map(|k| k.s.map(|s| h * h * s)),
             vel_of_pos: -end.zsin / h,
+            vel_of_vel: end.cos,
             vel: end.c.map(|c| h * c),
             err_pos: h * h * (0..4).map(|n| ERROR_POLY[n] * end.s[n]).sum::<f64>(),
             err_vel: h * (0..4).map(|n| ERROR_POLY[n] * end.c[n]).sum::<f64>(),
+        }
+    }
+}
+
+/// One mode's flow at θ of a step (from [`kernel`] or [`damped_kernel`]): position from
+/// position and from h × velocity, h × velocity from position and from h × velocity, and the
+/// responses S_n, C_n.
+struct FlowAt {
+    pp: f64,
+    pv: f64,
+    vp: f64,
+    vv: f64,
+    s: [f64; 4],
+    c: [f64; 4],
+}
+
+impl FlowAt {
+    fn new(theta: f64, h: f64, omega: f64, rate: f64) -> Self {
+        if rate > 0.0 {
+            let k = damped_kernel(theta, 0.5 * rate * h, h * omega);
+            FlowAt {
+                pp: k.pos_of_pos,
+                pv: k.pos_of_rate,
+                vp: k.rate_of_pos,
+                vv: k.rate_of_rate,
+                s: k.s,
+                c: k.c,
+            }
+        } else {
+            let k = kernel(theta, h * omega);
+            FlowAt {
+                pp: k.cos,
+                pv: k.sinc,
+                vp: -k.zsin,
+                vv: k.cos,
+                s: k.s,
+                c: k.c,
+            }
         }
     }
 }
@@ -84,8 +152,9 @@ impl PointError {
 #[derive(Debug, Clone)]
 pub(crate) struct GraphModalIntegrator {
     ode: LatticeOde,
-    /// The distinct frequencies \[rad/s\] and each coordinate's index into them.
-    frequencies: Vec<f64>,
+    /// The distinct (frequency \[rad/s\], damping rate 2γ \[1/s\]) pairs and each coordinate's
+    /// index into them.
+    frequencies: Vec<(f64, f64)>,
     frequency_index: Vec<usize>,
     rtol: f64,
     atol: f64,
@@ -99,6 +168,16 @@ pub(crate) struct GraphModalIntegrator {
     coef: Vec<[f64; 4]>,
     /// Per coordinate: the cubic of its modal force over the last step.
     modal_force: Vec<[f64; 4]>,
+    /// Per contact: its overlap's cubic through the nodes of the last step (monomials in σ) \[m\].
+    overlap_coef: Vec<[f64; 4]>,
+    /// Where W and D_modes sit in the state (lab physics), and whether any mode is damped.
+    lab: Option<usize>,
+    damped: bool,
+    /// The load's kinks \[s\], ascending: steps end on them, so that no step's cubic straddles one.
+    kinks: Vec<f64>,
+    /// Per coordinate: the constant modal force of gravity and a striker's preload \[N/√kg\]
+    /// (zeros without).
+    static_force: Vec<f64>,
     /// Per contact: force and overlap now, and the largest overlap at any node so far \[m\].
     force: Vec<f64>,
     largest_overlap: Vec<f64>,
@@ -135,22 +214,31 @@ impl GraphModalIntegrator {
     /// hundredth of the longest (of the run, if shorter): the steps do not depend on how the
     /// run is sampled, so a design study's runs, which take one sample, give `simulate`'s bits.
     pub fn new(ode: &LatticeOde, rtol: f64, atol: f64, duration_s: f64) -> Self {
-        let max_step_s = MAX_STEP_OF_CONTACT_TIME * ode.striker_contact_time_s();
+        let max_step_s = MAX_STEP_OF_CONTACT_TIME * ode.contact_time_s(LOAD_CONTACT_SPEED_M_S);
         let h0 = 0.01 * max_step_s.min(duration_s);
         let q = ode.coordinates();
-        let (mut frequencies, mut frequency_index) = (Vec::<f64>::new(), Vec::with_capacity(q));
-        for &w2 in &ode.omega2 {
-            let w = w2.sqrt();
-            let index = frequencies.iter().position(|&f| f == w).unwrap_or_else(|| {
-                frequencies.push(w);
-                frequencies.len() - 1
-            });
+        let rates = ode
+            .damping_rates()
+            .map_or_else(|| vec![0.0; q], |r| r.to_vec());
+        let (mut frequencies, mut frequency_index) = (Vec::new(), Vec::with_capacity(q));
+        for (&w2, &rate) in ode.omega2.iter().zip(&rates) {
+            let key = (w2.sqrt(), rate);
+            let index = frequencies
+                .iter()
+                .position(|&f| f == key)
+                .unwrap_or_else(|| {
+                    frequencies.push(key);
+                    frequencies.len() - 1
+                });
             frequency_index.push(index);
         }
         let n = ode.contacts();
         let y = ode.initial_state();
         let mut ode = ode.clone();
         ode.contact_forces(&y[..q]);
+        for c in 0..ode.load_contacts() {
+            ode.force_n[c] = ode.load_per_point_n(0.0);
+        }
         let per_node = || [vec![0.0; q], vec![0.0; q], vec![0.0; q]];
         GraphModalIntegrator {
             frequencies,
@@ -164,6 +252,13 @@ impl GraphModalIntegrator {
             y,
             coef: vec![[0.0; 4]; n],
             modal_force: vec![[0.0; 4]; q],
+            overlap_coef: vec![[0.0; 4]; n],
+            lab: ode.has_lab().then_some(2 * (q + 3)),
+            damped: rates.iter().any(|&r| r > 0.0),
+            kinks: ode.load_kinks_s(),
+            static_force: ode
+                .static_modal_forces()
+                .map_or_else(|| vec![0.0; q], |f| f.to_vec()),
             force: ode.force_n.clone(),
             largest_overlap: ode.overlap_m.iter().map(|d| d.max(0.0)).collect(),
             overlap: ode.overlap_m.clone(),
@@ -201,9 +296,11 @@ impl GraphModalIntegrator {
         self.stats
     }
 
-    /// One accepted step toward t_end; returns its size.
+    /// One accepted step toward t_end (or the load's next kink before it); returns its size.
     pub fn step(&mut self, t_end: f64) -> Result<f64> {
-        adaptive_step(self, t_end)
+        let t = self.t;
+        let kink = self.kinks.iter().find(|&&k| k - t > 1e-12 * k).copied();
+        adaptive_step(self, kink.map_or(t_end, |k| k.min(t_end)))
     }
 
     /// The overlap of contact c for coordinates `x` \[m\].
@@ -244,14 +341,19 @@ impl GraphModalIntegrator {
                 };
             }
         }
+        for c in 0..self.ode.load_contacts() {
+            for (f, s) in self.sc.node_force[c].iter_mut().zip(c_nodes).skip(1) {
+                *f = self.ode.load_per_point_n(self.t + s * h);
+            }
+        }
     }
 
     /// Each contact's cubic from its node forces, and each coordinate's modal force cubic.
     fn cubics(&mut self) {
         let o = &self.ode;
         let sc = &mut self.sc;
-        for b in sc.modal_force.iter_mut() {
-            *b = [0.0; 4];
+        for (b, &f) in sc.modal_force.iter_mut().zip(&self.static_force) {
+            *b = [f, 0.0, 0.0, 0.0];
         }
         for (c, (a, f)) in sc.coef.iter_mut().zip(&sc.node_force).enumerate() {
             for (an, l) in a.iter_mut().zip(&self.lagrange) {
@@ -290,10 +392,16 @@ impl GraphModalIntegrator {
                 }
             }
             let (mut change, mut scale) = (0.0_f64, 0.0_f64);
+            let loads = self.ode.load_contacts();
             for c in 0..self.force.len() {
                 let beta = self.ode.beta[c];
                 for j in 0..3 {
                     let d = self.sc.free_overlap[c][j] + self.overlap_of(c, &self.sc.forced[j]);
+                    if c < loads {
+                        // A load point's force is prescribed; its overlap is minus its deflection.
+                        self.sc.node_overlap[c][j + 1] = d;
+                        continue;
+                    }
                     let f = ContactLaw::elastic_force(beta, d);
                     if !f.is_finite() {
                         return false;
@@ -335,6 +443,10 @@ impl GraphModalIntegrator {
                 worst_point = worst_point.max(below.norm2(self.rtol, self.atol));
                 overlap_error -= below.position;
             }
+            if c < self.ode.load_contacts() {
+                // A load point's force is prescribed: only its point's error counts.
+                continue;
+            }
             // F ∝ δ^{3/2}: a relative error ε of the overlap at the peak is 1.5 ε of the force.
             let largest = self.sc.node_overlap[c]
                 .iter()
@@ -369,7 +481,7 @@ impl GraphModalIntegrator {
         self.ladder.ensure(h, rung, || {
             frequencies
                 .iter()
-                .map(|&w| FrequencyWeights::new(h, w))
+                .map(|&(w, rate)| FrequencyWeights::new(h, w, rate))
                 .collect()
         });
         self.ladder.get(rung).clone()
@@ -383,10 +495,10 @@ impl GraphModalIntegrator {
             return;
         }
         let theta = ((ts - self.t_prev) / h).clamp(0.0, 1.0);
-        let kernels: Vec<Kernel> = self
+        let kernels: Vec<FlowAt> = self
             .frequencies
             .iter()
-            .map(|&w| kernel(theta, h * w))
+            .map(|&(w, rate)| FlowAt::new(theta, h, w, rate))
             .collect();
         let q = self.frequency_index.len();
         let (x0, v0) = (&self.y_prev[..q], &self.y_prev[q + 3..2 * q + 3]);
@@ -395,10 +507,54 @@ impl GraphModalIntegrator {
             let b = &self.modal_force[m];
             let sb: f64 = (0..4).map(|n| k.s[n] * b[n]).sum();
             let cb: f64 = (0..4).map(|n| k.c[n] * b[n]).sum();
-            out[m] = k.cos * x0[m] + h * k.sinc * v0[m] + h * h * sb;
-            out[q + 3 + m] = -k.zsin / h * x0[m] + k.cos * v0[m] + h * cb;
+            out[m] = k.pp * x0[m] + h * k.pv * v0[m] + h * h * sb;
+            out[q + 3 + m] = k.vp / h * x0[m] + k.vv * v0[m] + h * cb;
         }
         self.supports_flow(theta, h, &self.y_prev, out);
+        self.work_and_dissipation(theta, &self.coef, &self.overlap_coef, out);
+    }
+
+    /// W and D_modes at θ of the step from the last step's start into `out` (which holds the
+    /// modes at θ), with lab physics. W: the load points' forces' work, −∫ a_c p_c' over their
+    /// cubics (force a_c, overlap p_c: minus the point's deflection). D_modes, if any mode is
+    /// damped: the modes' energy balance, D = −ΔE_modes + Σ_c −∫ a_c p_c' (every mode is
+    /// advanced exactly under the cubics, so the energy the modes lost beyond the work the
+    /// contacts' cubics did on them is what their damping took); docs/physics.md §8.
+    fn work_and_dissipation(
+        &self,
+        theta: f64,
+        coef: &[[f64; 4]],
+        overlap_coef: &[[f64; 4]],
+        out: &mut [f64],
+    ) {
+        let Some(i) = self.lab else { return };
+        let loads = self.ode.load_contacts();
+        let (mut w_loads, mut w_all) = (0.0, 0.0);
+        for (c, (a, p)) in coef.iter().zip(overlap_coef).enumerate() {
+            if a.iter().all(|&x| x == 0.0) {
+                continue;
+            }
+            let w = contact_work(a, p, theta);
+            w_all += w;
+            if c < loads {
+                w_loads += w;
+            }
+        }
+        // Gravity's and a striker's preload's constant modal forces: their work is f Δq.
+        let w_static: f64 = self
+            .static_force
+            .iter()
+            .zip(out.iter().zip(&self.y_prev))
+            .map(|(f, (q1, q0))| f * (q1 - q0))
+            .sum();
+        out[i] = self.y_prev[i] + w_loads + w_static;
+        out[i + 1] = if self.damped {
+            let e0 = modal_energy_j(&self.y_prev, &self.ode.omega2);
+            let e1 = modal_energy_j(out, &self.ode.omega2);
+            self.y_prev[i + 1] - (e1 - e0) + w_all + w_static
+        } else {
+            self.y_prev[i + 1]
+        };
     }
 
     /// The supports' impulses J and their integrals ∫J dt at θ of a step of size h from `from`
@@ -473,13 +629,21 @@ impl ExactStepper for GraphModalIntegrator {
                 + w.hsinc[2] * v0[m]
                 + (p[0] * b[0] + p[1] * b[1] + p[2] * b[2] + p[3] * b[3]);
             v1[m] = w.vel_of_pos * x0[m]
-                + w.cos[2] * v0[m]
+                + w.vel_of_vel * v0[m]
                 + (w.vel[0] * b[0] + w.vel[1] * b[1] + w.vel[2] * b[2] + w.vel[3] * b[3]);
         }
         self.coef.copy_from_slice(&self.sc.coef);
         self.modal_force.copy_from_slice(&self.sc.modal_force);
         let mut y = std::mem::take(&mut self.y);
         self.supports_flow(1.0, h, &self.y_prev, &mut y);
+        if self.lab.is_some() {
+            for (p, d) in self.overlap_coef.iter_mut().zip(&self.sc.node_overlap) {
+                for (pn, l) in p.iter_mut().zip(&self.lagrange) {
+                    *pn = (0..4).map(|j| l[j] * d[j]).sum();
+                }
+            }
+            self.work_and_dissipation(1.0, &self.sc.coef, &self.overlap_coef, &mut y);
+        }
         self.y = y;
         for c in 0..self.force.len() {
             let d = &self.sc.node_overlap[c];
@@ -491,4 +655,25 @@ impl ExactStepper for GraphModalIntegrator {
         self.t_prev = self.t;
         self.t += h;
     }
+}
+
+/// −∫₀^θ a(σ) p'(σ) dσ for a force cubic a and an overlap cubic p (monomials in σ) \[J\]: the
+/// work a contact's force does on the bodies over the first θ of a step.
+fn contact_work(a: &[f64; 4], p: &[f64; 4], theta: f64) -> f64 {
+    let mut w = 0.0;
+    for (n, an) in a.iter().enumerate() {
+        for (k, pk) in p.iter().enumerate().skip(1) {
+            let e = (n + k) as i32;
+            w += an * k as f64 * pk * theta.powi(e) / f64::from(e);
+        }
+    }
+    -w
+}
+
+/// The modes' kinetic and strain energy Σ ½ (q̇² + ω² q²) of a state \[J\].
+fn modal_energy_j(y: &[f64], omega2: &[f64]) -> f64 {
+    let q = omega2.len();
+    (0..q)
+        .map(|j| 0.5 * (y[q + 3 + j] * y[q + 3 + j] + omega2[j] * y[j] * y[j]))
+        .sum()
 }

@@ -656,3 +656,93 @@ impl LatticeOde {
         a[q..q + 3].copy_from_slice(&impulse);
     }
 }
+
+/// What the exact modal method on the contact graph reads of a lattice
+/// (`integrate::modal_graph`, docs/physics.md §8).
+impl LatticeOde {
+    /// Whether the exact modal method advances this run: an impact, a blast or a force drive on
+    /// the lossless lattice, or with its modes damped (`damping.modal_ratio`,
+    /// `damping.on_site_time_s`), gravity and a preload: every contact elastic.
+    pub fn fits_exact_modes(&self) -> bool {
+        (self.struck || self.loads > 0)
+            && !self.actuator
+            && self.lab.as_ref().is_none_or(|lab| lab.linear_modes_only())
+    }
+
+    /// Per coordinate: the constant modal force of gravity and a striker's preload (None without
+    /// lab physics; a load's preload is in its points' force).
+    pub(crate) fn static_modal_forces(&self) -> Option<&[f64]> {
+        self.lab.as_ref().map(|lab| lab.static_modal_force())
+    }
+
+    /// Damping rate per coordinate, 2 ζ ω_j + 1/τ [1/s] (None without lab physics).
+    pub(crate) fn damping_rates(&self) -> Option<&[f64]> {
+        self.lab.as_ref().map(|lab| lab.damping_rates())
+    }
+
+    /// Number of leading contacts whose force is prescribed (a blast's or a drive's points).
+    pub(crate) fn load_contacts(&self) -> usize {
+        self.loads
+    }
+
+    /// The times where the load's force or its first two derivatives jump \[s\], ascending
+    /// (none without a load).
+    pub(crate) fn load_kinks_s(&self) -> Vec<f64> {
+        self.lab
+            .as_ref()
+            .map_or_else(Vec::new, |lab| lab.load_kinks_s())
+    }
+
+    /// Each load point's prescribed force at t \[N\] (0 without a load).
+    pub(crate) fn load_per_point_n(&self, t: f64) -> f64 {
+        self.lab.as_ref().map_or(0.0, |lab| lab.load_per_point_n(t))
+    }
+
+    /// Every contact's force rate dF/dt \[N/s\] in state y at t into `rate`, after
+    /// [`LatticeOde::contact_forces_at`] at (t, y), for a run that [`LatticeOde::fits_exact_modes`]:
+    /// the elastic (3/2) F δ̇ / δ at the contacts, the load's rate at the load points.
+    pub(crate) fn exact_modes_force_rates(&self, t: f64, y: &[f64], rate: &mut [f64]) {
+        let q = self.coordinates();
+        let v = &y[q + 3..2 * q + 3];
+        let load = self
+            .lab
+            .as_ref()
+            .map_or(0.0, |l| l.load_rate_per_point_n_s(t));
+        for (c, r) in rate.iter_mut().enumerate() {
+            *r = if c < self.loads {
+                load
+            } else {
+                let dv = self.overlap(c, v);
+                ContactLaw::elastic_force_rate(self.force_n[c], self.overlap_m[c], dv)
+            };
+        }
+    }
+
+    /// The shortest Hertz contact time of the run's scale \[s\]: the striker's
+    /// ([`LatticeOde::striker_contact_time_s`]), or under a load the shortest of every contact's
+    /// two bodies (their whole masses, reduced; a rod's alone on a support) meeting at
+    /// `speed_m_s`.
+    pub(crate) fn contact_time_s(&self, speed_m_s: f64) -> f64 {
+        if self.struck {
+            return self.striker_contact_time_s();
+        }
+        let mass = |s: Side| -> f64 {
+            self.translation[s.offset..s.offset + s.len]
+                .iter()
+                .map(|t| t * t)
+                .sum()
+        };
+        (self.loads..self.contacts())
+            .filter(|&c| self.beta[c] > 0.0)
+            .map(|c| {
+                let above = mass(self.above[c]);
+                let m = self.below[c].map_or(above, |b| {
+                    let below = mass(b);
+                    above * below / (above + below)
+                });
+                let delta_max = (1.25 * m * speed_m_s * speed_m_s / self.beta[c]).powf(0.4);
+                2.94 * delta_max / speed_m_s
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+}

@@ -277,3 +277,66 @@ fn contact_laws(
         })
         .unzip())
 }
+
+/// What the exact modal method on the contact graph reads of the lab terms
+/// (`integrate::modal_graph`, docs/physics.md §8).
+impl LabTerms {
+    /// Whether the lab terms keep the equations linear in the modes between the contacts'
+    /// elastic forces: every contact law elastic (damping of the modes, prescribed load forces,
+    /// gravity and a preload — constant modal forces — are what the method advances exactly).
+    pub(super) fn linear_modes_only(&self) -> bool {
+        self.laws.iter().all(|&l| l == ContactLaw::Elastic)
+    }
+
+    /// Per coordinate: the constant generalised force of gravity and a striker's preload.
+    pub(super) fn static_modal_force(&self) -> &[f64] {
+        &self.static_force
+    }
+
+    /// Damping rate per coordinate, 2 ζ ω_j + 1/τ [1/s].
+    pub(super) fn damping_rates(&self) -> &[f64] {
+        &self.damping_rate
+    }
+
+    /// Each load point's prescribed force at t \[N\].
+    pub(super) fn load_per_point_n(&self, t: f64) -> f64 {
+        self.preload_per_point_n + self.share * self.excitation.total_force_n(t)
+    }
+
+    /// The times where the load's force or its first or second derivative jumps \[s\],
+    /// ascending: a Friedlander blast's end, a table's times, a drive's ramp ends and a chirp's
+    /// end.
+    pub(super) fn load_kinks_s(&self) -> Vec<f64> {
+        use crate::excitation::{BlastProfile, Signal};
+        let mut kinks = match &self.excitation {
+            LatticeExcitation::Blast { profile, .. } => match profile {
+                BlastProfile::Friedlander { duration_s, .. } => vec![*duration_s],
+                BlastProfile::Table { times_s, .. } => times_s.clone(),
+            },
+            LatticeExcitation::Drive { drive, .. } => {
+                let mut k = vec![drive.ramp_s];
+                match &drive.signal {
+                    Signal::Chirp { duration_s, .. } => {
+                        k.extend([duration_s - drive.ramp_s, *duration_s]);
+                    }
+                    Signal::Table { times_s, .. } => k.extend_from_slice(times_s),
+                    Signal::Harmonic { .. } => {}
+                }
+                k
+            }
+            _ => Vec::new(),
+        };
+        kinks.retain(|&t| t > 0.0);
+        kinks.sort_by(f64::total_cmp);
+        kinks
+    }
+
+    /// Each load point's force rate at t \[N/s\]: a drive's; 0 for a blast (a Friedlander
+    /// blast's peak is its start, a table's at its breakpoints).
+    pub(super) fn load_rate_per_point_n_s(&self, t: f64) -> f64 {
+        match &self.excitation {
+            LatticeExcitation::Drive { drive, .. } => self.share * drive.value_and_rate(t).1,
+            _ => 0.0,
+        }
+    }
+}

@@ -162,14 +162,15 @@ pub const LATTICE_EXACT_MODES_RTOL_OF_TOLERANCE: f64 = 1e-3;
 
 /// The method a lattice runs: a stated peak tolerance becomes [`Method::ExactModes`] at rtol =
 /// tolerance · [`LATTICE_EXACT_MODES_RTOL_OF_TOLERANCE`] for rods whose stiffest mode is above
-/// [`crate::integrate::EXACT_MODES_ABOVE_RAD_S`] (finite-element rods: RKN 6(4)'s step would be
-/// set by that mode's stability) of a lossless impact, and otherwise as [`Method::resolve`] (RKN
-/// 6(4), or DOPRI5 with events under lab physics).
+/// [`crate::integrate::EXACT_MODES_ABOVE_RAD_S`] (finite-element rods: RKN 6(4)'s or DOPRI5's
+/// step would be set by that mode's stability) under an impact, a blast or a force drive, lossless
+/// or with the rods' modes damped, gravity and a preload (every contact elastic:
+/// [`LatticeOde::fits_exact_modes`]); otherwise as [`Method::resolve`] (RKN 6(4), or DOPRI5
+/// with events under lab physics).
 pub fn lattice_method(ode: &LatticeOde, method: Method) -> Method {
-    let lossless_impact = !ode.has_lab() && ode.has_striker();
     match method {
         Method::PeakTolerance { peak_tolerance }
-            if lossless_impact
+            if ode.fits_exact_modes()
                 && ode.stiffest_mode_rad_s() > crate::integrate::EXACT_MODES_ABOVE_RAD_S =>
         {
             let rtol = (peak_tolerance * LATTICE_EXACT_MODES_RTOL_OF_TOLERANCE).max(1e-13);
@@ -183,20 +184,25 @@ pub fn lattice_method(ode: &LatticeOde, method: Method) -> Method {
 }
 
 /// Runs a lattice: `settings.method` may be RK4, DOPRI5 (with or without events), RKN 6(4), the
-/// exact modal method (a lossless impact), or a peak tolerance ([`lattice_method`] chooses).
+/// exact modal method ([`LatticeOde::fits_exact_modes`]), or a peak tolerance
+/// ([`lattice_method`] chooses).
 pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<LatticeRun> {
     settings.validate()?;
-    if matches!(settings.method, Method::ExactModes { .. }) && (ode.has_lab() || !ode.has_striker())
-    {
+    if matches!(settings.method, Method::ExactModes { .. }) && !ode.fits_exact_modes() {
         return Err(Error::invalid(
             "run.integrator",
             "exact-modes",
-            "the exact modal method advances a lossless impact of a lattice (no damping, load or \
-             static load); state run.peak_tolerance instead",
+            "the exact modal method advances an impact, a blast or a force drive of a lattice \
+             with elastic contacts (its modes may be damped, under gravity and a preload); \
+             state run.peak_tolerance instead",
         ));
     }
     let method = lattice_method(ode, settings.method);
     let mut stepper = Stepper::new(ode, method, settings);
+    // With lab physics whose contacts are all elastic (what the exact modal method runs), the
+    // peaks are refined from the contact forces' rates as a lossless run's are, whatever the
+    // method.
+    let elastic_rates = ode.has_lab() && ode.fits_exact_modes();
     let y0 = ode.initial_state();
     let nc = ode.contacts();
     let q = ode.coordinates();
@@ -242,7 +248,15 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
     // blast's F0, the static forces under a static load) count.
     let mut peaks = PeakTracker::new(nc + 2);
     let mut forces = vec![0.0; nc + 2];
-    watch_forces(ode, 0.0, &y0, &run.supports, &mut forces, &mut peaks.rate);
+    watch_forces(
+        ode,
+        0.0,
+        &y0,
+        &run.supports,
+        elastic_rates,
+        &mut forces,
+        &mut peaks.rate,
+    );
     peaks.start(&forces);
     let interval = settings.sample_interval_s;
     let mut next = 1usize;
@@ -256,7 +270,15 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         let h = stepper.step(ode, settings.duration_s)?;
         let t = stepper.t();
         let y = stepper.y();
-        watch_forces(ode, t, y, &run.supports, &mut forces, &mut peaks.rate);
+        watch_forces(
+            ode,
+            t,
+            y,
+            &run.supports,
+            elastic_rates,
+            &mut forces,
+            &mut peaks.rate,
+        );
         check(ode, t, y)?;
         peaks.update(t0, t, &forces);
         while let Some(ts) = sample_time(next, interval, settings.duration_s) {
@@ -302,18 +324,24 @@ fn energy_balance(run: &LatticeRun, e0: f64) -> EnergyBalance {
 
 /// Every contact's force and its rate in state y at t, then the incident force (the striker's,
 /// or the load points' sum) and the transmitted force (the supports' sum) and their rates, into
-/// `forces` and `rates` (contacts + 2 each).
+/// `forces` and `rates` (contacts + 2 each). `elastic_rates`: lab physics with every contact
+/// elastic ([`LatticeOde::fits_exact_modes`]), whose rates refine the peaks as a lossless run's.
 fn watch_forces(
     ode: &mut LatticeOde,
     t: f64,
     y: &[f64],
     supports: &[usize],
+    elastic_rates: bool,
     forces: &mut [f64],
     rates: &mut [f64],
 ) {
     let nc = ode.contacts();
     ode.contact_forces_at(t, y);
-    ode.contact_force_rates(y, &mut rates[..nc]);
+    if elastic_rates {
+        ode.exact_modes_force_rates(t, y, &mut rates[..nc]);
+    } else {
+        ode.contact_force_rates(y, &mut rates[..nc]);
+    }
     forces[..nc].copy_from_slice(&ode.force_n);
     let incident = ode.incident_contacts();
     forces[nc] = forces[incident.clone()].iter().sum();

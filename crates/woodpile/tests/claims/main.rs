@@ -49,6 +49,7 @@ mod lattice_damped_energy_balance;
 mod lattice_displacement_drive;
 mod lattice_drive;
 mod lattice_energy_balance;
+mod lattice_exact_damped;
 mod lattice_exact_modes;
 mod lattice_free_rod_modes;
 mod lattice_mirror_symmetry;
