@@ -26,15 +26,15 @@
 //! 1.7e-8), W = ∫ Σ F_c u̇ dt over the tips; and every tip carries 1 N in the static state and at
 //! t = 0 within 1e-12 N (measured 6.7e-16 N).
 
-use super::lattice_common::three_by_four;
+use super::lattice_common::{fe_rod_elements, three_by_four};
 use woodpile::model::{
     ContactDamping, Damping, LatticeBuilder, LatticeExcitation, LatticeLab, LayerSpec, LoadPoints,
 };
 use woodpile::ode::LatticeOde;
 use woodpile::simulate::simulate_lattice;
 use woodpile::{
-    simulate, ChainBuilder, Drive, DriveQuantity, Element, Excitation, Material, Method, Preload,
-    Rod, RunSettings, Signal, Sweep, Trajectory, UnitCell, Wall,
+    simulate, ChainBuilder, Drive, DriveQuantity, Excitation, Material, Method, Preload,
+    RunSettings, Signal, Sweep, Trajectory, Wall,
 };
 
 const LENGTHS_MM: [f64; 3] = [80.0, 40.0, 20.0];
@@ -70,21 +70,7 @@ fn largest(v: &[f64]) -> f64 {
 #[test]
 fn one_rod_per_layer_under_a_displacement_drive_is_the_fe_rod_chain() {
     let quartz = Material::fused_quartz();
-    let elements: Vec<Element> = LENGTHS_MM
-        .iter()
-        .map(|&l| {
-            let rod = Rod::new(l * 1e-3, 5e-3, 0.0, quartz.clone()).unwrap();
-            Element {
-                label: format!("{l}mm"),
-                body: woodpile::Body::Rod {
-                    diameter_m: 5e-3,
-                    length_m: l * 1e-3,
-                },
-                material: quartz.clone(),
-                cell: UnitCell::from_rod_fe(&rod, ELEMENTS).unwrap(),
-            }
-        })
-        .collect();
+    let elements = fe_rod_elements(&LENGTHS_MM, ELEMENTS);
     let preload = Preload {
         force_n: PRELOAD_N,
         gravity_m_s2: 0.0,

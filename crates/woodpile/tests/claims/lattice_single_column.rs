@@ -13,12 +13,12 @@
 //! potential against (2/5) β δ₊^{5/2} of the chain's overlaps (its primaries' and striker's
 //! displacements) — within 1e-12 of the initial energy.
 
+use super::lattice_common::fe_rod_elements;
 use woodpile::model::{LatticeBuilder, LayerSpec};
 use woodpile::ode::LatticeOde;
 use woodpile::simulate::simulate_lattice;
 use woodpile::{
-    simulate, ChainBuilder, Element, Excitation, Material, Method, Rod, RunSettings, Striker,
-    Trajectory, UnitCell,
+    simulate, ChainBuilder, Excitation, Material, Method, RunSettings, Striker, Trajectory,
 };
 
 const LENGTHS_MM: [f64; 3] = [80.0, 40.0, 20.0];
@@ -35,21 +35,7 @@ fn settings() -> RunSettings {
 #[test]
 fn one_rod_per_layer_is_the_fe_rod_chain() {
     let quartz = Material::fused_quartz();
-    let elements: Vec<Element> = LENGTHS_MM
-        .iter()
-        .map(|&l| {
-            let rod = Rod::new(l * 1e-3, 5e-3, 0.0, quartz.clone()).unwrap();
-            Element {
-                label: format!("{l}mm"),
-                body: woodpile::Body::Rod {
-                    diameter_m: 5e-3,
-                    length_m: l * 1e-3,
-                },
-                material: quartz.clone(),
-                cell: UnitCell::from_rod_fe(&rod, ELEMENTS).unwrap(),
-            }
-        })
-        .collect();
+    let elements = fe_rod_elements(&LENGTHS_MM, ELEMENTS);
     let chain = ChainBuilder::new(elements).build().unwrap();
     let mut trajectory = Trajectory::default();
     let striker = Striker::paper();
