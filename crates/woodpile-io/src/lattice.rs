@@ -503,71 +503,13 @@ impl LatticeScenario {
                 "give at least one layer",
             ));
         }
-        let mut layers = Vec::new();
-        for (k, l) in s.lattice.layers.iter().enumerate() {
-            let key = |f: &str| format!("lattice.layers[{k}].{f}");
-            let required = |f: &str, v: Option<f64>| {
-                v.ok_or_else(|| {
-                    Error::invalid(
-                        key(f),
-                        "(unset)",
-                        "required in the top layer (the layers below take the layer above's)",
-                    )
-                })
-            };
-            if k == 0 {
-                if let Some(a) = self.lattice.layers[0].angle_deg {
-                    return Err(Error::invalid(key("angle_deg"), a, "the top layer's rods lie along x; angle_deg is a lower layer's angle to the layer above"));
-                }
-            }
-            let rods = l.rods.ok_or_else(|| {
-                Error::invalid(key("rods"), "(unset)", "required in the top layer")
-            })?;
-            let pitch = if rods > 1 {
-                required("pitch_mm", l.pitch_mm)?
-            } else {
-                l.pitch_mm.unwrap_or(0.0)
-            };
-            let length_mm = match (&l.lengths_mm, l.length_mm) {
-                (Some(v), None) => v.first().copied().unwrap_or(f64::NAN),
-                _ => required("length_mm", l.length_mm)?,
-            };
-            layers.push(LayerSpec {
-                rods,
-                pitch_m: pitch * 1e-3,
-                length_m: length_mm * 1e-3,
-                diameter_m: required("diameter_mm", l.diameter_mm)? * 1e-3,
-                material: material_of(&key("material"), l.material.as_ref().expect("completed"))?,
-                angle_deg: l.angle_deg.unwrap_or(0.0),
-            });
-        }
+        let layers = layer_specs(&s.lattice.layers, &self.lattice.layers)?;
         let (fe_elements, bending_modes) = rod_model(s.lattice.rod.expect("completed"))?;
         check_size(&layers, fe_elements)?;
         if let Some(l) = bending_modes {
             check_modes(&layers, l)?;
         }
-        let supports = match s.wall.supports.as_ref().expect("completed") {
-            SupportsToml::Named(n) if n == "centres" => Supports::Centres,
-            SupportsToml::Named(n) => {
-                return Err(Error::invalid(
-                    "wall.supports",
-                    format!("\"{n}\""),
-                    "\"centres\" or a list of points [{ x_mm = …, y_mm = … }, …]",
-                ))
-            }
-            // The library takes a free lattice (no support: a rod struck in flight); a file
-            // without supports would print a transmitted force of nothing.
-            SupportsToml::Points(p) if p.is_empty() => {
-                return Err(Error::invalid(
-                    "wall.supports",
-                    "[]",
-                    "a lattice stands on at least one support: give points [{ x_mm = …, y_mm = … }, …] or \"centres\"",
-                ))
-            }
-            SupportsToml::Points(p) => {
-                Supports::Points(p.iter().map(|p| [p.x_mm * 1e-3, p.y_mm * 1e-3]).collect())
-            }
-        };
+        let supports = supports_of(s.wall.supports.as_ref().expect("completed"))?;
         let mut builder = LatticeBuilder::new(layers, fe_elements);
         builder.supports = supports;
         builder.overrides = rod_overrides(&s.lattice.layers);
@@ -604,6 +546,76 @@ impl LatticeScenario {
             lab,
         })
     }
+}
+
+/// Each layer of a completed `[lattice]` (`completed`; `given`: the layers as the user wrote
+/// them) as the library's [`LayerSpec`]; errors name `lattice.layers[k].…`.
+fn layer_specs(completed: &[LayerToml], given: &[LayerToml]) -> Result<Vec<LayerSpec>, Error> {
+    let mut layers = Vec::new();
+    for (k, l) in completed.iter().enumerate() {
+        let key = |f: &str| format!("lattice.layers[{k}].{f}");
+        let required = |f: &str, v: Option<f64>| {
+            v.ok_or_else(|| {
+                Error::invalid(
+                    key(f),
+                    "(unset)",
+                    "required in the top layer (the layers below take the layer above's)",
+                )
+            })
+        };
+        if k == 0 {
+            if let Some(a) = given[0].angle_deg {
+                return Err(Error::invalid(key("angle_deg"), a, "the top layer's rods lie along x; angle_deg is a lower layer's angle to the layer above"));
+            }
+        }
+        let rods = l
+            .rods
+            .ok_or_else(|| Error::invalid(key("rods"), "(unset)", "required in the top layer"))?;
+        let pitch = if rods > 1 {
+            required("pitch_mm", l.pitch_mm)?
+        } else {
+            l.pitch_mm.unwrap_or(0.0)
+        };
+        let length_mm = match (&l.lengths_mm, l.length_mm) {
+            (Some(v), None) => v.first().copied().unwrap_or(f64::NAN),
+            _ => required("length_mm", l.length_mm)?,
+        };
+        layers.push(LayerSpec {
+            rods,
+            pitch_m: pitch * 1e-3,
+            length_m: length_mm * 1e-3,
+            diameter_m: required("diameter_mm", l.diameter_mm)? * 1e-3,
+            material: material_of(&key("material"), l.material.as_ref().expect("completed"))?,
+            angle_deg: l.angle_deg.unwrap_or(0.0),
+        });
+    }
+    Ok(layers)
+}
+
+/// `wall.supports` as the library's [`Supports`].
+fn supports_of(supports: &SupportsToml) -> Result<Supports, Error> {
+    Ok(match supports {
+        SupportsToml::Named(n) if n == "centres" => Supports::Centres,
+        SupportsToml::Named(n) => {
+            return Err(Error::invalid(
+                "wall.supports",
+                format!("\"{n}\""),
+                "\"centres\" or a list of points [{ x_mm = …, y_mm = … }, …]",
+            ))
+        }
+        // The library takes a free lattice (no support: a rod struck in flight); a file
+        // without supports would print a transmitted force of nothing.
+        SupportsToml::Points(p) if p.is_empty() => {
+            return Err(Error::invalid(
+                "wall.supports",
+                "[]",
+                "a lattice stands on at least one support: give points [{ x_mm = …, y_mm = … }, …] or \"centres\"",
+            ))
+        }
+        SupportsToml::Points(p) => {
+            Supports::Points(p.iter().map(|p| [p.x_mm * 1e-3, p.y_mm * 1e-3]).collect())
+        }
+    })
 }
 
 /// The default rod: the finite-element rod of 8 elements per half rod, unless `modes` is given.

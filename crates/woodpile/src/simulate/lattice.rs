@@ -206,39 +206,7 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
     let y0 = ode.initial_state();
     let nc = ode.contacts();
     let q = ode.coordinates();
-    let supports: Vec<usize> = (0..nc).filter(|&c| ode.is_support(c)).collect();
-    let mut run = LatticeRun {
-        contact_peak_forces_n: vec![0.0; nc],
-        contact_peak_times_s: vec![0.0; nc],
-        incident_peak_force_n: 0.0,
-        transmitted_peak_force_n: 0.0,
-        energy: EnergyBalance {
-            initial_j: 0.0,
-            final_j: 0.0,
-            input_work_j: 0.0,
-            dissipated_j: 0.0,
-            max_relative_error: 0.0,
-        },
-        times_s: Vec::new(),
-        contact_forces_n: Vec::new(),
-        energy_j: Vec::new(),
-        work_j: Vec::new(),
-        dissipated_j: Vec::new(),
-        contact_dissipated_j: Vec::new(),
-        contact_energies_j: Vec::new(),
-        contact_dissipated_samples_j: Vec::new(),
-        modal_dissipated_j: 0.0,
-        contact_static_forces_n: ode.static_forces_n().0.to_vec(),
-        static_residual: ode.static_forces_n().1,
-        momentum: Vec::new(),
-        contacts: nc,
-        supports,
-        body_energies_j: Vec::new(),
-        support_energy_j: Vec::new(),
-        bodies: ode.energy_bodies(),
-        stats: IntegratorStats::default(),
-        method,
-    };
+    let mut run = LatticeRun::empty(ode, method);
     let mut sample = y0.clone();
     record(ode, &mut run, 0.0, &sample);
     // (After the forces at t = 0: an actuator's tip overlaps depend on the time.)
@@ -302,6 +270,46 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
     }
     run.stats = stepper.stats();
     Ok(run)
+}
+
+impl LatticeRun {
+    /// A run of `ode` by `method` before its first sample: no samples, no peaks.
+    fn empty(ode: &LatticeOde, method: Method) -> LatticeRun {
+        let nc = ode.contacts();
+        let supports: Vec<usize> = (0..nc).filter(|&c| ode.is_support(c)).collect();
+        LatticeRun {
+            contact_peak_forces_n: vec![0.0; nc],
+            contact_peak_times_s: vec![0.0; nc],
+            incident_peak_force_n: 0.0,
+            transmitted_peak_force_n: 0.0,
+            energy: EnergyBalance {
+                initial_j: 0.0,
+                final_j: 0.0,
+                input_work_j: 0.0,
+                dissipated_j: 0.0,
+                max_relative_error: 0.0,
+            },
+            times_s: Vec::new(),
+            contact_forces_n: Vec::new(),
+            energy_j: Vec::new(),
+            work_j: Vec::new(),
+            dissipated_j: Vec::new(),
+            contact_dissipated_j: Vec::new(),
+            contact_energies_j: Vec::new(),
+            contact_dissipated_samples_j: Vec::new(),
+            modal_dissipated_j: 0.0,
+            contact_static_forces_n: ode.static_forces_n().0.to_vec(),
+            static_residual: ode.static_forces_n().1,
+            momentum: Vec::new(),
+            contacts: nc,
+            supports,
+            body_energies_j: Vec::new(),
+            support_energy_j: Vec::new(),
+            bodies: ode.energy_bodies(),
+            stats: IntegratorStats::default(),
+            method,
+        }
+    }
 }
 
 /// The energy balance over the samples: the largest |E(t) + D(t) − E(0) − W(t)| relative to

@@ -31,7 +31,7 @@ use woodpile::model::{
     ContactDamping, Damping, LatticeBuilder, LatticeExcitation, LatticeLab, LayerSpec, LoadPoints,
 };
 use woodpile::ode::LatticeOde;
-use woodpile::simulate::simulate_lattice;
+use woodpile::simulate::{simulate_lattice, LatticeRun};
 use woodpile::{
     simulate, ChainBuilder, Drive, DriveQuantity, Excitation, Material, Method, Preload,
     RunSettings, Signal, Sweep, Trajectory, Wall,
@@ -65,6 +65,35 @@ fn displacement(signal: Signal, ramp_s: f64) -> Drive {
 
 fn largest(v: &[f64]) -> f64 {
     v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
+}
+
+/// The largest differences between the lattice's and the chain's energies (total, W, D, the
+/// support's half; and each body's), relative to the largest |W|, which it returns first.
+fn energy_differences(run: &LatticeRun, trajectory: &Trajectory) -> (f64, f64, f64) {
+    let scale = largest(&run.work_j);
+    assert!(scale > 0.0);
+    let diff = |a: &[f64], b: &[f64]| {
+        assert_eq!(a.len(), b.len());
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs() / scale)
+            .fold(0.0_f64, f64::max)
+    };
+    let worst_energy = diff(&run.energy_j, &trajectory.total_energy_j())
+        .max(diff(&run.work_j, &trajectory.input_work_j))
+        .max(diff(&run.dissipated_j, &trajectory.dissipated_j))
+        .max(diff(&run.support_energy_j, &trajectory.wall_energy_j));
+    let mut worst_body = 0.0_f64;
+    assert_eq!(run.bodies, 4, "the actuator and three rods");
+    for layer in 0..run.bodies {
+        let lattice_layer: Vec<f64> = run
+            .body_energies_j
+            .chunks(run.bodies)
+            .map(|row| row[layer])
+            .collect();
+        worst_body = worst_body.max(diff(&lattice_layer, &trajectory.layer_energy_j(layer)));
+    }
+    (scale, worst_energy, worst_body)
 }
 
 #[test]
@@ -158,29 +187,7 @@ fn one_rod_per_layer_under_a_displacement_drive_is_the_fe_rod_chain() {
             worst_force = worst_force.max((x - y).abs() / peak);
         }
     }
-    let scale = largest(&run.work_j);
-    assert!(scale > 0.0);
-    let diff = |a: &[f64], b: &[f64]| {
-        assert_eq!(a.len(), b.len());
-        a.iter()
-            .zip(b)
-            .map(|(x, y)| (x - y).abs() / scale)
-            .fold(0.0_f64, f64::max)
-    };
-    let worst_energy = diff(&run.energy_j, &trajectory.total_energy_j())
-        .max(diff(&run.work_j, &trajectory.input_work_j))
-        .max(diff(&run.dissipated_j, &trajectory.dissipated_j))
-        .max(diff(&run.support_energy_j, &trajectory.wall_energy_j));
-    let mut worst_body = 0.0_f64;
-    assert_eq!(run.bodies, 4, "the actuator and three rods");
-    for layer in 0..run.bodies {
-        let lattice_layer: Vec<f64> = run
-            .body_energies_j
-            .chunks(run.bodies)
-            .map(|row| row[layer])
-            .collect();
-        worst_body = worst_body.max(diff(&lattice_layer, &trajectory.layer_energy_j(layer)));
-    }
+    let (scale, worst_energy, worst_body) = energy_differences(&run, &trajectory);
     // Each contact's potential from the chain's overlaps.
     let n = trajectory.n_elements;
     let u = |k: usize, i: usize| trajectory.displacements_m[k * n + i];
