@@ -67,6 +67,40 @@ fn largest(v: &[f64]) -> f64 {
     v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
 }
 
+/// The one-rod-per-layer lattice of [`LENGTHS_MM`] under `drive` through its centre with
+/// `preload`, run with `settings`.
+fn column_lattice_run(
+    drive: &Drive,
+    preload: Preload,
+    settings: &RunSettings,
+) -> (LatticeOde, LatticeRun) {
+    let layers = LENGTHS_MM
+        .iter()
+        .map(|&l| LayerSpec {
+            rods: 1,
+            pitch_m: 20e-3,
+            length_m: l * 1e-3,
+            diameter_m: 5e-3,
+            material: Material::fused_quartz(),
+            angle_deg: 90.0,
+        })
+        .collect();
+    let lattice = LatticeBuilder::new(layers, ELEMENTS).build().unwrap();
+    let excitation = LatticeExcitation::Drive {
+        drive: drive.clone(),
+        points: LoadPoints::Points(vec![[0.0, 0.0]]),
+    };
+    let lab = LatticeLab {
+        damping: damping(),
+        modal_ratio: 0.0,
+        preload,
+    };
+    let mut ode = LatticeOde::build(&lattice, &excitation, &lab).unwrap();
+    assert!(ode.has_actuator());
+    let run = simulate_lattice(&mut ode, settings).unwrap();
+    (ode, run)
+}
+
 /// The largest differences between the lattice's and the chain's energies (total, W, D, the
 /// support's half; and each body's), relative to the largest |W|, which it returns first.
 fn energy_differences(run: &LatticeRun, trajectory: &Trajectory) -> (f64, f64, f64) {
@@ -130,30 +164,7 @@ fn one_rod_per_layer_under_a_displacement_drive_is_the_fe_rod_chain() {
     )
     .unwrap();
 
-    let layers = LENGTHS_MM
-        .iter()
-        .map(|&l| LayerSpec {
-            rods: 1,
-            pitch_m: 20e-3,
-            length_m: l * 1e-3,
-            diameter_m: 5e-3,
-            material: quartz.clone(),
-            angle_deg: 90.0,
-        })
-        .collect();
-    let lattice = LatticeBuilder::new(layers, ELEMENTS).build().unwrap();
-    let excitation = LatticeExcitation::Drive {
-        drive: drive.clone(),
-        points: LoadPoints::Points(vec![[0.0, 0.0]]),
-    };
-    let lab = LatticeLab {
-        damping: damping(),
-        modal_ratio: 0.0,
-        preload,
-    };
-    let mut ode = LatticeOde::build(&lattice, &excitation, &lab).unwrap();
-    assert!(ode.has_actuator());
-    let run = simulate_lattice(&mut ode, &settings).unwrap();
+    let (ode, run) = column_lattice_run(&drive, preload, &settings);
 
     // The chain's β: the actuator's tip on rod 1, the rods' crossings, the wall.
     let tip_beta = Wall::paper_sensor()
