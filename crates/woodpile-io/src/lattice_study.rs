@@ -38,7 +38,6 @@ use crate::pareto::{history_csv, parse_checkpoint, read_checkpoint, ParetoCheckp
 use crate::scenario::RunSpec;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
-use woodpile::model::LatticeExcitation;
 use woodpile::optimize::{
     DesignFigure, LatticeDesignSpace, LatticeDesigns, MoIndividual, Nsga2, Nsga2Settings,
     Nsga2State, StopReason, MAX_LATTICE_CHOICES,
@@ -205,17 +204,6 @@ impl LatticeStudyConfig {
         let config = self.complete();
         let base = config.base();
         let resolved = base.resolve()?;
-        if !matches!(resolved.excitation, LatticeExcitation::Impact { .. }) {
-            return Err(Error::invalid(
-                "excitation.kind",
-                format!(
-                    "\"{}\"",
-                    config.excitation.kind.as_deref().unwrap_or("impact")
-                ),
-                "a lattice design study strikes its lattices (\"impact\"); blasts and drives \
-                 are simulated one lattice at a time (woodpile simulate)",
-            ));
-        }
         let space = design_space(&config.design, &resolved)?;
         let ga = &config.ga;
         let objectives = ga
@@ -298,8 +286,8 @@ fn design_space(
     };
     Ok(LatticeDesignSpace {
         base: resolved.builder.clone(),
-        striker: resolved.striker.clone(),
-        at_m: resolved.at_m,
+        excitation: resolved.excitation.clone(),
+        lab: resolved.lab.clone(),
         settings: resolved.settings,
         lengths_m,
         pitches_m,

@@ -1,6 +1,6 @@
-//! Claim: `woodpile optimize` of a lattice study (a config with a `[lattice]` table) writes the
-//! front as `pareto.csv` and lattice scenarios that `woodpile simulate` re-runs to the row's
-//! transmitted peak force (the summary's value, printed to 4 decimals, equal to the CSV's), and
+//! Claim: `woodpile optimize` of a lattice study (a config with a `[lattice]` table), struck or
+//! under a blast, writes the front as `pareto.csv` and lattice scenarios that `woodpile simulate`
+//! re-runs to the row's transmitted peak force (the summary's value, bit for bit), and
 //! `--resume` of the finished run continues from its checkpoint to the same front; bad design
 //! input and a chain-only flag exit 2 naming the key or flag and create no output directory.
 
@@ -26,8 +26,17 @@ seed = 5
 
 #[test]
 fn a_lattice_study_writes_a_front_that_reruns_and_resumes() {
+    front_reruns_and_resumes(STUDY);
+    let blast = STUDY.replace(
+        "[run]",
+        "[excitation]\nkind = \"blast\"\npeak_force_n = 50.0\nduration_s = 5e-5\n[run]",
+    );
+    front_reruns_and_resumes(&blast);
+}
+
+fn front_reruns_and_resumes(study: &str) {
     let dir = tempfile::tempdir().unwrap();
-    common::write(dir.path(), "s.toml", STUDY);
+    common::write(dir.path(), "s.toml", study);
     let out = common::run_in(dir.path(), &["optimize", "s.toml", "--out", "o", "--quiet"]);
     assert!(
         out.status.success(),

@@ -6,8 +6,10 @@
 //! pitch, shared by every layer of more than one rod: L + 1 genes, gene k drawing from its own
 //! number of choices (a layer with one length choice, or a pitch with one, is fixed). Every
 //! design of the space is proven buildable when the space is made: longer rods only add
-//! crossings and cover more of the impact point and the supports, so a lattice of the shortest
-//! rods that builds at a pitch proves every lattice at that pitch ([`LatticeDesignSpace::validate`]).
+//! crossings and cover more of the impact point, the load points and the supports, so a lattice
+//! of the shortest rods that builds with its load at a pitch proves every lattice at that pitch
+//! ([`LatticeDesignSpace::validate`]). Any lattice excitation (an impact, a blast, a force or a
+//! displacement drive) and lab physics load every design alike.
 //! Mutation is the breeder GA's BGA step gene by gene in index units
 //! ([`super::operators::mutate_choices`]); no repair is needed.
 //!
@@ -21,10 +23,9 @@ use super::objective::StandardObjective;
 use super::space::Genome;
 use super::OptimizeError;
 use crate::error::Error;
-use crate::model::{Lattice, LatticeBuilder};
+use crate::model::{Lattice, LatticeBuilder, LatticeExcitation, LatticeLab};
 use crate::ode::LatticeOde;
 use crate::simulate::{simulate_lattice, RunSettings};
-use crate::Striker;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -38,10 +39,10 @@ pub struct LatticeDesignSpace {
     /// The base lattice: its layers (their `length_m` and, for layers of more than one rod,
     /// `pitch_m` are replaced by the design's), elements, supports and wall.
     pub base: LatticeBuilder,
-    /// The striker.
-    pub striker: Striker,
-    /// The impact point on the top layer (x, y) \[m\].
-    pub at_m: [f64; 2],
+    /// What loads every design: a striker at a point, or a blast or a drive on load points.
+    pub excitation: LatticeExcitation,
+    /// Its lab physics (contact laws, modal damping, a static load).
+    pub lab: LatticeLab,
     /// How every design is run (peaks are tracked over every step whatever the sampling).
     pub settings: RunSettings,
     /// Rod length choices of each layer, top to bottom \[m\] (one value: the layer is fixed).
@@ -141,7 +142,7 @@ impl LatticeDesignSpace {
             };
             let built = self
                 .lattice(&genome)
-                .and_then(|l| l.top_point(self.at_m, "excitation.at_mm").map(|_| ()));
+                .and_then(|l| LatticeOde::build(&l, &self.excitation, &self.lab).map(|_| ()));
             if let Err(e) = built {
                 return Err(Error::invalid(
                     field,
@@ -282,8 +283,8 @@ impl LatticeDesigns {
         };
         let lattice = self.space.lattice(genome).map_err(failed)?;
         let transmitted = if self.objectives.iter().any(|f| f.needs_run()) {
-            let mut ode =
-                LatticeOde::new(&lattice, &self.space.striker, self.space.at_m).map_err(failed)?;
+            let mut ode = LatticeOde::build(&lattice, &self.space.excitation, &self.space.lab)
+                .map_err(failed)?;
             let settings = RunSettings {
                 sample_interval_s: self.space.settings.duration_s,
                 ..self.space.settings
