@@ -35,7 +35,7 @@ use crate::lattice::{
     LatticeExcitationSpec, LatticeScenario, LatticeSpec, LatticeWallSpec, ResolvedLattice,
 };
 use crate::pareto::{history_csv, parse_checkpoint, read_checkpoint, ParetoCheckpoint};
-use crate::scenario::RunSpec;
+use crate::scenario::{DampingSpec, PreloadSpec, RunSpec};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use woodpile::optimize::{
@@ -61,6 +61,12 @@ pub struct LatticeStudyConfig {
     /// `[wall]`.
     #[serde(default)]
     pub wall: LatticeWallSpec,
+    /// `[damping]`, as in a lattice scenario (default: lossless).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping: Option<DampingSpec>,
+    /// `[preload]`, as in a lattice scenario (default: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub preload: Option<PreloadSpec>,
     /// `[run]`.
     #[serde(default)]
     pub run: RunSpec,
@@ -169,8 +175,8 @@ impl LatticeStudyConfig {
             lattice: self.lattice.clone(),
             excitation: self.excitation.clone(),
             wall: self.wall.clone(),
-            damping: None,
-            preload: None,
+            damping: self.damping.clone(),
+            preload: self.preload,
             run: self.run.clone(),
         }
     }
@@ -192,6 +198,8 @@ impl LatticeStudyConfig {
             lattice: base.lattice,
             excitation: base.excitation,
             wall: base.wall,
+            damping: base.damping,
+            preload: base.preload,
             run: base.run,
             design: self.design.clone(),
             ga,

@@ -1,5 +1,5 @@
-//! Claim: `woodpile optimize` of a lattice study (a config with a `[lattice]` table), struck or
-//! under a blast, writes the front as `pareto.csv` and lattice scenarios that `woodpile simulate`
+//! Claim: `woodpile optimize` of a lattice study (a config with a `[lattice]` table), struck,
+//! under a blast, or damped under gravity, writes the front as `pareto.csv` and lattice scenarios that `woodpile simulate`
 //! re-runs to the row's transmitted peak force (the summary's value, bit for bit), and
 //! `--resume` of the finished run continues from its checkpoint to the same front; bad design
 //! input and a chain-only flag exit 2 naming the key or flag and create no output directory.
@@ -32,6 +32,11 @@ fn a_lattice_study_writes_a_front_that_reruns_and_resumes() {
         "[excitation]\nkind = \"blast\"\npeak_force_n = 50.0\nduration_s = 5e-5\n[run]",
     );
     front_reruns_and_resumes(&blast);
+    let damped = STUDY.replace(
+        "[run]",
+        "[damping]\nmodal_ratio = 0.02\n[preload]\ngravity_m_s2 = 9.81\n[run]",
+    );
+    front_reruns_and_resumes(&damped);
 }
 
 fn front_reruns_and_resumes(study: &str) {
