@@ -86,7 +86,11 @@ fn main() -> woodpile::Result<()> {
             "fe-rkn" => (&fe, tolerance.resolve(true)),
             _ => (&fe, tolerance),
         };
-        for _ in 0..300 {
+        for _ in 0..std::env::var("RUNS")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(300)
+        {
             run(chain, method)?;
         }
         return Ok(());

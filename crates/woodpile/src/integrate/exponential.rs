@@ -27,6 +27,8 @@
 //! - M. Hochbruck, A. Ostermann, "Exponential integrators", Acta Numerica 19 (2010) 209–286
 //!   (φ-functions, exponential collocation).
 
+use crate::real::{Lane, Real};
+
 /// The Lobatto nodes of the force interpolant, σ = 0, (5 − √5)/10, (5 + √5)/10, 1.
 pub fn nodes() -> [f64; 4] {
     let r5 = 5f64.sqrt();
@@ -76,6 +78,24 @@ pub struct Kernel {
     pub c: [f64; 4],
 }
 
+/// Terms of φ_4's series summed below |x| = 2.
+const PHI4_TERMS: usize = 12;
+
+/// The series of φ_4(ix) in y = x²: Re φ_4 = Σ_k (−1)^k y^k/(2k + 4)! and
+/// Im φ_4 / x = Σ_k (−1)^k y^k/(2k + 5)!, k < [`PHI4_TERMS`].
+const PHI4_SERIES: [[f64; PHI4_TERMS]; 2] = {
+    let mut c = [[0.0; PHI4_TERMS]; 2];
+    let mut inv_fact = 1.0 / 24.0; // 1/(m + 4)!, m = 0
+    let mut m = 0;
+    while m < 2 * PHI4_TERMS {
+        let sign = if (m / 2) % 2 == 0 { 1.0 } else { -1.0 };
+        c[m % 2][m / 2] = sign * inv_fact;
+        inv_fact /= (m + 5) as f64;
+        m += 1;
+    }
+    c
+};
+
 /// [`Kernel`] at θ ∈ (0, 1] for z = hΩ ≥ 0. With x = θz and φ_k(ix) = Σ_m (ix)^m/(m + k)!,
 /// ∫₀^θ e^{iz(θ−σ)} σⁿ dσ = n! θ^{n+1} φ_{n+1}(ix): C_n its real part, S_n its imaginary part
 /// over z. Series below |x| = 2, the recurrence φ_{k+1} = (φ_k − 1/k!)/(ix) from φ_0 = e^{ix}
@@ -85,29 +105,13 @@ pub fn kernel(theta: f64, z: f64) -> Kernel {
     // re[k] = Re φ_k(ix), imx[k] = Im φ_k(ix)/x, k = 0..=4.
     let (mut re, mut imx) = ([0.0; 5], [0.0; 5]);
     if x < 2.0 {
-        // φ_4 by its series (terms x^m/(m + 4)!, below 1e-17 of the sum after at most 22 terms
-        // at x = 2), then downward: φ_k = 1/k! + ix φ_{k+1}, which adds no rounding for x < 2.
-        let (mut r, mut i) = (0.0, 0.0);
-        let (mut pw, mut f) = (1.0, 1.0 / 24.0);
+        // φ_4 by its series, Σ_m (ix)^m/(m + 4)!, in y = x² by Horner's rule: twelve terms of
+        // each part (the first left out, 4¹²/28! at x = 2, is below 1e-19 of either sum), then
+        // downward: φ_k = 1/k! + ix φ_{k+1}, which adds no rounding for x < 2.
         let x2 = x * x;
-        for m in 0..30 {
-            let term = pw * f;
-            match m % 4 {
-                0 => r += term,
-                1 => i += term,
-                2 => r -= term,
-                _ => i -= term,
-            }
-            if term < 1e-18 * f64::abs(r).max(1e-300) && m % 2 == 1 {
-                break;
-            }
-            if m % 2 == 1 {
-                pw *= x2;
-            }
-            f /= (m + 5) as f64;
-        }
-        re[4] = r;
-        imx[4] = i;
+        let horner = |c: &[f64; PHI4_TERMS]| c.iter().rev().fold(0.0, |acc, &c| acc * x2 + c);
+        re[4] = horner(&PHI4_SERIES[0]);
+        imx[4] = horner(&PHI4_SERIES[1]);
         const INV_FACT: [f64; 4] = [1.0, 1.0, 0.5, 1.0 / 6.0];
         for k in (0..4).rev() {
             re[k] = INV_FACT[k] - x2 * imx[k + 1];
@@ -147,68 +151,93 @@ pub fn kernel(theta: f64, z: f64) -> Kernel {
     kern
 }
 
-/// The weights of one step size h for a chain, per mode of each distinct element (equal cells
-/// share theirs; contiguous, so that the passes over the modes are plain vector loops): the free
-/// motion at the nodes, the end-of-step update, and per distinct element its primary's response
-/// to the force polynomial summed over its modes.
+/// The weights of one step size h for a chain, per group of four modes of each distinct
+/// element (equal cells share theirs; each element's modes padded to whole groups, so that the
+/// passes over the modes run four modes per vector): the free motion at the nodes, the
+/// end-of-step update, and per distinct element its primary's response to the force at the
+/// nodes, summed over its modes.
 #[derive(Debug, Clone)]
 pub(crate) struct StepWeights {
-    /// Per node σ = c₁, c₂, 1 and mode: cos(σz) and h sin(σz)/z.
-    pub cos: [Vec<f64>; 3],
-    pub hsinc: [Vec<f64>; 3],
-    /// Per mode: −(z/h) sin z, the velocity's part of the position.
-    pub vel_of_pos: Vec<f64>,
-    /// Per n = 0..3 and mode: h² S_n(1, z)/μ and h C_n(1, z)/μ, the end state's response to σⁿ.
-    pub pos_force: [Vec<f64>; 4],
-    pub vel_force: [Vec<f64>; 4],
-    /// Per distinct element: Σ_k S_n(c_j, z_k)/μ_k, node j = 1..3 (rows), n = 0..3.
-    pub response: Vec<[[f64; 4]; 3]>,
+    /// Per group: the free motion at the nodes.
+    pub nodes: Vec<NodeGroup>,
+    /// Per group: the end-of-step update.
+    pub end: Vec<EndGroup>,
+    /// Per distinct element: its primary's response at node j = 1..3 (rows) to the force's
+    /// values at the four nodes (columns): Σ_k S_n(c_j, z_k)/μ_k against σⁿ, n = 0..3, with the
+    /// Lagrange basis through the nodes folded in.
+    pub node_response: Vec<[[f64; 4]; 3]>,
     /// Per distinct element: the position and velocity error weights, Σ_k W(z_k)/μ_k with W the kernels
     /// against σ(σ − ½)(σ − 1) (the cubic's part its quadratic through 0, ½, 1 lacks).
     pub error: Vec<(f64, f64)>,
+}
+
+/// Four modes' free motion at the nodes σ = c₁, c₂, 1: cos(σz) and h sin(σz)/z.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct NodeGroup {
+    cos: [V; 3],
+    hsinc: [V; 3],
+}
+
+/// Four modes' end-of-step update: cos z, h sin(z)/z, −(z/h) sin z (the velocity's part of the
+/// position), h² S_n(1, z)/μ and h C_n(1, z)/μ (the end state's response to σⁿ), and μ and Ω²
+/// (for the sums of the end state).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct EndGroup {
+    cos: V,
+    hsinc: V,
+    vel_of_pos: V,
+    pos_force: [V; 4],
+    vel_force: [V; 4],
+    modal_mass: V,
+    omega2: V,
 }
 
 /// σ³ − (3/2)σ² + (1/2)σ in monomials: the error polynomial of [`StepWeights::error`].
 pub(crate) const ERROR_POLY: [f64; 4] = [0.0, 0.5, -1.5, 1.0];
 
 impl StepWeights {
-    /// The weights for step h of a chain with distinct frequencies `frequencies`, per mode its
-    /// frequency index and 1/μ, per distinct element its range of modes.
-    pub fn new(
-        h: f64,
-        frequencies: &[f64],
-        frequency_index: &[usize],
-        inv_modal_mass: &[f64],
-        ranges: &[std::ops::Range<usize>],
-    ) -> Self {
+    /// The weights for step h of the chain `m` (its modes per distinct element, padded to
+    /// groups of four).
+    pub fn new(h: f64, m: &crate::ode::ModalChain) -> Self {
         let c = nodes();
-        let kernels: Vec<[Kernel; 3]> = frequencies
+        let kernels: Vec<[Kernel; 3]> = m
+            .frequencies
             .iter()
             .map(|&w| {
                 let z = h * w;
                 [kernel(c[1], z), kernel(c[2], z), kernel(1.0, z)]
             })
             .collect();
-        let per_mode = |f: &dyn Fn(&[Kernel; 3], f64) -> f64| -> Vec<f64> {
-            frequency_index
-                .iter()
-                .zip(inv_modal_mass)
-                .map(|(&u, &inv_mu)| f(&kernels[u], inv_mu))
-                .collect()
-        };
-        let cos = [0, 1, 2].map(|j| per_mode(&|k, _| k[j].cos));
-        let hsinc = [0, 1, 2].map(|j| per_mode(&|k, _| h * k[j].sinc));
-        let vel_of_pos = per_mode(&|k, _| -k[2].zsin / h);
-        let pos_force = [0, 1, 2, 3].map(|n| per_mode(&|k, inv_mu| h * h * k[2].s[n] * inv_mu));
-        let vel_force = [0, 1, 2, 3].map(|n| per_mode(&|k, inv_mu| h * k[2].c[n] * inv_mu));
-        let mut response = Vec::with_capacity(ranges.len());
-        let mut error = Vec::with_capacity(ranges.len());
-        for range in ranges {
+        let groups = m.frequency_index.len() / 4;
+        let mut node_groups = vec![NodeGroup::default(); groups];
+        let mut end = vec![EndGroup::default(); groups];
+        for (mode, &u) in m.frequency_index.iter().enumerate() {
+            let (k, inv_mu) = (&kernels[u], m.inv_modal_mass[mode]);
+            let (g, l) = (mode / 4, mode % 4);
+            let node = &mut node_groups[g];
+            for ((cos, hsinc), kj) in node.cos.iter_mut().zip(&mut node.hsinc).zip(k) {
+                cos.0[l] = kj.cos;
+                hsinc.0[l] = h * kj.sinc;
+            }
+            let e = &mut end[g];
+            e.cos.0[l] = k[2].cos;
+            e.hsinc.0[l] = h * k[2].sinc;
+            e.vel_of_pos.0[l] = -k[2].zsin / h;
+            for n in 0..4 {
+                e.pos_force[n].0[l] = h * h * k[2].s[n] * inv_mu;
+                e.vel_force[n].0[l] = h * k[2].c[n] * inv_mu;
+            }
+            e.modal_mass.0[l] = m.modal_mass[mode];
+            e.omega2.0[l] = m.omega2[mode];
+        }
+        let lagrange = lagrange();
+        let (mut node_response, mut error) = (Vec::new(), Vec::new());
+        for range in &m.kind_ranges {
             let mut g = [[0.0; 4]; 3];
             let (mut ex, mut ev) = (0.0, 0.0);
-            for m in range.clone() {
-                let k = &kernels[frequency_index[m]];
-                let inv_mu = inv_modal_mass[m];
+            for mode in range.clone() {
+                let k = &kernels[m.frequency_index[mode]];
+                let inv_mu = m.inv_modal_mass[mode];
                 for (row, kj) in g.iter_mut().zip(k) {
                     for (r, s) in row.iter_mut().zip(&kj.s) {
                         *r += s * inv_mu;
@@ -218,87 +247,75 @@ impl StepWeights {
                 ex += (0..4).map(|n| ERROR_POLY[n] * end.s[n]).sum::<f64>() * inv_mu;
                 ev += (0..4).map(|n| ERROR_POLY[n] * end.c[n]).sum::<f64>() * inv_mu;
             }
-            response.push(g);
+            node_response.push(g.map(|row| {
+                [0, 1, 2, 3].map(|k| (0..4).map(|n| row[n] * lagrange[n][k]).sum::<f64>())
+            }));
             error.push((ex, ev));
         }
         StepWeights {
-            cos,
-            hsinc,
-            vel_of_pos,
-            pos_force,
-            vel_force,
-            response,
+            nodes: node_groups,
+            end,
+            node_response,
             error,
         }
     }
 
-    /// Σ over the modes of a distinct element (`range`, its primary's amplitudes and rates
-    /// `c`, `cdot`) of cos(σ_j z) c + h sin(σ_j z)/z ċ: the primary's free position at node j
-    /// (four partial sums, so that the loop runs in vectors).
-    pub fn free_position(
+    /// Σ over the modes of a distinct element (its `groups` of four; its primary's amplitudes
+    /// and rates `c`, `cdot` in the same groups) of cos(σ_j z) c + h sin(σ_j z)/z ċ at the three
+    /// nodes j: the primary's free positions there, in one pass.
+    #[inline(always)]
+    pub fn free_positions(
         &self,
-        j: usize,
-        range: std::ops::Range<usize>,
-        c: &[f64],
-        cdot: &[f64],
-    ) -> f64 {
-        let (cos, hsinc) = (&self.cos[j][range.clone()], &self.hsinc[j][range]);
-        let mut acc = [0.0; 4];
-        let mut chunks = cos
-            .chunks_exact(4)
-            .zip(hsinc.chunks_exact(4))
-            .zip(c.chunks_exact(4).zip(cdot.chunks_exact(4)));
-        for ((a, b), (x, v)) in chunks.by_ref() {
-            for l in 0..4 {
-                acc[l] += a[l] * x[l] + b[l] * v[l];
+        groups: std::ops::Range<usize>,
+        c: &[[f64; 4]],
+        cdot: &[[f64; 4]],
+    ) -> [f64; 3] {
+        let mut acc = [V::ZERO; 3];
+        for (w, (&x, &v)) in self.nodes[groups].iter().zip(c.iter().zip(cdot)) {
+            let (x, v) = (Lane(x), Lane(v));
+            for ((acc, &cos), &hsinc) in acc.iter_mut().zip(&w.cos).zip(&w.hsinc) {
+                *acc = *acc + (cos * x + hsinc * v);
             }
         }
-        let done = cos.len() / 4 * 4;
-        let tail: f64 = (done..cos.len())
-            .map(|m| cos[m] * c[m] + hsinc[m] * cdot[m])
-            .sum();
-        (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+        acc.map(|s| (s.0[0] + s.0[1]) + (s.0[2] + s.0[3]))
     }
 
-    /// Advances the modes of one primary (its distinct element's `range`; μ_k and Ω_k² of
-    /// those modes in `modes`) over the step under its force polynomial `a` (monomials in σ,
-    /// \[N\]): (c, ċ) into (c1, ċ1). Returns, at the end, Σ c, Σ ċ, Σ Ω² c and the modes'
-    /// energy Σ ½ μ (ċ² + Ω² c²), summed in the same pass.
+    /// Advances the modes of one primary (its distinct element's `groups` of four) over the
+    /// step under its force polynomial `a` (monomials in σ, \[N\]): (c, ċ) into (c1, ċ1).
+    /// Returns, at the end, Σ c, Σ ċ, Σ Ω² c and the modes' energy Σ ½ μ (ċ² + Ω² c²), summed
+    /// in the same pass.
+    #[inline(always)]
     pub fn advance(
         &self,
-        range: std::ops::Range<usize>,
+        groups: std::ops::Range<usize>,
         a: &[f64; 4],
-        modes: (&[f64], &[f64]),
-        (c, cdot): (&[f64], &[f64]),
-        (c1, cdot1): (&mut [f64], &mut [f64]),
+        (c, cdot): (&[[f64; 4]], &[[f64; 4]]),
+        (c1, cdot1): (&mut [[f64; 4]], &mut [[f64; 4]]),
     ) -> [f64; 4] {
-        let r = range;
-        let (cos, hsinc, vp) = (
-            &self.cos[2][r.clone()],
-            &self.hsinc[2][r.clone()],
-            &self.vel_of_pos[r.clone()],
-        );
-        let [p0, p1, p2, p3] = [0, 1, 2, 3].map(|n| &self.pos_force[n][r.clone()]);
-        let [v0, v1, v2, v3] = [0, 1, 2, 3].map(|n| &self.vel_force[n][r.clone()]);
-        let (mu, w2) = modes;
-        let mut sums = [0.0; 4];
-        for m in 0..c.len() {
-            let x = cos[m] * c[m]
-                + hsinc[m] * cdot[m]
-                + (p0[m] * a[0] + p1[m] * a[1] + p2[m] * a[2] + p3[m] * a[3]);
-            let v = vp[m] * c[m]
-                + cos[m] * cdot[m]
-                + (v0[m] * a[0] + v1[m] * a[1] + v2[m] * a[2] + v3[m] * a[3]);
-            c1[m] = x;
-            cdot1[m] = v;
-            sums[0] += x;
-            sums[1] += v;
-            sums[2] += w2[m] * x;
-            sums[3] += 0.5 * mu[m] * (v * v + w2[m] * x * x);
+        let [a0, a1, a2, a3] = a.map(V::splat);
+        let half = V::splat(0.5);
+        let mut acc = [V::ZERO; 4];
+        let from = c.iter().zip(cdot);
+        let to = c1.iter_mut().zip(cdot1.iter_mut());
+        for (w, ((&x0, &v0), (x1, v1))) in self.end[groups].iter().zip(from.zip(to)) {
+            let (x0, v0) = (Lane(x0), Lane(v0));
+            let [p0, p1, p2, p3] = w.pos_force;
+            let [q0, q1, q2, q3] = w.vel_force;
+            let x = w.cos * x0 + w.hsinc * v0 + (p0 * a0 + p1 * a1 + p2 * a2 + p3 * a3);
+            let v = w.vel_of_pos * x0 + w.cos * v0 + (q0 * a0 + q1 * a1 + q2 * a2 + q3 * a3);
+            *x1 = x.0;
+            *v1 = v.0;
+            acc[0] = acc[0] + x;
+            acc[1] = acc[1] + v;
+            acc[2] = acc[2] + w.omega2 * x;
+            acc[3] = acc[3] + half * w.modal_mass * (v * v + w.omega2 * x * x);
         }
-        sums
+        acc.map(|s| (s.0[0] + s.0[1]) + (s.0[2] + s.0[3]))
     }
 }
+
+/// Four modes at once, as [`Lane`] values (the form that runs in vectors).
+type V = Lane<4>;
 
 /// What the variation-of-constants formula needs of one damped mode c'' + 2a c' + z² c = f(σ)
 /// (σ = t/h; a = γh with γ half the mode's damping rate, z = hΩ) at one point θ of a step: the

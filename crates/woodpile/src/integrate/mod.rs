@@ -19,6 +19,8 @@ pub(crate) mod modal_graph;
 pub(crate) mod modal_step;
 
 pub(crate) use control::{StepControl, Verdict};
+#[doc(hidden)]
+pub use modal_step::exact_modes_state;
 
 pub(crate) use kernels::{attempt, missed_crossings, predict_crossings, rms, weighted_squares};
 

@@ -68,9 +68,6 @@ struct Scratch {
     /// Per slot: overlap at nodes 0..3.
     node_overlap: Vec<[f64; 4]>,
     coef: Vec<[f64; 4]>,
-    slot_force: Vec<f64>,
-    slot_overlap: Vec<f64>,
-    x: Vec<f64>,
 }
 
 /// An attempt's outcome: its error norm (infinite when the collocation conditions were not
@@ -100,6 +97,7 @@ pub(super) trait ExactStepper {
 
 /// One accepted step toward t_end; returns its size. Steps come from the ladder (the weights
 /// of a rung are computed once), except a step that ends the run or lands on a crossing.
+#[inline(always)]
 pub(super) fn adaptive_step<S: ExactStepper>(s: &mut S, t_end: f64) -> Result<f64> {
     loop {
         let t = s.now();
@@ -216,9 +214,6 @@ impl ModalIntegrator {
                 node_x: vec![[0.0; 3]; p],
                 node_overlap: vec![[0.0; 4]; p + 1],
                 coef: vec![[0.0; 4]; p],
-                slot_force: vec![0.0; p + 1],
-                slot_overlap: vec![0.0; p + 1],
-                x: vec![0.0; p],
             },
             ends: [
                 vec![PrimaryEnd::default(); p],
@@ -278,24 +273,40 @@ impl ModalIntegrator {
     /// Makes sure the weights of step h are at hand (a rung's, or the off-ladder ones).
     fn weights(&mut self, h: f64, rung: Option<i64>) {
         let m = &self.modal;
-        self.ladder.ensure(h, rung, || {
-            StepWeights::new(
-                h,
-                &m.frequencies,
-                &m.frequency_index,
-                &m.inv_modal_mass,
-                &m.kind_ranges,
-            )
-        });
+        self.ladder.ensure(h, rung, || StepWeights::new(h, m));
     }
 
-    /// One accepted step toward t_end; returns its size.
+    /// One accepted step toward t_end; returns its size. Run in the AVX2 build where the CPU
+    /// has it, as [`super::Integrator::step`] (the passes over the modes then run four modes
+    /// per vector; no FMA contraction, so the results are bit for bit the portable ones).
+    #[allow(unsafe_code)]
     pub fn step(&mut self, t_end: f64) -> Result<f64> {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2 (checked on the line above).
+            return unsafe { self.step_avx2(t_end) };
+        }
+        self.step_portable(t_end)
+    }
+
+    /// The same step compiled with 256-bit vectors.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[allow(unsafe_code)]
+    unsafe fn step_avx2(&mut self, t_end: f64) -> Result<f64> {
+        self.step_portable(t_end)
+    }
+
+    /// The same step without run-time SIMD dispatch: the reference the AVX2 build is checked
+    /// against.
+    #[inline(always)]
+    pub fn step_portable(&mut self, t_end: f64) -> Result<f64> {
         adaptive_step(self, t_end)
     }
 
     /// Tries a step of size h: solves the collocation conditions, returns the error norm
     /// (infinite when the iteration does not converge) and the first crossing inside.
+    #[inline(always)]
     fn attempt(&mut self, h: f64, rung: Option<i64>) -> Attempt {
         let p = self.force_net.len();
         let c_nodes = nodes();
@@ -306,8 +317,7 @@ impl ModalIntegrator {
         let (m, weights) = (&self.modal, self.ladder_or_off(rung));
         for (i, range) in m.ranges.iter().enumerate() {
             let (c, cdot) = (&self.c[range.clone()], &self.cdot[range.clone()]);
-            let modes = m.kind_ranges[m.kind[i]].clone();
-            sc.free[i] = [0, 1, 2].map(|j| weights.free_position(j, modes.clone(), c, cdot));
+            sc.free[i] = weights.free_positions(m.groups(i), groups(c), groups(cdot));
             let f = &mut sc.node_force[i];
             f[0] = self.force_net[i];
             for j in 1..4 {
@@ -350,60 +360,58 @@ impl ModalIntegrator {
         self.ladder.get(rung)
     }
 
-    /// The fixed-point iteration of the collocation conditions: node forces → cubic → node
-    /// positions → node forces. Leaves the cubic in `sc.coef`, the positions in `sc.node_x` and
-    /// the overlaps in `sc.node_overlap`. False when it did not converge.
+    /// The fixed-point iteration of the collocation conditions: node forces → node positions
+    /// (the response to the forces' interpolating cubic) → node forces. Leaves the cubic in
+    /// `sc.coef`, the positions in `sc.node_x` and the overlaps in `sc.node_overlap`. False when
+    /// it did not converge.
+    #[inline(always)]
     fn solve_nodes(&mut self, h: f64, rung: Option<i64>, sc: &mut Scratch) -> bool {
         let p = self.force_net.len();
         for (s, d) in sc.node_overlap.iter_mut().enumerate() {
-            d[0] = self.overlap[s];
+            *d = [self.overlap[s], 0.0, 0.0, 0.0];
         }
+        let h2 = h * h;
+        let tolerance = (FIXED_POINT_TOLERANCE * self.rtol).max(1e-13);
+        let weights = self.ladder.get(rung);
+        let kind = &self.modal.kind;
+        let beta = &self.beta[..=p];
         for _ in 0..MAX_ITERATIONS {
-            let weights = self.ladder_or_off(rung);
-            for i in 0..p {
-                let f = &sc.node_force[i];
-                for n in 0..4 {
-                    sc.coef[i][n] = (0..4).map(|j| self.lagrange[n][j] * f[j]).sum();
-                }
-                let a = &sc.coef[i];
-                for ((x, free), g) in sc.node_x[i]
-                    .iter_mut()
-                    .zip(&sc.free[i])
-                    .zip(&weights.response[self.modal.kind[i]])
-                {
-                    *x = free + h * h * (g[0] * a[0] + g[1] * a[1] + g[2] * a[2] + g[3] * a[3]);
+            for ((x, free), (f, &k)) in sc.node_x[..p]
+                .iter_mut()
+                .zip(&sc.free[..p])
+                .zip(sc.node_force[..p].iter().zip(&kind[..p]))
+            {
+                let g = &weights.node_response[k];
+                for j in 0..3 {
+                    let g = &g[j];
+                    x[j] =
+                        free[j] + h2 * ((g[0] * f[0] + g[1] * f[1]) + (g[2] * f[2] + g[3] * f[3]));
                 }
             }
             let (mut change, mut scale) = (0.0_f64, 0.0_f64);
             for j in 0..3 {
+                // The force of the slot above primary i, then below it (slot 0: nothing above
+                // a striker).
+                let mut above = 0.0;
                 for i in 0..p {
-                    sc.x[i] = sc.node_x[i][j];
-                }
-                let (mut force, mut overlap) = (
-                    std::mem::take(&mut sc.slot_force),
-                    std::mem::take(&mut sc.slot_overlap),
-                );
-                self.contacts(&sc.x, &mut force, &mut overlap);
-                for (s, d) in overlap.iter().enumerate() {
-                    sc.node_overlap[s][j + 1] = *d;
-                }
-                for i in 0..p {
-                    let f = force[i] - force[i + 1];
+                    let d = if i + 1 < p {
+                        sc.node_x[i][j] - sc.node_x[i + 1][j]
+                    } else {
+                        sc.node_x[i][j]
+                    };
+                    sc.node_overlap[i + 1][j + 1] = d;
+                    let below = ContactLaw::elastic_force(beta[i + 1], d);
+                    let f = above - below;
                     change = change.max((f - sc.node_force[i][j + 1]).abs());
-                    scale = scale.max(force[i].abs());
+                    scale = scale.max(below.abs());
                     sc.node_force[i][j + 1] = f;
+                    above = below;
                 }
-                scale = scale.max(force[p].abs());
-                sc.slot_force = force;
-                sc.slot_overlap = overlap;
             }
             self.stats.rhs_evaluations += 3;
-            if change <= (FIXED_POINT_TOLERANCE * self.rtol).max(1e-13) * scale || scale == 0.0 {
-                for i in 0..p {
-                    let f = &sc.node_force[i];
-                    for n in 0..4 {
-                        sc.coef[i][n] = (0..4).map(|j| self.lagrange[n][j] * f[j]).sum();
-                    }
+            if change <= tolerance * scale || scale == 0.0 {
+                for (coef, f) in sc.coef[..p].iter_mut().zip(&sc.node_force[..p]) {
+                    *coef = [0, 1, 2, 3].map(|n| (0..4).map(|k| self.lagrange[n][k] * f[k]).sum());
                 }
                 return true;
             }
@@ -412,6 +420,7 @@ impl ModalIntegrator {
     }
 
     /// Advances the state over the attempt just made (step h).
+    #[inline(always)]
     fn commit(&mut self, h: f64, rung: Option<i64>) {
         std::mem::swap(&mut self.c, &mut self.c_prev);
         std::mem::swap(&mut self.cdot, &mut self.cdot_prev);
@@ -420,13 +429,17 @@ impl ModalIntegrator {
         let m = &self.modal;
         self.ends.swap(0, 1);
         for (i, (range, a)) in m.ranges.iter().zip(&sc.coef).enumerate() {
-            let kind = m.kind_ranges[m.kind[i]].clone();
             let [x, v, w2c, energy] = weights.advance(
-                kind.clone(),
+                m.groups(i),
                 a,
-                (&m.modal_mass[kind.clone()], &m.omega2[kind]),
-                (&self.c_prev[range.clone()], &self.cdot_prev[range.clone()]),
-                (&mut self.c[range.clone()], &mut self.cdot[range.clone()]),
+                (
+                    groups(&self.c_prev[range.clone()]),
+                    groups(&self.cdot_prev[range.clone()]),
+                ),
+                (
+                    self.c[range.clone()].as_chunks_mut::<4>().0,
+                    self.cdot[range.clone()].as_chunks_mut::<4>().0,
+                ),
             );
             let f = sc.node_force[i][3];
             self.force_net[i] = f;
@@ -523,10 +536,12 @@ impl ExactStepper for ModalIntegrator {
         self.t
     }
 
+    #[inline(always)]
     fn attempt(&mut self, h: f64, rung: Option<i64>) -> Attempt {
         self.attempt(h, rung)
     }
 
+    #[inline(always)]
     fn commit(&mut self, h: f64, rung: Option<i64>) {
         self.commit(h, rung)
     }
@@ -550,11 +565,13 @@ impl Scratch {
             node_x: Vec::new(),
             node_overlap: Vec::new(),
             coef: Vec::new(),
-            slot_force: Vec::new(),
-            slot_overlap: Vec::new(),
-            x: Vec::new(),
         }
     }
+}
+
+/// A primary's modes in their groups of four (its range is padded to whole groups).
+fn groups(modes: &[f64]) -> &[[f64; 4]] {
+    modes.as_chunks::<4>().0
 }
 
 /// The rung of the step ladder at or below h, and its index.
@@ -608,6 +625,29 @@ pub(super) fn first_crossing(overlaps: &[[f64; 4]], beta: &[f64], c: &[f64; 4]) 
         }
     }
     first
+}
+
+/// Every modal amplitude and rate after `steps` accepted steps of [`super::Method::ExactModes`]
+/// (rtol, atol \[m\], first step `h0`) on the impact run `ode`, stepped with the run-time SIMD
+/// dispatch of [`ModalIntegrator::step`] or, with `portable`, without it: what the claim
+/// `simd_step_bit_identical` compares bit for bit.
+#[doc(hidden)]
+pub fn exact_modes_state(
+    ode: &ChainOde,
+    (rtol, atol, h0): (f64, f64, f64),
+    steps: usize,
+    portable: bool,
+) -> Result<Vec<f64>> {
+    check_fits(ode)?;
+    let mut stepper = ModalIntegrator::new(ode, &ode.initial_state(), rtol, atol, h0)?;
+    for _ in 0..steps {
+        if portable {
+            stepper.step_portable(1.0)?;
+        } else {
+            stepper.step(1.0)?;
+        }
+    }
+    Ok([stepper.c, stepper.cdot].concat())
 }
 
 /// Refuses a chain the exact modal method cannot run.

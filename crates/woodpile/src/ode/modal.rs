@@ -149,13 +149,20 @@ fn secular_root(
     }
 }
 
+/// Modes per primary padded to whole groups of four (the passes over the modes then run in
+/// vectors with no remainder).
+fn padded(modes: usize) -> usize {
+    modes.div_ceil(4) * 4
+}
+
 /// The whole chain in modal form: every primary's modes (a striker: its rigid mode only), in
-/// one flat list, with the conversions to and from the chain's state.
+/// one flat list (each primary's padded to a multiple of four with massless modes at rest),
+/// with the conversions to and from the chain's state.
 #[derive(Debug, Clone)]
 pub(crate) struct ModalChain {
     /// Per primary: its modes (shared by primaries of equal cells).
     pub elements: Vec<std::sync::Arc<ElementModes>>,
-    /// Per primary: the range of its modes in the flat list.
+    /// Per primary: the range of its modes in the flat list (padding included).
     pub ranges: Vec<std::ops::Range<usize>>,
     /// Per primary: the range of its resonators in the chain's state.
     res_ranges: Vec<std::ops::Range<usize>>,
@@ -210,8 +217,8 @@ impl ModalChain {
         let mut ranges = Vec::with_capacity(p);
         let mut n = 0;
         for e in &elements {
-            ranges.push(n..n + e.len());
-            n += e.len();
+            ranges.push(n..n + padded(e.len()));
+            n += padded(e.len());
         }
         // The distinct elements (equal cells share one `Arc`), their modes in one list.
         let mut distinct: Vec<&std::sync::Arc<ElementModes>> = Vec::new();
@@ -232,9 +239,17 @@ impl ModalChain {
         let mut kind_ranges = Vec::with_capacity(distinct.len());
         let mut start = 0;
         for e in &distinct {
-            kind_ranges.push(start..start + e.len());
-            start += e.len();
-            for (&w, &mu) in e.omega.iter().zip(&e.modal_mass) {
+            kind_ranges.push(start..start + padded(e.len()));
+            start += padded(e.len());
+            // The padding: modes of frequency 0 and no mass (1/μ = 0), which stay at rest.
+            let padding = (e.len()..padded(e.len())).map(|_| (0.0, f64::INFINITY));
+            for (w, mu) in e
+                .omega
+                .iter()
+                .copied()
+                .zip(e.modal_mass.iter().copied())
+                .chain(padding)
+            {
                 let index = frequencies.iter().position(|&f| f == w).unwrap_or_else(|| {
                     frequencies.push(w);
                     frequencies.len() - 1
@@ -243,7 +258,10 @@ impl ModalChain {
                 inv_modal_mass.push(1.0 / mu);
             }
         }
-        let modal_mass = inv_modal_mass.iter().map(|m| 1.0 / m).collect();
+        let modal_mass = inv_modal_mass
+            .iter()
+            .map(|&m| if m == 0.0 { 0.0 } else { 1.0 / m })
+            .collect();
         let omega2 = frequency_index
             .iter()
             .map(|&u| frequencies[u] * frequencies[u])
@@ -262,6 +280,12 @@ impl ModalChain {
         })
     }
 
+    /// Primary i's distinct element's modes as groups of four of the per-mode lists.
+    pub fn groups(&self, i: usize) -> std::ops::Range<usize> {
+        let modes = &self.kind_ranges[self.kind[i]];
+        modes.start / 4..modes.end / 4
+    }
+
     /// Number of modes of the chain.
     pub fn n_modes(&self) -> usize {
         self.ranges.last().map_or(0, |r| r.end)
@@ -272,7 +296,8 @@ impl ModalChain {
         let p = self.ranges.len();
         let nd = y.len() / 2;
         for (i, e) in self.elements.iter().enumerate() {
-            let (modes, res) = (self.ranges[i].clone(), self.res_ranges[i].clone());
+            let (res, start) = (self.res_ranges[i].clone(), self.ranges[i].start);
+            let modes = start..start + e.len();
             let (ra, rb) = (p + res.start, p + res.end);
             e.project(y[i], &y[ra..rb], &mut c[modes.clone()]);
             e.project(y[nd + i], &y[nd + ra..nd + rb], &mut cdot[modes]);
