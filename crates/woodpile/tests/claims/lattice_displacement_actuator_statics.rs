@@ -10,9 +10,10 @@
 //! rod's and the contacts' flexibility (a rod's net force and moment are the gradient of Π along
 //! its rigid modes, exact in the modal model). Equal shares would leave the moment
 //! (F_p/2)(s₁ + s₂) ≠ 0 on the rod: no equilibrium. Tolerance 1e-10 of F_p: the static solve
-//! stops at |∇Π| ≤ 1e-12 |f|, and the rocking mode's gradient is the moment over √I
-//! (√I ≈ 2.6e-4 kg^½ m here), which lets a moment residual of order 1e-12 F_p × (√I / lever)
-//! through; the margin covers rounding of the rows.
+//! stops at |∇Π| ≤ 1e-12 |f| (|f| = F_p, on the actuator), and the rocking mode's gradient is the
+//! moment about the support over √I (m L²/12 of a 3.46 g rod: √I = 1.4e-3 kg^½ m), so the moment
+//! left is at most 1e-12 F_p √I, a share error of about 4e-14 of F_p at the 35 mm lever; the
+//! rest of the bound is margin for rounding (measured 1.9e-15).
 //!
 //! (2) The 3 × 3-rod, 4-layer lattice pressed at three points of its three top rods, at
 //! s = +5, −15 and +18 mm from their centres (within the crossings below, at 0 and ±20 mm, beyond which a rod would tip over) (statically indeterminate: the shares follow from
