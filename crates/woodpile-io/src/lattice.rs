@@ -386,7 +386,7 @@ fn lattice_key_table() -> Vec<Key> {
         chain("damping.on_site_time_s"),
         doc("damping.modal_ratio", "damping ratio zeta of every elastic mode of every rod"),
         doc("preload", "a static force on the load points and gravity; the run starts from the static equilibrium (docs/physics.md §16); none: unloaded"),
-        doc("preload.force_n", "static total force on the load points (or through the actuator's tips), split equally"),
+        doc("preload.force_n", "static total force on the load points, split equally (through a displacement actuator's tips: the shares of the static equilibrium)"),
         doc("preload.gravity_m_s2", "gravity, downward through the layers"),
         chain("run"),
         chain("run.duration_s"),

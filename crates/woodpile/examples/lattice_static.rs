@@ -11,13 +11,15 @@
 //! (`ELEMENTS=8`: elements per half rod, default 16; `LATTICE=4x3`: the claims' 3 × 3-rod,
 //! 4-layer lattice of 80 mm rods; `REPEATS=1`, default 3; `SAVE=path`: write the equilibrium's
 //! modal coordinates and contact forces, one number a line; `COMPARE=path`: read such a file and
-//! print the largest difference of coordinates and forces, relative to the largest of each)
+//! print the largest difference of coordinates and forces, relative to the largest of each;
+//! `DRIVE=displacement`: the preload through a displacement actuator's tips on the same
+//! crossings instead, the actuator's height solved with the lattice, its tips' shares printed)
 
 use woodpile::model::{
     Lattice, LatticeBuilder, LatticeExcitation, LatticeLab, LayerSpec, LoadPoints, Preload,
 };
 use woodpile::ode::LatticeOde;
-use woodpile::{Material, Striker};
+use woodpile::{Drive, DriveQuantity, Material, Signal, Striker, Wall};
 
 fn lattice(elements: usize) -> woodpile::Result<Lattice> {
     let (layers, rods, length_m) = match std::env::var("LATTICE").as_deref() {
@@ -33,6 +35,39 @@ fn lattice(elements: usize) -> woodpile::Result<Lattice> {
         angle_deg: 90.0,
     };
     LatticeBuilder::new(vec![layer; layers], elements).build()
+}
+
+/// The excitation the preload comes with: none (left at rest, the preload F_p/N on each
+/// top-layer crossing) or, with `DRIVE=displacement`, a displacement actuator's tip on each
+/// (the paper's sensor), held still.
+fn excitation() -> LatticeExcitation {
+    let points = LoadPoints::TopCrossings;
+    if std::env::var("DRIVE").as_deref() != Ok("displacement") {
+        return LatticeExcitation::Rest { points };
+    }
+    let drive = Drive {
+        quantity: DriveQuantity::Displacement {
+            tip: Wall::paper_sensor(),
+        },
+        signal: Signal::Harmonic {
+            amplitude: 1e-7,
+            frequency_hz: 1e3,
+        },
+        ramp_s: 1e-3,
+    };
+    LatticeExcitation::Drive { drive, points }
+}
+
+/// The tips' shares of the preload: (smallest, largest, sum) \[N\], under an actuator.
+fn tip_shares(ode: &LatticeOde) -> Option<(f64, f64, f64)> {
+    ode.has_actuator().then(|| {
+        let (forces, _) = ode.static_forces_n();
+        forces[ode.incident_contacts()]
+            .iter()
+            .fold((f64::INFINITY, 0.0_f64, 0.0), |(l, h, s), &f| {
+                (l.min(f), h.max(f), s + f)
+            })
+    })
 }
 
 /// This thread's CPU time \[s\] (utime + stime of /proc/thread-self/stat, 10 ms ticks).
@@ -87,9 +122,7 @@ fn main() -> woodpile::Result<()> {
         },
         ..LatticeLab::default()
     };
-    let rest = LatticeExcitation::Rest {
-        points: LoadPoints::TopCrossings,
-    };
+    let rest = excitation();
     let (unloaded, _) = timed(repeats, || {
         LatticeOde::new(&lattice, &Striker::paper(), [0.0, 0.0]).map(|o| o.coordinates())
     });
@@ -118,6 +151,9 @@ fn main() -> woodpile::Result<()> {
         weight + fp,
         (supports - weight - fp).abs() / (weight + fp)
     );
+    if let Some((low, high, sum)) = tip_shares(&ode) {
+        println!("actuator's tips: {low:.6} to {high:.6} N, {sum:.12} N in all");
+    }
     let q0 = &ode.initial_state()[..ode.coordinates()];
     let values: Vec<f64> = q0.iter().chain(forces).copied().collect();
     if let Ok(path) = std::env::var("SAVE") {

@@ -4,8 +4,9 @@
 //! A 3 × 2-rod lattice preloaded with 6 N through the actuator's tip (the chains' `excitation.tip`,
 //! a steel cap of 5 mm) on its six top-layer crossings, driven by a harmonic displacement with
 //! restitution contacts and modal damping: `run.json` lists the six tips first (layer 0, each on
-//! the top rod under it); each carries 1 N in the static state (`lab.contact_static_forces_n`,
-//! to 1e-9) and at t = 0; the audit E + D − E(0) − W closes below 1e-6 (the run's own,
+//! the top rod under it); in the static state (`lab.contact_static_forces_n`) they carry the
+//! rigid actuator's shares, summing to 6 N and equal at mirror images (to 1e-9), and each starts
+//! from its share at t = 0 (`forces.csv`, to 1e-9); the audit E + D − E(0) − W closes below 1e-6 (the run's own,
 //! `summary.json`) with W > 0; `rod_energies.csv` has the actuator's column `actuator_j`.
 //!
 //! Per-contact energies: `contact_energies.csv` / `contact_energy_j.npy` and
@@ -86,8 +87,21 @@ fn displacement_drive_runs_and_writes_contact_energies() {
     let summary = common::json(&out.join("summary.json"));
     let lab = &summary["lab"];
     let statics = numbers(&lab["contact_static_forces_n"]);
-    for f in &statics[..6] {
-        assert!((f - 1.0).abs() < 1e-9, "a tip carries {f} N at rest");
+    let sum: f64 = statics[..6].iter().sum();
+    assert!((sum - 6.0).abs() < 1e-9, "the tips carry {sum} N at rest");
+    // The rigid actuator's shares: equal at mirror images (x → −x, y → −y), not all equal.
+    let at = |c: &serde_json::Value| [c["x_mm"].as_f64().unwrap(), c["y_mm"].as_f64().unwrap()];
+    for k in 0..6 {
+        let p = at(&contacts[k]);
+        for mirror in [[-p[0], p[1]], [p[0], -p[1]]] {
+            let j = (0..6)
+                .find(|&j| {
+                    let q = at(&contacts[j]);
+                    (q[0] - mirror[0]).abs() < 1e-6 && (q[1] - mirror[1]).abs() < 1e-6
+                })
+                .expect("a mirror image");
+            assert!((statics[k] - statics[j]).abs() < 1e-9, "{statics:?}");
+        }
     }
     let error = summary["energy_max_relative_error"].as_f64().unwrap();
     assert!(error < 1e-6, "{error}");
@@ -95,8 +109,11 @@ fn displacement_drive_runs_and_writes_contact_energies() {
 
     let (forces_header, forces) = csv(&out.join("forces.csv"));
     assert_eq!(forces_header.len(), 15);
-    for f in &forces[0][1..7] {
-        assert!((f - 1.0).abs() < 1e-9, "a tip carries {f} N at t = 0");
+    for (f, f0) in forces[0][1..7].iter().zip(&statics) {
+        assert!(
+            (f - f0).abs() < 1e-9,
+            "a tip carries {f} N at t = 0, {f0} N at rest"
+        );
     }
     let (energy_header, energy) = csv(&out.join("energy.csv"));
     assert_eq!(energy_header[1], "total_j");

@@ -177,8 +177,9 @@ pub struct LatticeLab {
     pub damping: Damping,
     /// Damping ratio ζ of every elastic free–free mode of every rod: −2 ζ ω_j q̇_j.
     pub modal_ratio: f64,
-    /// Preload (on the load points — through the actuator's tips under a displacement drive, 1/N
-    /// on each — or every top-layer crossing beside a striker) and gravity.
+    /// Preload (on the load points, 1/N on each — through the actuator's tips under a
+    /// displacement drive, in the shares of the static equilibrium — or every top-layer
+    /// crossing beside a striker) and gravity.
     pub preload: Preload,
 }
 

@@ -287,6 +287,17 @@ impl LatticeOde {
         self.actuator
     }
 
+    /// A displacement actuator's static position u* \[m\] (downward; None without one): the
+    /// δ⁰ of every tip, whose overlap is δ_i = u* + u(t) − w_i (docs/physics.md §16). With a
+    /// preload it is the rigid actuator's equilibrium height, where its tips' forces sum to
+    /// F_p; without one the height at which it touches the highest of its points.
+    pub fn actuator_rest_m(&self) -> Option<f64> {
+        self.lab
+            .as_ref()
+            .filter(|_| self.actuator)
+            .map(|l| l.actuator_rest_m)
+    }
+
     /// (first coordinate, number of coordinates) of rod `rod` (its index in the lattice).
     pub(super) fn rod_coordinates(&self, rod: usize) -> (usize, usize) {
         let (offset, len, _, _) = self.bodies[rod + usize::from(self.struck)];

@@ -5,6 +5,7 @@
 //! `ode::lattice_static`), and the energy integrals W and D.
 
 use super::lattice::LatticeOde;
+use super::lattice_static::StaticState;
 use crate::error::{Error, Result};
 use crate::model::{
     ContactDamping, ContactLaw, Lattice, LatticeExcitation, LatticeLab, LoadPoints,
@@ -24,13 +25,15 @@ pub(crate) struct LabTerms {
     static_force: Vec<f64>,
     /// The blast's or drive's history.
     excitation: LatticeExcitation,
-    /// Preload per load point \[N\], and each point's share 1/N of the load's force.
+    /// The preload F_p \[N\]; per load point of a prescribed force F_p/N (an actuator's tips
+    /// carry the shares of the static equilibrium, `static_force_n`), and each point's share
+    /// 1/N of the load's force.
+    preload_n: f64,
     preload_per_point_n: f64,
     share: f64,
-    /// A displacement actuator's rest overlap δ_c⁰ per load point \[m\] (its tip contact
-    /// carries the point's preload in the static state): δ_c = δ_c⁰ + u(t) − w_c. Empty
-    /// without an actuator.
-    tip_rest_m: Vec<f64>,
+    /// A displacement actuator's static position u* \[m\] (downward), the same δ⁰ for every
+    /// tip: δ_c = u* + u(t) − w_c (0 without an actuator).
+    pub(super) actuator_rest_m: f64,
     /// The state the run starts from (static equilibrium) and each contact's static force.
     pub(super) q0: Vec<f64>,
     pub(super) static_force_n: Vec<f64>,
@@ -89,23 +92,37 @@ impl LabTerms {
             damping_rate,
             static_force,
             excitation: excitation.clone(),
+            preload_n: preload,
             preload_per_point_n: if loads > 0 {
                 preload / loads as f64
             } else {
                 0.0
             },
             share: if loads > 0 { 1.0 / loads as f64 } else { 0.0 },
-            tip_rest_m: Vec::new(),
+            actuator_rest_m: 0.0,
             q0: vec![0.0; q],
             static_force_n: vec![0.0; nc],
             static_residual: 0.0,
             rate_m_s: vec![0.0; nc],
             dissipated_w: vec![0.0; nc],
         };
-        let (q0, residual) = terms.static_equilibrium(ode)?;
+        let state = terms.static_equilibrium(ode)?;
+        let q0 = state.q;
+        terms.actuator_rest_m = match state.actuator_m {
+            Some(u) => u,
+            // An actuator without a preload touches the highest of its points at no force
+            // (the lattice's points all at w = 0 without gravity).
+            None if ode.actuator => (0..loads)
+                .map(|c| ode.deflection(ode.below[c].expect("a load's rod"), &q0))
+                .fold(f64::INFINITY, f64::min),
+            None => 0.0,
+        };
         terms.static_force_n = (0..nc)
             .map(|c| {
-                if c < loads {
+                if c < loads && ode.actuator {
+                    let overlap = terms.actuator_rest_m + ode.overlap(c, &q0);
+                    ContactLaw::elastic_force(ode.beta[c], overlap)
+                } else if c < loads {
                     terms.preload_per_point_n
                 } else if ode.struck && c == 0 {
                     0.0
@@ -114,23 +131,8 @@ impl LabTerms {
                 }
             })
             .collect();
-        if ode.actuator {
-            // As the chains' actuator: at rest each tip overlaps its point by the Hertz overlap
-            // of the point's preload, (F/β)^{2/3}.
-            let f = terms.preload_per_point_n;
-            terms.tip_rest_m = (0..loads)
-                .map(|c| {
-                    let static_overlap = if f > 0.0 {
-                        (f / ode.beta[c]).powf(2.0 / 3.0)
-                    } else {
-                        0.0
-                    };
-                    static_overlap + ode.deflection(ode.below[c].expect("a load's rod"), &q0)
-                })
-                .collect();
-        }
         terms.q0 = q0;
-        terms.static_residual = residual;
+        terms.static_residual = state.residual;
         Ok(terms)
     }
 
@@ -148,7 +150,7 @@ impl LabTerms {
             if c < ode.loads && ode.actuator {
                 // The tip presses down by u(t); the point's deflection w is −overlap(c) (the
                 // side above is empty).
-                let d = self.tip_rest_m[c] + tip.0 + ode.overlap(c, x);
+                let d = self.actuator_rest_m + tip.0 + ode.overlap(c, x);
                 let r = tip.1 + ode.overlap(c, v);
                 let (f, p) =
                     self.laws[c].force(self.law_coef[c], ode.beta[c], d, r, self.allow_pull);
@@ -200,19 +202,23 @@ impl LabTerms {
     }
 
     /// The static equilibrium of the rods under gravity and the preload
-    /// (`ode::lattice_static`): the static forces f, the load points' preload included, and
-    /// the minimum of the potential for them. Returns the positions and |∇Π| / |f|.
-    fn static_equilibrium(&self, ode: &LatticeOde) -> Result<(Vec<f64>, f64)> {
+    /// (`ode::lattice_static`): the static forces f, a force load's preload included, and the
+    /// minimum of the potential for them; under a displacement drive with a preload, the
+    /// actuator's position too (its tips carry the shares the equilibrium gives them).
+    fn static_equilibrium(&self, ode: &LatticeOde) -> Result<StaticState> {
         let first = usize::from(ode.struck);
         let mut f = self.static_force.clone();
-        for c in 0..ode.loads {
-            let s = ode.below[c].expect("a load's rod");
-            for k in 0..s.len {
-                f[s.offset + k] += self.preload_per_point_n * ode.rows[s.row + k];
+        if !ode.actuator {
+            for c in 0..ode.loads {
+                let s = ode.below[c].expect("a load's rod");
+                for k in 0..s.len {
+                    f[s.offset + k] += self.preload_per_point_n * ode.rows[s.row + k];
+                }
             }
         }
         f[..first].iter_mut().for_each(|x| *x = 0.0);
-        super::lattice_static::static_equilibrium(ode, &f)
+        let actuator = (ode.actuator && self.preload_n > 0.0).then_some(self.preload_n);
+        super::lattice_static::static_equilibrium(ode, &f, actuator)
     }
 }
 

@@ -18,11 +18,18 @@
 //! rod. The step is the dense one's (the same matrix, inverted by blocks): the iteration, its
 //! safeguards and its convergence test on the whole gradient are unchanged, at a cost linear in
 //! the modes and cubic in the contacts instead of cubic in the modes.
+//!
+//! Under a displacement drive with a preload F_p the actuator is one more coordinate u (its
+//! position, downward, after the rods' Q coordinates): rigid (ω = 0), loaded by F_p, its only
+//! stiffness its tips' Hertz contacts δ_i = u − w_i(q), so that Π gains
+//! Σ_i (2/5) β_i δ_i₊^{5/2} − F_p u and each tip carries the share the equilibrium gives it.
+//! It enters the condensed step as one more rigid mode.
 
 use super::lattice::{LatticeOde, Side};
 use crate::error::{Error, Result};
 use crate::model::ContactLaw;
 use nalgebra::{DMatrix, DVector};
+use std::borrow::Cow;
 use std::ops::Range;
 
 /// The static solve stops when |∇Π| ≤ this × |f| (f the static generalised forces).
@@ -32,25 +39,39 @@ const STATIC_ITERATIONS: usize = 500;
 /// A mode is rigid (kept in the condensed system) if ω² ≤ this × the largest ω².
 const RIGID_OMEGA2: f64 = 1e-12;
 
+/// The static state of a lattice: the rods' positions, the actuator's (if it is solved for)
+/// and the solve's relative residual |∇Π| / |f|.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct StaticState {
+    pub q: Vec<f64>,
+    /// The actuator's position u* \[m\] (downward), under a displacement drive with a preload.
+    pub actuator_m: Option<f64>,
+    pub residual: f64,
+}
+
 /// The minimum of Π on `ode` for the static generalised forces `f` (zero on the striker's
-/// coordinate, which is held): Newton steps with μ raised until Π falls and lowered after (the
-/// rigid modes have no stiffness until their contacts close), until |∇Π| ≤ 1e-12 |f|.
-/// Returns the positions and |∇Π| / |f|; an error naming `preload` with that ratio if no
+/// coordinate, which is held) and, with `actuator_force_n` = Some(F_p), a displacement
+/// actuator loaded by F_p whose tips are the load contacts: Newton steps with μ raised until Π
+/// falls and lowered after (the rigid modes have no stiffness until their contacts close),
+/// until |∇Π| ≤ 1e-12 |f| (F_p included in f). An error naming `preload` with that ratio if no
 /// minimum is found (a rod that nothing holds).
-pub(super) fn static_equilibrium(ode: &LatticeOde, f: &[f64]) -> Result<(Vec<f64>, f64)> {
-    let q = ode.coordinates();
-    let f_norm = norm(f);
-    let mut x = vec![0.0; q];
+pub(super) fn static_equilibrium(
+    ode: &LatticeOde,
+    f: &[f64],
+    actuator_force_n: Option<f64>,
+) -> Result<StaticState> {
+    let pi = Potential::new(ode, f, actuator_force_n);
+    let f_norm = norm(&pi.f);
+    let mut x = vec![0.0; pi.f.len()];
     if f_norm == 0.0 {
-        return Ok((x, 0.0));
+        return Ok(pi.state(x, 0.0));
     }
-    let pi = Potential::new(ode, f);
     let mut mu = 1e-3;
     let mut g = pi.gradient(&x);
     for _ in 0..STATIC_ITERATIONS {
         let residual = norm(&g) / f_norm;
         if residual <= STATIC_RESIDUAL {
-            return Ok((x, residual));
+            return Ok(pi.state(x, residual));
         }
         let tangent = pi.tangent(&x);
         let b: Vec<f64> = g.iter().map(|v| -v).collect();
@@ -97,13 +118,63 @@ struct Entry {
     sign: f64,
 }
 
-/// Π on the rods' coordinates (from `first`; the striker's, if any, held at 0), with the
-/// structure the condensed step needs.
+/// The contact graph Π is taken on: the ODE's, or with the actuator's coordinate appended
+/// (ω = 0, its row 1 at the end of `rows`, the side above each of its tips).
+struct Graph<'a> {
+    omega2: Cow<'a, [f64]>,
+    above: Cow<'a, [Side]>,
+    below: &'a [Option<Side>],
+    beta: &'a [f64],
+    rows: Cow<'a, [f64]>,
+}
+
+impl<'a> Graph<'a> {
+    /// `ode`'s graph, with the actuator as the side above every load contact if `actuator`.
+    fn new(ode: &'a LatticeOde, actuator: bool) -> Self {
+        let mut graph = Graph {
+            omega2: Cow::Borrowed(&ode.omega2),
+            above: Cow::Borrowed(&ode.above),
+            below: &ode.below,
+            beta: &ode.beta,
+            rows: Cow::Borrowed(&ode.rows),
+        };
+        if actuator {
+            let u = Side {
+                offset: ode.coordinates(),
+                len: 1,
+                row: ode.rows.len(),
+            };
+            graph.omega2.to_mut().push(0.0);
+            graph.rows.to_mut().push(1.0);
+            graph.above.to_mut()[..ode.loads].fill(u);
+        }
+        graph
+    }
+
+    /// The sides of contact c with their signs in g_c (+ above, − below).
+    fn sides(&self, c: usize) -> impl Iterator<Item = (Side, f64)> {
+        let below = self.below[c].map(|s| (s, -1.0));
+        std::iter::once((self.above[c], 1.0)).chain(below)
+    }
+
+    /// g_c · x: contact c's overlap at x.
+    fn overlap(&self, c: usize, x: &[f64]) -> f64 {
+        self.sides(c)
+            .map(|(s, sign)| sign * s.dot(&self.rows, x))
+            .sum()
+    }
+}
+
+/// Π on the rods' coordinates (from `first`; the striker's, if any, held at 0) and the
+/// actuator's, with the structure the condensed step needs.
 struct Potential<'a> {
-    ode: &'a LatticeOde,
-    f: &'a [f64],
+    graph: Graph<'a>,
+    /// The static forces, F_p last with an actuator.
+    f: Vec<f64>,
     first: usize,
-    /// The Hertz contacts (not the striker's, not the loads').
+    /// The ODE's number of coordinates Q (the actuator's is Q).
+    rod_coordinates: usize,
+    /// The Hertz contacts (not the striker's; the loads' only as an actuator's tips).
     hertz: Range<usize>,
     /// Per coordinate: its index among the rigid modes, or None (elastic, or the striker's).
     rigid: Vec<Option<usize>>,
@@ -124,34 +195,37 @@ struct Tangent {
 }
 
 impl<'a> Potential<'a> {
-    fn new(ode: &'a LatticeOde, f: &'a [f64]) -> Self {
-        let q = ode.coordinates();
+    /// Π on `ode` under `f`, with an actuator loaded by F_p if `actuator_force_n` is Some(F_p)
+    /// (the ODE has an actuator then).
+    fn new(ode: &'a LatticeOde, f: &[f64], actuator_force_n: Option<f64>) -> Self {
+        let graph = Graph::new(ode, actuator_force_n.is_some());
+        let mut f = f.to_vec();
+        f.extend(actuator_force_n);
+        let q = f.len();
         let first = usize::from(ode.struck);
-        let hertz = if ode.struck { 1 } else { ode.loads }..ode.contacts();
-        let largest = ode.omega2.iter().fold(0.0_f64, |m, &w| m.max(w));
+        let hertz = match (ode.struck, actuator_force_n) {
+            (true, _) => 1,
+            (false, Some(_)) => 0,
+            (false, None) => ode.loads,
+        }..ode.contacts();
+        let largest = graph.omega2.iter().fold(0.0_f64, |m, &w| m.max(w));
         let rigid_coordinates: Vec<usize> = (first..q)
-            .filter(|&j| ode.omega2[j] <= RIGID_OMEGA2 * largest)
+            .filter(|&j| graph.omega2[j] <= RIGID_OMEGA2 * largest)
             .collect();
         let mut rigid = vec![None; q];
         for (i, &j) in rigid_coordinates.iter().enumerate() {
             rigid[j] = Some(i);
         }
-        let mut entries: Vec<Entry> = Vec::new();
-        for c in hertz.clone() {
-            let side = ode.above[c];
-            entries.push(Entry {
-                contact: c,
-                side,
-                sign: 1.0,
-            });
-            if let Some(side) = ode.below[c] {
-                entries.push(Entry {
+        let mut entries: Vec<Entry> = hertz
+            .clone()
+            .flat_map(|c| {
+                graph.sides(c).map(move |(side, sign)| Entry {
                     contact: c,
                     side,
-                    sign: -1.0,
-                });
-            }
-        }
+                    sign,
+                })
+            })
+            .collect();
         entries.sort_by_key(|e| (e.side.offset, e.contact));
         let mut bodies: Vec<Range<usize>> = Vec::new();
         for (i, e) in entries.iter().enumerate() {
@@ -161,9 +235,10 @@ impl<'a> Potential<'a> {
             }
         }
         Potential {
-            ode,
+            graph,
             f,
             first,
+            rod_coordinates: ode.coordinates(),
             hertz,
             rigid,
             rigid_coordinates,
@@ -172,27 +247,42 @@ impl<'a> Potential<'a> {
         }
     }
 
+    /// The static state at the minimum x (the rods' coordinates, then the actuator's).
+    fn state(&self, mut x: Vec<f64>, residual: f64) -> StaticState {
+        let actuator_m = x.get(self.rod_coordinates).copied();
+        x.truncate(self.rod_coordinates);
+        StaticState {
+            q: x,
+            actuator_m,
+            residual,
+        }
+    }
+
     fn value(&self, x: &[f64]) -> f64 {
-        let ode = self.ode;
+        let graph = &self.graph;
         let mut e: f64 = (self.first..x.len())
-            .map(|j| 0.5 * ode.omega2[j] * x[j] * x[j] - self.f[j] * x[j])
+            .map(|j| 0.5 * graph.omega2[j] * x[j] * x[j] - self.f[j] * x[j])
             .sum();
         for c in self.hertz.clone() {
-            e += ContactLaw::potential_j(ode.beta[c], ode.overlap(c, x));
+            e += ContactLaw::potential_j(graph.beta[c], graph.overlap(c, x));
         }
         e
     }
 
     /// ∇Π: ω_j² q_j − f_j + Σ_c F_c (g_c)_j, zero on held coordinates.
     fn gradient(&self, x: &[f64]) -> Vec<f64> {
-        let ode = self.ode;
+        let graph = &self.graph;
         let mut g: Vec<f64> = (0..x.len())
-            .map(|j| ode.omega2[j] * x[j] - self.f[j])
+            .map(|j| graph.omega2[j] * x[j] - self.f[j])
             .collect();
         for c in self.hertz.clone() {
-            let force = ContactLaw::elastic_force(ode.beta[c], ode.overlap(c, x));
+            let force = ContactLaw::elastic_force(graph.beta[c], graph.overlap(c, x));
             if force != 0.0 {
-                add_row(ode, c, force, &mut g);
+                for (s, sign) in graph.sides(c) {
+                    for k in 0..s.len {
+                        g[s.offset + k] += sign * graph.rows[s.row + k] * force;
+                    }
+                }
             }
         }
         g[..self.first].iter_mut().for_each(|v| *v = 0.0);
@@ -201,19 +291,19 @@ impl<'a> Potential<'a> {
 
     /// H's diagonal and every touching contact's stiffness k_c = (3/2) β δ^½ at x.
     fn tangent(&self, x: &[f64]) -> Tangent {
-        let ode = self.ode;
-        let mut diagonal: Vec<f64> = ode.omega2.clone();
-        let (mut root_stiffness, mut slot) = (Vec::new(), vec![None; ode.contacts()]);
+        let graph = &self.graph;
+        let mut diagonal: Vec<f64> = graph.omega2.to_vec();
+        let (mut root_stiffness, mut slot) = (Vec::new(), vec![None; graph.beta.len()]);
         for c in self.hertz.clone() {
-            let k = ContactLaw::stiffness_n_per_m(ode.beta[c], ode.overlap(c, x));
+            let k = ContactLaw::stiffness_n_per_m(graph.beta[c], graph.overlap(c, x));
             if k == 0.0 {
                 continue;
             }
             slot[c] = Some(root_stiffness.len());
             root_stiffness.push((c, k.sqrt()));
-            for s in std::iter::once(ode.above[c]).chain(ode.below[c]) {
+            for (s, _) in graph.sides(c) {
                 for i in 0..s.len {
-                    diagonal[s.offset + i] += k * ode.rows[s.row + i].powi(2);
+                    diagonal[s.offset + i] += k * graph.rows[s.row + i].powi(2);
                 }
             }
         }
@@ -231,9 +321,9 @@ impl<'a> Potential<'a> {
     /// the rigid modes (the module's notes; a held coordinate's diagonal entry is floored at
     /// 1e-9 of the largest); None if either factorisation fails.
     fn step(&self, t: &Tangent, mu: f64, b: &[f64]) -> Option<Vec<f64>> {
-        let ode = self.ode;
+        let graph = &self.graph;
         let d: Vec<f64> = (0..b.len())
-            .map(|j| ode.omega2[j] + mu * t.diagonal[j].max(1e-9 * t.scale))
+            .map(|j| graph.omega2[j] + mu * t.diagonal[j].max(1e-9 * t.scale))
             .collect();
         // coupling = B = G_r K^½ (rigid modes × contacts).
         let (p, coupling, h) = self.condensed(t, &d, b);
@@ -263,12 +353,11 @@ impl<'a> Potential<'a> {
             .collect();
         for (a, &(c, root_k)) in t.root_stiffness.iter().enumerate() {
             let lambda = root_k * scaled_force[a];
-            let below = ode.below[c].map(|s| (s, -1.0));
-            for (s, sign) in std::iter::once((ode.above[c], 1.0)).chain(below) {
+            for (s, sign) in graph.sides(c) {
                 for i in 0..s.len {
                     let j = s.offset + i;
                     if self.rigid[j].is_none() {
-                        step[j] -= sign * ode.rows[s.row + i] * lambda / d[j];
+                        step[j] -= sign * graph.rows[s.row + i] * lambda / d[j];
                     }
                 }
             }
@@ -284,7 +373,7 @@ impl<'a> Potential<'a> {
         d: &[f64],
         b: &[f64],
     ) -> (DMatrix<f64>, DMatrix<f64>, DVector<f64>) {
-        let ode = self.ode;
+        let rows = &self.graph.rows;
         let m = t.root_stiffness.len();
         let mut p = DMatrix::identity(m, m);
         let mut coupling = DMatrix::zeros(self.rigid_coordinates.len(), m);
@@ -297,7 +386,7 @@ impl<'a> Potential<'a> {
                 Some((a, e.sign * t.root_stiffness[a].1, e.side))
             }));
             for (u, &(a, wa, sa)) in touching.iter().enumerate() {
-                let row_a = &ode.rows[sa.row..sa.row + sa.len];
+                let row_a = &rows[sa.row..sa.row + sa.len];
                 for (i, &r) in row_a.iter().enumerate() {
                     let j = sa.offset + i;
                     match self.rigid[j] {
@@ -306,7 +395,7 @@ impl<'a> Potential<'a> {
                     }
                 }
                 for (w, &(c, wc, sc)) in touching.iter().enumerate().skip(u) {
-                    let row_c = &ode.rows[sc.row..sc.row + sc.len];
+                    let row_c = &rows[sc.row..sc.row + sc.len];
                     let flexibility: f64 = (0..sa.len)
                         .filter(|&i| self.rigid[sa.offset + i].is_none())
                         .map(|i| row_a[i] * row_c[i] / d[sa.offset + i])
@@ -320,18 +409,5 @@ impl<'a> Potential<'a> {
             }
         }
         (p, coupling, h)
-    }
-}
-
-/// Adds F (g_c) to `g`: +F × contact c's row above, −F × its row below.
-fn add_row(ode: &LatticeOde, c: usize, force: f64, g: &mut [f64]) {
-    let s = ode.above[c];
-    for k in 0..s.len {
-        g[s.offset + k] += ode.rows[s.row + k] * force;
-    }
-    if let Some(s) = ode.below[c] {
-        for k in 0..s.len {
-            g[s.offset + k] -= ode.rows[s.row + k] * force;
-        }
     }
 }

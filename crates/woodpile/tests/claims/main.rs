@@ -46,6 +46,7 @@ mod lattice_blast;
 mod lattice_common;
 mod lattice_contact_energies;
 mod lattice_damped_energy_balance;
+mod lattice_displacement_actuator_statics;
 mod lattice_displacement_drive;
 mod lattice_drive;
 mod lattice_energy_balance;
