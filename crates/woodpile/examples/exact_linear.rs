@@ -8,8 +8,8 @@
 //! against RKN 6(4) at 1e-12, the energy error.
 //!
 //! Run: `cargo run --release -p woodpile --example exact_linear -- 1e-5 1e-6 1e-7`
-//! (`SPARSE=1`: one sample at the end; `PROFILE=fe|table1|fe-rkn`: 300 runs at `peak_tolerance`
-//! 1e-5, for `time` or a profiler)
+//! (`SPARSE=1`: one sample at the end; `PROFILE=fe|table1|fe-rkn`: `RUNS` runs, 300 by default,
+//! at `peak_tolerance` 1e-5, for `time` or a profiler)
 
 use woodpile::{
     simulate, CellModel, Chain, ChainBuilder, Element, Excitation, Material, Method, Rod,
@@ -74,7 +74,7 @@ fn main() -> woodpile::Result<()> {
         cell.primary_mass_kg,
         top / std::f64::consts::TAU / 1e6
     );
-    // PROFILE=fe|table1|fe-rkn: 300 runs of that chain at peak_tolerance 1e-5 (fe-rkn: RKN 6(4)
+    // PROFILE=fe|table1|fe-rkn: RUNS (300) runs of that chain at peak_tolerance 1e-5 (fe-rkn: RKN 6(4)
     // as that tolerance chose it before), for `time` (user time is robust to other load) or a
     // profiler.
     if let Ok(which) = std::env::var("PROFILE") {
