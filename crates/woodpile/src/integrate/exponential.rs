@@ -27,7 +27,7 @@
 //! - M. Hochbruck, A. Ostermann, "Exponential integrators", Acta Numerica 19 (2010) 209–286
 //!   (φ-functions, exponential collocation).
 
-use crate::real::{Lane, Real};
+use wide::f64x4;
 
 /// The Lobatto nodes of the force interpolant, σ = 0, (5 − √5)/10, (5 + √5)/10, 1.
 pub fn nodes() -> [f64; 4] {
@@ -174,22 +174,22 @@ pub(crate) struct StepWeights {
 /// Four modes' free motion at the nodes σ = c₁, c₂, 1: cos(σz) and h sin(σz)/z.
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct NodeGroup {
-    cos: [V; 3],
-    hsinc: [V; 3],
+    cos: [Quad; 3],
+    hsinc: [Quad; 3],
 }
 
 /// Four modes' end-of-step update: cos z, h sin(z)/z, −(z/h) sin z (the velocity's part of the
-/// position), h² S_n(1, z)/μ and h C_n(1, z)/μ (the end state's response to σⁿ), and μ and Ω²
+/// position), h² S_n(1, z)/μ and h C_n(1, z)/μ (the end state's response to σⁿ), and μ/2 and Ω²
 /// (for the sums of the end state).
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct EndGroup {
-    cos: V,
-    hsinc: V,
-    vel_of_pos: V,
-    pos_force: [V; 4],
-    vel_force: [V; 4],
-    modal_mass: V,
-    omega2: V,
+    cos: Quad,
+    hsinc: Quad,
+    vel_of_pos: Quad,
+    pos_force: [Quad; 4],
+    vel_force: [Quad; 4],
+    half_modal_mass: Quad,
+    omega2: Quad,
 }
 
 /// σ³ − (3/2)σ² + (1/2)σ in monomials: the error polynomial of [`StepWeights::error`].
@@ -216,19 +216,19 @@ impl StepWeights {
             let (g, l) = (mode / 4, mode % 4);
             let node = &mut node_groups[g];
             for ((cos, hsinc), kj) in node.cos.iter_mut().zip(&mut node.hsinc).zip(k) {
-                cos.0[l] = kj.cos;
-                hsinc.0[l] = h * kj.sinc;
+                cos[l] = kj.cos;
+                hsinc[l] = h * kj.sinc;
             }
             let e = &mut end[g];
-            e.cos.0[l] = k[2].cos;
-            e.hsinc.0[l] = h * k[2].sinc;
-            e.vel_of_pos.0[l] = -k[2].zsin / h;
+            e.cos[l] = k[2].cos;
+            e.hsinc[l] = h * k[2].sinc;
+            e.vel_of_pos[l] = -k[2].zsin / h;
             for n in 0..4 {
-                e.pos_force[n].0[l] = h * h * k[2].s[n] * inv_mu;
-                e.vel_force[n].0[l] = h * k[2].c[n] * inv_mu;
+                e.pos_force[n][l] = h * h * k[2].s[n] * inv_mu;
+                e.vel_force[n][l] = h * k[2].c[n] * inv_mu;
             }
-            e.modal_mass.0[l] = m.modal_mass[mode];
-            e.omega2.0[l] = m.omega2[mode];
+            e.half_modal_mass[l] = 0.5 * m.modal_mass[mode];
+            e.omega2[l] = m.omega2[mode];
         }
         let lagrange = lagrange();
         let (mut node_response, mut error) = (Vec::new(), Vec::new());
@@ -272,12 +272,12 @@ impl StepWeights {
     ) -> [f64; 3] {
         let mut acc = [V::ZERO; 3];
         for (w, (&x, &v)) in self.nodes[groups].iter().zip(c.iter().zip(cdot)) {
-            let (x, v) = (Lane(x), Lane(v));
+            let (x, v) = (V::new(x), V::new(v));
             for ((acc, &cos), &hsinc) in acc.iter_mut().zip(&w.cos).zip(&w.hsinc) {
-                *acc = *acc + (cos * x + hsinc * v);
+                *acc += V::new(cos) * x + V::new(hsinc) * v;
             }
         }
-        acc.map(|s| (s.0[0] + s.0[1]) + (s.0[2] + s.0[3]))
+        acc.map(sum4)
     }
 
     /// Advances the modes of one primary (its distinct element's `groups` of four) over the
@@ -293,29 +293,44 @@ impl StepWeights {
         (c1, cdot1): (&mut [[f64; 4]], &mut [[f64; 4]]),
     ) -> [f64; 4] {
         let [a0, a1, a2, a3] = a.map(V::splat);
-        let half = V::splat(0.5);
-        let mut acc = [V::ZERO; 4];
+        let z = V::ZERO;
+        let (mut sum_x, mut sum_v, mut sum_w2x, mut energy) = (z, z, z, z);
         let from = c.iter().zip(cdot);
         let to = c1.iter_mut().zip(cdot1.iter_mut());
         for (w, ((&x0, &v0), (x1, v1))) in self.end[groups].iter().zip(from.zip(to)) {
-            let (x0, v0) = (Lane(x0), Lane(v0));
-            let [p0, p1, p2, p3] = w.pos_force;
-            let [q0, q1, q2, q3] = w.vel_force;
-            let x = w.cos * x0 + w.hsinc * v0 + (p0 * a0 + p1 * a1 + p2 * a2 + p3 * a3);
-            let v = w.vel_of_pos * x0 + w.cos * v0 + (q0 * a0 + q1 * a1 + q2 * a2 + q3 * a3);
-            *x1 = x.0;
-            *v1 = v.0;
-            acc[0] = acc[0] + x;
-            acc[1] = acc[1] + v;
-            acc[2] = acc[2] + w.omega2 * x;
-            acc[3] = acc[3] + half * w.modal_mass * (v * v + w.omega2 * x * x);
+            let (x0, v0) = (V::new(x0), V::new(v0));
+            let [p0, p1, p2, p3] = w.pos_force.map(V::new);
+            let [q0, q1, q2, q3] = w.vel_force.map(V::new);
+            let cos = V::new(w.cos);
+            let x = cos * x0 + V::new(w.hsinc) * v0 + (p0 * a0 + p1 * a1 + p2 * a2 + p3 * a3);
+            let v = V::new(w.vel_of_pos) * x0 + cos * v0 + (q0 * a0 + q1 * a1 + q2 * a2 + q3 * a3);
+            *x1 = x.to_array();
+            *v1 = v.to_array();
+            let w2x = V::new(w.omega2) * x;
+            sum_x += x;
+            sum_v += v;
+            sum_w2x += w2x;
+            energy += V::new(w.half_modal_mass) * (v * v + w2x * x);
         }
-        acc.map(|s| (s.0[0] + s.0[1]) + (s.0[2] + s.0[3]))
+        [sum_x, sum_v, sum_w2x, energy].map(sum4)
     }
 }
 
-/// Four modes at once, as [`Lane`] values (the form that runs in vectors).
-type V = Lane<4>;
+/// Four modes' weights, stored.
+type Quad = [f64; 4];
+
+/// Four modes at once in arithmetic: `wide`'s vector of four doubles (IEEE arithmetic lane by
+/// lane, one vector instruction per operation, no fused multiply-adds). The crate's `Lane<4>`
+/// here was left to the compiler's vectoriser, which paired the wrong operands (12 % more
+/// instructions per run, bench/README.md).
+type V = f64x4;
+
+/// The sum of a vector's four lanes, in pairs.
+#[inline(always)]
+fn sum4(v: V) -> f64 {
+    let s = v.to_array();
+    (s[0] + s[1]) + (s[2] + s[3])
+}
 
 /// What the variation-of-constants formula needs of one damped mode c'' + 2a c' + z² c = f(σ)
 /// (σ = t/h; a = γh with γ half the mode's damping rate, z = hΩ) at one point θ of a step: the
