@@ -89,20 +89,7 @@ fn displacement_drive_runs_and_writes_contact_energies() {
     let statics = numbers(&lab["contact_static_forces_n"]);
     let sum: f64 = statics[..6].iter().sum();
     assert!((sum - 6.0).abs() < 1e-9, "the tips carry {sum} N at rest");
-    // The rigid actuator's shares: equal at mirror images (x → −x, y → −y), not all equal.
-    let at = |c: &serde_json::Value| [c["x_mm"].as_f64().unwrap(), c["y_mm"].as_f64().unwrap()];
-    for k in 0..6 {
-        let p = at(&contacts[k]);
-        for mirror in [[-p[0], p[1]], [p[0], -p[1]]] {
-            let j = (0..6)
-                .find(|&j| {
-                    let q = at(&contacts[j]);
-                    (q[0] - mirror[0]).abs() < 1e-6 && (q[1] - mirror[1]).abs() < 1e-6
-                })
-                .expect("a mirror image");
-            assert!((statics[k] - statics[j]).abs() < 1e-9, "{statics:?}");
-        }
-    }
+    shares_are_mirror_symmetric(&contacts[..6], &statics[..6]);
     let error = summary["energy_max_relative_error"].as_f64().unwrap();
     assert!(error < 1e-6, "{error}");
     assert!(lab["energy_input_work_j"].as_f64().unwrap().abs() > 0.0);
@@ -129,48 +116,7 @@ fn displacement_drive_runs_and_writes_contact_energies() {
         assert!(out.join(f).is_file(), "{f}");
     }
 
-    // Body index in rod_energies.csv (after time_s): the actuator 0, then the rods layer by
-    // layer; None for a support.
-    let rods_per_layer: Vec<u64> = run["rods_per_layer"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_u64().unwrap())
-        .collect();
-    let body = |layer: u64, rod: u64| -> Option<usize> {
-        if layer == 0 {
-            return Some(0);
-        }
-        let before: u64 = rods_per_layer.iter().take(layer as usize - 1).sum();
-        (layer as usize <= rods_per_layer.len()).then_some(1 + (before + rod - 1) as usize)
-    };
-    let scale = energy.iter().map(|r| r[1].abs()).fold(0.0_f64, f64::max);
-    let (mut lowest, mut worst) = (f64::MAX, 0.0_f64);
-    for (k, row) in bodies.iter().enumerate() {
-        let mut modes: Vec<f64> = row[1..row.len() - 1].to_vec();
-        let u = &potentials[k][1..];
-        for (c, contact) in contacts.iter().enumerate() {
-            let side =
-                |l: &str, r: &str| body(contact[l].as_u64().unwrap(), contact[r].as_u64().unwrap());
-            for b in [
-                side("layer_above", "rod_above"),
-                side("layer_below", "rod_below"),
-            ]
-            .into_iter()
-            .flatten()
-            {
-                modes[b] -= 0.5 * u[c];
-            }
-        }
-        // The actuator has no modes: its column is its halves alone.
-        lowest = lowest.min(modes[1..].iter().fold(f64::MAX, |a, &b| a.min(b)));
-        worst = worst.max(modes[0].abs() / scale);
-        let total = modes[1..].iter().sum::<f64>() + u.iter().sum::<f64>();
-        worst = worst.max((total - energy[k][1]).abs() / scale);
-    }
-    eprintln!("modes + contacts against total_j: {worst:e}; lowest modes' energy {lowest:e} J");
-    assert!(worst < 1e-12, "{worst:e}");
-    assert!(lowest > -1e-12 * scale, "{lowest:e}");
+    bodies_and_contacts_add_up_to_the_total(&run, [&energy, &bodies, &potentials]);
     let totals = numbers(&lab["contact_dissipated_j"]);
     let sum: f64 = totals.iter().sum();
     assert!(sum > 0.0);
@@ -213,4 +159,75 @@ fn bad_displacement_drive_input_exits_2_naming_the_key() {
         &drive("cap_radius_mm = 5.0", "cap_radius_mm = 0.0"),
         &["excitation.tip.cap_radius_mm", "0"],
     );
+}
+
+/// The rigid actuator's static shares at the tips (`contacts`, `statics`): equal at mirror images
+/// (x → −x, y → −y).
+fn shares_are_mirror_symmetric(contacts: &[serde_json::Value], statics: &[f64]) {
+    let at = |c: &serde_json::Value| [c["x_mm"].as_f64().unwrap(), c["y_mm"].as_f64().unwrap()];
+    for (k, contact) in contacts.iter().enumerate() {
+        let p = at(contact);
+        for mirror in [[-p[0], p[1]], [p[0], -p[1]]] {
+            let j = contacts
+                .iter()
+                .position(|c| {
+                    let q = at(c);
+                    (q[0] - mirror[0]).abs() < 1e-6 && (q[1] - mirror[1]).abs() < 1e-6
+                })
+                .expect("a mirror image");
+            assert!((statics[k] - statics[j]).abs() < 1e-9, "{statics:?}");
+        }
+    }
+}
+
+/// Every sample: each body's modes (its `rod_energies.csv` column less half of each of its
+/// contacts' potentials) are not negative, the actuator has none, and modes plus contact
+/// potentials make `total_j` (1e-12 of the largest total: rounding).
+fn bodies_and_contacts_add_up_to_the_total(
+    run: &serde_json::Value,
+    [energy, bodies, potentials]: [&[Vec<f64>]; 3],
+) {
+    let contacts = run["contacts"].as_array().unwrap();
+    // Body index in rod_energies.csv (after time_s): the actuator 0, then the rods layer by
+    // layer; None for a support.
+    let rods_per_layer: Vec<u64> = run["rods_per_layer"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_u64().unwrap())
+        .collect();
+    let body = |layer: u64, rod: u64| -> Option<usize> {
+        if layer == 0 {
+            return Some(0);
+        }
+        let before: u64 = rods_per_layer.iter().take(layer as usize - 1).sum();
+        (layer as usize <= rods_per_layer.len()).then_some(1 + (before + rod - 1) as usize)
+    };
+    let scale = energy.iter().map(|r| r[1].abs()).fold(0.0_f64, f64::max);
+    let (mut lowest, mut worst) = (f64::MAX, 0.0_f64);
+    for (k, row) in bodies.iter().enumerate() {
+        let mut modes: Vec<f64> = row[1..row.len() - 1].to_vec();
+        let u = &potentials[k][1..];
+        for (c, contact) in contacts.iter().enumerate() {
+            let side =
+                |l: &str, r: &str| body(contact[l].as_u64().unwrap(), contact[r].as_u64().unwrap());
+            for b in [
+                side("layer_above", "rod_above"),
+                side("layer_below", "rod_below"),
+            ]
+            .into_iter()
+            .flatten()
+            {
+                modes[b] -= 0.5 * u[c];
+            }
+        }
+        // The actuator has no modes: its column is its halves alone.
+        lowest = lowest.min(modes[1..].iter().fold(f64::MAX, |a, &b| a.min(b)));
+        worst = worst.max(modes[0].abs() / scale);
+        let total = modes[1..].iter().sum::<f64>() + u.iter().sum::<f64>();
+        worst = worst.max((total - energy[k][1]).abs() / scale);
+    }
+    eprintln!("modes + contacts against total_j: {worst:e}; lowest modes' energy {lowest:e} J");
+    assert!(worst < 1e-12, "{worst:e}");
+    assert!(lowest > -1e-12 * scale, "{lowest:e}");
 }

@@ -3,9 +3,9 @@
 use super::keys::toml_float as float;
 use super::keys::{ANGLE, NON_NEGATIVE, POSITIVE};
 use super::{
-    CellSpec, ContactLaw, DampingSpec, DriveKind, ElementKind, ElementSpec, ExcitationKind,
-    ExcitationSpec, IntegratorKind, MaterialSpec, ProfileKind, Scenario, SignalKind, WallKind,
-    WallSpec,
+    CellSpec, ChainSpec, ContactLaw, DampingSpec, DriveKind, ElementKind, ElementSpec,
+    ExcitationKind, ExcitationSpec, IntegratorKind, MaterialSpec, ProfileKind, Scenario,
+    SignalKind, WallKind, WallSpec,
 };
 use crate::error::Error;
 use crate::table::load_table;
@@ -466,6 +466,49 @@ fn resolve_chain(
     warnings: &mut Vec<String>,
 ) -> Result<Chain, Error> {
     let c = &s.chain;
+    let elements = chain_elements(c, keys, warnings)?;
+    let n = elements.len();
+    let angle = completed(keys.crossing_angle_deg, c.crossing_angle_deg.as_ref())?;
+    if !(angle.is_finite() && angle > 0.0 && angle < 180.0) {
+        return Err(Error::invalid(
+            keys.crossing_angle_deg,
+            angle,
+            format!("must lie {ANGLE} (0 and 180 are parallel rods: a line contact)"),
+        ));
+    }
+    if s.wall.effective_kind() == WallKind::Flat {
+        if let Body::Rod { .. } = elements[n - 1].body {
+            return Err(Error::invalid(
+                "wall.kind",
+                "\"flat\"",
+                format!(
+                    "element {n} is a rod, and a rod on a flat is a line contact, not a Hertz point contact; \
+                     use kind = \"cap\" with cap_radius_mm, or kind = \"beta\" with beta = …"
+                ),
+            ));
+        }
+    }
+    let mut builder = ChainBuilder::new(elements)
+        .crossing_angle_rad(angle.to_radians())
+        .wall(resolve_wall(&s.wall, "wall")?)
+        .damping(resolve_damping(s)?)
+        .preload(resolve_preload(s)?);
+    builder = element_crossing_angles(c, keys, builder)?;
+    // Indices, duplicates and values of the overrides are checked once, by the builder, under
+    // their scenario keys.
+    for o in &c.contact_beta {
+        builder = builder.contact_beta(o.contact, o.beta);
+    }
+    builder.build().map_err(Error::at("chain"))
+}
+
+/// A chain's elements from `rods_mm` (Table 1 rods) or `elements` (the general form): exactly one
+/// of them, not empty.
+fn chain_elements(
+    c: &ChainSpec,
+    keys: &ChainKeys,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<Element>, Error> {
     let model = c.model.unwrap_or_default().cell_model();
     let elements = match (&c.rods_mm, &c.elements) {
         (Some(_), Some(_)) => {
@@ -502,8 +545,7 @@ fn resolve_chain(
             })
             .collect::<Result<Vec<_>, _>>()?,
     };
-    let n = elements.len();
-    if n == 0 {
+    if elements.is_empty() {
         let key = if c.rods_mm.is_some() {
             keys.rods_mm
         } else {
@@ -515,31 +557,16 @@ fn resolve_chain(
             "a chain needs at least one element",
         ));
     }
-    let angle = completed(keys.crossing_angle_deg, c.crossing_angle_deg.as_ref())?;
-    if !(angle.is_finite() && angle > 0.0 && angle < 180.0) {
-        return Err(Error::invalid(
-            keys.crossing_angle_deg,
-            angle,
-            format!("must lie {ANGLE} (0 and 180 are parallel rods: a line contact)"),
-        ));
-    }
-    if s.wall.effective_kind() == WallKind::Flat {
-        if let Body::Rod { .. } = elements[n - 1].body {
-            return Err(Error::invalid(
-                "wall.kind",
-                "\"flat\"",
-                format!(
-                    "element {n} is a rod, and a rod on a flat is a line contact, not a Hertz point contact; \
-                     use kind = \"cap\" with cap_radius_mm, or kind = \"beta\" with beta = …"
-                ),
-            ));
-        }
-    }
-    let mut builder = ChainBuilder::new(elements)
-        .crossing_angle_rad(angle.to_radians())
-        .wall(resolve_wall(&s.wall, "wall")?)
-        .damping(resolve_damping(s)?)
-        .preload(resolve_preload(s)?);
+    Ok(elements)
+}
+
+/// The crossing angles given on elements (`elements[i].crossing_angle_deg`: with the element
+/// above), checked and handed to the builder.
+fn element_crossing_angles(
+    c: &ChainSpec,
+    keys: &ChainKeys,
+    mut builder: ChainBuilder,
+) -> Result<ChainBuilder, Error> {
     for (i, e) in c.elements.iter().flatten().enumerate() {
         let Some(a) = e.crossing_angle_deg else {
             continue;
@@ -557,12 +584,7 @@ fn resolve_chain(
         }
         builder = builder.element_crossing_angle_rad(i, a.to_radians());
     }
-    // Indices, duplicates and values of the overrides are checked once, by the builder, under
-    // their scenario keys.
-    for o in &c.contact_beta {
-        builder = builder.contact_beta(o.contact, o.beta);
-    }
-    builder.build().map_err(Error::at("chain"))
+    Ok(builder)
 }
 
 /// A support (`[wall]`, or a displacement actuator's tip); `key` names its table.

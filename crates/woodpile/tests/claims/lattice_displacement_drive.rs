@@ -32,7 +32,8 @@
 
 use super::lattice_common::{fe_rod_elements, three_by_four};
 use woodpile::model::{
-    ContactDamping, Damping, LatticeBuilder, LatticeExcitation, LatticeLab, LayerSpec, LoadPoints,
+    ContactDamping, Damping, Lattice, LatticeBuilder, LatticeExcitation, LatticeLab, LayerSpec,
+    LoadPoints,
 };
 use woodpile::ode::LatticeOde;
 use woodpile::simulate::{simulate_lattice, LatticeRun};
@@ -289,48 +290,7 @@ fn centred_displacement_drive_is_mirror_symmetric_and_accounted_for() {
     );
     assert!((sum - 9.0).abs() < 1e-12 * 9.0, "the tips carry {sum} N");
     assert!(worst_tip < 1e-12);
-    // Mirror images: contacts of the same kind and layer at (∓x, y) and (x, ∓y); the tips are
-    // the top rods' crossings, at the points of the first-layer crossings.
-    let point = |c: usize| -> ([f64; 2], usize, bool) {
-        if c < loads {
-            let k = lattice
-                .contacts
-                .iter()
-                .filter(|k| k.below.is_some() && lattice.rods[k.above.rod].layer == 1)
-                .nth(c)
-                .unwrap();
-            (k.point_m, 0, false)
-        } else {
-            let k = &lattice.contacts[c - loads];
-            (
-                k.point_m,
-                lattice.rods[k.above.rod].layer,
-                k.support.is_some(),
-            )
-        }
-    };
-    let peak = largest(&run.contact_peak_forces_n);
-    let (mut worst, mut pairs) = (0.0_f64, 0);
-    for i in 0..run.contacts {
-        let (pi, li, si) = point(i);
-        for mirror in [[-1.0, 1.0], [1.0, -1.0]] {
-            let j = (0..run.contacts)
-                .find(|&j| {
-                    let (pj, lj, sj) = point(j);
-                    lj == li
-                        && sj == si
-                        && (pj[0] - mirror[0] * pi[0]).abs() < 1e-9
-                        && (pj[1] - mirror[1] * pi[1]).abs() < 1e-9
-                })
-                .expect("every contact has its mirror images");
-            if i != j {
-                pairs += 1;
-                for (a, b) in run.contact_force_n(i).iter().zip(&run.contact_force_n(j)) {
-                    worst = worst.max((a - b).abs() / peak);
-                }
-            }
-        }
-    }
+    let (worst, pairs, peak) = mirror_differences(&lattice, &run, loads);
     let e = &run.energy;
     eprintln!(
         "{pairs} mirror pairs, largest difference {worst:e} of the peak {peak:.3} N; W = {:.4e} J, \
@@ -413,4 +373,52 @@ fn displacement_drives_are_not_given_to_the_exact_modal_method() {
     eprintln!("{chosen:?}: worst peak {worst:e}, audit {audit:e}");
     assert!(worst <= 1e-5, "worst peak {worst}");
     assert!(audit <= 1e-6, "audit {audit}");
+}
+
+/// Over every contact and its mirror images (contacts of the same kind and layer at (∓x, y) and
+/// (x, ∓y); the tips, the first `loads`, are the top rods' crossings, at the points of the
+/// first-layer crossings): the largest force difference relative to the peak, the number of
+/// pairs, and the peak \[N\].
+fn mirror_differences(lattice: &Lattice, run: &LatticeRun, loads: usize) -> (f64, usize, f64) {
+    let point = |c: usize| -> ([f64; 2], usize, bool) {
+        if c < loads {
+            let k = lattice
+                .contacts
+                .iter()
+                .filter(|k| k.below.is_some() && lattice.rods[k.above.rod].layer == 1)
+                .nth(c)
+                .unwrap();
+            (k.point_m, 0, false)
+        } else {
+            let k = &lattice.contacts[c - loads];
+            (
+                k.point_m,
+                lattice.rods[k.above.rod].layer,
+                k.support.is_some(),
+            )
+        }
+    };
+    let peak = largest(&run.contact_peak_forces_n);
+    let (mut worst, mut pairs) = (0.0_f64, 0);
+    for i in 0..run.contacts {
+        let (pi, li, si) = point(i);
+        for mirror in [[-1.0, 1.0], [1.0, -1.0]] {
+            let j = (0..run.contacts)
+                .find(|&j| {
+                    let (pj, lj, sj) = point(j);
+                    lj == li
+                        && sj == si
+                        && (pj[0] - mirror[0] * pi[0]).abs() < 1e-9
+                        && (pj[1] - mirror[1] * pi[1]).abs() < 1e-9
+                })
+                .expect("every contact has its mirror images");
+            if i != j {
+                pairs += 1;
+                for (a, b) in run.contact_force_n(i).iter().zip(&run.contact_force_n(j)) {
+                    worst = worst.max((a - b).abs() / peak);
+                }
+            }
+        }
+    }
+    (worst, pairs, peak)
 }
