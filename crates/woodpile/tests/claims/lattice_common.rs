@@ -5,17 +5,21 @@
 use woodpile::model::{Lattice, LatticeBuilder, LayerSpec};
 use woodpile::{Element, Material, Rod, UnitCell};
 
-/// The 3 × 3-rod, 4-layer lattice with `elements` per half rod.
-pub fn three_by_four(elements: usize) -> Lattice {
-    let layer = LayerSpec {
+/// A layer of three 80 mm, 5 mm quartz rods at a 20 mm pitch, crossed at 90°.
+pub fn three_rod_layer() -> LayerSpec {
+    LayerSpec {
         rods: 3,
         pitch_m: 20e-3,
         length_m: 80e-3,
         diameter_m: 5e-3,
         material: Material::fused_quartz(),
         angle_deg: 90.0,
-    };
-    LatticeBuilder::new(vec![layer; 4], elements)
+    }
+}
+
+/// The 3 × 3-rod, 4-layer lattice with `elements` per half rod.
+pub fn three_by_four(elements: usize) -> Lattice {
+    LatticeBuilder::new(vec![three_rod_layer(); 4], elements)
         .build()
         .unwrap()
 }

@@ -42,7 +42,7 @@
 //! over: no equilibrium, refused naming `preload` with the solve's residual. (A rigid actuator
 //! with other points would rest on them, its tip there at no force.)
 
-use super::lattice_common::three_by_four;
+use super::lattice_common::{three_by_four, three_rod_layer};
 use woodpile::model::{
     Lattice, LatticeBuilder, LatticeExcitation, LatticeLab, LayerSpec, LoadPoints, RodPoint,
     Supports,
@@ -163,14 +163,7 @@ fn a_seesaw_pressed_at_two_points_takes_the_lever_rule_shares() {
 /// at y = ±20 mm, so that no combination of rigid modes is free.
 fn three_by_four_on_six_supports() -> Lattice {
     let base = three_by_four(4);
-    let layer = LayerSpec {
-        rods: 3,
-        pitch_m: 20e-3,
-        length_m: 80e-3,
-        diameter_m: 5e-3,
-        material: Material::fused_quartz(),
-        angle_deg: 90.0,
-    };
+    let layer = three_rod_layer();
     let supports = base
         .supports()
         .flat_map(|s| [-20e-3, 20e-3].map(|y| [s.point_m[0], y]))
