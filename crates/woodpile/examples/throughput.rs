@@ -67,19 +67,7 @@ fn screened_ga(runs: usize) -> woodpile::Result<()> {
         "\npaper impact GA (population 100, peak_tolerance 1e-5, 2 threads), with screening \
          and early stopping:"
     );
-    println!(
-        "{:<32} {:>6} {:>8} {:>8} {:>10} {:>10} {:>8} {:>10} {:>13} {:>9}",
-        "method, screen, stop",
-        "gens",
-        "wall_s",
-        "designs",
-        "exact_runs",
-        "screenings",
-        "stopped",
-        "designs/s",
-        "same_choices",
-        "best_N"
-    );
+    print_screened_header();
     // Each generation's breeding pool, and the best values: the run's choices.
     type Choices = (Vec<Vec<Genome>>, Vec<f64>);
     let mut reference: Option<Choices> = None;
@@ -98,28 +86,8 @@ fn screened_ga(runs: usize) -> woodpile::Result<()> {
         (tolerance, Some(1e-4), true),
     ] {
         let ga = ga(method, screen, stop_early)?;
-        let mut walls = Vec::new();
-        let mut last = None;
-        for _ in 0..runs {
-            let mut pools: Vec<Vec<Genome>> = Vec::new();
-            let t = Instant::now();
-            let outcome = ga
-                .run(None, &Default::default(), &mut |s| {
-                    pools.push(
-                        s.population[..pool]
-                            .iter()
-                            .map(|i| i.genome.clone())
-                            .collect(),
-                    );
-                    std::ops::ControlFlow::Continue(())
-                })
-                .expect("the paper's GA runs");
-            walls.push(t.elapsed().as_secs_f64());
-            last = Some((pools, outcome.state));
-        }
-        let (pools, state) = last.expect("at least one run");
+        let (wall, pools, state) = timed_runs(&ga, runs, pool);
         let bests: Vec<f64> = state.history.iter().map(|h| h.best).collect();
-        let wall = median(walls);
         // Designs the GA obtained a value for: the distinct designs it met (exact, screened or
         // stopped).
         let ledger = &state.ledger;
@@ -161,25 +129,7 @@ fn screened_ga(runs: usize) -> woodpile::Result<()> {
         );
     }
     if let Some(genome) = optimum {
-        let mut space = DesignSpace::paper_impact(CellModel::Resonant);
-        space.settings.method = tolerance;
-        let settings = RunSettings {
-            sample_interval_s: space.settings.duration_s,
-            ..space.settings
-        };
-        let run = simulate(
-            &space.chain(&genome)?,
-            &space.excitation,
-            &settings,
-            &mut (),
-        )?;
-        println!(
-            "optimum {}: transmitted peak {:.4} N of {:.2} N incident ({:.1} %)",
-            space.labels(&genome).join(" "),
-            run.transmitted_peak_force_n,
-            run.incident_peak_force_n,
-            100.0 * run.transmitted_peak_force_n / run.incident_peak_force_n
-        );
+        print_optimum(&genome, tolerance)?;
     }
     Ok(())
 }
@@ -231,54 +181,7 @@ fn main() -> woodpile::Result<()> {
             )
         })
         .collect::<woodpile::Result<_>>()?;
-    let settings = [
-        ("rk4 0.1us (paper)", Method::paper()),
-        ("peak_tolerance 1e-5", Method::for_peak_tolerance(1e-5)?),
-        ("peak_tolerance 1e-4", Method::for_peak_tolerance(1e-4)?),
-        ("peak_tolerance 1e-3", Method::for_peak_tolerance(1e-3)?),
-        (
-            "events 7.84e-9 (was 1e-5)",
-            Method::Dopri5Events {
-                rtol: 7.84e-9,
-                atol: 7.84e-15,
-            },
-        ),
-        (
-            "rkn64 rtol 1e-6",
-            Method::Rkn64 {
-                rtol: 1e-6,
-                atol: 1e-12,
-            },
-        ),
-        (
-            "rkn64 rtol 3e-7",
-            Method::Rkn64 {
-                rtol: 3e-7,
-                atol: 3e-13,
-            },
-        ),
-        (
-            "events rtol 3e-7",
-            Method::Dopri5Events {
-                rtol: 3e-7,
-                atol: 3e-13,
-            },
-        ),
-        (
-            "events rtol 1e-7",
-            Method::Dopri5Events {
-                rtol: 1e-7,
-                atol: 1e-13,
-            },
-        ),
-        (
-            "dopri5 rtol 1e-8",
-            Method::Dopri5 {
-                rtol: 1e-8,
-                atol: 1e-14,
-            },
-        ),
-    ];
+    let settings = compared_methods()?;
     println!(
         "{n_designs} designs of the paper's impact problem (GA generation 0, seed 1); lane width {:?} detected",
         LaneWidth::detect()
@@ -338,7 +241,63 @@ fn main() -> woodpile::Result<()> {
 
     screened_ga(runs)?;
 
-    // Cost per element of long chains: 40 mm rods, RK4 at 0.1 µs, 50 µs of simulated time.
+    long_chains(runs, &impact)
+}
+
+/// The methods the evaluator is measured with.
+fn compared_methods() -> woodpile::Result<Vec<(&'static str, Method)>> {
+    Ok(vec![
+        ("rk4 0.1us (paper)", Method::paper()),
+        ("peak_tolerance 1e-5", Method::for_peak_tolerance(1e-5)?),
+        ("peak_tolerance 1e-4", Method::for_peak_tolerance(1e-4)?),
+        ("peak_tolerance 1e-3", Method::for_peak_tolerance(1e-3)?),
+        (
+            "events 7.84e-9 (was 1e-5)",
+            Method::Dopri5Events {
+                rtol: 7.84e-9,
+                atol: 7.84e-15,
+            },
+        ),
+        (
+            "rkn64 rtol 1e-6",
+            Method::Rkn64 {
+                rtol: 1e-6,
+                atol: 1e-12,
+            },
+        ),
+        (
+            "rkn64 rtol 3e-7",
+            Method::Rkn64 {
+                rtol: 3e-7,
+                atol: 3e-13,
+            },
+        ),
+        (
+            "events rtol 3e-7",
+            Method::Dopri5Events {
+                rtol: 3e-7,
+                atol: 3e-13,
+            },
+        ),
+        (
+            "events rtol 1e-7",
+            Method::Dopri5Events {
+                rtol: 1e-7,
+                atol: 1e-13,
+            },
+        ),
+        (
+            "dopri5 rtol 1e-8",
+            Method::Dopri5 {
+                rtol: 1e-8,
+                atol: 1e-14,
+            },
+        ),
+    ])
+}
+
+/// Cost per element of long chains: 40 mm rods, RK4 at 0.1 µs, 50 µs of simulated time.
+fn long_chains(runs: usize, impact: &Excitation) -> woodpile::Result<()> {
     println!("\nlong chains (40 mm rods, rk4 0.1 us, 50 us simulated, one thread):");
     println!(
         "{:>10} {:>12} {:>22}",
@@ -354,7 +313,7 @@ fn main() -> woodpile::Result<()> {
         let ms = median(
             (0..runs)
                 .map(|_| {
-                    simulate(&chain, &impact, &settings, &mut ())
+                    simulate(&chain, impact, &settings, &mut ())
                         .map(|s| s.wall_time_s * 1e3)
                         .expect("runs")
                 })
@@ -366,4 +325,70 @@ fn main() -> woodpile::Result<()> {
         );
     }
     Ok(())
+}
+
+/// The reference run's best design, re-run alone: its transmitted peak against the incident one.
+fn print_optimum(genome: &Genome, method: Method) -> woodpile::Result<()> {
+    let mut space = DesignSpace::paper_impact(CellModel::Resonant);
+    space.settings.method = method;
+    let settings = RunSettings {
+        sample_interval_s: space.settings.duration_s,
+        ..space.settings
+    };
+    let run = simulate(&space.chain(genome)?, &space.excitation, &settings, &mut ())?;
+    println!(
+        "optimum {}: transmitted peak {:.4} N of {:.2} N incident ({:.1} %)",
+        space.labels(genome).join(" "),
+        run.transmitted_peak_force_n,
+        run.incident_peak_force_n,
+        100.0 * run.transmitted_peak_force_n / run.incident_peak_force_n
+    );
+    Ok(())
+}
+
+/// `runs` runs of `ga`: the median wall time \[s\], and the last run's breeding pools (the first
+/// `pool` of each generation) and final state.
+fn timed_runs(
+    ga: &BreederGa,
+    runs: usize,
+    pool: usize,
+) -> (f64, Vec<Vec<Genome>>, woodpile::optimize::GaState) {
+    let mut walls = Vec::new();
+    let mut last = None;
+    for _ in 0..runs {
+        let mut pools: Vec<Vec<Genome>> = Vec::new();
+        let t = Instant::now();
+        let outcome = ga
+            .run(None, &Default::default(), &mut |s| {
+                pools.push(
+                    s.population[..pool]
+                        .iter()
+                        .map(|i| i.genome.clone())
+                        .collect(),
+                );
+                std::ops::ControlFlow::Continue(())
+            })
+            .expect("the paper's GA runs");
+        walls.push(t.elapsed().as_secs_f64());
+        last = Some((pools, outcome.state));
+    }
+    let (pools, state) = last.expect("at least one run");
+    (median(walls), pools, state)
+}
+
+/// The header of the screened GA's table.
+fn print_screened_header() {
+    println!(
+        "{:<32} {:>6} {:>8} {:>8} {:>10} {:>10} {:>8} {:>10} {:>13} {:>9}",
+        "method, screen, stop",
+        "gens",
+        "wall_s",
+        "designs",
+        "exact_runs",
+        "screenings",
+        "stopped",
+        "designs/s",
+        "same_choices",
+        "best_N"
+    );
 }
