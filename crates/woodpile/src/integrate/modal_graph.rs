@@ -148,10 +148,12 @@ struct Body {
     groups: usize,
 }
 
-/// One side of a contact in groups of four: its body's first group and first weight group,
-/// its row's first group in [`Layout::rows`], and the number of groups (0: a load's empty side).
+/// One side of a contact in groups of four: its body (index into [`Layout::bodies`]), the
+/// body's first group and first weight group, its row's first group in [`Layout::rows`], and the
+/// number of groups (0: a load's empty side).
 #[derive(Debug, Clone, Copy, Default)]
 struct GroupedSide {
+    body: usize,
     group: usize,
     kind: usize,
     row: usize,
@@ -222,11 +224,12 @@ impl Layout {
         let Some(side) = side.filter(|s| s.len > 0) else {
             return GroupedSide::default();
         };
-        let body = self
+        let index = self
             .bodies
             .iter()
-            .find(|b| b.state == (side.offset..side.offset + side.len))
+            .position(|b| b.state == (side.offset..side.offset + side.len))
             .expect("a contact's side spans its body's coordinates");
+        let body = &self.bodies[index];
         let row = self.rows.len();
         for chunk in ode.rows[side.row..side.row + side.len].chunks(4) {
             let mut r = V::ZERO;
@@ -234,6 +237,7 @@ impl Layout {
             self.rows.push(r);
         }
         GroupedSide {
+            body: index,
             group: body.group,
             kind: body.kind,
             row,
@@ -268,25 +272,33 @@ impl Layout {
         }
     }
 
-    /// Σ r x at the three nodes over a side's groups (`values`: per group, the three nodes).
+    /// Σ r x at the three nodes over a side's groups (`values`: per group, the three nodes);
+    /// zero without a look where the side's body is not `active` (its values all zero).
     #[inline(always)]
-    fn dot3(&self, side: GroupedSide, values: &[[V; 3]]) -> [f64; 3] {
+    fn dot3(&self, side: GroupedSide, values: &[[V; 3]], active: &[bool]) -> [f64; 3] {
+        if side.groups == 0 || !active[side.body] {
+            return [0.0; 3];
+        }
         let rows = &self.rows[side.row..side.row + side.groups];
         let values = &values[side.group..side.group + side.groups];
-        let mut acc = [V::ZERO; 3];
-        for (&r, x) in rows.iter().zip(values) {
-            for (a, &x) in acc.iter_mut().zip(x) {
-                *a = *a + r * x;
-            }
+        let (mut a0, mut a1, mut a2) = (V::ZERO, V::ZERO, V::ZERO);
+        for (&r, &[x0, x1, x2]) in rows.iter().zip(values) {
+            a0 = a0 + r * x0;
+            a1 = a1 + r * x1;
+            a2 = a2 + r * x2;
         }
-        [sum_lanes(acc[0]), sum_lanes(acc[1]), sum_lanes(acc[2])]
+        // The lanes summed out of sight of the loop: otherwise the compiler regroups the loop's
+        // lanes for the final sums, two per vector.
+        let [a0, a1, a2] = std::hint::black_box([a0, a1, a2]);
+        [sum_lanes(a0), sum_lanes(a1), sum_lanes(a2)]
     }
 
-    /// A contact's overlap at the three nodes for grouped values (above minus below).
+    /// A contact's overlap at the three nodes for grouped values (above minus below; `active`
+    /// as [`Layout::dot3`]).
     #[inline(always)]
-    fn overlap3(&self, c: usize, values: &[[V; 3]]) -> [f64; 3] {
-        let above = self.dot3(self.above[c], values);
-        let below = self.dot3(self.below[c], values);
+    fn overlap3(&self, c: usize, values: &[[V; 3]], active: &[bool]) -> [f64; 3] {
+        let above = self.dot3(self.above[c], values, active);
+        let below = self.dot3(self.below[c], values, active);
         [
             above[0] - below[0],
             above[1] - below[1],
@@ -298,7 +310,7 @@ impl Layout {
 /// The sum of a group's four lanes.
 #[inline(always)]
 fn sum_lanes(s: V) -> f64 {
-    (s.0[0] + s.0[1]) + (s.0[2] + s.0[3])
+    (s.0[0] + s.0[2]) + (s.0[1] + s.0[3])
 }
 
 /// One mode's flow at θ of a step (from [`kernel`] or [`damped_kernel`]): position from
@@ -378,6 +390,10 @@ pub(crate) struct GraphModalIntegrator {
     /// The modal positions and velocities now, in groups.
     x: Vec<V>,
     v: Vec<V>,
+    /// Per body: whether it has moved (a body at rest, under no force, stays at rest and is
+    /// passed over), and whether a static force acts on it.
+    moving: Vec<bool>,
+    static_loaded: Vec<bool>,
     /// Per contact: its force's cubic over the last step (monomials in σ) \[N\].
     coef: Vec<[f64; 4]>,
     /// Per group: the cubic of its modal force over the last step.
@@ -419,6 +435,10 @@ struct Scratch {
     /// Per group: the positions and velocities at the step's end.
     x1: Vec<V>,
     v1: Vec<V>,
+    /// Per body: whether a force acts on it (its modal force is not all zero), and whether its
+    /// forced response is all zero.
+    loaded: Vec<bool>,
+    unforced: Vec<bool>,
     /// Per contact and node 1..3: the free overlap.
     free_overlap: Vec<[f64; 3]>,
     /// Per contact and node 0..3: force and overlap.
@@ -473,9 +493,26 @@ impl GraphModalIntegrator {
             grouped(&y[q + 3..2 * q + 3]),
             grouped(&static_force),
         );
+        let any_in = |values: &[V], b: &Body| {
+            values[b.group..b.group + b.groups]
+                .iter()
+                .any(|g| g.0.iter().any(|&x| x != 0.0))
+        };
+        let moving = layout
+            .bodies
+            .iter()
+            .map(|b| any_in(&x, b) || any_in(&v, b))
+            .collect();
+        let static_loaded = layout
+            .bodies
+            .iter()
+            .map(|b| any_in(&static_groups, b))
+            .collect();
         GraphModalIntegrator {
             frequencies,
             frequency_index,
+            moving,
+            static_loaded,
             rtol,
             atol,
             t: 0.0,
@@ -504,7 +541,7 @@ impl GraphModalIntegrator {
                 rhs_evaluations: 1,
                 ..IntegratorStats::default()
             },
-            sc: Scratch::new(groups, n),
+            sc: Scratch::new(groups, n, layout.bodies.len()),
             layout,
             ode,
         }
@@ -560,7 +597,7 @@ impl GraphModalIntegrator {
     fn start_attempt(&mut self, h: f64, weights: &[WeightGroup]) {
         let c_nodes = nodes();
         let sc = &mut self.sc;
-        for b in &self.layout.bodies {
+        for (b, _) in self.layout.bodies.iter().zip(&self.moving).filter(|m| *m.1) {
             let (g, k) = (b.group..b.group + b.groups, b.kind..b.kind + b.groups);
             let state = self.x[g.clone()].iter().zip(&self.v[g.clone()]);
             for ((free, w), (&x, &v)) in sc.free[g].iter_mut().zip(&weights[k]).zip(state) {
@@ -569,7 +606,7 @@ impl GraphModalIntegrator {
             }
         }
         for c in 0..self.force.len() {
-            sc.free_overlap[c] = self.layout.overlap3(c, &sc.free);
+            sc.free_overlap[c] = self.layout.overlap3(c, &sc.free, &self.moving);
             sc.node_overlap[c][0] = self.overlap[c];
             let f = &mut sc.node_force[c];
             f[0] = self.force[c];
@@ -598,6 +635,7 @@ impl GraphModalIntegrator {
         for (b, &f) in sc.modal_force.iter_mut().zip(&self.static_groups) {
             *b = [f, V::ZERO, V::ZERO, V::ZERO];
         }
+        sc.loaded.copy_from_slice(&self.static_loaded);
         for (c, (a, f)) in sc.coef.iter_mut().zip(&sc.node_force).enumerate() {
             for (an, l) in a.iter_mut().zip(&self.lagrange) {
                 *an = (0..4).map(|j| l[j] * f[j]).sum();
@@ -607,6 +645,10 @@ impl GraphModalIntegrator {
             }
             // −r a on the body above, +r a below ((±r) a rounds as r (±a)).
             for (side, sign) in [(layout.above[c], -1.0), (layout.below[c], 1.0)] {
+                if side.groups == 0 {
+                    continue;
+                }
+                sc.loaded[side.body] = true;
                 let rows = &layout.rows[side.row..side.row + side.groups];
                 let b = &mut sc.modal_force[side.group..side.group + side.groups];
                 let s = |n: usize| V::splat(sign * a[n]);
@@ -624,8 +666,17 @@ impl GraphModalIntegrator {
     #[inline(always)]
     fn forced(&mut self, weights: &[WeightGroup]) {
         let sc = &mut self.sc;
-        for b in &self.layout.bodies {
+        for (i, b) in self.layout.bodies.iter().enumerate() {
             let (g, k) = (b.group..b.group + b.groups, b.kind..b.kind + b.groups);
+            if !sc.loaded[i] {
+                // No force: no response (written once).
+                if !sc.unforced[i] {
+                    sc.forced[g].fill([V::ZERO; 3]);
+                    sc.unforced[i] = true;
+                }
+                continue;
+            }
+            sc.unforced[i] = false;
             let forced = sc.forced[g.clone()].iter_mut().zip(&sc.modal_force[g]);
             for ((x, b), w) in forced.zip(&weights[k]) {
                 let at = |p: &[V; 4]| p[0] * b[0] + p[1] * b[1] + p[2] * b[2] + p[3] * b[3];
@@ -645,7 +696,7 @@ impl GraphModalIntegrator {
             let (mut change, mut scale) = (0.0_f64, 0.0_f64);
             for c in 0..self.force.len() {
                 let beta = self.ode.beta[c];
-                let forced = self.layout.overlap3(c, &self.sc.forced);
+                let forced = self.layout.overlap3(c, &self.sc.forced, &self.sc.loaded);
                 for j in 0..3 {
                     let d = self.sc.free_overlap[c][j] + forced[j];
                     if c < loads {
@@ -724,6 +775,8 @@ impl GraphModalIntegrator {
             acc[2] = acc[2] + r * (free[2] + forced[2]);
             acc[3] = acc[3] + r * v;
         }
+        // (Summed out of sight of the loop, as in `Layout::dot3`.)
+        let acc = std::hint::black_box(acc);
         PointError {
             position: sum_lanes(acc[0]),
             velocity: sum_lanes(acc[1]),
@@ -915,7 +968,12 @@ impl GraphModalIntegrator {
     fn advance_modes(&mut self, rung: Option<i64>) {
         let weights = self.ladder.get(rung);
         let sc = &mut self.sc;
-        for body in &self.layout.bodies {
+        for (i, body) in self.layout.bodies.iter().enumerate() {
+            if !(self.moving[i] || sc.loaded[i]) {
+                // At rest and under no force: at rest at the end (both buffers hold zeros).
+                continue;
+            }
+            self.moving[i] = true;
             let (g, k) = (
                 body.group..body.group + body.groups,
                 body.kind..body.kind + body.groups,
@@ -940,8 +998,10 @@ impl GraphModalIntegrator {
 }
 
 impl Scratch {
-    fn new(groups: usize, contacts: usize) -> Self {
+    fn new(groups: usize, contacts: usize, bodies: usize) -> Self {
         Scratch {
+            loaded: vec![false; bodies],
+            unforced: vec![true; bodies],
             free: vec![[V::ZERO; 3]; groups],
             forced: vec![[V::ZERO; 3]; groups],
             modal_force: vec![[V::ZERO; 4]; groups],
