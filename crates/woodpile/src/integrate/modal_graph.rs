@@ -258,6 +258,18 @@ impl Layout {
         }
     }
 
+    /// Per body: whether any of its grouped `values` is not zero.
+    fn nonzero_bodies(&self, values: &[&[V]]) -> Vec<bool> {
+        let nonzero = |g: &V| g.0.iter().any(|&x| x != 0.0);
+        self.bodies
+            .iter()
+            .map(|b| {
+                let groups = b.group..b.group + b.groups;
+                values.iter().any(|v| v[groups.clone()].iter().any(nonzero))
+            })
+            .collect()
+    }
+
     /// Grouped values back into the state's layout.
     #[inline(always)]
     fn scatter(&self, groups: &[V], x: &mut [f64]) {
@@ -493,21 +505,10 @@ impl GraphModalIntegrator {
             grouped(&y[q + 3..2 * q + 3]),
             grouped(&static_force),
         );
-        let any_in = |values: &[V], b: &Body| {
-            values[b.group..b.group + b.groups]
-                .iter()
-                .any(|g| g.0.iter().any(|&x| x != 0.0))
-        };
-        let moving = layout
-            .bodies
-            .iter()
-            .map(|b| any_in(&x, b) || any_in(&v, b))
-            .collect();
-        let static_loaded = layout
-            .bodies
-            .iter()
-            .map(|b| any_in(&static_groups, b))
-            .collect();
+        let (moving, static_loaded) = (
+            layout.nonzero_bodies(&[&x, &v]),
+            layout.nonzero_bodies(&[&static_groups]),
+        );
         GraphModalIntegrator {
             frequencies,
             frequency_index,
@@ -697,8 +698,8 @@ impl GraphModalIntegrator {
             for c in 0..self.force.len() {
                 let beta = self.ode.beta[c];
                 let forced = self.layout.overlap3(c, &self.sc.forced, &self.sc.loaded);
-                for j in 0..3 {
-                    let d = self.sc.free_overlap[c][j] + forced[j];
+                for (j, (&free, forced)) in self.sc.free_overlap[c].iter().zip(forced).enumerate() {
+                    let d = free + forced;
                     if c < loads {
                         // A load point's force is prescribed; its overlap is minus its deflection.
                         self.sc.node_overlap[c][j + 1] = d;
