@@ -10,6 +10,12 @@
 //! and to its force; its norm is the largest over those, not their mean, so that one active
 //! contact among hundreds at rest is held to the tolerance. A step in which a contact opens or closes is
 //! retaken to end there; samples inside a step are the exact flow at their time.
+//!
+//! The passes over the modes run four modes per vector ([`Layout`]): each body's modes padded
+//! to whole groups of four with massless modes at rest (zero weights, zero rows), the step's
+//! weights stored per group of each distinct body's modes, a body at rest under no force passed
+//! over, and the step compiled with AVX2 where the CPU has it (no FMA contraction: bit for bit
+//! the portable build's results, claim `simd_step_bit_identical`).
 
 use super::exponential::{
     damped_kernel, kernel, lagrange, nodes, DampedKernel, Kernel, ERROR_POLY,
@@ -415,6 +421,8 @@ pub(crate) struct GraphModalIntegrator {
     /// Where W and D_modes sit in the state (lab physics), and whether any mode is damped.
     lab: Option<usize>,
     damped: bool,
+    /// With damped modes: their energy Σ ½ (q̇² + ω² q²) at the last step's start and now \[J\].
+    modal_energy: [f64; 2],
     /// The load's kinks \[s\], ascending: steps end on them, so that no step's cubic straddles one.
     kinks: Vec<f64>,
     /// Per coordinate: the constant modal force of gravity and a striker's preload \[N/√kg\]
@@ -509,6 +517,7 @@ impl GraphModalIntegrator {
             layout.nonzero_bodies(&[&x, &v]),
             layout.nonzero_bodies(&[&static_groups]),
         );
+        let modal_energy = [modal_energy_j(&y, &ode.omega2); 2];
         GraphModalIntegrator {
             frequencies,
             frequency_index,
@@ -528,6 +537,7 @@ impl GraphModalIntegrator {
             overlap_coef: vec![[0.0; 4]; n],
             lab: ode.has_lab().then_some(2 * (q + 3)),
             damped: rates.iter().any(|&r| r > 0.0),
+            modal_energy,
             kinks: ode.load_kinks_s(),
             static_force,
             static_groups,
@@ -828,15 +838,16 @@ impl GraphModalIntegrator {
     /// cubics (force a_c, overlap p_c: minus the point's deflection). D_modes, if any mode is
     /// damped: the modes' energy balance, D = −ΔE_modes + Σ_c −∫ a_c p_c' (every mode is
     /// advanced exactly under the cubics, so the energy the modes lost beyond the work the
-    /// contacts' cubics did on them is what their damping took); docs/physics.md §8.
+    /// contacts' cubics did on them is what their damping took); docs/physics.md §8. Returns
+    /// the modes' energy at θ (0 without damped modes).
     fn work_and_dissipation(
         &self,
         theta: f64,
         coef: &[[f64; 4]],
         overlap_coef: &[[f64; 4]],
         out: &mut [f64],
-    ) {
-        let Some(i) = self.lab else { return };
+    ) -> f64 {
+        let Some(i) = self.lab else { return 0.0 };
         let loads = self.ode.load_contacts();
         let (mut w_loads, mut w_all) = (0.0, 0.0);
         for (c, (a, p)) in coef.iter().zip(overlap_coef).enumerate() {
@@ -857,13 +868,13 @@ impl GraphModalIntegrator {
             .map(|(f, (q1, q0))| f * (q1 - q0))
             .sum();
         out[i] = self.y_prev[i] + w_loads + w_static;
-        out[i + 1] = if self.damped {
-            let e0 = modal_energy_j(&self.y_prev, &self.ode.omega2);
-            let e1 = modal_energy_j(out, &self.ode.omega2);
-            self.y_prev[i + 1] - (e1 - e0) + w_all + w_static
-        } else {
-            self.y_prev[i + 1]
-        };
+        if !self.damped {
+            out[i + 1] = self.y_prev[i + 1];
+            return 0.0;
+        }
+        let e1 = modal_energy_j(out, &self.ode.omega2);
+        out[i + 1] = self.y_prev[i + 1] - (e1 - self.modal_energy[0]) + w_all + w_static;
+        e1
     }
 
     /// The supports' impulses J and their integrals ∫J dt at θ of a step of size h from `from`
@@ -947,7 +958,9 @@ impl ExactStepper for GraphModalIntegrator {
                     *pn = (0..4).map(|j| l[j] * d[j]).sum();
                 }
             }
-            self.work_and_dissipation(1.0, &self.sc.coef, &self.overlap_coef, &mut y);
+            self.modal_energy[0] = self.modal_energy[1];
+            self.modal_energy[1] =
+                self.work_and_dissipation(1.0, &self.sc.coef, &self.overlap_coef, &mut y);
         }
         self.y = y;
         for c in 0..self.force.len() {
