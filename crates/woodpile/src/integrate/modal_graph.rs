@@ -455,8 +455,8 @@ struct Scratch {
     /// Per group: the positions and velocities at the step's end.
     x1: Vec<V>,
     v1: Vec<V>,
-    /// Per body: whether a force acts on it (its modal force is not all zero), and whether its
-    /// forced response is all zero.
+    /// Per body: whether a force acts on it (its modal force is more than the static force; all
+    /// true before the first pass), and whether its forced response is all zero.
     loaded: Vec<bool>,
     unforced: Vec<bool>,
     /// Per contact and node 1..3: the free overlap.
@@ -643,8 +643,15 @@ impl GraphModalIntegrator {
     fn cubics(&mut self) {
         let layout = &self.layout;
         let sc = &mut self.sc;
-        for (b, &f) in sc.modal_force.iter_mut().zip(&self.static_groups) {
-            *b = [f, V::ZERO, V::ZERO, V::ZERO];
+        // Back to the static force where a force acted in the last pass (elsewhere it is there).
+        for (body, _) in layout.bodies.iter().zip(&sc.loaded).filter(|b| *b.1) {
+            let g = body.group..body.group + body.groups;
+            for (b, &f) in sc.modal_force[g.clone()]
+                .iter_mut()
+                .zip(&self.static_groups[g])
+            {
+                *b = [f, V::ZERO, V::ZERO, V::ZERO];
+            }
         }
         sc.loaded.copy_from_slice(&self.static_loaded);
         for (c, (a, f)) in sc.coef.iter_mut().zip(&sc.node_force).enumerate() {
@@ -1014,7 +1021,7 @@ impl GraphModalIntegrator {
 impl Scratch {
     fn new(groups: usize, contacts: usize, bodies: usize) -> Self {
         Scratch {
-            loaded: vec![false; bodies],
+            loaded: vec![true; bodies],
             unforced: vec![true; bodies],
             free: vec![[V::ZERO; 3]; groups],
             forced: vec![[V::ZERO; 3]; groups],
