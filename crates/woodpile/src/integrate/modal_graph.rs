@@ -10,6 +10,12 @@
 //! and to its force; its norm is the largest over those, not their mean, so that one active
 //! contact among hundreds at rest is held to the tolerance. A step in which a contact opens or closes is
 //! retaken to end there; samples inside a step are the exact flow at their time.
+//!
+//! The passes over the modes run four modes per vector ([`Layout`]): each body's modes padded
+//! to whole groups of four with massless modes at rest (zero weights, zero rows), the step's
+//! weights stored per group of each distinct body's modes, a body at rest under no force passed
+//! over, and the step compiled with AVX2 where the CPU has it (no FMA contraction: bit for bit
+//! the portable build's results, claim `simd_step_bit_identical`).
 
 use super::exponential::{
     damped_kernel, kernel, lagrange, nodes, DampedKernel, Kernel, ERROR_POLY,
@@ -22,6 +28,10 @@ use super::{IntegratorStats, StepControl};
 use crate::error::Result;
 use crate::model::ContactLaw;
 use crate::ode::LatticeOde;
+use crate::real::{Lane, Real};
+
+/// Four modes at once, as [`Lane`] values (the form that runs in vectors).
+type V = Lane<4>;
 
 /// The longest step, as a fraction of the striker's Hertz contact time
 /// ([`LatticeOde::striker_contact_time_s`]). The exact flow would let a step grow without bound
@@ -92,6 +102,235 @@ impl FrequencyWeights {
     }
 }
 
+/// [`FrequencyWeights`] of a group of four modes (a padding mode's all zero), as [`Lane`]
+/// values.
+#[derive(Debug, Clone, Copy, Default)]
+struct WeightGroup {
+    cos: [V; 3],
+    hsinc: [V; 3],
+    pos: [[V; 4]; 3],
+    vel_of_pos: V,
+    vel_of_vel: V,
+    vel: [V; 4],
+    err_pos: V,
+    err_vel: V,
+}
+
+impl WeightGroup {
+    /// The weights of step h for the modes (frequency \[rad/s\], damping rate 2γ \[1/s\]) of a
+    /// group; None: padding.
+    fn new(h: f64, modes: &[Option<(f64, f64)>; 4]) -> Self {
+        let mut g = WeightGroup::default();
+        for (l, mode) in modes.iter().enumerate() {
+            let Some((omega, rate)) = *mode else { continue };
+            let w = FrequencyWeights::new(h, omega, rate);
+            for j in 0..3 {
+                g.cos[j].0[l] = w.cos[j];
+                g.hsinc[j].0[l] = w.hsinc[j];
+                for n in 0..4 {
+                    g.pos[j][n].0[l] = w.pos[j][n];
+                }
+            }
+            for n in 0..4 {
+                g.vel[n].0[l] = w.vel[n];
+            }
+            g.vel_of_pos.0[l] = w.vel_of_pos;
+            g.vel_of_vel.0[l] = w.vel_of_vel;
+            g.err_pos.0[l] = w.err_pos;
+            g.err_vel.0[l] = w.err_vel;
+        }
+        g
+    }
+}
+
+/// One body's coordinates: where they sit in the state, in the groups of four of the passes
+/// over the modes (its own, padded to whole groups) and in its kind's weights (bodies with
+/// equal modes share theirs).
+#[derive(Debug, Clone)]
+struct Body {
+    state: std::ops::Range<usize>,
+    group: usize,
+    kind: usize,
+    groups: usize,
+}
+
+/// One side of a contact in groups of four: its body (index into [`Layout::bodies`]), the
+/// body's first group and first weight group, its row's first group in [`Layout::rows`], and the
+/// number of groups (0: a load's empty side).
+#[derive(Debug, Clone, Copy, Default)]
+struct GroupedSide {
+    body: usize,
+    group: usize,
+    kind: usize,
+    row: usize,
+    groups: usize,
+}
+
+/// The lattice's coordinates in groups of four: each body's modes padded to whole groups with
+/// massless modes at rest (zero weights, zero rows), so that the passes over the modes run four
+/// modes per vector with no remainder.
+#[derive(Debug, Clone, Default)]
+struct Layout {
+    bodies: Vec<Body>,
+    /// Per distinct body: its modes' (frequency, damping rate), padded.
+    kind_modes: Vec<[Option<(f64, f64)>; 4]>,
+    /// Per contact: its sides (a missing side below: no groups).
+    above: Vec<GroupedSide>,
+    below: Vec<GroupedSide>,
+    /// Every side's row, padded to whole groups.
+    rows: Vec<V>,
+    /// Number of groups.
+    groups: usize,
+}
+
+impl Layout {
+    fn new(ode: &LatticeOde, rates: &[f64]) -> Self {
+        let mut me = Layout::default();
+        let mut kinds: Vec<(std::ops::Range<usize>, usize)> = Vec::new();
+        for state in ode.body_ranges() {
+            let same = |r: &std::ops::Range<usize>| {
+                ode.omega2[r.clone()] == ode.omega2[state.clone()]
+                    && rates[r.clone()] == rates[state.clone()]
+            };
+            let kind = match kinds.iter().find(|(r, _)| same(r)) {
+                Some(&(_, k)) => k,
+                None => {
+                    let k = me.kind_modes.len();
+                    for start in state.clone().step_by(4) {
+                        let mut g = [None; 4];
+                        for (l, m) in (start..state.end.min(start + 4)).enumerate() {
+                            g[l] = Some((ode.omega2[m].sqrt(), rates[m]));
+                        }
+                        me.kind_modes.push(g);
+                    }
+                    kinds.push((state.clone(), k));
+                    k
+                }
+            };
+            let groups = state.len().div_ceil(4);
+            me.bodies.push(Body {
+                state,
+                group: me.groups,
+                kind,
+                groups,
+            });
+            me.groups += groups;
+        }
+        for c in 0..ode.beta.len() {
+            let above = me.side(ode, Some(ode.above[c]));
+            let below = me.side(ode, ode.below[c]);
+            me.above.push(above);
+            me.below.push(below);
+        }
+        me
+    }
+
+    /// A contact's side in groups; its row appended to [`Layout::rows`].
+    fn side(&mut self, ode: &LatticeOde, side: Option<crate::ode::Side>) -> GroupedSide {
+        let Some(side) = side.filter(|s| s.len > 0) else {
+            return GroupedSide::default();
+        };
+        let index = self
+            .bodies
+            .iter()
+            .position(|b| b.state == (side.offset..side.offset + side.len))
+            .expect("a contact's side spans its body's coordinates");
+        let body = &self.bodies[index];
+        let row = self.rows.len();
+        for chunk in ode.rows[side.row..side.row + side.len].chunks(4) {
+            let mut r = V::ZERO;
+            r.0[..chunk.len()].copy_from_slice(chunk);
+            self.rows.push(r);
+        }
+        GroupedSide {
+            body: index,
+            group: body.group,
+            kind: body.kind,
+            row,
+            groups: body.groups,
+        }
+    }
+
+    /// The values of coordinates `x` (the state's layout) in groups.
+    fn gather(&self, x: &[f64], out: &mut [V]) {
+        for b in &self.bodies {
+            for (g, chunk) in out[b.group..b.group + b.groups]
+                .iter_mut()
+                .zip(x[b.state.clone()].chunks(4))
+            {
+                *g = V::ZERO;
+                g.0[..chunk.len()].copy_from_slice(chunk);
+            }
+        }
+    }
+
+    /// Per body: whether any of its grouped `values` is not zero.
+    fn nonzero_bodies(&self, values: &[&[V]]) -> Vec<bool> {
+        let nonzero = |g: &V| g.0.iter().any(|&x| x != 0.0);
+        self.bodies
+            .iter()
+            .map(|b| {
+                let groups = b.group..b.group + b.groups;
+                values.iter().any(|v| v[groups.clone()].iter().any(nonzero))
+            })
+            .collect()
+    }
+
+    /// Grouped values back into the state's layout.
+    #[inline(always)]
+    fn scatter(&self, groups: &[V], x: &mut [f64]) {
+        for b in &self.bodies {
+            for (chunk, g) in x[b.state.clone()]
+                .chunks_mut(4)
+                .zip(&groups[b.group..b.group + b.groups])
+            {
+                let n = chunk.len();
+                chunk.copy_from_slice(&g.0[..n]);
+            }
+        }
+    }
+
+    /// Σ r x at the three nodes over a side's groups (`values`: per group, the three nodes);
+    /// zero without a look where the side's body is not `active` (its values all zero).
+    #[inline(always)]
+    fn dot3(&self, side: GroupedSide, values: &[[V; 3]], active: &[bool]) -> [f64; 3] {
+        if side.groups == 0 || !active[side.body] {
+            return [0.0; 3];
+        }
+        let rows = &self.rows[side.row..side.row + side.groups];
+        let values = &values[side.group..side.group + side.groups];
+        let (mut a0, mut a1, mut a2) = (V::ZERO, V::ZERO, V::ZERO);
+        for (&r, &[x0, x1, x2]) in rows.iter().zip(values) {
+            a0 = a0 + r * x0;
+            a1 = a1 + r * x1;
+            a2 = a2 + r * x2;
+        }
+        // The lanes summed out of sight of the loop: otherwise the compiler regroups the loop's
+        // lanes for the final sums, two per vector.
+        let [a0, a1, a2] = std::hint::black_box([a0, a1, a2]);
+        [sum_lanes(a0), sum_lanes(a1), sum_lanes(a2)]
+    }
+
+    /// A contact's overlap at the three nodes for grouped values (above minus below; `active`
+    /// as [`Layout::dot3`]).
+    #[inline(always)]
+    fn overlap3(&self, c: usize, values: &[[V; 3]], active: &[bool]) -> [f64; 3] {
+        let above = self.dot3(self.above[c], values, active);
+        let below = self.dot3(self.below[c], values, active);
+        [
+            above[0] - below[0],
+            above[1] - below[1],
+            above[2] - below[2],
+        ]
+    }
+}
+
+/// The sum of a group's four lanes.
+#[inline(always)]
+fn sum_lanes(s: V) -> f64 {
+    (s.0[0] + s.0[2]) + (s.0[1] + s.0[3])
+}
+
 /// One mode's flow at θ of a step (from [`kernel`] or [`damped_kernel`]): position from
 /// position and from h × velocity, h × velocity from position and from h × velocity, and the
 /// responses S_n, C_n.
@@ -153,9 +392,11 @@ impl PointError {
 pub(crate) struct GraphModalIntegrator {
     ode: LatticeOde,
     /// The distinct (frequency \[rad/s\], damping rate 2γ \[1/s\]) pairs and each coordinate's
-    /// index into them.
+    /// index into them (for the samples inside a step).
     frequencies: Vec<(f64, f64)>,
     frequency_index: Vec<usize>,
+    /// The coordinates in groups of four.
+    layout: Layout,
     rtol: f64,
     atol: f64,
     t: f64,
@@ -164,20 +405,30 @@ pub(crate) struct GraphModalIntegrator {
     /// The state in [`LatticeOde`]'s layout, now and at the last step's start.
     y: Vec<f64>,
     y_prev: Vec<f64>,
+    /// The modal positions and velocities now, in groups.
+    x: Vec<V>,
+    v: Vec<V>,
+    /// Per body: whether it has moved (a body at rest, under no force, stays at rest and is
+    /// passed over), and whether a static force acts on it.
+    moving: Vec<bool>,
+    static_loaded: Vec<bool>,
     /// Per contact: its force's cubic over the last step (monomials in σ) \[N\].
     coef: Vec<[f64; 4]>,
-    /// Per coordinate: the cubic of its modal force over the last step.
-    modal_force: Vec<[f64; 4]>,
+    /// Per group: the cubic of its modal force over the last step.
+    modal_force: Vec<[V; 4]>,
     /// Per contact: its overlap's cubic through the nodes of the last step (monomials in σ) \[m\].
     overlap_coef: Vec<[f64; 4]>,
     /// Where W and D_modes sit in the state (lab physics), and whether any mode is damped.
     lab: Option<usize>,
     damped: bool,
+    /// With damped modes: their energy Σ ½ (q̇² + ω² q²) at the last step's start and now \[J\].
+    modal_energy: [f64; 2],
     /// The load's kinks \[s\], ascending: steps end on them, so that no step's cubic straddles one.
     kinks: Vec<f64>,
     /// Per coordinate: the constant modal force of gravity and a striker's preload \[N/√kg\]
-    /// (zeros without).
+    /// (zeros without), and the same in groups.
     static_force: Vec<f64>,
+    static_groups: Vec<V>,
     /// Per contact: force and overlap now, and the largest overlap at any node so far \[m\].
     force: Vec<f64>,
     largest_overlap: Vec<f64>,
@@ -185,7 +436,8 @@ pub(crate) struct GraphModalIntegrator {
     control: StepControl,
     /// The longest step \[s\]: a quarter of the striker's Hertz contact time.
     max_step_s: f64,
-    ladder: Ladder<Vec<FrequencyWeights>>,
+    /// Per step size: the weights of every group of the distinct bodies' modes.
+    ladder: Ladder<Vec<WeightGroup>>,
     lagrange: [[f64; 4]; 4],
     stats: IntegratorStats,
     sc: Scratch,
@@ -194,12 +446,19 @@ pub(crate) struct GraphModalIntegrator {
 /// Buffers of an attempt.
 #[derive(Debug, Clone, Default)]
 struct Scratch {
-    /// Per node σ = c₁, c₂, 1 and coordinate: the free (force-less) motion.
-    free: [Vec<f64>; 3],
-    /// Per node and coordinate: the response to the modal forces' cubics.
-    forced: [Vec<f64>; 3],
-    /// Per coordinate: the cubic of its modal force.
-    modal_force: Vec<[f64; 4]>,
+    /// Per group and node σ = c₁, c₂, 1: the free (force-less) motion.
+    free: Vec<[V; 3]>,
+    /// Per group and node: the response to the modal forces' cubics.
+    forced: Vec<[V; 3]>,
+    /// Per group: the cubic of its modal force (monomials in σ).
+    modal_force: Vec<[V; 4]>,
+    /// Per group: the positions and velocities at the step's end.
+    x1: Vec<V>,
+    v1: Vec<V>,
+    /// Per body: whether a force acts on it (its modal force is more than the static force; all
+    /// true before the first pass), and whether its forced response is all zero.
+    loaded: Vec<bool>,
+    unforced: Vec<bool>,
     /// Per contact and node 1..3: the free overlap.
     free_overlap: Vec<[f64; 3]>,
     /// Per contact and node 0..3: force and overlap.
@@ -232,6 +491,7 @@ impl GraphModalIntegrator {
                 });
             frequency_index.push(index);
         }
+        let layout = Layout::new(ode, &rates);
         let n = ode.contacts();
         let y = ode.initial_state();
         let mut ode = ode.clone();
@@ -239,10 +499,30 @@ impl GraphModalIntegrator {
         for c in 0..ode.load_contacts() {
             ode.force_n[c] = ode.load_per_point_n(0.0);
         }
-        let per_node = || [vec![0.0; q], vec![0.0; q], vec![0.0; q]];
+        let static_force = ode
+            .static_modal_forces()
+            .map_or_else(|| vec![0.0; q], |f| f.to_vec());
+        let groups = layout.groups;
+        let grouped = |values: &[f64]| {
+            let mut out = vec![V::ZERO; groups];
+            layout.gather(values, &mut out);
+            out
+        };
+        let (x, v, static_groups) = (
+            grouped(&y[..q]),
+            grouped(&y[q + 3..2 * q + 3]),
+            grouped(&static_force),
+        );
+        let (moving, static_loaded) = (
+            layout.nonzero_bodies(&[&x, &v]),
+            layout.nonzero_bodies(&[&static_groups]),
+        );
+        let modal_energy = [modal_energy_j(&y, &ode.omega2); 2];
         GraphModalIntegrator {
             frequencies,
             frequency_index,
+            moving,
+            static_loaded,
             rtol,
             atol,
             t: 0.0,
@@ -250,15 +530,17 @@ impl GraphModalIntegrator {
             h_last: 0.0,
             y_prev: y.clone(),
             y,
+            x,
+            v,
             coef: vec![[0.0; 4]; n],
-            modal_force: vec![[0.0; 4]; q],
+            modal_force: vec![[V::ZERO; 4]; groups],
             overlap_coef: vec![[0.0; 4]; n],
             lab: ode.has_lab().then_some(2 * (q + 3)),
             damped: rates.iter().any(|&r| r > 0.0),
+            modal_energy,
             kinks: ode.load_kinks_s(),
-            static_force: ode
-                .static_modal_forces()
-                .map_or_else(|| vec![0.0; q], |f| f.to_vec()),
+            static_force,
+            static_groups,
             force: ode.force_n.clone(),
             largest_overlap: ode.overlap_m.iter().map(|d| d.max(0.0)).collect(),
             overlap: ode.overlap_m.clone(),
@@ -270,15 +552,8 @@ impl GraphModalIntegrator {
                 rhs_evaluations: 1,
                 ..IntegratorStats::default()
             },
-            sc: Scratch {
-                free: per_node(),
-                forced: per_node(),
-                modal_force: vec![[0.0; 4]; q],
-                free_overlap: vec![[0.0; 3]; n],
-                node_force: vec![[0.0; 4]; n],
-                node_overlap: vec![[0.0; 4]; n],
-                coef: vec![[0.0; 4]; n],
-            },
+            sc: Scratch::new(groups, n, layout.bodies.len()),
+            layout,
             ode,
         }
     }
@@ -297,39 +572,54 @@ impl GraphModalIntegrator {
     }
 
     /// One accepted step toward t_end (or the load's next kink before it); returns its size.
+    /// Run in the AVX2 build where the CPU has it, as [`super::Integrator::step`] (the passes
+    /// over the modes then run four modes per vector; no FMA contraction, so the results are
+    /// bit for bit the portable ones).
+    #[allow(unsafe_code)]
     pub fn step(&mut self, t_end: f64) -> Result<f64> {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2 (checked on the line above).
+            return unsafe { self.step_avx2(t_end) };
+        }
+        self.step_portable(t_end)
+    }
+
+    /// The same step compiled with 256-bit vectors.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[allow(unsafe_code)]
+    unsafe fn step_avx2(&mut self, t_end: f64) -> Result<f64> {
+        self.step_portable(t_end)
+    }
+
+    /// The same step without run-time SIMD dispatch: the reference the AVX2 build is checked
+    /// against.
+    #[inline(always)]
+    pub fn step_portable(&mut self, t_end: f64) -> Result<f64> {
         let t = self.t;
         let kink = self.kinks.iter().find(|&&k| k - t > 1e-12 * k).copied();
         adaptive_step(self, kink.map_or(t_end, |k| k.min(t_end)))
     }
 
-    /// The overlap of contact c for coordinates `x` \[m\].
-    fn overlap_of(&self, c: usize, x: &[f64]) -> f64 {
-        let o = &self.ode;
-        let mut d = o.above[c].dot(&o.rows, x);
-        if let Some(b) = o.below[c] {
-            d -= b.dot(&o.rows, x);
-        }
-        d
-    }
-
     /// The attempt's free motion at the nodes and the first guess of the node forces (the last
     /// step's cubics continued; constant at the start).
-    fn start_attempt(&mut self, h: f64, weights: &[FrequencyWeights]) {
-        let q = self.frequency_index.len();
+    #[inline(always)]
+    fn start_attempt(&mut self, h: f64, weights: &[WeightGroup]) {
         let c_nodes = nodes();
-        let (x, v) = (&self.y[..q], &self.y[q + 3..2 * q + 3]);
-        for j in 0..3 {
-            for m in 0..q {
-                let w = &weights[self.frequency_index[m]];
-                self.sc.free[j][m] = w.cos[j] * x[m] + w.hsinc[j] * v[m];
+        let sc = &mut self.sc;
+        for (b, _) in self.layout.bodies.iter().zip(&self.moving).filter(|m| *m.1) {
+            let (g, k) = (b.group..b.group + b.groups, b.kind..b.kind + b.groups);
+            let state = self.x[g.clone()].iter().zip(&self.v[g.clone()]);
+            for ((free, w), (&x, &v)) in sc.free[g].iter_mut().zip(&weights[k]).zip(state) {
+                let at = |j: usize| w.cos[j] * x + w.hsinc[j] * v;
+                *free = [at(0), at(1), at(2)];
             }
         }
         for c in 0..self.force.len() {
-            let free = [0, 1, 2].map(|j| self.overlap_of(c, &self.sc.free[j]));
-            self.sc.free_overlap[c] = free;
-            self.sc.node_overlap[c][0] = self.overlap[c];
-            let f = &mut self.sc.node_force[c];
+            sc.free_overlap[c] = self.layout.overlap3(c, &sc.free, &self.moving);
+            sc.node_overlap[c][0] = self.overlap[c];
+            let f = &mut sc.node_force[c];
             f[0] = self.force[c];
             for j in 1..4 {
                 f[j] = if self.h_last > 0.0 {
@@ -342,19 +632,28 @@ impl GraphModalIntegrator {
             }
         }
         for c in 0..self.ode.load_contacts() {
-            for (f, s) in self.sc.node_force[c].iter_mut().zip(c_nodes).skip(1) {
+            for (f, s) in sc.node_force[c].iter_mut().zip(c_nodes).skip(1) {
                 *f = self.ode.load_per_point_n(self.t + s * h);
             }
         }
     }
 
-    /// Each contact's cubic from its node forces, and each coordinate's modal force cubic.
+    /// Each contact's cubic from its node forces, and each group's modal force cubic.
+    #[inline(always)]
     fn cubics(&mut self) {
-        let o = &self.ode;
+        let layout = &self.layout;
         let sc = &mut self.sc;
-        for (b, &f) in sc.modal_force.iter_mut().zip(&self.static_force) {
-            *b = [f, 0.0, 0.0, 0.0];
+        // Back to the static force where a force acted in the last pass (elsewhere it is there).
+        for (body, _) in layout.bodies.iter().zip(&sc.loaded).filter(|b| *b.1) {
+            let g = body.group..body.group + body.groups;
+            for (b, &f) in sc.modal_force[g.clone()]
+                .iter_mut()
+                .zip(&self.static_groups[g])
+            {
+                *b = [f, V::ZERO, V::ZERO, V::ZERO];
+            }
         }
+        sc.loaded.copy_from_slice(&self.static_loaded);
         for (c, (a, f)) in sc.coef.iter_mut().zip(&sc.node_force).enumerate() {
             for (an, l) in a.iter_mut().zip(&self.lagrange) {
                 *an = (0..4).map(|j| l[j] * f[j]).sum();
@@ -362,41 +661,62 @@ impl GraphModalIntegrator {
             if f.iter().all(|&x| x == 0.0) {
                 continue;
             }
-            let mut add = |side: crate::ode::Side, sign: f64| {
-                let rows = &o.rows[side.row..side.row + side.len];
-                let b = &mut sc.modal_force[side.offset..side.offset + side.len];
-                for (bm, r) in b.iter_mut().zip(rows) {
-                    for n in 0..4 {
-                        bm[n] += sign * r * a[n];
+            // −r a on the body above, +r a below ((±r) a rounds as r (±a)).
+            for (side, sign) in [(layout.above[c], -1.0), (layout.below[c], 1.0)] {
+                if side.groups == 0 {
+                    continue;
+                }
+                sc.loaded[side.body] = true;
+                let rows = &layout.rows[side.row..side.row + side.groups];
+                let b = &mut sc.modal_force[side.group..side.group + side.groups];
+                let s = |n: usize| V::splat(sign * a[n]);
+                let signed = [s(0), s(1), s(2), s(3)];
+                for (bm, &r) in b.iter_mut().zip(rows) {
+                    for (bn, &an) in bm.iter_mut().zip(&signed) {
+                        *bn = *bn + r * an;
                     }
                 }
-            };
-            add(o.above[c], -1.0);
-            if let Some(below) = o.below[c] {
-                add(below, 1.0);
+            }
+        }
+    }
+
+    /// Each group's response at the nodes to its modal force's cubic.
+    #[inline(always)]
+    fn forced(&mut self, weights: &[WeightGroup]) {
+        let sc = &mut self.sc;
+        for (i, b) in self.layout.bodies.iter().enumerate() {
+            let (g, k) = (b.group..b.group + b.groups, b.kind..b.kind + b.groups);
+            if !sc.loaded[i] {
+                // No force: no response (written once).
+                if !sc.unforced[i] {
+                    sc.forced[g].fill([V::ZERO; 3]);
+                    sc.unforced[i] = true;
+                }
+                continue;
+            }
+            sc.unforced[i] = false;
+            let forced = sc.forced[g.clone()].iter_mut().zip(&sc.modal_force[g]);
+            for ((x, b), w) in forced.zip(&weights[k]) {
+                let at = |p: &[V; 4]| p[0] * b[0] + p[1] * b[1] + p[2] * b[2] + p[3] * b[3];
+                *x = [at(&w.pos[0]), at(&w.pos[1]), at(&w.pos[2])];
             }
         }
     }
 
     /// The fixed-point iteration of the collocation conditions: node forces → cubics → node
     /// overlaps → node forces. False when it did not converge.
-    fn solve_nodes(&mut self, weights: &[FrequencyWeights]) -> bool {
-        let q = self.frequency_index.len();
+    #[inline(always)]
+    fn solve_nodes(&mut self, weights: &[WeightGroup]) -> bool {
+        let loads = self.ode.load_contacts();
         for _ in 0..MAX_ITERATIONS {
             self.cubics();
-            for j in 0..3 {
-                for m in 0..q {
-                    let w = &weights[self.frequency_index[m]].pos[j];
-                    let b = &self.sc.modal_force[m];
-                    self.sc.forced[j][m] = w[0] * b[0] + w[1] * b[1] + w[2] * b[2] + w[3] * b[3];
-                }
-            }
+            self.forced(weights);
             let (mut change, mut scale) = (0.0_f64, 0.0_f64);
-            let loads = self.ode.load_contacts();
             for c in 0..self.force.len() {
                 let beta = self.ode.beta[c];
-                for j in 0..3 {
-                    let d = self.sc.free_overlap[c][j] + self.overlap_of(c, &self.sc.forced[j]);
+                let forced = self.layout.overlap3(c, &self.sc.forced, &self.sc.loaded);
+                for (j, (&free, forced)) in self.sc.free_overlap[c].iter().zip(forced).enumerate() {
+                    let d = free + forced;
                     if c < loads {
                         // A load point's force is prescribed; its overlap is minus its deflection.
                         self.sc.node_overlap[c][j + 1] = d;
@@ -427,19 +747,19 @@ impl GraphModalIntegrator {
     /// its start); and on the contact's overlap, against atol + rtol δ_max / 1.5 with δ_max its
     /// largest overlap so far (a point can move far more than a contact deep in the lattice is
     /// compressed, and a peak force's relative error is 1.5 times its overlap's).
-    fn error_norm(&self, weights: &[FrequencyWeights]) -> f64 {
-        let o = &self.ode;
+    #[inline(always)]
+    fn error_norm(&self, weights: &[WeightGroup]) -> f64 {
         let (mut worst_point, mut worst_force) = (0.0_f64, 0.0_f64);
         for c in 0..self.force.len() {
             let f = &self.sc.node_force[c];
             if f.iter().all(|&f| f == 0.0) {
                 continue;
             }
-            let above = self.point_error(o.above[c], weights);
+            let above = self.point_error(self.layout.above[c], weights);
             worst_point = worst_point.max(above.norm2(self.rtol, self.atol));
             let mut overlap_error = above.position;
-            if let Some(b) = o.below[c] {
-                let below = self.point_error(b, weights);
+            if self.ode.below[c].is_some() {
+                let below = self.point_error(self.layout.below[c], weights);
                 worst_point = worst_point.max(below.norm2(self.rtol, self.atol));
                 overlap_error -= below.position;
             }
@@ -459,32 +779,36 @@ impl GraphModalIntegrator {
 
     /// The σ³ part's effect on a point's position and velocity, and the point's position at the
     /// step's end and velocity at its start.
-    fn point_error(&self, side: crate::ode::Side, weights: &[FrequencyWeights]) -> PointError {
-        let q = self.frequency_index.len();
-        let v = &self.y[q + 3..2 * q + 3];
-        let mut e = PointError::default();
-        for k in 0..side.len {
-            let (m, r) = (side.offset + k, self.ode.rows[side.row + k]);
-            let w = &weights[self.frequency_index[m]];
-            let b3 = self.sc.modal_force[m][3];
-            e.position += r * w.err_pos * b3;
-            e.velocity += r * w.err_vel * b3;
-            e.x += r * (self.sc.free[2][m] + self.sc.forced[2][m]);
-            e.v += r * v[m];
+    #[inline(always)]
+    fn point_error(&self, side: GroupedSide, weights: &[WeightGroup]) -> PointError {
+        let (g, n) = (side.group, side.groups);
+        let rows = &self.layout.rows[side.row..side.row + n];
+        let w = &weights[side.kind..side.kind + n];
+        let modes = self.sc.modal_force[g..g + n].iter().zip(&self.v[g..g + n]);
+        let nodes = self.sc.free[g..g + n].iter().zip(&self.sc.forced[g..g + n]);
+        let mut acc = [V::ZERO; 4];
+        for ((&r, w), ((b, &v), (free, forced))) in rows.iter().zip(w).zip(modes.zip(nodes)) {
+            acc[0] = acc[0] + r * w.err_pos * b[3];
+            acc[1] = acc[1] + r * w.err_vel * b[3];
+            acc[2] = acc[2] + r * (free[2] + forced[2]);
+            acc[3] = acc[3] + r * v;
         }
-        e
+        // (Summed out of sight of the loop, as in `Layout::dot3`.)
+        let acc = std::hint::black_box(acc);
+        PointError {
+            position: sum_lanes(acc[0]),
+            velocity: sum_lanes(acc[1]),
+            x: sum_lanes(acc[2]),
+            v: sum_lanes(acc[3]),
+        }
     }
 
-    /// The weights of the step h (a rung's, or off the ladder).
-    fn weights(&mut self, h: f64, rung: Option<i64>) -> Vec<FrequencyWeights> {
-        let frequencies = &self.frequencies;
+    /// Makes sure the weights of the step h are at hand (a rung's, or off the ladder).
+    fn weights(&mut self, h: f64, rung: Option<i64>) {
+        let modes = &self.layout.kind_modes;
         self.ladder.ensure(h, rung, || {
-            frequencies
-                .iter()
-                .map(|&(w, rate)| FrequencyWeights::new(h, w, rate))
-                .collect()
+            modes.iter().map(|m| WeightGroup::new(h, m)).collect()
         });
-        self.ladder.get(rung).clone()
     }
 
     /// The state at ts inside the last step (the exact flow under the step's cubics) into y.
@@ -502,13 +826,15 @@ impl GraphModalIntegrator {
             .collect();
         let q = self.frequency_index.len();
         let (x0, v0) = (&self.y_prev[..q], &self.y_prev[q + 3..2 * q + 3]);
-        for m in 0..q {
-            let k = &kernels[self.frequency_index[m]];
-            let b = &self.modal_force[m];
-            let sb: f64 = (0..4).map(|n| k.s[n] * b[n]).sum();
-            let cb: f64 = (0..4).map(|n| k.c[n] * b[n]).sum();
-            out[m] = k.pp * x0[m] + h * k.pv * v0[m] + h * h * sb;
-            out[q + 3 + m] = k.vp / h * x0[m] + k.vv * v0[m] + h * cb;
+        for body in &self.layout.bodies {
+            for (i, m) in body.state.clone().enumerate() {
+                let k = &kernels[self.frequency_index[m]];
+                let b = self.modal_force[body.group + i / 4].map(|b| b.0[i % 4]);
+                let sb: f64 = (0..4).map(|n| k.s[n] * b[n]).sum();
+                let cb: f64 = (0..4).map(|n| k.c[n] * b[n]).sum();
+                out[m] = k.pp * x0[m] + h * k.pv * v0[m] + h * h * sb;
+                out[q + 3 + m] = k.vp / h * x0[m] + k.vv * v0[m] + h * cb;
+            }
         }
         self.supports_flow(theta, h, &self.y_prev, out);
         self.work_and_dissipation(theta, &self.coef, &self.overlap_coef, out);
@@ -519,15 +845,16 @@ impl GraphModalIntegrator {
     /// cubics (force a_c, overlap p_c: minus the point's deflection). D_modes, if any mode is
     /// damped: the modes' energy balance, D = −ΔE_modes + Σ_c −∫ a_c p_c' (every mode is
     /// advanced exactly under the cubics, so the energy the modes lost beyond the work the
-    /// contacts' cubics did on them is what their damping took); docs/physics.md §8.
+    /// contacts' cubics did on them is what their damping took); docs/physics.md §8. Returns
+    /// the modes' energy at θ (0 without damped modes).
     fn work_and_dissipation(
         &self,
         theta: f64,
         coef: &[[f64; 4]],
         overlap_coef: &[[f64; 4]],
         out: &mut [f64],
-    ) {
-        let Some(i) = self.lab else { return };
+    ) -> f64 {
+        let Some(i) = self.lab else { return 0.0 };
         let loads = self.ode.load_contacts();
         let (mut w_loads, mut w_all) = (0.0, 0.0);
         for (c, (a, p)) in coef.iter().zip(overlap_coef).enumerate() {
@@ -548,13 +875,13 @@ impl GraphModalIntegrator {
             .map(|(f, (q1, q0))| f * (q1 - q0))
             .sum();
         out[i] = self.y_prev[i] + w_loads + w_static;
-        out[i + 1] = if self.damped {
-            let e0 = modal_energy_j(&self.y_prev, &self.ode.omega2);
-            let e1 = modal_energy_j(out, &self.ode.omega2);
-            self.y_prev[i + 1] - (e1 - e0) + w_all + w_static
-        } else {
-            self.y_prev[i + 1]
-        };
+        if !self.damped {
+            out[i + 1] = self.y_prev[i + 1];
+            return 0.0;
+        }
+        let e1 = modal_energy_j(out, &self.ode.omega2);
+        out[i + 1] = self.y_prev[i + 1] - (e1 - self.modal_energy[0]) + w_all + w_static;
+        e1
     }
 
     /// The supports' impulses J and their integrals ∫J dt at θ of a step of size h from `from`
@@ -598,14 +925,22 @@ impl ExactStepper for GraphModalIntegrator {
         self.max_step_s
     }
 
+    #[inline(always)]
     fn attempt(&mut self, h: f64, rung: Option<i64>) -> Attempt {
-        let weights = self.weights(h, rung);
-        self.start_attempt(h, &weights);
-        let converged = self.solve_nodes(&weights);
-        let err = match converged.then(|| self.error_norm(&weights)) {
-            Some(e) if e.is_finite() => e,
-            _ => f64::INFINITY,
+        self.weights(h, rung);
+        // The ladder is lent out for the attempt (the weights are read, never copied).
+        let ladder = std::mem::take(&mut self.ladder);
+        let weights = ladder.get(rung);
+        self.start_attempt(h, weights);
+        let converged = self.solve_nodes(weights);
+        // (No closure here: it would compile outside the AVX2 build.)
+        let err = if converged {
+            self.error_norm(weights)
+        } else {
+            f64::INFINITY
         };
+        let err = if err.is_finite() { err } else { f64::INFINITY };
+        self.ladder = ladder;
         let missed = if err <= 1.0 {
             first_crossing(&self.sc.node_overlap, &self.ode.beta, &nodes()).map(|theta| theta * h)
         } else {
@@ -614,27 +949,15 @@ impl ExactStepper for GraphModalIntegrator {
         Attempt { err, missed }
     }
 
+    #[inline(always)]
     fn commit(&mut self, h: f64, rung: Option<i64>) {
         std::mem::swap(&mut self.y, &mut self.y_prev);
+        self.advance_modes(rung);
         let q = self.frequency_index.len();
-        let weights = self.ladder.get(rung);
-        let (x0, v0) = (&self.y_prev[..q], &self.y_prev[q + 3..2 * q + 3]);
-        let (x1, rest) = self.y.split_at_mut(q + 3);
-        let v1 = &mut rest[..q];
-        for m in 0..q {
-            let w = &weights[self.frequency_index[m]];
-            let b = &self.sc.modal_force[m];
-            let p = &w.pos[2];
-            x1[m] = w.cos[2] * x0[m]
-                + w.hsinc[2] * v0[m]
-                + (p[0] * b[0] + p[1] * b[1] + p[2] * b[2] + p[3] * b[3]);
-            v1[m] = w.vel_of_pos * x0[m]
-                + w.vel_of_vel * v0[m]
-                + (w.vel[0] * b[0] + w.vel[1] * b[1] + w.vel[2] * b[2] + w.vel[3] * b[3]);
-        }
-        self.coef.copy_from_slice(&self.sc.coef);
-        self.modal_force.copy_from_slice(&self.sc.modal_force);
         let mut y = std::mem::take(&mut self.y);
+        self.layout.scatter(&self.x, &mut y[..q]);
+        self.layout.scatter(&self.v, &mut y[q + 3..2 * q + 3]);
+        self.coef.copy_from_slice(&self.sc.coef);
         self.supports_flow(1.0, h, &self.y_prev, &mut y);
         if self.lab.is_some() {
             for (p, d) in self.overlap_coef.iter_mut().zip(&self.sc.node_overlap) {
@@ -642,7 +965,9 @@ impl ExactStepper for GraphModalIntegrator {
                     *pn = (0..4).map(|j| l[j] * d[j]).sum();
                 }
             }
-            self.work_and_dissipation(1.0, &self.sc.coef, &self.overlap_coef, &mut y);
+            self.modal_energy[0] = self.modal_energy[1];
+            self.modal_energy[1] =
+                self.work_and_dissipation(1.0, &self.sc.coef, &self.overlap_coef, &mut y);
         }
         self.y = y;
         for c in 0..self.force.len() {
@@ -655,6 +980,83 @@ impl ExactStepper for GraphModalIntegrator {
         self.t_prev = self.t;
         self.t += h;
     }
+}
+
+impl GraphModalIntegrator {
+    /// Every mode over the step just attempted, exactly under its modal force's cubic: the
+    /// groups' positions and velocities into `x`, `v`, the cubics into `modal_force`.
+    #[inline(always)]
+    fn advance_modes(&mut self, rung: Option<i64>) {
+        let weights = self.ladder.get(rung);
+        let sc = &mut self.sc;
+        for (i, body) in self.layout.bodies.iter().enumerate() {
+            if !(self.moving[i] || sc.loaded[i]) {
+                // At rest and under no force: at rest at the end (both buffers hold zeros).
+                continue;
+            }
+            self.moving[i] = true;
+            let (g, k) = (
+                body.group..body.group + body.groups,
+                body.kind..body.kind + body.groups,
+            );
+            let from = self.x[g.clone()].iter().zip(&self.v[g.clone()]);
+            let to = sc.x1[g.clone()].iter_mut().zip(&mut sc.v1[g.clone()]);
+            let modes = weights[k].iter().zip(&sc.modal_force[g]);
+            for ((w, b), ((&x0, &v0), (x1, v1))) in modes.zip(from.zip(to)) {
+                let (p, u) = (&w.pos[2], &w.vel);
+                *x1 = w.cos[2] * x0
+                    + w.hsinc[2] * v0
+                    + (p[0] * b[0] + p[1] * b[1] + p[2] * b[2] + p[3] * b[3]);
+                *v1 = w.vel_of_pos * x0
+                    + w.vel_of_vel * v0
+                    + (u[0] * b[0] + u[1] * b[1] + u[2] * b[2] + u[3] * b[3]);
+            }
+        }
+        std::mem::swap(&mut self.x, &mut sc.x1);
+        std::mem::swap(&mut self.v, &mut sc.v1);
+        self.modal_force.copy_from_slice(&sc.modal_force);
+    }
+}
+
+impl Scratch {
+    fn new(groups: usize, contacts: usize, bodies: usize) -> Self {
+        Scratch {
+            loaded: vec![true; bodies],
+            unforced: vec![true; bodies],
+            free: vec![[V::ZERO; 3]; groups],
+            forced: vec![[V::ZERO; 3]; groups],
+            modal_force: vec![[V::ZERO; 4]; groups],
+            x1: vec![V::ZERO; groups],
+            v1: vec![V::ZERO; groups],
+            free_overlap: vec![[0.0; 3]; contacts],
+            node_force: vec![[0.0; 4]; contacts],
+            node_overlap: vec![[0.0; 4]; contacts],
+            coef: vec![[0.0; 4]; contacts],
+        }
+    }
+}
+
+/// The state (in [`LatticeOde`]'s layout) after `steps` accepted steps of
+/// [`super::Method::ExactModes`] (rtol, atol \[m\]) on the lattice run `ode` of `duration_s`,
+/// stepped with the run-time SIMD dispatch of [`GraphModalIntegrator::step`] or, with
+/// `portable`, without it: what the claim `simd_step_bit_identical` compares bit for bit.
+#[doc(hidden)]
+pub fn exact_modes_lattice_state(
+    ode: &LatticeOde,
+    (rtol, atol): (f64, f64),
+    duration_s: f64,
+    steps: usize,
+    portable: bool,
+) -> Result<Vec<f64>> {
+    let mut stepper = GraphModalIntegrator::new(ode, rtol, atol, duration_s);
+    for _ in 0..steps {
+        if portable {
+            stepper.step_portable(duration_s)?;
+        } else {
+            stepper.step(duration_s)?;
+        }
+    }
+    Ok(stepper.y)
 }
 
 /// −∫₀^θ a(σ) p'(σ) dσ for a force cubic a and an overlap cubic p (monomials in σ) \[J\]: the

@@ -686,6 +686,13 @@ impl LatticeOde {
         self.lab.as_ref().map(|lab| lab.static_modal_force())
     }
 
+    /// Per body (the striker, if any, then the rods): the range of its coordinates.
+    pub(crate) fn body_ranges(&self) -> impl Iterator<Item = std::ops::Range<usize>> + '_ {
+        self.bodies
+            .iter()
+            .map(|&(offset, len, ..)| offset..offset + len)
+    }
+
     /// Damping rate per coordinate, 2 ζ ω_j + 1/τ [1/s] (None without lab physics).
     pub(crate) fn damping_rates(&self) -> Option<&[f64]> {
         self.lab.as_ref().map(|lab| lab.damping_rates())
