@@ -122,6 +122,12 @@ impl Real for f64 {
 #[repr(transparent)]
 pub(crate) struct Lane<const L: usize>(pub(crate) [f64; L]);
 
+impl<const L: usize> Default for Lane<L> {
+    fn default() -> Self {
+        Lane([0.0; L])
+    }
+}
+
 impl<const L: usize> Lane<L> {
     #[inline(always)]
     fn map(self, f: impl Fn(f64) -> f64) -> Self {
