@@ -27,7 +27,7 @@
 //! - M. Hochbruck, A. Ostermann, "Exponential integrators", Acta Numerica 19 (2010) 209–286
 //!   (φ-functions, exponential collocation).
 
-use wide::f64x4;
+use crate::real::{Lane, Real};
 
 /// The Lobatto nodes of the force interpolant, σ = 0, (5 − √5)/10, (5 + √5)/10, 1.
 pub fn nodes() -> [f64; 4] {
@@ -270,14 +270,15 @@ impl StepWeights {
         c: &[[f64; 4]],
         cdot: &[[f64; 4]],
     ) -> [f64; 3] {
-        let mut acc = [V::ZERO; 3];
+        let mut acc = [L4::ZERO; 3];
         for (w, (&x, &v)) in self.nodes[groups].iter().zip(c.iter().zip(cdot)) {
-            let (x, v) = (V::new(x), V::new(v));
+            let (x, v) = (Lane(x), Lane(v));
             for ((acc, &cos), &hsinc) in acc.iter_mut().zip(&w.cos).zip(&w.hsinc) {
-                *acc += V::new(cos) * x + V::new(hsinc) * v;
+                *acc = *acc + (Lane(cos) * x + Lane(hsinc) * v);
             }
         }
-        acc.map(sum4)
+        // Summed out of sight of the loop (else the vectoriser packs it two lanes per register).
+        std::hint::black_box(acc).map(sum_lanes)
     }
 
     /// Advances the modes of one primary (its distinct element's `groups` of four) over the
@@ -292,44 +293,41 @@ impl StepWeights {
         (c, cdot): (&[[f64; 4]], &[[f64; 4]]),
         (c1, cdot1): (&mut [[f64; 4]], &mut [[f64; 4]]),
     ) -> [f64; 4] {
-        let [a0, a1, a2, a3] = a.map(V::splat);
-        let z = V::ZERO;
+        let [a0, a1, a2, a3] = a.map(L4::splat);
+        let z = L4::ZERO;
         let (mut sum_x, mut sum_v, mut sum_w2x, mut energy) = (z, z, z, z);
         let from = c.iter().zip(cdot);
         let to = c1.iter_mut().zip(cdot1.iter_mut());
         for (w, ((&x0, &v0), (x1, v1))) in self.end[groups].iter().zip(from.zip(to)) {
-            let (x0, v0) = (V::new(x0), V::new(v0));
-            let [p0, p1, p2, p3] = w.pos_force.map(V::new);
-            let [q0, q1, q2, q3] = w.vel_force.map(V::new);
-            let cos = V::new(w.cos);
-            let x = cos * x0 + V::new(w.hsinc) * v0 + (p0 * a0 + p1 * a1 + p2 * a2 + p3 * a3);
-            let v = V::new(w.vel_of_pos) * x0 + cos * v0 + (q0 * a0 + q1 * a1 + q2 * a2 + q3 * a3);
-            *x1 = x.to_array();
-            *v1 = v.to_array();
-            let w2x = V::new(w.omega2) * x;
-            sum_x += x;
-            sum_v += v;
-            sum_w2x += w2x;
-            energy += V::new(w.half_modal_mass) * (v * v + w2x * x);
+            let (x0, v0) = (Lane(x0), Lane(v0));
+            let [p0, p1, p2, p3] = w.pos_force.map(Lane);
+            let [q0, q1, q2, q3] = w.vel_force.map(Lane);
+            let cos = Lane(w.cos);
+            let x = cos * x0 + Lane(w.hsinc) * v0 + (p0 * a0 + p1 * a1 + p2 * a2 + p3 * a3);
+            let v = Lane(w.vel_of_pos) * x0 + cos * v0 + (q0 * a0 + q1 * a1 + q2 * a2 + q3 * a3);
+            *x1 = x.0;
+            *v1 = v.0;
+            let w2x = Lane(w.omega2) * x;
+            sum_x = sum_x + x;
+            sum_v = sum_v + v;
+            sum_w2x = sum_w2x + w2x;
+            energy = energy + Lane(w.half_modal_mass) * (v * v + w2x * x);
         }
-        [sum_x, sum_v, sum_w2x, energy].map(sum4)
+        // Summed out of sight of the loop, as above.
+        std::hint::black_box([sum_x, sum_v, sum_w2x, energy]).map(sum_lanes)
     }
 }
 
 /// Four modes' weights, stored.
 type Quad = [f64; 4];
 
-/// Four modes at once in arithmetic: `wide`'s vector of four doubles (IEEE arithmetic lane by
-/// lane, one vector instruction per operation, no fused multiply-adds). The crate's `Lane<4>`
-/// here was left to the compiler's vectoriser, which paired the wrong operands (12 % more
-/// instructions per run, bench/README.md).
-type V = f64x4;
+/// Four modes at once in arithmetic.
+type L4 = Lane<4>;
 
-/// The sum of a vector's four lanes, in pairs.
+/// The sum of four lanes, in pairs.
 #[inline(always)]
-fn sum4(v: V) -> f64 {
-    let s = v.to_array();
-    (s[0] + s[1]) + (s[2] + s[3])
+fn sum_lanes(v: L4) -> f64 {
+    (v.0[0] + v.0[1]) + (v.0[2] + v.0[3])
 }
 
 /// What the variation-of-constants formula needs of one damped mode c'' + 2a c' + z² c = f(σ)
