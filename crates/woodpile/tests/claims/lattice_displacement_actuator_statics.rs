@@ -41,6 +41,13 @@
 //! (4) An actuator pressing a top rod at one point only, beyond its last crossing, tips it
 //! over: no equilibrium, refused naming `preload` with the solve's residual. (A rigid actuator
 //! with other points would rest on them, its tip there at no force.)
+//!
+//! (5) Without a preload, under gravity alone (the lattice of (2), the same points): the
+//! actuator rests on the highest of its points at no force. Every tip's static force is 0, the
+//! actuator's height u* is the smallest of the points' static deflections w_i(q*) (downward)
+//! within 1e-12 of it (rounding of the modal sums: the highest tip touches, δ = u* − w = 0), and
+//! the other tips are open, below it by more than 1e-6 of u* (gravity bends the lattice
+//! differently under points 5, 15 and 18 mm from the rods' centres).
 
 use super::lattice_common::{three_by_four, three_rod_layer};
 use woodpile::model::{
@@ -74,6 +81,20 @@ fn pressed(
     preload_n: f64,
     hold_s: f64,
 ) -> (LatticeOde, Vec<RodPoint>) {
+    let preload = Preload {
+        force_n: preload_n,
+        gravity_m_s2: 0.0,
+    };
+    pressed_under(lattice, (rods, s_mm), preload, hold_s)
+}
+
+/// [`pressed`] under any static load.
+fn pressed_under(
+    lattice: &Lattice,
+    (rods, s_mm): (&[usize], &[f64]),
+    preload: Preload,
+    hold_s: f64,
+) -> (LatticeOde, Vec<RodPoint>) {
     let points_m: Vec<[f64; 2]> = rods
         .iter()
         .zip(s_mm)
@@ -86,10 +107,7 @@ fn pressed(
         points: load,
     };
     let lab = LatticeLab {
-        preload: Preload {
-            force_n: preload_n,
-            gravity_m_s2: 0.0,
-        },
+        preload,
         ..LatticeLab::default()
     };
     let ode = LatticeOde::build(lattice, &excitation, &lab).unwrap();
@@ -314,4 +332,32 @@ fn a_rod_the_actuator_tips_over_is_refused_naming_the_preload() {
         Err(e) => panic!("refused otherwise: {e}"),
         Ok(_) => panic!("a tipped-over rod found an equilibrium"),
     }
+}
+
+#[test]
+fn without_a_preload_the_actuator_rests_on_its_highest_point() {
+    let lattice = three_by_four_on_six_supports();
+    let gravity = Preload {
+        force_n: 0.0,
+        gravity_m_s2: 9.81,
+    };
+    let (ode, points) = pressed_under(&lattice, (&top_rods(&lattice), &POINTS_S_MM), gravity, 1e-4);
+    let (forces, _) = ode.static_forces_n();
+    let u = ode.actuator_rest_m().unwrap();
+    // With no force on a tip its implied height is its point's deflection w_i(q*).
+    let deflections = tip_heights_m(&ode, &lattice, &points);
+    let highest = deflections.iter().copied().fold(f64::INFINITY, f64::min);
+    let gaps: Vec<f64> = deflections.iter().map(|w| (w - u) / u.abs()).collect();
+    eprintln!(
+        "tips' static forces {:?} N; actuator at {u:.6e} m, points at {deflections:?} m: \
+         gaps {gaps:?} of u*",
+        &forces[..3]
+    );
+    assert!(forces[..3].iter().all(|&f| f == 0.0), "{:?}", &forces[..3]);
+    assert!(
+        (u - highest).abs() <= 1e-12 * u.abs(),
+        "the actuator at {u}, the highest point at {highest}"
+    );
+    let open = gaps.iter().filter(|&&g| g > 1e-6).count();
+    assert_eq!(open, 2, "gaps {gaps:?}");
 }
