@@ -406,49 +406,62 @@ impl LengthSet {
             lightest,
         };
         if let Some(max) = max_height_m {
-            let lowest = Self::lightest_design(&set.heights_m, &set.fixed, &set.free, room);
-            let (low, light) = (set.height_m(&lowest), set.height_m(&set.lightest));
-            if low > max * (1.0 + MASS_SLACK) {
-                return Err(OptimizeError::TooTall {
-                    max_stack_height_m: max,
-                    lowest_m: low,
-                    lowest: space.labels(&lowest).join(" "),
-                });
-            }
-            // The witness must meet both limits: the lightest design if it is low enough,
-            // else one lightened from the lowest without exceeding the height, else one
-            // lowered from the lightest without exceeding the mass.
-            if light > max * (1.0 + MASS_SLACK) {
-                let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(0);
-                let mut found = None;
-                for start in [lowest.clone(), set.lightest.clone()] {
-                    let mut g = start;
-                    let mut counts = set.counts(&g);
-                    set.shrink_both(&mut g, &mut counts, &mut rng);
-                    if set.contains(&g) {
-                        found = Some(g);
-                        break;
-                    }
+            set.meet_the_height(space, max, room)?;
+        }
+        Ok(set)
+    }
+
+    /// Under a height limit `max` \[m\]: refuses a space whose lowest design stands taller, and
+    /// makes the witness (`lightest`) one that meets both the height and the mass limit.
+    fn meet_the_height(
+        &mut self,
+        space: &DesignSpace,
+        max: f64,
+        room: Vec<usize>,
+    ) -> std::result::Result<(), OptimizeError> {
+        let lowest = Self::lightest_design(&self.heights_m, &self.fixed, &self.free, room);
+        let (low, light) = (self.height_m(&lowest), self.height_m(&self.lightest));
+        if low > max * (1.0 + MASS_SLACK) {
+            return Err(OptimizeError::TooTall {
+                max_stack_height_m: max,
+                lowest_m: low,
+                lowest: space.labels(&lowest).join(" "),
+            });
+        }
+        // The witness must meet both limits: the lightest design if it is low enough,
+        // else one lightened from the lowest without exceeding the height, else one
+        // lowered from the lightest without exceeding the mass.
+        if light > max * (1.0 + MASS_SLACK) {
+            let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(0);
+            let mut found = None;
+            for start in [lowest.clone(), self.lightest.clone()] {
+                let mut g = start;
+                let mut counts = self.counts(&g);
+                self.shrink_both(&mut g, &mut counts, &mut rng);
+                if self.contains(&g) {
+                    found = Some(g);
+                    break;
                 }
-                match found {
-                    Some(g) => set.lightest = g,
-                    None => {
-                        return Err(OptimizeError::Infeasible {
-                            reason: format!(
-                                "found no design meeting max_stack_height = {max} m and \
-                                 max_total_mass = {} kg together: the lightest ({}) stands {light} m, \
-                                 the lowest ({}, {low} m) weighs {} kg",
-                                max_mass_kg.unwrap_or(f64::INFINITY),
-                                space.labels(&set.lightest).join(" "),
-                                space.labels(&lowest).join(" "),
-                                space.mass_kg(&lowest),
-                            ),
-                        })
-                    }
+            }
+            match found {
+                Some(g) => self.lightest = g,
+                None => {
+                    return Err(OptimizeError::Infeasible {
+                        reason: format!(
+                            "found no design meeting max_stack_height = {max} m and \
+                             max_total_mass = {} kg together: the lightest ({}) stands {light} m, \
+                             the lowest ({}, {low} m) weighs {} kg",
+                            self.max_mass_kg.unwrap_or(f64::INFINITY),
+                            space.labels(&self.lightest).join(" "),
+                            space.labels(&lowest).join(" "),
+                            space.mass_kg(&lowest),
+                        ),
+                    })
                 }
             }
         }
-        Ok(set)
+
+        Ok(())
     }
 
     /// A limit that must be a finite number > 0 when given.
