@@ -71,34 +71,7 @@ fn impact_run_writes_every_file() {
     let d = dir.path().join("out");
     let (n, samples) = (5u64, 201u64);
 
-    let s = common::json(&d.join("summary.json"));
-    for key in [
-        "incident_peak_force_n",
-        "transmitted_peak_force_n",
-        "transmission_ratio",
-        "striker_separated",
-        "wall_time_s",
-    ] {
-        assert!(!s[key].is_null(), "summary.json lacks {key}");
-    }
-    assert_eq!(s["contact_peak_forces_n"].as_array().unwrap().len(), 6);
-    assert_eq!(s["contact_peak_times_s"].as_array().unwrap().len(), 6);
-    assert_eq!(s["chain_labels"][0], "80mm");
-    assert_eq!(s["n_samples"], samples);
-    for key in [
-        "initial_j",
-        "final_j",
-        "input_work_j",
-        "dissipated_j",
-        "max_relative_error",
-    ] {
-        assert!(s["energy"][key].is_number(), "energy.{key}");
-    }
-    for key in ["steps", "rhs_evaluations", "rejected_steps"] {
-        assert!(s["integrator"][key].is_number(), "integrator.{key}");
-    }
-    assert_eq!(s["integrator"]["steps"], 2000);
-
+    let s = summary_has_every_key(&d, samples);
     let r = common::json(&d.join("run.json"));
     assert_eq!(r["version"], env!("CARGO_PKG_VERSION"));
     assert_eq!(
@@ -189,4 +162,37 @@ fn blast_run_has_no_striker_outputs() {
     assert!(s["energy"]["input_work_j"].as_f64().unwrap() > 0.0);
     assert!(!d.join("striker.npy").exists() && !d.join("striker.csv").exists());
     assert_eq!(npy_shape_and_data(&d.join("forces_n.npy")).0, vec![201, 3]);
+}
+
+/// The impact run's `summary.json` (`samples` samples, 6 contacts): every key it documents.
+fn summary_has_every_key(d: &std::path::Path, samples: u64) -> serde_json::Value {
+    let s = common::json(&d.join("summary.json"));
+    for key in [
+        "incident_peak_force_n",
+        "transmitted_peak_force_n",
+        "transmission_ratio",
+        "striker_separated",
+        "wall_time_s",
+    ] {
+        assert!(!s[key].is_null(), "summary.json lacks {key}");
+    }
+    assert_eq!(s["contact_peak_forces_n"].as_array().unwrap().len(), 6);
+    assert_eq!(s["contact_peak_times_s"].as_array().unwrap().len(), 6);
+    assert_eq!(s["chain_labels"][0], "80mm");
+    assert_eq!(s["n_samples"], samples);
+    for key in [
+        "initial_j",
+        "final_j",
+        "input_work_j",
+        "dissipated_j",
+        "max_relative_error",
+    ] {
+        assert!(s["energy"][key].is_number(), "energy.{key}");
+    }
+    for key in ["steps", "rhs_evaluations", "rejected_steps"] {
+        assert!(s["integrator"][key].is_number(), "integrator.{key}");
+    }
+    assert_eq!(s["integrator"]["steps"], 2000);
+
+    s
 }
