@@ -26,53 +26,8 @@ fn main() -> woodpile::Result<()> {
         .split(',')
         .map(str::to_string)
         .collect();
-    let want = |f: &str| families.iter().any(|g| g == f);
-    let mut methods: Vec<(String, Method)> = Vec::new();
-    if want("tolerance") {
-        for tol in [1e-3, 1e-4, 1e-5, 1e-6] {
-            methods.push((
-                format!("tolerance {tol:e}"),
-                Method::for_peak_tolerance(tol)?,
-            ));
-        }
-    }
-    if want("previous") {
-        // What `peak_tolerance` chose for every run before RKN 6(4): event-aware DOPRI5.
-        for tol in [1e-3, 1e-4, 1e-5, 1e-6] {
-            let method = Method::for_peak_tolerance(tol)?.resolve(false);
-            methods.push((format!("previous {tol:e}"), method));
-        }
-    }
-    for rtol in [
-        1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8, 3e-9, 1e-9, 3e-10, 1e-10, 3e-11,
-    ] {
-        let atol = rtol * 1e-6;
-        for (family, method) in [
-            ("dopri5", Method::Dopri5 { rtol, atol }),
-            ("events", Method::Dopri5Events { rtol, atol }),
-            ("rkn64", Method::Rkn64 { rtol, atol }),
-        ] {
-            if want(family) {
-                methods.push((format!("{family} rtol={rtol:e}"), method));
-            }
-        }
-    }
-    let mut cases: Vec<(String, Chain, Excitation, RunSettings)> = Vec::new();
-    for cells in [CellModel::Resonant, CellModel::Rigid] {
-        let chain = ChainBuilder::table1_rods(&PAPER_OPTIMIZED_CHAIN_MM, cells)?.build()?;
-        for speed in [Striker::paper().velocity_m_s, 1.0, 3.0] {
-            let striker = Striker {
-                velocity_m_s: speed,
-                ..Striker::paper()
-            };
-            let name = format!("impact {cells:?} {speed:.2} m/s");
-            let base = RunSettings::paper_impact();
-            cases.push((name, chain.clone(), Excitation::Impact(striker), base));
-        }
-        let blast = Excitation::Blast(BlastProfile::paper());
-        let base = RunSettings::paper_blast();
-        cases.push((format!("blast {cells:?}"), chain, blast, base));
-    }
+    let methods = compared_methods(&families)?;
+    let cases = cases()?;
     let run = |chain: &Chain, excitation: &Excitation, base: &RunSettings, method: Method| {
         let settings = RunSettings {
             method,
@@ -149,4 +104,62 @@ fn rtol_of(method: &Method) -> f64 {
         | Method::ExactModes { rtol, .. } => *rtol,
         Method::Rk4 { .. } | Method::PeakTolerance { .. } => f64::NAN,
     }
+}
+
+/// The methods of the `families` asked for: `tolerance`, `previous` (what `peak_tolerance` chose
+/// before RKN 6(4)), `dopri5`, `events`, `rkn64`.
+fn compared_methods(families: &[String]) -> woodpile::Result<Vec<(String, Method)>> {
+    let want = |f: &str| families.iter().any(|g| g == f);
+    let mut methods: Vec<(String, Method)> = Vec::new();
+    if want("tolerance") {
+        for tol in [1e-3, 1e-4, 1e-5, 1e-6] {
+            methods.push((
+                format!("tolerance {tol:e}"),
+                Method::for_peak_tolerance(tol)?,
+            ));
+        }
+    }
+    if want("previous") {
+        // What `peak_tolerance` chose for every run before RKN 6(4): event-aware DOPRI5.
+        for tol in [1e-3, 1e-4, 1e-5, 1e-6] {
+            let method = Method::for_peak_tolerance(tol)?.resolve(false);
+            methods.push((format!("previous {tol:e}"), method));
+        }
+    }
+    for rtol in [
+        1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8, 3e-9, 1e-9, 3e-10, 1e-10, 3e-11,
+    ] {
+        let atol = rtol * 1e-6;
+        for (family, method) in [
+            ("dopri5", Method::Dopri5 { rtol, atol }),
+            ("events", Method::Dopri5Events { rtol, atol }),
+            ("rkn64", Method::Rkn64 { rtol, atol }),
+        ] {
+            if want(family) {
+                methods.push((format!("{family} rtol={rtol:e}"), method));
+            }
+        }
+    }
+    Ok(methods)
+}
+
+/// The runs: impacts at three striker speeds and the paper's blast, on resonant and rigid cells.
+fn cases() -> woodpile::Result<Vec<(String, Chain, Excitation, RunSettings)>> {
+    let mut cases: Vec<(String, Chain, Excitation, RunSettings)> = Vec::new();
+    for cells in [CellModel::Resonant, CellModel::Rigid] {
+        let chain = ChainBuilder::table1_rods(&PAPER_OPTIMIZED_CHAIN_MM, cells)?.build()?;
+        for speed in [Striker::paper().velocity_m_s, 1.0, 3.0] {
+            let striker = Striker {
+                velocity_m_s: speed,
+                ..Striker::paper()
+            };
+            let name = format!("impact {cells:?} {speed:.2} m/s");
+            let base = RunSettings::paper_impact();
+            cases.push((name, chain.clone(), Excitation::Impact(striker), base));
+        }
+        let blast = Excitation::Blast(BlastProfile::paper());
+        let base = RunSettings::paper_blast();
+        cases.push((format!("blast {cells:?}"), chain, blast, base));
+    }
+    Ok(cases)
 }
