@@ -49,51 +49,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     )?;
     draw_spectra(&t, &[], title, &stem("spectra"))?;
 
-    // Blast on 80 mm rods: spectra with bands.
-    let chain80 = ChainBuilder::table1_rods(&[80; 20], CellModel::Resonant)?.build()?;
-    let blast = Excitation::Blast(BlastProfile::paper());
-    let mut t80 = Trajectory::default();
-    simulate(&chain80, &blast, &RunSettings::paper_blast(), &mut t80)?;
-    let title80 = "20 × 80 mm resonant rods, Friedlander blast 200 N / 0.2 ms";
-    let bands = UnitCell::table1(80)?.negative_mass_bands_hz();
-    draw_spectra(&t80, &bands, title80, &stem("spectra_80mm_blast"))?;
-    plot::force_map(
-        &force_map(&t80)?,
-        title80,
-        Some("load"),
-        &stem("force_map_80mm_blast"),
-    )?;
-    plot::spectrum_map(
-        &contact_spectrum_map(&t80, &SpectrumSettings::default())?,
-        title80,
-        60e3,
-        Some("load"),
-        &stem("spectrum_map_80mm_blast"),
-    )?;
-
-    // Effective mass of the catalogue.
-    let f = linspace(0.0, 60e3, 3000);
-    let curves: Vec<(String, EffectiveMassCurve)> = TABLE1_LENGTHS_MM
-        .iter()
-        .map(|&l| {
-            Ok((
-                format!("{l} mm"),
-                EffectiveMassCurve::of(&UnitCell::table1(l)?, &f),
-            ))
-        })
-        .collect::<Result<_, woodpile::Error>>()?;
-    plot::effective_mass(
-        &curves[..3],
-        "Effective mass, 20–40 mm rods (one resonator)",
-        5.0,
-        &stem("effective_mass_a"),
-    )?;
-    plot::effective_mass(
-        &curves[3..],
-        "Effective mass, 50–80 mm rods (two resonators)",
-        5.0,
-        &stem("effective_mass_b"),
-    )?;
+    draw_blast_and_effective_mass(&stem)?;
 
     // Layer-by-layer protocol.
     let p = layer_by_layer(&chain, &impact, &settings)?;
@@ -178,5 +134,58 @@ fn draw_spectra(
         .collect::<Result<_, woodpile::Error>>()?;
     let refs: Vec<(String, &Spectrum)> = spectra.iter().map(|(l, s)| (l.clone(), s)).collect();
     plot::spectra(&refs, bands, title, 60e3, stem)?;
+    Ok(())
+}
+
+/// The blast on 80 mm rods (spectra with bands, force and spectrum maps) and the catalogue's
+/// effective mass.
+fn draw_blast_and_effective_mass(
+    stem: &dyn Fn(&str) -> PathBuf,
+) -> Result<(), Box<dyn std::error::Error>> {
+    // Blast on 80 mm rods: spectra with bands.
+    let chain80 = ChainBuilder::table1_rods(&[80; 20], CellModel::Resonant)?.build()?;
+    let blast = Excitation::Blast(BlastProfile::paper());
+    let mut t80 = Trajectory::default();
+    simulate(&chain80, &blast, &RunSettings::paper_blast(), &mut t80)?;
+    let title80 = "20 × 80 mm resonant rods, Friedlander blast 200 N / 0.2 ms";
+    let bands = UnitCell::table1(80)?.negative_mass_bands_hz();
+    draw_spectra(&t80, &bands, title80, &stem("spectra_80mm_blast"))?;
+    plot::force_map(
+        &force_map(&t80)?,
+        title80,
+        Some("load"),
+        &stem("force_map_80mm_blast"),
+    )?;
+    plot::spectrum_map(
+        &contact_spectrum_map(&t80, &SpectrumSettings::default())?,
+        title80,
+        60e3,
+        Some("load"),
+        &stem("spectrum_map_80mm_blast"),
+    )?;
+
+    // Effective mass of the catalogue.
+    let f = linspace(0.0, 60e3, 3000);
+    let curves: Vec<(String, EffectiveMassCurve)> = TABLE1_LENGTHS_MM
+        .iter()
+        .map(|&l| {
+            Ok((
+                format!("{l} mm"),
+                EffectiveMassCurve::of(&UnitCell::table1(l)?, &f),
+            ))
+        })
+        .collect::<Result<_, woodpile::Error>>()?;
+    plot::effective_mass(
+        &curves[..3],
+        "Effective mass, 20–40 mm rods (one resonator)",
+        5.0,
+        &stem("effective_mass_a"),
+    )?;
+    plot::effective_mass(
+        &curves[3..],
+        "Effective mass, 50–80 mm rods (two resonators)",
+        5.0,
+        &stem("effective_mass_b"),
+    )?;
     Ok(())
 }
