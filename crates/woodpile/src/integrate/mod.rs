@@ -811,9 +811,12 @@ impl Integrator {
     }
 
     /// Advances one accepted step, never beyond `t_end`. Returns the step taken \[s\].
-    // The crate's one `unsafe`: calling the AVX2 build of the step after checking the CPU has
-    // AVX2. It pays (bench/README.md: the step is measurably faster) and is safe to keep because
-    // the claim `simd_step_bit_identical` checks it gives bit for bit the portable results.
+    // The crate's `unsafe` (here, in the lanes' group runner and in the exact modal steppers'
+    // `step`, [`exact_step_in_simd_build`]): calling the AVX2 build of the step after checking
+    // the CPU has AVX2. It pays (bench/README.md: the step is measurably faster) and is safe to
+    // keep because the claim `simd_step_bit_identical` checks each gives bit for bit the portable
+    // results. (A closure handed to one shared AVX2 function was not inlined into it: the GA's
+    // workload took twice the time.)
     #[allow(unsafe_code)]
     pub fn step<S: OdeSystem>(&mut self, system: &mut S, t_end: f64) -> Result<f64> {
         #[cfg(target_arch = "x86_64")]
@@ -1010,6 +1013,35 @@ impl Integrator {
 // damps the oscillation between accepted and rejected steps of the plain controller; after a
 // rejection the step may not grow. Shared with the lanes of `crate::lanes`.
 const PI_BETA: f64 = 0.04;
+
+/// The `step` of an exact modal stepper over its `step_portable(&mut self, t_end)`: one
+/// accepted step toward t_end, returning its size, run in the AVX2 build where the CPU has it, as
+/// [`Integrator::step`] (the passes over the modes then run four modes per vector; no FMA
+/// contraction, so the results are bit for bit the portable ones).
+macro_rules! exact_step_in_simd_build {
+    () => {
+        /// One accepted step toward t_end; returns its size. Run in the AVX2 build where the CPU
+        /// has it, as [`super::Integrator::step`] (bit for bit the portable one).
+        #[allow(unsafe_code)]
+        pub fn step(&mut self, t_end: f64) -> Result<f64> {
+            #[cfg(target_arch = "x86_64")]
+            if std::arch::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports AVX2 (checked on the line above).
+                return unsafe { self.step_avx2(t_end) };
+            }
+            self.step_portable(t_end)
+        }
+
+        /// The same step compiled with 256-bit vectors.
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx2")]
+        #[allow(unsafe_code)]
+        unsafe fn step_avx2(&mut self, t_end: f64) -> Result<f64> {
+            self.step_portable(t_end)
+        }
+    };
+}
+pub(crate) use exact_step_in_simd_build;
 
 /// The next step after a step `h_try` accepted with error norm `err` (≤ 1); `h` is the step
 /// the controller had proposed, `order` the tableau's.

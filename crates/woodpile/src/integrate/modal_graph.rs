@@ -571,30 +571,10 @@ impl GraphModalIntegrator {
         self.stats
     }
 
-    /// One accepted step toward t_end (or the load's next kink before it); returns its size.
-    /// Run in the AVX2 build where the CPU has it, as [`super::Integrator::step`] (the passes
-    /// over the modes then run four modes per vector; no FMA contraction, so the results are
-    /// bit for bit the portable ones).
-    #[allow(unsafe_code)]
-    pub fn step(&mut self, t_end: f64) -> Result<f64> {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU supports AVX2 (checked on the line above).
-            return unsafe { self.step_avx2(t_end) };
-        }
-        self.step_portable(t_end)
-    }
+    super::exact_step_in_simd_build!();
 
-    /// The same step compiled with 256-bit vectors.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    #[allow(unsafe_code)]
-    unsafe fn step_avx2(&mut self, t_end: f64) -> Result<f64> {
-        self.step_portable(t_end)
-    }
-
-    /// The same step without run-time SIMD dispatch: the reference the AVX2 build is checked
-    /// against.
+    /// The same step without run-time SIMD dispatch (toward t_end, or the load's next kink
+    /// before it): the reference the AVX2 build is checked against.
     #[inline(always)]
     pub fn step_portable(&mut self, t_end: f64) -> Result<f64> {
         let t = self.t;

@@ -276,26 +276,7 @@ impl ModalIntegrator {
         self.ladder.ensure(h, rung, || StepWeights::new(h, m));
     }
 
-    /// One accepted step toward t_end; returns its size. Run in the AVX2 build where the CPU
-    /// has it, as [`super::Integrator::step`] (the passes over the modes then run four modes
-    /// per vector; no FMA contraction, so the results are bit for bit the portable ones).
-    #[allow(unsafe_code)]
-    pub fn step(&mut self, t_end: f64) -> Result<f64> {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU supports AVX2 (checked on the line above).
-            return unsafe { self.step_avx2(t_end) };
-        }
-        self.step_portable(t_end)
-    }
-
-    /// The same step compiled with 256-bit vectors.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    #[allow(unsafe_code)]
-    unsafe fn step_avx2(&mut self, t_end: f64) -> Result<f64> {
-        self.step_portable(t_end)
-    }
+    super::exact_step_in_simd_build!();
 
     /// The same step without run-time SIMD dispatch: the reference the AVX2 build is checked
     /// against.
