@@ -38,10 +38,7 @@ fn states(method: Method, steps: usize) -> (Vec<f64>, Vec<f64>) {
 #[test]
 fn fixed_step_is_bit_identical() {
     let (simd, portable) = states(Method::Rk4 { time_step_s: 1e-7 }, 2000);
-    assert!(simd
-        .iter()
-        .zip(&portable)
-        .all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert_bits_equal(&simd, &portable);
     assert!(simd.iter().any(|&x| x != 0.0), "the wave moved something");
 }
 
@@ -54,10 +51,7 @@ fn adaptive_step_is_bit_identical() {
         },
         300,
     );
-    assert!(simd
-        .iter()
-        .zip(&portable)
-        .all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert_bits_equal(&simd, &portable);
 }
 
 #[test]
@@ -77,11 +71,7 @@ fn exact_modal_step_is_bit_identical() {
         woodpile::integrate::exact_modes_state(&ode, (1e-6, 1e-15, 1e-8), 300, portable).unwrap()
     };
     let (simd, portable) = (run(false), run(true));
-    assert_eq!(simd.len(), portable.len());
-    assert!(simd
-        .iter()
-        .zip(&portable)
-        .all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert_bits_equal(&simd, &portable);
     assert!(simd.iter().any(|&x| x != 0.0), "the wave moved something");
 }
 
@@ -113,15 +103,20 @@ fn exact_modal_lattice_step_is_bit_identical() {
                 .unwrap()
         };
         let (simd, portable) = (run(false), run(true));
-        assert_eq!(simd.len(), portable.len());
-        assert!(simd
-            .iter()
-            .zip(&portable)
-            .all(|(a, b)| a.to_bits() == b.to_bits()));
+        assert_bits_equal(&simd, &portable);
         let q = ode.coordinates();
         assert!(
             simd[..q].iter().any(|&x| x != 0.0),
             "the load moved the modes"
         );
     }
+}
+
+/// Both states bit for bit equal.
+fn assert_bits_equal(simd: &[f64], portable: &[f64]) {
+    assert_eq!(simd.len(), portable.len());
+    assert!(simd
+        .iter()
+        .zip(portable)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
 }
