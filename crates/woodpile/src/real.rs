@@ -122,6 +122,15 @@ impl Real for f64 {
 #[repr(transparent)]
 pub(crate) struct Lane<const L: usize>(pub(crate) [f64; L]);
 
+impl Lane<4> {
+    /// The sum of the four lanes, the halves first: (l₀ + l₂) + (l₁ + l₃) (one vector add of
+    /// the two halves, then one of the pair). Passes over groups of four modes end with it.
+    #[inline(always)]
+    pub(crate) fn sum(self) -> f64 {
+        (self.0[0] + self.0[2]) + (self.0[1] + self.0[3])
+    }
+}
+
 impl<const L: usize> Default for Lane<L> {
     fn default() -> Self {
         Lane([0.0; L])

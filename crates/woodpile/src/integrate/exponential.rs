@@ -208,6 +208,11 @@ impl StepWeights {
                 [kernel(c[1], z), kernel(c[2], z), kernel(1.0, z)]
             })
             .collect();
+        debug_assert_eq!(
+            m.frequency_index.len() % 4,
+            0,
+            "modes padded to groups of four"
+        );
         let groups = m.frequency_index.len() / 4;
         let mut node_groups = vec![NodeGroup::default(); groups];
         let mut end = vec![EndGroup::default(); groups];
@@ -278,7 +283,7 @@ impl StepWeights {
             }
         }
         // Summed out of sight of the loop (else the vectoriser packs it two lanes per register).
-        std::hint::black_box(acc).map(sum_lanes)
+        std::hint::black_box(acc).map(L4::sum)
     }
 
     /// Advances the modes of one primary (its distinct element's `groups` of four) over the
@@ -314,7 +319,7 @@ impl StepWeights {
             energy = energy + Lane(w.half_modal_mass) * (v * v + w2x * x);
         }
         // Summed out of sight of the loop, as above.
-        std::hint::black_box([sum_x, sum_v, sum_w2x, energy]).map(sum_lanes)
+        std::hint::black_box([sum_x, sum_v, sum_w2x, energy]).map(L4::sum)
     }
 }
 
@@ -323,12 +328,6 @@ type Quad = [f64; 4];
 
 /// Four modes at once in arithmetic.
 type L4 = Lane<4>;
-
-/// The sum of four lanes, in pairs.
-#[inline(always)]
-fn sum_lanes(v: L4) -> f64 {
-    (v.0[0] + v.0[1]) + (v.0[2] + v.0[3])
-}
 
 /// What the variation-of-constants formula needs of one damped mode c'' + 2a c' + z² c = f(σ)
 /// (σ = t/h; a = γh with γ half the mode's damping rate, z = hΩ) at one point θ of a step: the

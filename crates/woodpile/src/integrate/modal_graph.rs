@@ -308,7 +308,7 @@ impl Layout {
         // The lanes summed out of sight of the loop: otherwise the compiler regroups the loop's
         // lanes for the final sums, two per vector.
         let [a0, a1, a2] = std::hint::black_box([a0, a1, a2]);
-        [sum_lanes(a0), sum_lanes(a1), sum_lanes(a2)]
+        [a0.sum(), a1.sum(), a2.sum()]
     }
 
     /// A contact's overlap at the three nodes for grouped values (above minus below; `active`
@@ -323,12 +323,6 @@ impl Layout {
             above[2] - below[2],
         ]
     }
-}
-
-/// The sum of a group's four lanes.
-#[inline(always)]
-fn sum_lanes(s: V) -> f64 {
-    (s.0[0] + s.0[2]) + (s.0[1] + s.0[3])
 }
 
 /// One mode's flow at θ of a step (from [`kernel`] or [`damped_kernel`]): position from
@@ -776,10 +770,10 @@ impl GraphModalIntegrator {
         // (Summed out of sight of the loop, as in `Layout::dot3`.)
         let acc = std::hint::black_box(acc);
         PointError {
-            position: sum_lanes(acc[0]),
-            velocity: sum_lanes(acc[1]),
-            x: sum_lanes(acc[2]),
-            v: sum_lanes(acc[3]),
+            position: acc[0].sum(),
+            velocity: acc[1].sum(),
+            x: acc[2].sum(),
+            v: acc[3].sum(),
         }
     }
 

@@ -5,16 +5,22 @@
 use woodpile::model::{Lattice, LatticeBuilder, LayerSpec};
 use woodpile::{Element, Material, Rod, UnitCell};
 
-/// A layer of three 80 mm, 5 mm quartz rods at a 20 mm pitch, crossed at 90°.
-pub fn three_rod_layer() -> LayerSpec {
+/// A layer of `rods` fused-quartz rods of `length_m`, 5 mm across, at a 20 mm pitch, crossed
+/// at 90° with the layer above.
+pub fn quartz_layer(rods: usize, length_m: f64) -> LayerSpec {
     LayerSpec {
-        rods: 3,
+        rods,
         pitch_m: 20e-3,
-        length_m: 80e-3,
+        length_m,
         diameter_m: 5e-3,
         material: Material::fused_quartz(),
         angle_deg: 90.0,
     }
+}
+
+/// A layer of three 80 mm, 5 mm quartz rods at a 20 mm pitch, crossed at 90°.
+pub fn three_rod_layer() -> LayerSpec {
+    quartz_layer(3, 80e-3)
 }
 
 /// The 3 × 3-rod, 4-layer lattice with `elements` per half rod.

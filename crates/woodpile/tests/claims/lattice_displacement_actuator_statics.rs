@@ -49,14 +49,13 @@
 //! the other tips are open, below it by more than 1e-6 of u* (gravity bends the lattice
 //! differently under points 5, 15 and 18 mm from the rods' centres).
 
-use super::lattice_common::{three_by_four, three_rod_layer};
+use super::lattice_common::{quartz_layer, three_by_four, three_rod_layer};
 use woodpile::model::{
-    Lattice, LatticeBuilder, LatticeExcitation, LatticeLab, LayerSpec, LoadPoints, RodPoint,
-    Supports,
+    Lattice, LatticeBuilder, LatticeExcitation, LatticeLab, LoadPoints, RodPoint, Supports,
 };
 use woodpile::ode::LatticeOde;
 use woodpile::simulate::simulate_lattice;
-use woodpile::{Drive, DriveQuantity, Material, Method, Preload, RunSettings, Signal, Wall};
+use woodpile::{Drive, DriveQuantity, Method, Preload, RunSettings, Signal, Wall};
 
 /// A displacement drive held at 0 up to `hold_s` (a table that only moves after it).
 fn held_drive(hold_s: f64) -> Drive {
@@ -146,15 +145,9 @@ fn tip_heights_m(ode: &LatticeOde, lattice: &Lattice, points: &[RodPoint]) -> Ve
 
 #[test]
 fn a_seesaw_pressed_at_two_points_takes_the_lever_rule_shares() {
-    let layer = LayerSpec {
-        rods: 1,
-        pitch_m: 20e-3,
-        length_m: 80e-3,
-        diameter_m: 5e-3,
-        material: Material::fused_quartz(),
-        angle_deg: 90.0,
-    };
-    let lattice = LatticeBuilder::new(vec![layer], 4).build().unwrap();
+    let lattice = LatticeBuilder::new(vec![quartz_layer(1, 80e-3)], 4)
+        .build()
+        .unwrap();
     let (fp, s1, s2) = (2.0, -10.0, 25.0);
     let (ode, points) = pressed(&lattice, &[0, 0], &[s1, s2], fp, 1e-4);
     let (forces, residual) = ode.static_forces_n();

@@ -32,8 +32,7 @@
 
 use super::lattice_common::{fe_rod_elements, three_by_four};
 use woodpile::model::{
-    ContactDamping, Damping, Lattice, LatticeBuilder, LatticeExcitation, LatticeLab, LayerSpec,
-    LoadPoints,
+    ContactDamping, Damping, Lattice, LatticeBuilder, LatticeExcitation, LatticeLab, LoadPoints,
 };
 use woodpile::ode::LatticeOde;
 use woodpile::simulate::{simulate_lattice, LatticeRun};
@@ -81,14 +80,7 @@ fn column_lattice_run(
 ) -> (LatticeOde, LatticeRun) {
     let layers = LENGTHS_MM
         .iter()
-        .map(|&l| LayerSpec {
-            rods: 1,
-            pitch_m: 20e-3,
-            length_m: l * 1e-3,
-            diameter_m: 5e-3,
-            material: Material::fused_quartz(),
-            angle_deg: 90.0,
-        })
+        .map(|&l| super::lattice_common::quartz_layer(1, l * 1e-3))
         .collect();
     let lattice = LatticeBuilder::new(layers, ELEMENTS).build().unwrap();
     let excitation = LatticeExcitation::Drive {

@@ -12,14 +12,7 @@ use woodpile::model::{LatticeBuilder, LayerSpec, RodOverrides};
 use woodpile::{Error, Material};
 
 fn layer() -> LayerSpec {
-    LayerSpec {
-        rods: 3,
-        pitch_m: 20e-3,
-        length_m: 80e-3,
-        diameter_m: 5e-3,
-        material: Material::fused_quartz(),
-        angle_deg: 90.0,
-    }
+    super::lattice_common::three_rod_layer()
 }
 
 fn with(overrides: Vec<RodOverrides>) -> LatticeBuilder {

@@ -14,12 +14,10 @@
 //! displacements) — within 1e-12 of the initial energy.
 
 use super::lattice_common::fe_rod_elements;
-use woodpile::model::{LatticeBuilder, LayerSpec};
+use woodpile::model::LatticeBuilder;
 use woodpile::ode::LatticeOde;
 use woodpile::simulate::simulate_lattice;
-use woodpile::{
-    simulate, ChainBuilder, Excitation, Material, Method, RunSettings, Striker, Trajectory,
-};
+use woodpile::{simulate, ChainBuilder, Excitation, Method, RunSettings, Striker, Trajectory};
 
 const LENGTHS_MM: [f64; 3] = [80.0, 40.0, 20.0];
 const ELEMENTS: usize = 4;
@@ -34,7 +32,6 @@ fn settings() -> RunSettings {
 
 #[test]
 fn one_rod_per_layer_is_the_fe_rod_chain() {
-    let quartz = Material::fused_quartz();
     let elements = fe_rod_elements(&LENGTHS_MM, ELEMENTS);
     let chain = ChainBuilder::new(elements).build().unwrap();
     let mut trajectory = Trajectory::default();
@@ -49,14 +46,7 @@ fn one_rod_per_layer_is_the_fe_rod_chain() {
 
     let layers = LENGTHS_MM
         .iter()
-        .map(|&l| LayerSpec {
-            rods: 1,
-            pitch_m: 20e-3,
-            length_m: l * 1e-3,
-            diameter_m: 5e-3,
-            material: quartz.clone(),
-            angle_deg: 90.0,
-        })
+        .map(|&l| super::lattice_common::quartz_layer(1, l * 1e-3))
         .collect();
     let lattice = LatticeBuilder::new(layers, ELEMENTS).build().unwrap();
     let mut ode = LatticeOde::new(&lattice, &striker, [0.0, 0.0]).unwrap();

@@ -24,14 +24,13 @@
 //! (analytic) and 2.2e-13 (10 × 5), overlaps moved 5.6e-15 and 8.0e-15, at rest against struck 0
 //! (the same solve bit for bit).
 
-use super::lattice_common::three_by_four;
+use super::lattice_common::{quartz_layer, three_by_four};
 use nalgebra::{DMatrix, DVector};
 use woodpile::model::{
-    Lattice, LatticeBuilder, LatticeExcitation, LatticeLab, LayerSpec, LoadPoints, Preload,
-    RodPoint, Supports,
+    Lattice, LatticeBuilder, LatticeExcitation, LatticeLab, LoadPoints, Preload, RodPoint, Supports,
 };
 use woodpile::ode::LatticeOde;
-use woodpile::{Material, Striker};
+use woodpile::Striker;
 
 const G: f64 = 9.81;
 const PRELOAD_N: f64 = 5.0;
@@ -118,18 +117,6 @@ impl Potential {
     }
 }
 
-/// A layer of `rods` fused-quartz rods of `length_m`, 5 mm across, at a 20 mm pitch.
-fn layer(rods: usize, length_m: f64) -> LayerSpec {
-    LayerSpec {
-        rods,
-        pitch_m: 20e-3,
-        length_m,
-        diameter_m: 5e-3,
-        material: Material::fused_quartz(),
-        angle_deg: 90.0,
-    }
-}
-
 fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
@@ -184,7 +171,7 @@ fn condensed_static_solve_finds_the_dense_newton_minimum() {
         striker: Striker::paper(),
         at_m: [0.0, 0.0],
     };
-    let mut builder = LatticeBuilder::new(vec![layer(3, 80e-3); 4], 16);
+    let mut builder = LatticeBuilder::new(vec![quartz_layer(3, 80e-3); 4], 16);
     builder.bending_modes = Some(8);
     let analytic = builder.build().unwrap();
     let mut forces = Vec::new();
@@ -241,7 +228,7 @@ fn condensed_static_solve_finds_the_dense_newton_minimum() {
 
 #[test]
 fn benchmark_lattice_meets_the_static_residual() {
-    let lattice = LatticeBuilder::new(vec![layer(5, 100e-3); 10], 4)
+    let lattice = LatticeBuilder::new(vec![quartz_layer(5, 100e-3); 10], 4)
         .build()
         .unwrap();
     let rest = LatticeExcitation::Rest {
@@ -262,7 +249,7 @@ fn benchmark_lattice_meets_the_static_residual() {
 /// refused naming `preload`, the residual it stopped at (a number) and the fix.
 #[test]
 fn rods_held_by_nothing_below_are_refused_naming_the_key() {
-    let mut builder = LatticeBuilder::new(vec![layer(3, 80e-3); 2], 4);
+    let mut builder = LatticeBuilder::new(vec![quartz_layer(3, 80e-3); 2], 4);
     builder.supports = Supports::Points(vec![[0.0, 0.0]]);
     let lattice = builder.build().unwrap();
     let rest = LatticeExcitation::Rest {
