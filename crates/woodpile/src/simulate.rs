@@ -495,7 +495,7 @@ impl<'a> Watch<'a> {
             energies: vec![0.0; n_contacts],
             scratch: vec![0.0; ode.dimension()],
         };
-        ode.contact_force_rates(y0, &mut peaks.rate);
+        ode.contact_force_rates(0.0, y0, &mut peaks.rate);
         peaks.start(ode.contact_forces_n());
         let initial_energy = observe(ode, (0.0, y0), true, None, &mut obs, recorder);
         let reference_energy = if ode.has_striker() || ode.has_lab_physics() {
@@ -555,13 +555,13 @@ impl<'a> Watch<'a> {
             let v = &y1[ode.n_dof()..2 * ode.n_dof()];
             let forces = ode.contact_forces_n();
             for &c in watched {
-                peaks.rate[c] = ode.contact_force_rate(c, v);
+                peaks.rate[c] = ode.contact_force_rate(t1, c, v);
                 peaks.update_contact(c, t0, t1, forces[c]);
             }
             // A table's breakpoints matter only to the load's peak (contact 0), not tracked here.
             return;
         }
-        ode.contact_force_rates(y1, &mut peaks.rate);
+        ode.contact_force_rates(t1, y1, &mut peaks.rate);
         peaks.update(t0, t1, ode.contact_forces_n());
         if let Some((times, forces)) = self.load_table {
             while self.next_breakpoint < times.len() && times[self.next_breakpoint] <= t1 {
@@ -796,7 +796,12 @@ pub(crate) fn simulate_watching(
 /// internal frequency ([`Method::resolve_for_modes`]).
 pub(crate) fn resolve_method(ode: &ChainOde, method: Method) -> Method {
     let stiffest = ode.stiffest_resonator().map_or(0.0, |s| s.2);
-    method.resolve_for_modes(ode.second_order().is_some(), stiffest)
+    let exact = match (ode.fits_exact_modes(), ode.second_order().is_some()) {
+        (false, _) => crate::integrate::ExactModesFit::No,
+        (true, true) => crate::integrate::ExactModesFit::Impact,
+        (true, false) => crate::integrate::ExactModesFit::Loaded,
+    };
+    method.resolve_for_modes(ode.second_order().is_some(), exact, stiffest)
 }
 
 /// The error of a run that took more than [`defaults::MAX_STEPS`] steps, ending at t1.

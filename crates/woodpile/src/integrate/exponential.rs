@@ -323,6 +323,19 @@ impl StepWeights {
     }
 }
 
+/// ∫₀^θ a(σ) dp(σ) for the cubics a and p (monomials in σ): the work of a force along a
+/// displacement over the fraction θ of a step, both interpolated through the nodes.
+pub(crate) fn work_of_cubics(a: &[f64; 4], p: &[f64; 4], theta: f64) -> f64 {
+    let mut w = 0.0;
+    for (n, an) in a.iter().enumerate() {
+        for (k, pk) in p.iter().enumerate().skip(1) {
+            let e = (n + k) as i32;
+            w += an * k as f64 * pk * theta.powi(e) / f64::from(e);
+        }
+    }
+    w
+}
+
 /// Four modes' weights, stored.
 type Quad = [f64; 4];
 

@@ -22,7 +22,7 @@ use super::exponential::{
 };
 use super::modal_step::{
     adaptive_step, first_crossing, Attempt, ExactStepper, Ladder, FIXED_POINT_TOLERANCE,
-    MAX_ITERATIONS, VELOCITY_UNIT,
+    LOAD_CONTACT_SPEED_M_S, MAX_ITERATIONS, MAX_STEP_OF_CONTACT_TIME, VELOCITY_UNIT,
 };
 use super::{IntegratorStats, StepControl};
 use crate::error::Result;
@@ -32,16 +32,6 @@ use crate::real::{Lane, Real};
 
 /// Four modes at once, as [`Lane`] values (the form that runs in vectors).
 type V = Lane<4>;
-
-/// The longest step, as a fraction of the striker's Hertz contact time
-/// ([`LatticeOde::striker_contact_time_s`]). The exact flow would let a step grow without bound
-/// while the contacts are open; a contact that closes and opens again between two of a step's
-/// nodes would then go unseen.
-const MAX_STEP_OF_CONTACT_TIME: f64 = 0.25;
-/// Under a blast or a drive (no striker), the speed \[m/s\] at which the shortest Hertz contact
-/// time of the lattice's contacts is taken ([`LatticeOde::contact_time_s`]): the time grows as
-/// the speed falls (∝ v^{−1/5}), so slower contacts are only longer than the step limit assumes.
-const LOAD_CONTACT_SPEED_M_S: f64 = 1.0;
 
 /// What a step of size h needs of one frequency ω (z = hω): per node σ = c₁, c₂, 1 the free
 /// motion cos(σz), h sin(σz)/z and the response h² S_n(σ, z) to σⁿ; at the end the velocity's

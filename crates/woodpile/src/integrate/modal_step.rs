@@ -2,8 +2,18 @@
 //! collocation ([`super::exponential`]) on a chain in modal form, with an embedded error estimate
 //! on the primaries, steps from a geometric ladder (so that the weights of a step size are
 //! computed once), and steps retaken to end where a contact opens or closes.
+//!
+//! Besides the contacts, the loads of docs/physics.md §14 that need no damping ([`Loads`]): a
+//! prescribed force on the top element (a blast, a force drive, a preload) or a displacement
+//! actuator's tip contact, both in slot 0 and interpolated through the nodes with the contacts;
+//! a constant force on a primary (a preload beside a striker), in its node forces; and gravity,
+//! which pulls every mass of an element alike and so moves only its rigid mode (the flexible
+//! modes are mass-orthogonal to it), exactly: ½ g t² on the rigid amplitude. The work W of
+//! those forces is carried with the state: the constant ones' exactly (force times
+//! displacement), slot 0's as the integral of its force's cubic against the cubic through the
+//! top primary's (or the tip's) node positions.
 
-use super::exponential::{lagrange, nodes, StepWeights};
+use super::exponential::{lagrange, nodes, work_of_cubics, StepWeights};
 use super::{IntegratorStats, StepControl, Verdict, EVENT_LANDING_FRACTION, NYSTROM_LANDING_END};
 use crate::error::{Error, Result};
 use crate::model::ContactLaw;
@@ -21,6 +31,15 @@ const LADDER_BASE_S: f64 = 1e-12;
 /// [`MAX_ITERATIONS`] (a rejection): its error then stays a thousandth of the step's.
 pub(super) const FIXED_POINT_TOLERANCE: f64 = 1e-3;
 pub(super) const MAX_ITERATIONS: usize = 30;
+/// The longest step, as a fraction of the run's shortest Hertz contact time (`contact_time_s`
+/// of `ChainOde` and `LatticeOde`: the striker's, or under a load every contact's). The exact
+/// flow would let a step grow without bound while the contacts are open; a contact that closes
+/// and opens again between two of a step's nodes would then go unseen.
+pub(super) const MAX_STEP_OF_CONTACT_TIME: f64 = 0.25;
+/// Under a blast or a drive (no striker), the speed \[m/s\] at which the contacts' Hertz
+/// contact times are taken: the time grows as the speed falls (∝ v^{−1/5}), so slower contacts
+/// are only longer than the step limit assumes.
+pub(super) const LOAD_CONTACT_SPEED_M_S: f64 = 1.0;
 /// Velocity units of the error norm, as [`ChainOde::tolerance_units`]: 1/τ with τ = 1 µs.
 pub(super) const VELOCITY_UNIT: f64 = 1e6;
 
@@ -54,6 +73,75 @@ pub(crate) struct ModalIntegrator {
     ends: [Vec<PrimaryEnd>; 2],
     /// Per distinct element: Σ_k 1/μ_k \[1/kg\] (its primary's acceleration per newton).
     inv_mass_sum: Vec<f64>,
+    /// Per primary: a constant force through it besides its weight (a preload beside a
+    /// striker) \[N\].
+    constant_n: Vec<f64>,
+    /// The loads besides the contacts (None: the paper's model under an impact).
+    loads: Option<Box<Loads>>,
+    /// The longest step \[s\] ([`MAX_STEP_OF_CONTACT_TIME`]).
+    max_step_s: f64,
+}
+
+/// What acts on the chain besides its contacts (docs/physics.md §14), as the exact method takes
+/// it.
+#[derive(Debug, Clone)]
+struct Loads {
+    /// The compiled chain, for its prescribed load at any time ([`ChainOde::load_at`]).
+    ode: ChainOde,
+    /// A displacement actuator's tip rest position \[m\] (None: slot 0 is a prescribed force,
+    /// zero beside a striker).
+    actuator_rest_m: Option<f64>,
+    /// Gravity \[m/s²\] and each primary's total mass μ_0 (its rigid mode's) \[kg\].
+    gravity_m_s2: f64,
+    total_mass_kg: Vec<f64>,
+    /// Slot 0 at the attempt's four nodes: the prescribed force \[N\] or the tip's position \[m\].
+    top: [f64; 4],
+    /// The work W of the loads \[J\] and its rate \[W\] at the start and the end of the last step.
+    work: [(f64, f64); 2],
+    /// Where W sits in the chain's state, and whether D (always 0 here) follows it.
+    work_index: usize,
+    dissipation: bool,
+}
+
+impl Loads {
+    /// Slot 0's force and overlap at node `node` of the attempt, the top primary at `x0` \[m\].
+    #[inline(always)]
+    fn top_force(&self, node: usize, x0: f64) -> (f64, f64) {
+        match self.actuator_rest_m {
+            Some(rest) => {
+                let d = rest + self.top[node] - x0;
+                (ContactLaw::elastic_force(self.ode.eq.beta[0], d), d)
+            }
+            None => (self.top[node], 0.0),
+        }
+    }
+
+    /// Slot 0 at the nodes of a step of size h from t ([`Loads::top`]).
+    fn at_nodes(&mut self, t: f64, h: f64) {
+        for (top, c) in self.top.iter_mut().zip(nodes()) {
+            let load = self.ode.load_at(t + c * h);
+            *top = match self.actuator_rest_m {
+                Some(_) => load.tip_m,
+                None => load.force_n,
+            };
+        }
+    }
+
+    /// The rate of W at time t \[W\]: slot 0's power (its force times the top primary's
+    /// velocity, or times the tip's), the constant forces' and gravity's.
+    fn power_w(&self, t: f64, top_force: f64, ends: &[PrimaryEnd], constant_n: &[f64]) -> f64 {
+        let load = self.ode.load_at(t);
+        let top = match self.actuator_rest_m {
+            Some(_) => top_force * load.tip_rate_m_s,
+            None if self.ode.has_striker() => 0.0,
+            None => top_force * ends[0].v,
+        };
+        let constant: f64 = constant_n.iter().zip(ends).map(|(f, e)| f * e.v).sum();
+        let gravity: f64 = (self.total_mass_kg.iter().zip(ends))
+            .map(|(m, e)| m * e.rigid_v)
+            .sum();
+        top + constant + self.gravity_m_s2 * gravity
+    }
 }
 
 /// Buffers of an attempt.
@@ -183,11 +271,25 @@ impl<W> Ladder<W> {
 }
 
 impl ModalIntegrator {
-    /// A stepper for the impact run `ode` (the paper's model) at rest state `y0`, with
+    /// A stepper for the run `ode` ([`ChainOde::fits_exact_modes`]) from state `y0`, with
     /// tolerances rtol and atol \[m\] and a first step `h0`.
     pub fn new(ode: &ChainOde, y0: &[f64], rtol: f64, atol: f64, h0: f64) -> Result<Self> {
         let modal = ModalChain::new(ode)?;
         let (p, n) = (ode.eq.p, modal.n_modes());
+        let (gravity_m_s2, constant_n) = ode.constant_loads();
+        let work_index = 2 * ode.n_dof();
+        let loads = (ode.has_lab_physics() || ode.is_blast()).then(|| {
+            Box::new(Loads {
+                ode: ode.clone(),
+                actuator_rest_m: ode.actuator_rest_m(),
+                gravity_m_s2,
+                total_mass_kg: ode.primary_total_mass_kg(),
+                top: [0.0; 4],
+                work: [(y0[work_index], 0.0); 2],
+                work_index,
+                dissipation: ode.has_lab_physics(),
+            })
+        });
         let (mut c, mut cdot) = (vec![0.0; n], vec![0.0; n]);
         modal.project_state(y0, &mut c, &mut cdot);
         let mut me = ModalIntegrator {
@@ -225,6 +327,9 @@ impl ModalIntegrator {
                 .map(|r| modal.inv_modal_mass[r.clone()].iter().sum())
                 .collect(),
             modal,
+            constant_n,
+            loads,
+            max_step_s: MAX_STEP_OF_CONTACT_TIME * ode.contact_time_s(LOAD_CONTACT_SPEED_M_S),
         };
         let x: Vec<f64> = me
             .modal
@@ -235,22 +340,31 @@ impl ModalIntegrator {
         let (mut f, mut d) = (vec![0.0; p + 1], vec![0.0; p + 1]);
         me.contacts(&x, &mut f, &mut d);
         for i in 0..p {
-            me.force_net[i] = f[i] - f[i + 1];
+            me.force_net[i] = f[i] - f[i + 1] + me.constant_n[i];
         }
         me.overlap = d;
         me.stats.rhs_evaluations = 1;
         let mut ends = std::mem::take(&mut me.ends[1]);
         me.primary_ends(&mut ends);
+        if let Some(loads) = &mut me.loads {
+            let power = loads.power_w(0.0, f[0], &ends, &me.constant_n);
+            loads.work = [(loads.work[0].0, power); 2];
+        }
         me.ends = [ends.clone(), ends];
         Ok(me)
     }
 
-    /// Contact forces and overlaps per slot for primary positions `x` (slot 0: nothing above
-    /// a striker).
-    fn contacts(&self, x: &[f64], force: &mut [f64], overlap: &mut [f64]) {
+    /// Contact forces and overlaps per slot for primary positions `x` at the start (slot 0:
+    /// the load, or nothing above a striker).
+    fn contacts(&mut self, x: &[f64], force: &mut [f64], overlap: &mut [f64]) {
         let p = x.len();
-        force[0] = 0.0;
-        overlap[0] = 0.0;
+        (force[0], overlap[0]) = match &mut self.loads {
+            Some(loads) => {
+                loads.at_nodes(self.t, 0.0);
+                loads.top_force(0, x[0])
+            }
+            None => (0.0, 0.0),
+        };
         for s in 1..=p {
             let d = if s < p { x[s - 1] - x[s] } else { x[p - 1] };
             overlap[s] = d;
@@ -295,6 +409,9 @@ impl ModalIntegrator {
         // the last step's cubic continued (constant at the start).
         let mut sc = std::mem::replace(&mut self.scratch, Scratch::empty());
         self.weights(h, rung);
+        if let Some(loads) = &mut self.loads {
+            loads.at_nodes(self.t, h);
+        }
         let (m, weights) = (&self.modal, self.ladder_or_off(rung));
         for (i, range) in m.ranges.iter().enumerate() {
             let (c, cdot) = (&self.c[range.clone()], &self.cdot[range.clone()]);
@@ -309,6 +426,15 @@ impl ModalIntegrator {
                 } else {
                     self.force_net[i]
                 };
+            }
+        }
+        let g = self.loads.as_ref().map_or(0.0, |l| l.gravity_m_s2);
+        if g != 0.0 {
+            // Gravity's ½ g t² on every rigid mode, so on every primary.
+            for free in &mut sc.free {
+                for (x, c) in free.iter_mut().zip(&c_nodes[1..]) {
+                    *x += 0.5 * g * (c * h) * (c * h);
+                }
             }
         }
         let converged = self.solve_nodes(h, rung, &mut sc);
@@ -371,9 +497,15 @@ impl ModalIntegrator {
             }
             let (mut change, mut scale) = (0.0_f64, 0.0_f64);
             for j in 0..3 {
-                // The force of the slot above primary i, then below it (slot 0: nothing above
-                // a striker).
+                // The force of the slot above primary i, then below it (slot 0: the load, or
+                // nothing above a striker).
                 let mut above = 0.0;
+                if let Some(loads) = &self.loads {
+                    let (f, d) = loads.top_force(j + 1, sc.node_x[0][j]);
+                    sc.node_overlap[0][j + 1] = d;
+                    scale = scale.max(f.abs());
+                    above = f;
+                }
                 for i in 0..p {
                     let d = if i + 1 < p {
                         sc.node_x[i][j] - sc.node_x[i + 1][j]
@@ -382,7 +514,7 @@ impl ModalIntegrator {
                     };
                     sc.node_overlap[i + 1][j + 1] = d;
                     let below = ContactLaw::elastic_force(beta[i + 1], d);
-                    let f = above - below;
+                    let f = above - below + self.constant_n[i];
                     change = change.max((f - sc.node_force[i][j + 1]).abs());
                     scale = scale.max(below.abs());
                     sc.node_force[i][j + 1] = f;
@@ -408,9 +540,10 @@ impl ModalIntegrator {
         let sc = std::mem::replace(&mut self.scratch, Scratch::empty());
         let weights = self.ladder.get(rung);
         let m = &self.modal;
+        let g = self.loads.as_ref().map_or(0.0, |l| l.gravity_m_s2);
         self.ends.swap(0, 1);
         for (i, (range, a)) in m.ranges.iter().zip(&sc.coef).enumerate() {
-            let [x, v, w2c, energy] = weights.advance(
+            let [mut x, mut v, w2c, mut energy] = weights.advance(
                 m.groups(i),
                 a,
                 (
@@ -422,32 +555,106 @@ impl ModalIntegrator {
                     self.cdot[range.clone()].as_chunks_mut::<4>().0,
                 ),
             );
+            let rigid = range.start;
+            let mu0 = m.modal_mass[m.kind_ranges[m.kind[i]].start];
+            if g != 0.0 {
+                // Gravity moves the rigid mode alone: ½ g h² and g h.
+                let v0 = self.cdot[rigid];
+                self.c[rigid] += 0.5 * g * h * h;
+                self.cdot[rigid] = v0 + g * h;
+                x += 0.5 * g * h * h;
+                v += g * h;
+                energy += 0.5 * mu0 * (self.cdot[rigid] * self.cdot[rigid] - v0 * v0);
+            }
             let f = sc.node_force[i][3];
             self.force_net[i] = f;
+            let rigid_v = self.cdot[rigid];
             self.ends[1][i] = PrimaryEnd {
                 x,
                 v,
-                a: f * self.inv_mass_sum[m.kind[i]] - w2c,
+                a: f * self.inv_mass_sum[m.kind[i]] - w2c + g,
                 energy,
-                power: f * v,
+                power: f * v + g * mu0 * rigid_v,
+                rigid_x: self.c[rigid],
+                rigid_v,
             };
         }
         self.coef.copy_from_slice(&sc.coef);
         for (s, d) in sc.node_overlap.iter().enumerate() {
             self.overlap[s] = d[3];
         }
-        self.scratch = sc;
         self.h_last = h;
         self.t_prev = self.t;
         self.t += h;
+        if self.loads.is_some() {
+            self.add_work(&sc);
+        }
+        self.scratch = sc;
     }
 
-    /// The primaries' positions and velocities now into y (the rest of y is left).
+    /// Adds the loads' work over the step just taken (from `t_prev` to `t`, its collocation in
+    /// `sc`) to W, and sets W's rate at the new end.
+    fn add_work(&mut self, sc: &Scratch) {
+        let loads = self.loads.as_mut().expect("called with loads");
+        let [before, after] = &self.ends;
+        let mut w = loads.work[1].0;
+        for (i, (a, b)) in before.iter().zip(after).enumerate() {
+            w += self.constant_n[i] * (b.x - a.x)
+                + loads.gravity_m_s2 * loads.total_mass_kg[i] * (b.rigid_x - a.rigid_x);
+        }
+        // Slot 0: ∫ F dX over the cubics through the nodes, X the top primary's position (a
+        // force) or the tip's (an actuator).
+        let force: [f64; 4] = match loads.actuator_rest_m {
+            Some(_) => {
+                sc.node_overlap[0].map(|d| ContactLaw::elastic_force(loads.ode.eq.beta[0], d))
+            }
+            None => loads.top,
+        };
+        let position = match loads.actuator_rest_m {
+            Some(_) => loads.top,
+            None => {
+                let x = &sc.node_x[0];
+                [before[0].x, x[0], x[1], x[2]]
+            }
+        };
+        if !self.modal.ranges.is_empty() && !loads.ode.has_striker() {
+            let monomials = |v: &[f64; 4]| {
+                [0, 1, 2, 3].map(|n| (0..4).map(|k| self.lagrange[n][k] * v[k]).sum::<f64>())
+            };
+            w += work_of_cubics(&monomials(&force), &monomials(&position), 1.0);
+        }
+        let power = loads.power_w(self.t, force[3], after, &self.constant_n);
+        loads.work = [loads.work[1], (w, power)];
+    }
+
+    /// The primaries' positions and velocities now into y, and the loads' work W (and D = 0
+    /// with the lab physics) at the state's end (the rest of y is left).
     pub fn primaries_into(&self, y: &mut [f64]) {
-        let nd = y.len() / 2;
+        let nd = self.dof(y);
         for (i, e) in self.ends[1].iter().enumerate() {
             y[i] = e.x;
             y[nd + i] = e.v;
+        }
+        self.integrals_into(1.0, y);
+    }
+
+    /// The number of point masses of the chain's state `y`.
+    fn dof(&self, y: &[f64]) -> usize {
+        self.loads.as_ref().map_or(y.len(), |l| l.work_index) / 2
+    }
+
+    /// W (and D) at the fraction s of the last step into y: cubic Hermite interpolation from
+    /// the ends' values and rates.
+    fn integrals_into(&self, s: f64, y: &mut [f64]) {
+        let Some(loads) = &self.loads else { return };
+        let [(w0, p0), (w1, p1)] = loads.work;
+        y[loads.work_index] = if s >= 1.0 {
+            w1
+        } else {
+            hermite(s, self.h_last, [w0, p0, w1, p1])
+        };
+        if loads.dissipation {
+            y[loads.work_index + 1] = 0.0;
         }
     }
 
@@ -458,7 +665,7 @@ impl ModalIntegrator {
     /// energy (from its rate, the net contact force's power F_net·v), as RKN 6(4)'s samples; the
     /// exact formula at θ would cost a kernel per frequency and a pass over every mode per sample.
     pub fn observe_at(&mut self, ts: f64, y: &mut [f64], internal: &mut [f64]) {
-        let nd = y.len() / 2;
+        let nd = self.dof(y);
         let (now, before) = (&self.ends[1], &self.ends[0]);
         let h = self.h_last;
         if ts >= self.t || h == 0.0 {
@@ -467,22 +674,16 @@ impl ModalIntegrator {
                 y[nd + i] = e.v;
                 internal[i] = e.energy;
             }
+            self.integrals_into(1.0, y);
             return;
         }
         let s = ((ts - self.t_prev) / h).clamp(0.0, 1.0);
-        let (h00, h10, h01, h11) = (
-            (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s),
-            s * (1.0 - s) * (1.0 - s),
-            s * s * (3.0 - 2.0 * s),
-            s * s * (s - 1.0),
-        );
-        let hermite =
-            |f0: f64, d0: f64, f1: f64, d1: f64| h00 * f0 + h10 * h * d0 + h01 * f1 + h11 * h * d1;
         for (i, (a, b)) in before.iter().zip(now).enumerate() {
-            y[i] = hermite(a.x, a.v, b.x, b.v);
-            y[nd + i] = hermite(a.v, a.a, b.v, b.a);
-            internal[i] = hermite(a.energy, a.power, b.energy, b.power);
+            y[i] = hermite(s, h, [a.x, a.v, b.x, b.v]);
+            y[nd + i] = hermite(s, h, [a.v, a.a, b.v, b.a]);
+            internal[i] = hermite(s, h, [a.energy, a.power, b.energy, b.power]);
         }
+        self.integrals_into(s, y);
     }
 
     /// Each primary's position, velocity, acceleration, internal energy and its rate now.
@@ -501,8 +702,10 @@ impl ModalIntegrator {
                 w2c += w2[k] * c[k];
                 e.energy += 0.5 * mu[k] * (cd[k] * cd[k] + w2[k] * c[k] * c[k]);
             }
-            e.a = f * self.inv_mass_sum[m.kind[i]] - w2c;
-            e.power = f * e.v;
+            let g = self.loads.as_ref().map_or(0.0, |l| l.gravity_m_s2);
+            (e.rigid_x, e.rigid_v) = (c[0], cd[0]);
+            e.a = f * self.inv_mass_sum[m.kind[i]] - w2c + g;
+            e.power = f * e.v + g * mu[0] * e.rigid_v;
             out[i] = e;
         }
     }
@@ -515,6 +718,10 @@ impl ExactStepper for ModalIntegrator {
 
     fn now(&self) -> f64 {
         self.t
+    }
+
+    fn max_step(&self) -> f64 {
+        self.max_step_s
     }
 
     #[inline(always)]
@@ -536,6 +743,21 @@ struct PrimaryEnd {
     a: f64,
     energy: f64,
     power: f64,
+    /// Its rigid mode's amplitude and rate (what gravity works on).
+    rigid_x: f64,
+    rigid_v: f64,
+}
+
+/// The cubic Hermite interpolant at the fraction s of a step of size h through the values and
+/// rates `[f0, d0, f1, d1]` at its ends.
+fn hermite(s: f64, h: f64, [f0, d0, f1, d1]: [f64; 4]) -> f64 {
+    let (h00, h10, h01, h11) = (
+        (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s),
+        s * (1.0 - s) * (1.0 - s),
+        s * s * (3.0 - 2.0 * s),
+        s * s * (s - 1.0),
+    );
+    h00 * f0 + h10 * h * d0 + h01 * f1 + h11 * h * d1
 }
 
 impl Scratch {
@@ -631,15 +853,15 @@ pub fn exact_modes_state(
     Ok([stepper.c, stepper.cdot].concat())
 }
 
-/// Refuses a chain the exact modal method cannot run.
+/// Refuses a chain the exact modal method cannot run ([`ChainOde::fits_exact_modes`]).
 pub(crate) fn check_fits(ode: &ChainOde) -> Result<()> {
-    use super::OdeSystem;
-    if ode.second_order().is_none() || !ode.has_striker() {
+    if !ode.fits_exact_modes() {
         return Err(Error::invalid(
             "run.method",
             "exact-modes",
-            "advances only an impact of the paper's model (no blast, damping, static load or \
-             drive); use dopri5, or run.peak_tolerance (which chooses the method for the run)",
+            "advances a chain whose contacts are elastic and whose masses are undamped (an \
+             impact, a blast, a drive, a preload, gravity); with damping use dopri5, or \
+             run.peak_tolerance (which chooses the method for the run)",
         ));
     }
     Ok(())

@@ -91,6 +91,7 @@ impl ChainOde {
             res_gravity: vec![g; self.res_mass_kg.len()],
         };
         let load = LabLoad {
+            gravity_m_s2: g,
             load_constant_n,
             drive,
             static_state,

@@ -369,16 +369,15 @@ impl LatticeOde {
         self.omega2.iter().fold(0.0, |m: f64, &w2| m.max(w2)).sqrt()
     }
 
-    /// The striker's Hertz contact time on a rigid half-space \[s\]: 2.94 δ_max / v₀ with
-    /// δ_max = (5 m v₀² / (4 β))^{2/5} (Johnson, *Contact Mechanics*, §11.4), the shortest
-    /// event of the run's scale; infinite without a striker.
+    /// The striker's Hertz contact time on a rigid half-space \[s\]
+    /// ([`ContactLaw::elastic_contact_time_s`]), the shortest event of the run's scale;
+    /// infinite without a striker.
     pub fn striker_contact_time_s(&self) -> f64 {
         let (m, v) = (self.striker_mass_kg, self.striker_velocity_m_s);
         if !self.struck || v <= 0.0 {
             return f64::INFINITY;
         }
-        let delta_max = (1.25 * m * v * v / self.beta[0]).powf(0.4);
-        2.94 * delta_max / v
+        ContactLaw::elastic_contact_time_s(self.beta[0], m, v)
     }
 
     /// Every contact's force rate dF/dt \[N/s\] in state y into `rate`, after
@@ -758,8 +757,7 @@ impl LatticeOde {
                     let below = mass(b);
                     above * below / (above + below)
                 });
-                let delta_max = (1.25 * m * speed_m_s * speed_m_s / self.beta[c]).powf(0.4);
-                2.94 * delta_max / speed_m_s
+                ContactLaw::elastic_contact_time_s(self.beta[c], m, speed_m_s)
             })
             .fold(f64::INFINITY, f64::min)
     }

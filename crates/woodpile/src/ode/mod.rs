@@ -40,6 +40,8 @@ use crate::model::{Chain, ContactLaw};
 /// What a run with lab physics needs beyond its equations: the drive and the static state.
 #[derive(Debug, Clone)]
 struct LabLoad {
+    /// Gravity \[m/s²\] (0: none).
+    gravity_m_s2: f64,
     /// Constant force added to a force-type load (the preload) \[N\].
     load_constant_n: f64,
     /// The drive, if any.
@@ -282,13 +284,14 @@ impl ChainOde {
             .map(|(s, w2)| (s - first, w2))
     }
 
-    /// Rates dF/dt [N/s] of paper contacts 0..=N for state `y`, which must be the state of the last
-    /// evaluation. The load's rate and a damped contact's are NaN (their peaks are not refined).
-    pub fn contact_force_rates(&self, y: &[f64], out: &mut [f64]) {
+    /// Rates dF/dt [N/s] of paper contacts 0..=N at time t for state `y`, which must be the
+    /// state of the last evaluation. A blast's rate and a damped contact's are NaN (their peaks
+    /// are not refined).
+    pub fn contact_force_rates(&self, t: f64, y: &[f64], out: &mut [f64]) {
         let v = &y[self.eq.nd..2 * self.eq.nd];
         if self.lab.is_some() {
             for (c, rate) in out[..self.n_layers()].iter_mut().enumerate() {
-                *rate = self.contact_force_rate(c, v);
+                *rate = self.contact_force_rate(t, c, v);
             }
             return;
         }
@@ -320,21 +323,43 @@ impl ChainOde {
         ContactLaw::elastic_force_rate(self.force_n[slot], d, ddot)
     }
 
-    /// Rate dF/dt [N/s] of paper contact c, from the velocities `v` of the state of the last
-    /// evaluation (only those of the contact's two primaries are read); NaN for the load and a
-    /// damped contact, as in [`ChainOde::contact_force_rates`].
+    /// Rate dF/dt [N/s] of paper contact c at time t, from the velocities `v` of the state of
+    /// the last evaluation (only those of the contact's two primaries are read); NaN for a blast
+    /// and a damped contact, as in [`ChainOde::contact_force_rates`].
     #[inline]
-    pub(crate) fn contact_force_rate(&self, c: usize, v: &[f64]) -> f64 {
+    pub(crate) fn contact_force_rate(&self, t: f64, c: usize, v: &[f64]) -> f64 {
         let slot = c + 1 - self.shift;
         let damped = self
             .eq
             .lab
             .as_ref()
             .is_some_and(|lab| lab.shape.laws[slot].is_damped());
-        if slot == 0 || damped {
+        if damped {
             f64::NAN
+        } else if slot == 0 {
+            self.load_rate(t, v)
         } else {
             self.elastic_rate(slot, v)
+        }
+    }
+
+    /// dF/dt [N/s] of the load's slot 0 at time t: a drive's rate (0 for a preload alone), an
+    /// actuator's elastic tip contact's; NaN for a blast (its profile gives no rate).
+    fn load_rate(&self, t: f64, v: &[f64]) -> f64 {
+        let (Some(lab), Some(eq)) = (&self.lab, &self.eq.lab) else {
+            return f64::NAN;
+        };
+        if self.load.is_some() {
+            return f64::NAN;
+        }
+        match &lab.drive {
+            Some(drive) if eq.shape.actuator => {
+                let tip_rate = drive.value_and_rate(t).1;
+                let (f, d) = (self.force_n[0], self.overlap_m[0]);
+                ContactLaw::elastic_force_rate(f, d, tip_rate - v[0])
+            }
+            Some(drive) => drive.value_and_rate(t).1,
+            None => 0.0,
         }
     }
 
@@ -433,15 +458,21 @@ impl ChainOde {
         0.5 * potential(p)
     }
 
-    /// The force cache (each slot's force and overlap) at the primaries' positions of `y` alone,
-    /// for the paper's model under an impact (nothing above the striker): what
-    /// [`OdeSystem::rhs`] leaves there, without the accelerations (the exact modal method's
-    /// state holds only the primaries, docs/physics.md §8).
-    pub(crate) fn set_contacts_from_primaries(&mut self, y: &[f64]) {
-        debug_assert!(self.lab.is_none() && self.has_striker());
+    /// The force cache (each slot's force and overlap) at time t for the primaries' positions of
+    /// `y` alone, for a run the exact modal method advances ([`ChainOde::fits_exact_modes`]:
+    /// every contact elastic): what [`OdeSystem::rhs`] leaves there, without the accelerations
+    /// (the exact modal method's state holds only the primaries, docs/physics.md §8).
+    pub(crate) fn set_contacts_at(&mut self, t: f64, y: &[f64]) {
+        debug_assert!(self.fits_exact_modes());
         let p = self.eq.p;
-        self.force_n[0] = 0.0;
-        self.overlap_m[0] = 0.0;
+        let load = self.load_at(t);
+        (self.force_n[0], self.overlap_m[0]) = match self.actuator_rest_m() {
+            Some(rest) => {
+                let d = rest + load.tip_m - y[0];
+                (ContactLaw::elastic_force(self.eq.beta[0], d), d)
+            }
+            None => (load.force_n, 0.0),
+        };
         for slot in 1..=p {
             let d = if slot < p {
                 y[slot - 1] - y[slot]
@@ -451,6 +482,78 @@ impl ChainOde {
             self.overlap_m[slot] = d;
             self.force_n[slot] = ContactLaw::elastic_force(self.eq.beta[slot], d);
         }
+    }
+
+    /// Whether [`crate::Method::ExactModes`] can advance this run (docs/physics.md §8): the
+    /// paper's model under an impact or a blast, or the lab physics with every contact elastic
+    /// and no mass damped (a force or displacement drive, a column at rest, a preload, gravity).
+    pub(crate) fn fits_exact_modes(&self) -> bool {
+        self.eq.lab.as_ref().is_none_or(|lab| {
+            lab.shape.laws.iter().all(|&l| l == ContactLaw::Elastic)
+                && !lab.shape.resonator_damping
+                && !lab.shape.on_site
+        })
+    }
+
+    /// A displacement actuator's tip rest position \[m\] (its static equilibrium), if the run
+    /// has one.
+    pub(crate) fn actuator_rest_m(&self) -> Option<f64> {
+        let lab = self.eq.lab.as_ref()?;
+        lab.shape.actuator.then_some(lab.actuator_rest_m)
+    }
+
+    /// Gravity \[m/s²\] and, per primary, the constant force acting on it besides its weight
+    /// (a preload beside a striker) \[N\]: the constant loads as the exact modal method takes
+    /// them (gravity pulls every mass alike, so it moves only each element's rigid mode).
+    pub(crate) fn constant_loads(&self) -> (f64, Vec<f64>) {
+        let (Some(lab), Some(eq)) = (&self.lab, &self.eq.lab) else {
+            return (0.0, vec![0.0; self.eq.p]);
+        };
+        let g = lab.gravity_m_s2;
+        let extra = eq
+            .external_force_n
+            .iter()
+            .zip(&self.mass_kg)
+            .map(|(f, m)| f - m * g)
+            .collect();
+        (g, extra)
+    }
+
+    /// The shortest Hertz contact time of the run \[s\] ([`ContactLaw::elastic_contact_time_s`]):
+    /// the striker's on the top element at its speed; under a load, the shortest of every
+    /// contact's (its two bodies' reduced total mass, the wall's and an actuator's the element's
+    /// alone) at `load_speed_m_s`, the time growing as the speed falls (∝ v^{−1/5}).
+    pub(crate) fn contact_time_s(&self, load_speed_m_s: f64) -> f64 {
+        let total = self.primary_total_mass_kg();
+        let p = self.eq.p;
+        if self.has_striker() {
+            let v = self.striker_velocity_m_s;
+            return if v > 0.0 {
+                ContactLaw::elastic_contact_time_s(self.eq.beta[1], total[0], v)
+            } else {
+                f64::INFINITY
+            };
+        }
+        (0..=p)
+            .filter(|&slot| self.eq.beta[slot] > 0.0)
+            .map(|slot| {
+                let m = match slot {
+                    0 => total[0],
+                    s if s == p => total[p - 1],
+                    s => total[s - 1] * total[s] / (total[s - 1] + total[s]),
+                };
+                ContactLaw::elastic_contact_time_s(self.eq.beta[slot], m, load_speed_m_s)
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// Total mass of each primary with its resonators \[kg\].
+    pub(crate) fn primary_total_mass_kg(&self) -> Vec<f64> {
+        let mut total = self.mass_kg.clone();
+        for (o, m) in self.eq.res_owner.iter().zip(&self.res_mass_kg) {
+            total[*o] += m;
+        }
+        total
     }
 
     /// Work done by the external forces so far \[J\]: the load (0 for an impact without lab

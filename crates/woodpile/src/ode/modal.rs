@@ -330,10 +330,10 @@ impl ModalChain {
         self.ranges.last().map_or(0, |r| r.end)
     }
 
-    /// Modal amplitudes and rates (c, ċ) of the chain's state y = [x | w | v | ẇ].
+    /// Modal amplitudes and rates (c, ċ) of the chain's state y = [x | w | v | ẇ | …].
     pub fn project_state(&self, y: &[f64], c: &mut [f64], cdot: &mut [f64]) {
         let p = self.ranges.len();
-        let nd = y.len() / 2;
+        let nd = p + self.res_ranges.last().map_or(0, |r| r.end);
         for (i, e) in self.elements.iter().enumerate() {
             let (res, start) = (self.res_ranges[i].clone(), self.ranges[i].start);
             let modes = start..start + e.len();

@@ -54,7 +54,7 @@ pub(super) fn simulate_modal(
         let (t0, t1) = (stepper.t_prev(), stepper.t());
         // The force cache at the new primaries (the resonators' part of y is not read).
         stepper.primaries_into(&mut y);
-        ode.set_contacts_from_primaries(&y);
+        ode.set_contacts_at(t1, &y);
         ode.check_contacts(t1)?;
         if stepper.stats().steps > crate::defaults::MAX_STEPS {
             return Err(super::too_many_steps(t1, settings));
@@ -66,17 +66,17 @@ pub(super) fn simulate_modal(
         while let Some((ts, at_step)) = watch.sample_due(t1) {
             let at = if at_step { t1 } else { ts };
             stepper.observe_at(at, &mut y_sample, &mut internal);
-            ode.set_contacts_from_primaries(&y_sample);
+            ode.set_contacts_at(at, &y_sample);
             watch.record_with(&mut ode, ts, &y_sample, true, Some(&internal), recorder)?;
         }
         if watch.stop_due() && t1 < t_end * (1.0 - 1e-14) {
-            ode.set_contacts_from_primaries(&y);
+            ode.set_contacts_at(t1, &y);
             let mut summary = watch.finish(&ode, &y, stepper.stats());
             summary.stopped_at_s = Some(t1);
             return Ok(summary);
         }
     }
     // The summary reads the primaries (the striker's rebound) and the force cache at the end.
-    ode.set_contacts_from_primaries(&y);
+    ode.set_contacts_at(stepper.t(), &y);
     Ok(watch.finish(&ode, &y, stepper.stats()))
 }
