@@ -8,6 +8,7 @@
 //! method's step is set by stability), 0.3 ms, against DOPRI5 with events at rtol 1e-11.
 
 use super::lattice_common::fe_rod_elements;
+use super::peak_common::worst_peak_error;
 use woodpile::excitation::DriveQuantity;
 use woodpile::model::{Damping, Preload, Wall};
 use woodpile::{
@@ -46,18 +47,8 @@ fn converged(chain: &Chain, excitation: &Excitation) -> RunSummary {
     )
 }
 
-/// The worst relative error of a contact peak above 1 % of the largest.
 fn worst_peak(a: &RunSummary, reference: &RunSummary) -> f64 {
-    let largest = reference
-        .contact_peak_forces_n
-        .iter()
-        .fold(0.0_f64, |m, &f| m.max(f));
-    a.contact_peak_forces_n
-        .iter()
-        .zip(&reference.contact_peak_forces_n)
-        .filter(|(_, &r)| r > 0.01 * largest)
-        .map(|(x, r)| (x / r - 1.0).abs())
-        .fold(0.0, f64::max)
+    worst_peak_error(&a.contact_peak_forces_n, &reference.contact_peak_forces_n)
 }
 
 fn displacement_drive() -> Excitation {

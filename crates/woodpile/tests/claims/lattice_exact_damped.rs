@@ -254,16 +254,7 @@ fn lattice_run(excitation: &LatticeExcitation, lab: &LatticeLab, method: Method)
 
 /// The worst relative error of the peaks above 1 % of the largest.
 fn worst_peak(a: &LatticeRun, b: &LatticeRun) -> f64 {
-    let largest = b
-        .contact_peak_forces_n
-        .iter()
-        .fold(0.0_f64, |m, &f| m.max(f));
-    a.contact_peak_forces_n
-        .iter()
-        .zip(&b.contact_peak_forces_n)
-        .filter(|(_, &y)| y > 0.01 * largest)
-        .map(|(x, y)| (x / y - 1.0).abs())
-        .fold(0.0, f64::max)
+    super::peak_common::worst_peak_error(&a.contact_peak_forces_n, &b.contact_peak_forces_n)
 }
 
 /// (3) The damped lattice (ζ = 2 %, τ = 1 ms, 4 elements per half rod, 0.3 ms) struck at

@@ -77,6 +77,7 @@ mod optimize_resume;
 mod optimize_screening;
 mod optimize_stop_early;
 mod optimize_thread_determinism;
+mod peak_common;
 mod peak_refinement;
 mod peak_tolerance_bound;
 mod preload_static_equilibrium;
