@@ -305,3 +305,30 @@ def test_transmission_damping_is_a_keyword_refused_for_a_damped_chain():
     with pytest.raises(WoodpileError) as info:
         woodpile.transmission(s, resolution_hz=-1.0)
     assert info.value.field == "resolution_hz"
+
+
+def test_the_chain_actuator_rest_position_is_a_float_under_a_displacement_drive_only(tmp_path):
+    """``Run.actuator_rest_m`` (``summary.json``'s ``actuator_rest_m``) is a displacement drive's
+    tip at rest, u* [m], downward: a float, the same read back from the directory, above the top
+    element's static displacement x₁ (the first sample; the run starts from the static state) by
+    the tip's Hertz overlap under the 2 N preload, so u* > x₁ > 0. None for an impact."""
+    text = """[chain]
+rods_mm = [80, 40, 20]
+[excitation]
+kind = "drive"
+drive = "displacement"
+signal = "harmonic"
+amplitude = 1e-7
+frequency_hz = 5e3
+[preload]
+force_n = 2.0
+[run]
+duration_s = 2e-5
+"""
+    run = woodpile.simulate(Scenario(text))
+    u = run.actuator_rest_m
+    assert isinstance(u, float) and np.isfinite(u)
+    top = float(run.displacements_m[0, 0])
+    assert u > top > 0.0, f"u* = {u} m, the top element at {top} m"
+    assert woodpile.load_run(run.save(tmp_path / "run")).actuator_rest_m == u
+    assert woodpile.simulate(short()).actuator_rest_m is None

@@ -267,3 +267,30 @@ def test_a_bad_actuator_tip_names_the_key():
     with pytest.raises(ScenarioError) as e:
         woodpile.Scenario(DRIVEN.replace('tip = { kind = "cap", material = "steel", cap_radius_mm = 5.0 }', 'tip = { kind = "free" }'))
     assert e.value.field == "excitation.tip.kind"
+
+
+def test_the_actuator_rest_position_is_a_float_under_a_displacement_drive_only(tmp_path):
+    """``LatticeRun.actuator_rest_m`` (``summary.json``'s ``lab.actuator_rest_m``) is the rigid
+    actuator's static position u* [m], downward: a float under the displacement drive of 9 N on the
+    9 top crossings, the same read back from the run's directory, and above every tip's point —
+    each tip's Hertz overlap (F_i/β_i)^{2/3} (static force and β from the directory) is less than
+    u*, the rest u* − δ_i = w_i > 0 being how far the preload pressed its point down. None under
+    a force drive and an impact (no actuator)."""
+    run = woodpile.simulate(woodpile.Scenario(DRIVEN, name="driven"))
+    u = run.actuator_rest_m
+    assert isinstance(u, float) and np.isfinite(u) and u > 0.0
+    assert run.summary["lab"]["actuator_rest_m"] == u
+    back = woodpile.load_lattice_run(run.save(tmp_path / "out"))
+    assert back.actuator_rest_m == u
+    assert back.run_info is not None
+    betas = np.asarray(back.run_info["contact_betas_n_per_m1_5"])[:9]
+    forces = np.asarray(back.summary["lab"]["contact_static_forces_n"])[:9]
+    assert forces.min() > 0.0
+    overlaps = (forces / betas) ** (2.0 / 3.0)
+    assert np.all(overlaps < u), f"tips' overlaps {overlaps} against u* = {u}"
+    force = DRIVEN.replace('drive = "displacement"', 'drive = "force"').replace(
+        'tip = { kind = "cap", material = "steel", cap_radius_mm = 5.0 }\n', ""
+    )
+    forced = woodpile.simulate(woodpile.Scenario(force))
+    assert "lab" in forced.summary and forced.actuator_rest_m is None
+    assert woodpile.simulate(woodpile.Scenario(LATTICE)).actuator_rest_m is None

@@ -44,7 +44,10 @@ class LatticeRun:
     - ``contacts``: a DataFrame indexed by ``contact`` with :data:`CONTACT_COLUMNS`;
     - ``summary``: ``summary.json`` (``contact_peak_forces_n`` in output order, the incident and
       transmitted peaks, ``energy_max_relative_error``);
-    - ``rods_per_layer`` (top to bottom) and ``lattice_mass_kg``, the rods' mass [kg].
+    - ``rods_per_layer`` (top to bottom) and ``lattice_mass_kg``, the rods' mass [kg];
+    - ``actuator_rest_m``: under a displacement drive, its rigid actuator's static position u* [m]
+      (downward: every tip's overlap is u* + u(t) − w_i; ``summary.json``'s
+      ``lab.actuator_rest_m``), None without a displacement actuator.
 
     A run read from disk also has ``directory`` and ``run_info`` (``run.json``); both are None
     for a run computed here, which alone can be saved.
@@ -55,6 +58,7 @@ class LatticeRun:
     run_info: dict[str, Any] | None
     rods_per_layer: list[int]
     lattice_mass_kg: float
+    actuator_rest_m: float | None
     time_s: FloatArray
     forces_n: FloatArray
     energy_j: FloatArray
@@ -77,6 +81,7 @@ class LatticeRun:
         self._contacts = [list(c) for c in core_run.contacts]
         self.rods_per_layer = list(core_run.rods_per_layer)
         self.lattice_mass_kg = core_run.lattice_mass_kg
+        self.actuator_rest_m = core_run.actuator_rest_m
         self._scenario_toml: str | None = core_run.scenario_toml()
         self.directory = None
         self.run_info = None
@@ -96,6 +101,8 @@ class LatticeRun:
         run.supports = [k for k, c in enumerate(run._contacts) if c[2] == support_layer]
         run.rods_per_layer = list(run_info["rods_per_layer"])
         run.lattice_mass_kg = float(run_info["lattice_mass_kg"])
+        rest = (summary.get("lab") or {}).get("actuator_rest_m")
+        run.actuator_rest_m = None if rest is None else float(rest)
         times: FloatArray = np.load(directory / "time_s.npy")
         forces: FloatArray = np.load(directory / "forces_n.npy")
         energy: FloatArray = np.loadtxt(directory / "energy.csv", delimiter=",", skiprows=1, ndmin=2)[:, 1]

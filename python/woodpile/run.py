@@ -105,6 +105,13 @@ class Run:
         assert self.run_info is not None  # a run is either computed or read back
         return Scenario.from_dict(self.run_info["scenario"], name=self.name)
 
+    @property
+    def actuator_rest_m(self) -> float | None:
+        """Under a displacement drive, its tip's static position u* [m] (downward: the tip's
+        overlap is u* + u(t) − x₁; ``summary.json``'s ``actuator_rest_m``); None without one."""
+        rest = self.summary.get("actuator_rest_m")
+        return None if rest is None else float(rest)
+
     def to_pandas(self) -> pd.DataFrame:
         """The samples as a DataFrame indexed by ``time_s``: ``contact_{c}_n``, ``layer_{l}_j``,
         ``wall_j``, ``input_work_j``, ``dissipated_j``, ``element_{i}_m``, ``element_{i}_m_s``

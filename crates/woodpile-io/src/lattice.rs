@@ -1181,6 +1181,10 @@ pub struct LatticeLabSummary {
     pub contact_static_forces_n: Vec<f64>,
     /// The static solve's relative residual |∇Π| / |f| (0 without a static load).
     pub static_residual: f64,
+    /// Under a displacement drive: its rigid actuator's static position u* \[m\], downward,
+    /// every tip's overlap δ_i = u* + u(t) − w_i (docs/physics.md §16); absent without one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub actuator_rest_m: Option<f64>,
 }
 
 /// Reads a lattice run's `summary.json`, whose `contact_peak_forces_n` must list `contacts`
@@ -1235,6 +1239,7 @@ impl LatticeSummaryJson {
                 contact_dissipated_j: run.contact_dissipated_j.clone(),
                 contact_static_forces_n: run.contact_static_forces_n.clone(),
                 static_residual: run.static_residual,
+                actuator_rest_m: run.actuator_rest_m,
             }),
         }
     }

@@ -114,6 +114,10 @@ pub struct SummaryJson {
     /// Static force of every contact 0..=N under a preload or gravity \[N\] (absent without one).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub static_contact_forces_n: Vec<f64>,
+    /// Under a displacement drive: its tip's static position u* \[m\], downward, the tip's
+    /// overlap δ₀ = u* + u(t) − x₁ (docs/physics.md §14; absent without one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub actuator_rest_m: Option<f64>,
     /// Whether the transmitted peak reached the documented fraction of the incident one.
     pub wave_arrived: bool,
     /// Whether the energy balance closes to within `woodpile::defaults::ENERGY_ERROR_WARN`
@@ -194,6 +198,7 @@ impl SummaryJson {
             ),
             transmission_ratio: s.transmission_ratio,
             static_contact_forces_n: s.static_contact_forces_n.clone(),
+            actuator_rest_m: s.actuator_rest_m,
             wave_arrived: s.wave_arrived,
             energy_balance_ok: s.energy.max_relative_error <= woodpile::defaults::ENERGY_ERROR_WARN,
             restitution_coefficient: s.restitution_coefficient(),

@@ -110,6 +110,13 @@ impl LatticeRun {
         self.run.stats.steps
     }
 
+    /// A displacement drive's actuator at rest: its static position u* [m] (downward; None
+    /// without a displacement actuator).
+    #[getter]
+    fn actuator_rest_m(&self) -> Option<f64> {
+        self.run.actuator_rest_m
+    }
+
     /// Sample times [s], shape (S,).
     #[getter]
     fn time_s<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {

@@ -202,6 +202,13 @@ pub struct RunSummary {
         serde(default, skip_serializing_if = "Vec::is_empty")
     )]
     pub static_contact_forces_n: Vec<f64>,
+    /// A displacement drive's tip at rest: its static position u* \[m\] (downward; None without
+    /// a displacement actuator; [`ChainOde::actuator_rest_m`]).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub actuator_rest_m: Option<f64>,
     /// Whether the wave reached the wall: the transmitted peak is at least
     /// [`defaults::WAVE_ARRIVAL_FRACTION`] of the incident peak. False means the run is too short
     /// (or the chain too long) for the transmitted force to mean anything: increase the duration.
@@ -666,6 +673,7 @@ impl<'a> Watch<'a> {
             transmission_ratio: (incident > 0.0 && wave_arrived).then(|| transmitted / incident),
             wave_arrived,
             static_contact_forces_n: if preloaded { static_forces } else { Vec::new() },
+            actuator_rest_m: ode.actuator_rest_m(),
             restitution,
             energy: EnergyBalance {
                 initial_j: self.initial_energy.total,

@@ -288,6 +288,9 @@ fn print_lattice_run(
                 run.static_residual
             );
         }
+        if let Some(u) = run.actuator_rest_m {
+            text += &format!("actuator     tips at rest at u* = {u:.6e} m (downward)\n");
+        }
         text += &format!(
             "energy       E(0) {:.4e} J, work {:.4e} J, dissipated {:.4e} J; balance error {:.2e}\n",
             e.initial_j, e.input_work_j, e.dissipated_j, e.max_relative_error
@@ -455,6 +458,11 @@ pub fn terminal_summary(r: &RunRecord<'_>, dir: &Path) -> String {
         s.n_elements,
         dynamic(s.n_elements, s.transmitted_peak_force_n)
     ));
+    if let Some(u) = s.actuator_rest_m {
+        o.push_str(&format!(
+            "actuator     tip at rest at u* = {u:.6e} m (downward)\n"
+        ));
+    }
     match s.transmission_ratio {
         Some(r) => o.push_str(&format!("ratio        {r:.4}\n")),
         None if !s.wave_arrived => o.push_str(

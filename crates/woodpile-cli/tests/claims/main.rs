@@ -3,6 +3,7 @@
 //! One test binary per crate (link time dominates the suite): each module below is one claim,
 //! and opens with the claim it checks and the reason for its tolerance.
 
+mod actuator_rest_output;
 mod atomic_output;
 mod bad_input_exit_2;
 mod blast_table;

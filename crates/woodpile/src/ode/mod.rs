@@ -197,6 +197,18 @@ impl ChainOde {
         }
     }
 
+    /// A displacement drive's tip at rest: its static position u* \[m\] (downward; None without
+    /// a displacement actuator), the tip's overlap δ₀ = u* + u(t) − x₁ (docs/physics.md §14).
+    /// Under a preload F_p the top element's static displacement plus (F_p/β₀)^{2/3}; without
+    /// one the top element's static displacement (the tip touching at no force).
+    pub fn actuator_rest_m(&self) -> Option<f64> {
+        self.eq
+            .lab
+            .as_ref()
+            .filter(|l| l.shape.actuator)
+            .map(|l| l.actuator_rest_m)
+    }
+
     /// Number of layers N + 1 (layer 0 = striker or load) = number of paper contacts.
     pub fn n_layers(&self) -> usize {
         self.eq.p + self.shift

@@ -70,6 +70,9 @@ pub struct LatticeRun {
     pub stats: IntegratorStats,
     /// The method the run took ([`lattice_method`]).
     pub method: Method,
+    /// A displacement actuator's static position u* \[m\] (downward; None without one): every
+    /// tip's overlap is δ_i = u* + u(t) − w_i ([`LatticeOde::actuator_rest_m`]).
+    pub actuator_rest_m: Option<f64>,
 }
 
 impl LatticeRun {
@@ -308,6 +311,7 @@ impl LatticeRun {
             bodies: ode.energy_bodies(),
             stats: IntegratorStats::default(),
             method,
+            actuator_rest_m: ode.actuator_rest_m(),
         }
     }
 }
