@@ -507,13 +507,6 @@ impl ChainOde {
         })
     }
 
-    /// A displacement actuator's tip rest position \[m\] (its static equilibrium), if the run
-    /// has one.
-    pub(crate) fn actuator_rest_m(&self) -> Option<f64> {
-        let lab = self.eq.lab.as_ref()?;
-        lab.shape.actuator.then_some(lab.actuator_rest_m)
-    }
-
     /// Gravity \[m/s²\] and, per primary, the constant force acting on it besides its weight
     /// (a preload beside a striker) \[N\]: the constant loads as the exact modal method takes
     /// them (gravity pulls every mass alike, so it moves only each element's rigid mode).
