@@ -14,13 +14,21 @@
 //! (`ONLY=blast`: the cases whose name starts so)
 
 use woodpile::excitation::DriveQuantity;
-use woodpile::model::{Preload, Wall};
+use woodpile::model::{Damping, Preload, Wall};
 use woodpile::{
     simulate, BlastProfile, CellModel, Chain, ChainBuilder, Drive, Element, Excitation, Material,
     Method, Rod, RunSettings, RunSummary, Signal, Striker, UnitCell,
 };
 
 fn fe_chain(force_n: f64, gravity_m_s2: f64) -> woodpile::Result<Chain> {
+    damped_fe_chain(force_n, gravity_m_s2, None)
+}
+
+fn damped_fe_chain(
+    force_n: f64,
+    gravity_m_s2: f64,
+    on_site_time_s: Option<f64>,
+) -> woodpile::Result<Chain> {
     let rod = Rod::new(80e-3, 5e-3, 0.0, Material::fused_quartz())?;
     let cell = UnitCell::from_rod_fe(&rod, 16)?;
     let mut list = Vec::new();
@@ -33,7 +41,14 @@ fn fe_chain(force_n: f64, gravity_m_s2: f64) -> woodpile::Result<Chain> {
         force_n,
         gravity_m_s2,
     };
-    ChainBuilder::new(list).preload(preload).build()
+    let damping = Damping {
+        on_site_time_s,
+        ..Damping::default()
+    };
+    ChainBuilder::new(list)
+        .preload(preload)
+        .damping(damping)
+        .build()
 }
 
 fn run(chain: &Chain, excitation: &Excitation, method: Method) -> woodpile::Result<RunSummary> {
@@ -116,6 +131,16 @@ fn cases() -> woodpile::Result<Vec<(&'static str, Chain, Excitation)>> {
             "preloaded column at rest",
             fe_chain(5.0, 9.81)?,
             Excitation::Rest,
+        ),
+        (
+            "damped impact",
+            damped_fe_chain(0.0, 0.0, Some(2e-4))?,
+            Excitation::Impact(Striker::paper()),
+        ),
+        (
+            "damped preloaded blast",
+            damped_fe_chain(5.0, 9.81, Some(2e-4))?,
+            Excitation::Blast(BlastProfile::paper()),
         ),
     ])
 }

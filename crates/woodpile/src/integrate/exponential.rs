@@ -169,9 +169,66 @@ pub(crate) struct StepWeights {
     /// Per distinct element: the position and velocity error weights, Σ_k W(z_k)/μ_k with W the kernels
     /// against σ(σ − ½)(σ − 1) (the cubic's part its quadratic through 0, ½, 1 lacks).
     pub error: Vec<(f64, f64)>,
+    /// Per distinct element: its rigid mode's response to a unit acceleration (gravity's part).
+    pub rigid: Vec<RigidResponse>,
 }
 
-/// Four modes' free motion at the nodes σ = c₁, c₂, 1: cos(σz) and h sin(σz)/z.
+/// A rigid mode's response to a constant unit acceleration over a step from rest: its
+/// displacement at the nodes σ = c₁, c₂, 1 (h²σ²/2 undamped) and its velocity at the end.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RigidResponse {
+    pub nodes: [f64; 3],
+    pub end_velocity: f64,
+}
+
+/// One mode's kernels at a point θ of a step, damped or not: the free flow (position's and
+/// rate's response to the initial position and rate, in σ = t/h) and the responses S_n, C_n to
+/// σⁿ ([`kernel`] undamped, [`damped_kernel`] damped).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Flow {
+    pub pos_of_pos: f64,
+    pub pos_of_rate: f64,
+    pub rate_of_pos: f64,
+    pub rate_of_rate: f64,
+    pub s: [f64; 4],
+    pub c: [f64; 4],
+}
+
+impl Flow {
+    /// The kernels at θ of a step h of a mode of frequency ω \[rad/s\] and damping rate
+    /// 2γ \[1/s\] (0: undamped).
+    pub fn new(theta: f64, h: f64, omega: f64, rate: f64) -> Self {
+        if rate > 0.0 {
+            let k = damped_kernel(theta, 0.5 * rate * h, h * omega);
+            return Flow {
+                pos_of_pos: k.pos_of_pos,
+                pos_of_rate: k.pos_of_rate,
+                rate_of_pos: k.rate_of_pos,
+                rate_of_rate: k.rate_of_rate,
+                s: k.s,
+                c: k.c,
+            };
+        }
+        let k = kernel(theta, h * omega);
+        Flow {
+            pos_of_pos: k.cos,
+            pos_of_rate: k.sinc,
+            rate_of_pos: -k.zsin,
+            rate_of_rate: k.cos,
+            s: k.s,
+            c: k.c,
+        }
+    }
+
+    /// The kernels at the three nodes σ = c₁, c₂, 1.
+    pub fn at_nodes(h: f64, omega: f64, rate: f64) -> [Self; 3] {
+        let c = nodes();
+        [c[1], c[2], 1.0].map(|theta| Flow::new(theta, h, omega, rate))
+    }
+}
+
+/// Four modes' free motion at the nodes σ = c₁, c₂, 1: cos(σz) and h sin(σz)/z (a damped
+/// mode's position's response to its initial position and h times its initial rate).
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct NodeGroup {
     cos: [Quad; 3],
@@ -179,13 +236,15 @@ pub(crate) struct NodeGroup {
 }
 
 /// Four modes' end-of-step update: cos z, h sin(z)/z, −(z/h) sin z (the velocity's part of the
-/// position), h² S_n(1, z)/μ and h C_n(1, z)/μ (the end state's response to σⁿ), and μ/2 and Ω²
-/// (for the sums of the end state).
+/// position), cos z again (the velocity's part of the velocity), h² S_n(1, z)/μ and h C_n(1, z)/μ
+/// (the end state's response to σⁿ), and μ/2 and Ω² (for the sums of the end state); a damped
+/// mode has the damped kernels' ([`Flow`]) in their places.
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct EndGroup {
     cos: Quad,
     hsinc: Quad,
     vel_of_pos: Quad,
+    vel_of_vel: Quad,
     pos_force: [Quad; 4],
     vel_force: [Quad; 4],
     half_modal_mass: Quad,
@@ -199,14 +258,10 @@ impl StepWeights {
     /// The weights for step h of the chain `m` (its modes per distinct element, padded to
     /// groups of four).
     pub fn new(h: f64, m: &crate::ode::ModalChain) -> Self {
-        let c = nodes();
-        let kernels: Vec<[Kernel; 3]> = m
+        let kernels: Vec<[Flow; 3]> = m
             .frequencies
             .iter()
-            .map(|&w| {
-                let z = h * w;
-                [kernel(c[1], z), kernel(c[2], z), kernel(1.0, z)]
-            })
+            .map(|&(w, rate)| Flow::at_nodes(h, w, rate))
             .collect();
         debug_assert_eq!(
             m.frequency_index.len() % 4,
@@ -221,13 +276,14 @@ impl StepWeights {
             let (g, l) = (mode / 4, mode % 4);
             let node = &mut node_groups[g];
             for ((cos, hsinc), kj) in node.cos.iter_mut().zip(&mut node.hsinc).zip(k) {
-                cos[l] = kj.cos;
-                hsinc[l] = h * kj.sinc;
+                cos[l] = kj.pos_of_pos;
+                hsinc[l] = h * kj.pos_of_rate;
             }
             let e = &mut end[g];
-            e.cos[l] = k[2].cos;
-            e.hsinc[l] = h * k[2].sinc;
-            e.vel_of_pos[l] = -k[2].zsin / h;
+            e.cos[l] = k[2].pos_of_pos;
+            e.hsinc[l] = h * k[2].pos_of_rate;
+            e.vel_of_pos[l] = k[2].rate_of_pos / h;
+            e.vel_of_vel[l] = k[2].rate_of_rate;
             for n in 0..4 {
                 e.pos_force[n][l] = h * h * k[2].s[n] * inv_mu;
                 e.vel_force[n][l] = h * k[2].c[n] * inv_mu;
@@ -236,7 +292,7 @@ impl StepWeights {
             e.omega2[l] = m.omega2[mode];
         }
         let lagrange = lagrange();
-        let (mut node_response, mut error) = (Vec::new(), Vec::new());
+        let (mut node_response, mut error, mut rigid) = (Vec::new(), Vec::new(), Vec::new());
         for range in &m.kind_ranges {
             let mut g = [[0.0; 4]; 3];
             let (mut ex, mut ev) = (0.0, 0.0);
@@ -256,10 +312,17 @@ impl StepWeights {
                 [0, 1, 2, 3].map(|k| (0..4).map(|n| row[n] * lagrange[n][k]).sum::<f64>())
             }));
             error.push((ex, ev));
+            // The rigid mode (first) under a unit acceleration: gravity's part.
+            let k = &kernels[m.frequency_index[range.start]];
+            rigid.push(RigidResponse {
+                nodes: [0, 1, 2].map(|j| h * h * k[j].s[0]),
+                end_velocity: h * k[2].c[0],
+            });
         }
         StepWeights {
             nodes: node_groups,
             end,
+            rigid,
             node_response,
             error,
         }
@@ -309,7 +372,9 @@ impl StepWeights {
             let [q0, q1, q2, q3] = w.vel_force.map(Lane);
             let cos = Lane(w.cos);
             let x = cos * x0 + Lane(w.hsinc) * v0 + (p0 * a0 + p1 * a1 + p2 * a2 + p3 * a3);
-            let v = Lane(w.vel_of_pos) * x0 + cos * v0 + (q0 * a0 + q1 * a1 + q2 * a2 + q3 * a3);
+            let v = Lane(w.vel_of_pos) * x0
+                + Lane(w.vel_of_vel) * v0
+                + (q0 * a0 + q1 * a1 + q2 * a2 + q3 * a3);
             *x1 = x.0;
             *v1 = v.0;
             let w2x = Lane(w.omega2) * x;

@@ -98,9 +98,12 @@ struct Loads {
     top: [f64; 4],
     /// The work W of the loads \[J\] and its rate \[W\] at the start and the end of the last step.
     work: [(f64, f64); 2],
-    /// Where W sits in the chain's state, and whether D (always 0 here) follows it.
+    /// The energy D the on-site damping dissipated \[J\] and its rate \[W\], likewise.
+    dissipated: [(f64, f64); 2],
+    /// Where W sits in the chain's state, whether D follows it, and whether any mode is damped.
     work_index: usize,
     dissipation: bool,
+    damped: bool,
 }
 
 impl Loads {
@@ -286,8 +289,10 @@ impl ModalIntegrator {
                 total_mass_kg: ode.primary_total_mass_kg(),
                 top: [0.0; 4],
                 work: [(y0[work_index], 0.0); 2],
+                dissipated: [(0.0, 0.0); 2],
                 work_index,
                 dissipation: ode.has_lab_physics(),
+                damped: modal.kind_rate.iter().any(|&r| r > 0.0),
             })
         });
         let (mut c, mut cdot) = (vec![0.0; n], vec![0.0; n]);
@@ -349,6 +354,10 @@ impl ModalIntegrator {
         if let Some(loads) = &mut me.loads {
             let power = loads.power_w(0.0, f[0], &ends, &me.constant_n);
             loads.work = [(loads.work[0].0, power); 2];
+            if loads.dissipation {
+                let rate = ends.iter().map(|e| e.dissipation).sum();
+                loads.dissipated = [(y0[work_index + 1], rate); 2];
+            }
         }
         me.ends = [ends.clone(), ends];
         Ok(me)
@@ -430,10 +439,11 @@ impl ModalIntegrator {
         }
         let g = self.loads.as_ref().map_or(0.0, |l| l.gravity_m_s2);
         if g != 0.0 {
-            // Gravity's ½ g t² on every rigid mode, so on every primary.
-            for free in &mut sc.free {
-                for (x, c) in free.iter_mut().zip(&c_nodes[1..]) {
-                    *x += 0.5 * g * (c * h) * (c * h);
+            // Gravity moves every rigid mode (½ g t² undamped), so every primary.
+            let (m, weights) = (&self.modal, self.ladder_or_off(rung));
+            for (free, &kind) in sc.free.iter_mut().zip(&m.kind) {
+                for (x, r) in free.iter_mut().zip(weights.rigid[kind].nodes) {
+                    *x += g * r;
                 }
             }
         }
@@ -555,28 +565,40 @@ impl ModalIntegrator {
                     self.cdot[range.clone()].as_chunks_mut::<4>().0,
                 ),
             );
-            let rigid = range.start;
-            let mu0 = m.modal_mass[m.kind_ranges[m.kind[i]].start];
+            let (rigid, kind) = (range.start, m.kind[i]);
+            let mu0 = m.modal_mass[m.kind_ranges[kind].start];
             if g != 0.0 {
-                // Gravity moves the rigid mode alone: ½ g h² and g h.
+                // Gravity moves the rigid mode alone (½ g h² and g h undamped).
+                let response = weights.rigid[kind];
+                let (dx, dv) = (g * response.nodes[2], g * response.end_velocity);
                 let v0 = self.cdot[rigid];
-                self.c[rigid] += 0.5 * g * h * h;
-                self.cdot[rigid] = v0 + g * h;
-                x += 0.5 * g * h * h;
-                v += g * h;
+                self.c[rigid] += dx;
+                self.cdot[rigid] = v0 + dv;
+                x += dx;
+                v += dv;
                 energy += 0.5 * mu0 * (self.cdot[rigid] * self.cdot[rigid] - v0 * v0);
             }
             let f = sc.node_force[i][3];
             self.force_net[i] = f;
             let rigid_v = self.cdot[rigid];
+            let rate = m.kind_rate[kind];
+            let dissipation = if rate > 0.0 {
+                rate * dissipation_sum(
+                    &self.cdot[range.clone()],
+                    &m.modal_mass[m.kind_ranges[kind].clone()],
+                )
+            } else {
+                0.0
+            };
             self.ends[1][i] = PrimaryEnd {
                 x,
                 v,
-                a: f * self.inv_mass_sum[m.kind[i]] - w2c + g,
+                a: f * self.inv_mass_sum[kind] - w2c + g - rate * v,
                 energy,
-                power: f * v + g * mu0 * rigid_v,
+                power: f * v + g * mu0 * rigid_v - dissipation,
                 rigid_x: self.c[rigid],
                 rigid_v,
+                dissipation,
             };
         }
         self.coef.copy_from_slice(&sc.coef);
@@ -617,14 +639,28 @@ impl ModalIntegrator {
                 [before[0].x, x[0], x[1], x[2]]
             }
         };
-        if !self.modal.ranges.is_empty() && !loads.ode.has_striker() {
-            let monomials = |v: &[f64; 4]| {
-                [0, 1, 2, 3].map(|n| (0..4).map(|k| self.lagrange[n][k] * v[k]).sum::<f64>())
-            };
+        let monomials = |v: &[f64; 4]| {
+            [0, 1, 2, 3].map(|n| (0..4).map(|k| self.lagrange[n][k] * v[k]).sum::<f64>())
+        };
+        if !loads.ode.has_striker() {
             w += work_of_cubics(&monomials(&force), &monomials(&position), 1.0);
         }
         let power = loads.power_w(self.t, force[3], after, &self.constant_n);
         loads.work = [loads.work[1], (w, power)];
+        if loads.damped {
+            // D by the balance of each element: the work of its net force (∫ F dx over the
+            // cubics through the nodes) and of gravity, less the change of its modes' energy.
+            let mut d = loads.dissipated[1].0;
+            for (i, (a, b)) in before.iter().zip(after).enumerate() {
+                let x = &sc.node_x[i];
+                let position = monomials(&[a.x, x[0], x[1], x[2]]);
+                d += work_of_cubics(&sc.coef[i], &position, 1.0)
+                    + loads.gravity_m_s2 * loads.total_mass_kg[i] * (b.rigid_x - a.rigid_x)
+                    - (b.energy - a.energy);
+            }
+            let rate = after.iter().map(|e| e.dissipation).sum();
+            loads.dissipated = [loads.dissipated[1], (d, rate)];
+        }
     }
 
     /// The primaries' positions and velocities now into y, and the loads' work W (and D = 0
@@ -654,7 +690,12 @@ impl ModalIntegrator {
             hermite(s, self.h_last, [w0, p0, w1, p1])
         };
         if loads.dissipation {
-            y[loads.work_index + 1] = 0.0;
+            let [(d0, r0), (d1, r1)] = loads.dissipated;
+            y[loads.work_index + 1] = if s >= 1.0 {
+                d1
+            } else {
+                hermite(s, self.h_last, [d0, r0, d1, r1])
+            };
         }
     }
 
@@ -703,9 +744,11 @@ impl ModalIntegrator {
                 e.energy += 0.5 * mu[k] * (cd[k] * cd[k] + w2[k] * c[k] * c[k]);
             }
             let g = self.loads.as_ref().map_or(0.0, |l| l.gravity_m_s2);
+            let rate = m.kind_rate[m.kind[i]];
             (e.rigid_x, e.rigid_v) = (c[0], cd[0]);
-            e.a = f * self.inv_mass_sum[m.kind[i]] - w2c + g;
-            e.power = f * e.v + g * mu[0] * e.rigid_v;
+            e.dissipation = rate * dissipation_sum(cd, mu);
+            e.a = f * self.inv_mass_sum[m.kind[i]] - w2c + g - rate * e.v;
+            e.power = f * e.v + g * mu[0] * e.rigid_v - e.dissipation;
             out[i] = e;
         }
     }
@@ -746,6 +789,13 @@ struct PrimaryEnd {
     /// Its rigid mode's amplitude and rate (what gravity works on).
     rigid_x: f64,
     rigid_v: f64,
+    /// The power its on-site damping dissipates, 1/τ Σ_k μ_k ċ_k² \[W\].
+    dissipation: f64,
+}
+
+/// Σ_k μ_k ċ_k² over one element's modes (twice their kinetic energy).
+fn dissipation_sum(cdot: &[f64], modal_mass: &[f64]) -> f64 {
+    cdot.iter().zip(modal_mass).map(|(v, m)| m * v * v).sum()
 }
 
 /// The cubic Hermite interpolant at the fraction s of a step of size h through the values and

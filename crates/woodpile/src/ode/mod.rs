@@ -498,12 +498,11 @@ impl ChainOde {
 
     /// Whether [`crate::Method::ExactModes`] can advance this run (docs/physics.md §8): the
     /// paper's model under an impact or a blast, or the lab physics with every contact elastic
-    /// and no mass damped (a force or displacement drive, a column at rest, a preload, gravity).
+    /// and the resonators undamped (a force or displacement drive, a column at rest, a preload,
+    /// gravity, on-site damping).
     pub(crate) fn fits_exact_modes(&self) -> bool {
         self.eq.lab.as_ref().is_none_or(|lab| {
-            lab.shape.laws.iter().all(|&l| l == ContactLaw::Elastic)
-                && !lab.shape.resonator_damping
-                && !lab.shape.on_site
+            lab.shape.laws.iter().all(|&l| l == ContactLaw::Elastic) && !lab.shape.resonator_damping
         })
     }
 

@@ -212,8 +212,12 @@ pub(crate) struct ModalChain {
     /// Per mode of a distinct element: the index of its frequency in
     /// [`ModalChain::frequencies`].
     pub frequency_index: Vec<usize>,
-    /// The distinct Ω \[rad/s\] of the chain (equal cells share theirs).
-    pub frequencies: Vec<f64>,
+    /// The distinct (Ω \[rad/s\], damping rate 2γ \[1/s\]) of the chain (equal cells share
+    /// theirs): on-site damping 1/τ acts on every mass of an element alike, so it damps each of
+    /// its modes, the rigid one included, at 1/τ (mass-proportional damping keeps the modes).
+    pub frequencies: Vec<(f64, f64)>,
+    /// Per distinct element: its damping rate 1/τ \[1/s\] (0: undamped).
+    pub kind_rate: Vec<f64>,
     /// Per mode of a distinct element: 1/μ_k \[1/kg\], μ_k \[kg\] and Ω_k² \[1/s²\].
     pub inv_modal_mass: Vec<f64>,
     pub modal_mass: Vec<f64>,
@@ -221,9 +225,10 @@ pub(crate) struct ModalChain {
 }
 
 impl ModalChain {
-    /// The modal form of a compiled chain (the paper's model: no lab physics).
+    /// The modal form of a compiled chain (its resonators undamped; on-site damping allowed).
     pub fn new(ode: &ChainOde) -> Result<Self> {
         let (p, eq) = (ode.eq.p, &ode.eq);
+        let rate = |i: usize| eq.lab.as_ref().map_or(0.0, |l| l.on_site_rate[i]);
         let mut elements: Vec<std::sync::Arc<ElementModes>> = Vec::with_capacity(p);
         let mut res_ranges = Vec::with_capacity(p);
         let mut start = 0;
@@ -236,17 +241,22 @@ impl ModalChain {
             let cell: Vec<(f64, f64)> = (start..end)
                 .map(|j| (ode.res_mass_kg[j], ode.res_stiffness[j]))
                 .collect();
-            let known = elements.iter().zip(&res_ranges).find(|(e, range)| {
-                let range: &std::ops::Range<usize> = range;
-                e.primary_mass == ode.mass_kg[i]
-                    && range.len() == cell.len()
-                    && range
-                        .clone()
-                        .zip(&cell)
-                        .all(|(j, c)| (ode.res_mass_kg[j], ode.res_stiffness[j]) == *c)
-            });
+            let known = elements
+                .iter()
+                .zip(&res_ranges)
+                .enumerate()
+                .find(|(k, (e, range))| {
+                    let range: &std::ops::Range<usize> = range;
+                    rate(*k) == rate(i)
+                        && e.primary_mass == ode.mass_kg[i]
+                        && range.len() == cell.len()
+                        && range
+                            .clone()
+                            .zip(&cell)
+                            .all(|(j, c)| (ode.res_mass_kg[j], ode.res_stiffness[j]) == *c)
+                });
             let modes = match known {
-                Some((e, _)) => e.clone(),
+                Some((_, (e, _))) => e.clone(),
                 None => std::sync::Arc::new(ElementModes::new(ode.mass_kg[i], &cell)?),
             };
             elements.push(modes);
@@ -259,25 +269,29 @@ impl ModalChain {
             ranges.push(n..n + padded(e.len()));
             n += padded(e.len());
         }
-        // The distinct elements (equal cells share one `Arc`), their modes in one list.
+        // The distinct elements (equal cells at equal damping share one `Arc`), their modes in
+        // one list.
         let mut distinct: Vec<&std::sync::Arc<ElementModes>> = Vec::new();
+        let mut kind_rate = Vec::new();
         let kind: Vec<usize> = elements
             .iter()
-            .map(|e| {
+            .enumerate()
+            .map(|(i, e)| {
                 distinct
                     .iter()
                     .position(|d| std::sync::Arc::ptr_eq(d, e))
                     .unwrap_or_else(|| {
                         distinct.push(e);
+                        kind_rate.push(rate(i));
                         distinct.len() - 1
                     })
             })
             .collect();
         let (mut frequencies, mut frequency_index, mut inv_modal_mass) =
-            (Vec::<f64>::new(), Vec::new(), Vec::new());
+            (Vec::<(f64, f64)>::new(), Vec::new(), Vec::new());
         let mut kind_ranges = Vec::with_capacity(distinct.len());
         let mut start = 0;
-        for e in &distinct {
+        for (e, &r) in distinct.iter().zip(&kind_rate) {
             kind_ranges.push(start..start + padded(e.len()));
             start += padded(e.len());
             // The padding: modes of frequency 0 and no mass (1/μ = 0), which stay at rest.
@@ -289,8 +303,8 @@ impl ModalChain {
                 .zip(e.modal_mass.iter().copied())
                 .chain(padding)
             {
-                let index = frequencies.iter().position(|&f| f == w).unwrap_or_else(|| {
-                    frequencies.push(w);
+                let index = (frequencies.iter().position(|&f| f == (w, r))).unwrap_or_else(|| {
+                    frequencies.push((w, r));
                     frequencies.len() - 1
                 });
                 frequency_index.push(index);
@@ -303,7 +317,7 @@ impl ModalChain {
             .collect();
         let omega2 = frequency_index
             .iter()
-            .map(|&u| frequencies[u] * frequencies[u])
+            .map(|&u| frequencies[u].0 * frequencies[u].0)
             .collect();
         Ok(ModalChain {
             modal_mass,
@@ -315,6 +329,7 @@ impl ModalChain {
             kind_ranges,
             frequency_index,
             frequencies,
+            kind_rate,
             inv_modal_mass,
         })
     }
