@@ -59,6 +59,9 @@ impl Side {
     }
 }
 
+/// Contacts whose sums [`LatticeOde::contact_forces_and_rates_at`] runs side by side.
+const SIDE_BY_SIDE: usize = 2;
+
 /// The compiled equations of a lattice under a striker, a load or nothing.
 #[derive(Debug, Clone)]
 pub struct LatticeOde {
@@ -427,6 +430,38 @@ impl LatticeOde {
         d
     }
 
+    /// The overlaps of K contacts for each of `qs`, bit for bit [`LatticeOde::overlaps`] of
+    /// each (every sum in its order from −0.0), their 2KN sums side by side in one loop: None
+    /// unless every side of them has rows of one length (rods of one mesh; no support).
+    #[inline(always)]
+    fn overlaps_side_by_side<const K: usize, const N: usize>(
+        &self,
+        contacts: [usize; K],
+        qs: [&[f64]; N],
+    ) -> Option<[[f64; N]; K]> {
+        let len = self.above[contacts[0]].len;
+        let mut sides = [[self.above[contacts[0]]; 2]; K];
+        for (pair, &c) in sides.iter_mut().zip(&contacts) {
+            *pair = [self.above[c], self.below[c]?];
+            if pair.iter().any(|s| s.len != len) {
+                return None;
+            }
+        }
+        let rows = sides.map(|pair| pair.map(|s| &self.rows[s.row..s.row + len]));
+        let values = sides.map(|pair| pair.map(|s| qs.map(|q| &q[s.offset..s.offset + len])));
+        let mut sums = [[[-0.0; N]; 2]; K];
+        for k in 0..len {
+            for ((sum, rows), values) in sums.iter_mut().zip(&rows).zip(&values) {
+                for ((sum, rows), values) in sum.iter_mut().zip(rows).zip(values) {
+                    for (s, q) in sum.iter_mut().zip(values) {
+                        *s = *s + rows[k] * q[k];
+                    }
+                }
+            }
+        }
+        Some(sums.map(|[above, below]| std::array::from_fn(|n| above[n] - below[n])))
+    }
+
     /// Every contact's overlap and force at (t, y) as [`LatticeOde::contact_forces_at`], and
     /// its force rate dF/dt \[N/s\] into `rate`: with `elastic_rates` (lab physics in a run
     /// that [`LatticeOde::fits_exact_modes`]) the elastic (3/2) F δ̇ / δ at the contacts and the
@@ -444,12 +479,21 @@ impl LatticeOde {
         let Some(mut lab) = self.lab.take() else {
             let q = self.coordinates();
             let (x, v) = (&y[..q], &y[q + 3..2 * q + 3]);
-            for (c, r) in rate.iter_mut().enumerate() {
+            let mut c = 0;
+            while c < rate.len() {
+                if c + SIDE_BY_SIDE <= rate.len() {
+                    let contacts: [usize; SIDE_BY_SIDE] = std::array::from_fn(|k| c + k);
+                    if let Some(group) = self.overlaps_side_by_side(contacts, [x, v]) {
+                        for [d, dv] in group {
+                            rate[c] = self.set_elastic(c, d, dv);
+                            c += 1;
+                        }
+                        continue;
+                    }
+                }
                 let [d, dv] = self.overlaps(c, [x, v]);
-                let f = ContactLaw::elastic_force(self.beta[c], d);
-                self.overlap_m[c] = d;
-                self.force_n[c] = f;
-                *r = ContactLaw::elastic_force_rate(f, d, dv);
+                rate[c] = self.set_elastic(c, d, dv);
+                c += 1;
             }
             return;
         };
@@ -469,6 +513,16 @@ impl LatticeOde {
             rate.fill(0.0);
         }
         self.lab = Some(lab);
+    }
+
+    /// Contact c's overlap d and elastic force into `overlap_m` and `force_n`; returns the
+    /// force's rate at the overlap's rate `rate_m_s`.
+    #[inline(always)]
+    fn set_elastic(&mut self, c: usize, d: f64, rate_m_s: f64) -> f64 {
+        let f = ContactLaw::elastic_force(self.beta[c], d);
+        self.overlap_m[c] = d;
+        self.force_n[c] = f;
+        ContactLaw::elastic_force_rate(f, d, rate_m_s)
     }
 
     /// Every contact's overlap and force at state y (positions, and with lab physics
