@@ -327,8 +327,8 @@ impl Layout {
 
 /// One mode's flow at θ of a step of size h (from [`kernel`] or [`damped_kernel`]): position
 /// from position and from velocity (h × the kernel's), velocity from position (the kernel's / h)
-/// and from velocity, and the responses S_n, C_n. The factors of h are taken once per
-/// frequency, as the samples' flow took them per mode.
+/// and from velocity, and the responses S_n, C_n (the factors of h taken once per frequency,
+/// not per mode).
 struct FlowAt {
     pp: f64,
     pv: f64,
@@ -342,8 +342,8 @@ impl FlowAt {
     fn new(theta: f64, h: f64, omega: f64, rate: f64) -> Self {
         let (pp, pv, vp, vv, s, c) = if rate > 0.0 {
             let k = damped_kernel(theta, 0.5 * rate * h, h * omega);
-            let (pv, vp) = (k.pos_of_rate, k.rate_of_pos);
-            (k.pos_of_pos, pv, vp, k.rate_of_rate, k.s, k.c)
+            let (pp, pv) = (k.pos_of_pos, k.pos_of_rate);
+            (pp, pv, k.rate_of_pos, k.rate_of_rate, k.s, k.c)
         } else {
             let k = kernel(theta, h * omega);
             (k.cos, k.sinc, -k.zsin, k.cos, k.s, k.c)

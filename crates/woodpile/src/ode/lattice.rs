@@ -408,8 +408,8 @@ impl LatticeOde {
                 let (qa, qb) = (at(above), at(below));
                 for (k, (&ra, &rb)) in rows_above.iter().zip(rows_below).enumerate() {
                     for n in 0..N {
-                        d[n] = d[n] + ra * qa[n][k];
-                        below_d[n] = below_d[n] + rb * qb[n][k];
+                        d[n] += ra * qa[n][k];
+                        below_d[n] += rb * qb[n][k];
                     }
                 }
             }
@@ -454,7 +454,7 @@ impl LatticeOde {
             for ((sum, rows), values) in sums.iter_mut().zip(&rows).zip(&values) {
                 for ((sum, rows), values) in sum.iter_mut().zip(rows).zip(values) {
                     for (s, q) in sum.iter_mut().zip(values) {
-                        *s = *s + rows[k] * q[k];
+                        *s += rows[k] * q[k];
                     }
                 }
             }
