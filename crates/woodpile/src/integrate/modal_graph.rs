@@ -276,7 +276,8 @@ impl Layout {
             .collect()
     }
 
-    /// Grouped values back into the state's layout.
+    /// Grouped values back into the state's layout (whole groups as one move of four: a copy of
+    /// a length unknown at compile time is a call to `memcpy` per group).
     #[inline(always)]
     fn scatter(&self, groups: &[V], x: &mut [f64]) {
         for b in &self.bodies {
@@ -284,8 +285,13 @@ impl Layout {
                 .chunks_mut(4)
                 .zip(&groups[b.group..b.group + b.groups])
             {
-                let n = chunk.len();
-                chunk.copy_from_slice(&g.0[..n]);
+                match <&mut [f64; 4]>::try_from(&mut *chunk) {
+                    Ok(whole) => *whole = g.0,
+                    Err(_) => {
+                        let n = chunk.len();
+                        chunk.copy_from_slice(&g.0[..n]);
+                    }
+                }
             }
         }
     }
