@@ -266,7 +266,8 @@ impl Layout {
             .collect()
     }
 
-    /// Grouped values back into the state's layout.
+    /// Grouped values back into the state's layout (whole groups as one move of four: a copy of
+    /// a length unknown at compile time is a call to `memcpy` per group).
     #[inline(always)]
     fn scatter(&self, groups: &[V], x: &mut [f64]) {
         for b in &self.bodies {
@@ -274,8 +275,13 @@ impl Layout {
                 .chunks_mut(4)
                 .zip(&groups[b.group..b.group + b.groups])
             {
-                let n = chunk.len();
-                chunk.copy_from_slice(&g.0[..n]);
+                match <&mut [f64; 4]>::try_from(&mut *chunk) {
+                    Ok(whole) => *whole = g.0,
+                    Err(_) => {
+                        let n = chunk.len();
+                        chunk.copy_from_slice(&g.0[..n]);
+                    }
+                }
             }
         }
     }
@@ -315,9 +321,10 @@ impl Layout {
     }
 }
 
-/// One mode's flow at θ of a step (from [`kernel`] or [`damped_kernel`]): position from
-/// position and from h × velocity, h × velocity from position and from h × velocity, and the
-/// responses S_n, C_n.
+/// One mode's flow at θ of a step of size h (from [`kernel`] or [`damped_kernel`]): position
+/// from position and from velocity (h × the kernel's), velocity from position (the kernel's / h)
+/// and from velocity, and the responses S_n, C_n (the factors of h taken once per frequency,
+/// not per mode).
 struct FlowAt {
     pp: f64,
     pv: f64,
@@ -329,26 +336,21 @@ struct FlowAt {
 
 impl FlowAt {
     fn new(theta: f64, h: f64, omega: f64, rate: f64) -> Self {
-        if rate > 0.0 {
+        let (pp, pv, vp, vv, s, c) = if rate > 0.0 {
             let k = damped_kernel(theta, 0.5 * rate * h, h * omega);
-            FlowAt {
-                pp: k.pos_of_pos,
-                pv: k.pos_of_rate,
-                vp: k.rate_of_pos,
-                vv: k.rate_of_rate,
-                s: k.s,
-                c: k.c,
-            }
+            let (pp, pv) = (k.pos_of_pos, k.pos_of_rate);
+            (pp, pv, k.rate_of_pos, k.rate_of_rate, k.s, k.c)
         } else {
             let k = kernel(theta, h * omega);
-            FlowAt {
-                pp: k.cos,
-                pv: k.sinc,
-                vp: -k.zsin,
-                vv: k.cos,
-                s: k.s,
-                c: k.c,
-            }
+            (k.cos, k.sinc, -k.zsin, k.cos, k.s, k.c)
+        };
+        FlowAt {
+            pp,
+            pv: h * pv,
+            vp: vp / h,
+            vv,
+            s,
+            c,
         }
     }
 }
@@ -790,14 +792,18 @@ impl GraphModalIntegrator {
             .collect();
         let q = self.frequency_index.len();
         let (x0, v0) = (&self.y_prev[..q], &self.y_prev[q + 3..2 * q + 3]);
+        let h2 = h * h;
         for body in &self.layout.bodies {
-            for (i, m) in body.state.clone().enumerate() {
-                let k = &kernels[self.frequency_index[m]];
-                let b = self.modal_force[body.group + i / 4].map(|b| b.0[i % 4]);
-                let sb: f64 = (0..4).map(|n| k.s[n] * b[n]).sum();
-                let cb: f64 = (0..4).map(|n| k.c[n] * b[n]).sum();
-                out[m] = k.pp * x0[m] + h * k.pv * v0[m] + h * h * sb;
-                out[q + 3 + m] = k.vp / h * x0[m] + k.vv * v0[m] + h * cb;
+            let groups = &self.modal_force[body.group..body.group + body.groups];
+            for (group, first) in groups.iter().zip(body.state.clone().step_by(4)) {
+                for (l, m) in (first..body.state.end.min(first + 4)).enumerate() {
+                    let k = &kernels[self.frequency_index[m]];
+                    let b = group.map(|b| b.0[l]);
+                    let sb: f64 = (0..4).map(|n| k.s[n] * b[n]).sum();
+                    let cb: f64 = (0..4).map(|n| k.c[n] * b[n]).sum();
+                    out[m] = k.pp * x0[m] + k.pv * v0[m] + h2 * sb;
+                    out[q + 3 + m] = k.vp * x0[m] + k.vv * v0[m] + h * cb;
+                }
             }
         }
         self.supports_flow(theta, h, &self.y_prev, out);

@@ -59,6 +59,9 @@ impl Side {
     }
 }
 
+/// Contacts whose sums [`LatticeOde::contact_forces_and_rates_at`] runs side by side.
+const SIDE_BY_SIDE: usize = 2;
+
 /// The compiled equations of a lattice under a striker, a load or nothing.
 #[derive(Debug, Clone)]
 pub struct LatticeOde {
@@ -380,30 +383,145 @@ impl LatticeOde {
         ContactLaw::elastic_contact_time_s(self.beta[0], m, v)
     }
 
-    /// Every contact's force rate dF/dt \[N/s\] in state y into `rate`, after
-    /// [`LatticeOde::contact_forces`] at y's positions: the elastic (3/2) F δ̇ / δ; 0 with lab
-    /// physics (the peaks are then those of the step ends).
-    pub(crate) fn contact_force_rates(&self, y: &[f64], rate: &mut [f64]) {
-        if self.has_lab() {
-            rate.fill(0.0);
-            return;
-        }
-        let q = self.coordinates();
-        let v = &y[q + 3..2 * q + 3];
-        for (c, r) in rate.iter_mut().enumerate() {
-            let dv = self.overlap(c, v);
-            *r = ContactLaw::elastic_force_rate(self.force_n[c], self.overlap_m[c], dv);
-        }
-    }
-
     /// Contact c's overlap at positions q (or its rate at velocities q̇).
     #[inline(always)]
     pub(super) fn overlap(&self, c: usize, q: &[f64]) -> f64 {
-        let mut d = self.deflection(self.above[c], q);
-        if let Some(b) = self.below[c] {
-            d -= self.deflection(b, q);
+        self.overlaps(c, [q])[0]
+    }
+
+    /// Contact c's overlap for each of `qs` (positions, velocities): the deflection above minus
+    /// the one below, each [`Side::dot`]'s sum in its order from its −0.0 (`Iterator::sum` of
+    /// f64), so bit for bit [`Side::dot`] of each. One pass over the rows: where both sides
+    /// have rows of one length (rods of one mesh), the 2N sums run side by side, independent
+    /// chains of additions that the processor overlaps.
+    #[inline(always)]
+    pub(super) fn overlaps<const N: usize>(&self, c: usize, qs: [&[f64]; N]) -> [f64; N] {
+        let above = self.above[c];
+        let rows_above = &self.rows[above.row..above.row + above.len];
+        let mut d = [-0.0; N];
+        let mut below_d = [-0.0; N];
+        match self.below[c] {
+            Some(below) if below.len == above.len => {
+                let rows_below = &self.rows[below.row..below.row + below.len];
+                let at = |side: Side| qs.map(|q| &q[side.offset..side.offset + side.len]);
+                let (qa, qb) = (at(above), at(below));
+                for (k, (&ra, &rb)) in rows_above.iter().zip(rows_below).enumerate() {
+                    for n in 0..N {
+                        d[n] += ra * qa[n][k];
+                        below_d[n] += rb * qb[n][k];
+                    }
+                }
+            }
+            below => {
+                for n in 0..N {
+                    d[n] = above.dot(&self.rows, qs[n]);
+                }
+                if let Some(b) = below {
+                    below_d = qs.map(|q| b.dot(&self.rows, q));
+                }
+            }
+        }
+        if self.below[c].is_some() {
+            for n in 0..N {
+                d[n] -= below_d[n];
+            }
         }
         d
+    }
+
+    /// The overlaps of K contacts for each of `qs`, bit for bit [`LatticeOde::overlaps`] of
+    /// each (every sum in its order from −0.0), their 2KN sums side by side in one loop: None
+    /// unless every side of them has rows of one length (rods of one mesh; no support).
+    #[inline(always)]
+    fn overlaps_side_by_side<const K: usize, const N: usize>(
+        &self,
+        contacts: [usize; K],
+        qs: [&[f64]; N],
+    ) -> Option<[[f64; N]; K]> {
+        let len = self.above[contacts[0]].len;
+        let mut sides = [[self.above[contacts[0]]; 2]; K];
+        for (pair, &c) in sides.iter_mut().zip(&contacts) {
+            *pair = [self.above[c], self.below[c]?];
+            if pair.iter().any(|s| s.len != len) {
+                return None;
+            }
+        }
+        let rows = sides.map(|pair| pair.map(|s| &self.rows[s.row..s.row + len]));
+        let values = sides.map(|pair| pair.map(|s| qs.map(|q| &q[s.offset..s.offset + len])));
+        let mut sums = [[[-0.0; N]; 2]; K];
+        for k in 0..len {
+            for ((sum, rows), values) in sums.iter_mut().zip(&rows).zip(&values) {
+                for ((sum, rows), values) in sum.iter_mut().zip(rows).zip(values) {
+                    for (s, q) in sum.iter_mut().zip(values) {
+                        *s += rows[k] * q[k];
+                    }
+                }
+            }
+        }
+        Some(sums.map(|[above, below]| std::array::from_fn(|n| above[n] - below[n])))
+    }
+
+    /// Every contact's overlap and force at (t, y) as [`LatticeOde::contact_forces_at`], and
+    /// its force rate dF/dt \[N/s\] into `rate`: with `elastic_rates` (lab physics in a run
+    /// that [`LatticeOde::fits_exact_modes`]) the elastic (3/2) F δ̇ / δ at the contacts and the
+    /// load's rate at the load points; otherwise the elastic rate when lossless, 0 with lab
+    /// physics (the peaks are then those of the step ends). One pass over the rows: the overlap
+    /// rates are those the lab's contact laws read, or lossless summed beside the overlaps (bit
+    /// for bit separate passes).
+    pub(crate) fn contact_forces_and_rates_at(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        elastic_rates: bool,
+        rate: &mut [f64],
+    ) {
+        let Some(mut lab) = self.lab.take() else {
+            let q = self.coordinates();
+            let (x, v) = (&y[..q], &y[q + 3..2 * q + 3]);
+            let mut c = 0;
+            while c < rate.len() {
+                if c + SIDE_BY_SIDE <= rate.len() {
+                    let contacts: [usize; SIDE_BY_SIDE] = std::array::from_fn(|k| c + k);
+                    if let Some(group) = self.overlaps_side_by_side(contacts, [x, v]) {
+                        for [d, dv] in group {
+                            rate[c] = self.set_elastic(c, d, dv);
+                            c += 1;
+                        }
+                        continue;
+                    }
+                }
+                let [d, dv] = self.overlaps(c, [x, v]);
+                rate[c] = self.set_elastic(c, d, dv);
+                c += 1;
+            }
+            return;
+        };
+        lab.contact_forces(self, t, y);
+        if elastic_rates {
+            let load = lab.load_rate_per_point_n_s(t);
+            let overlap_rates = lab.overlap_rates_m_s();
+            for (c, r) in rate.iter_mut().enumerate() {
+                *r = if c < self.loads {
+                    load
+                } else {
+                    let (f, d) = (self.force_n[c], self.overlap_m[c]);
+                    ContactLaw::elastic_force_rate(f, d, overlap_rates[c])
+                };
+            }
+        } else {
+            rate.fill(0.0);
+        }
+        self.lab = Some(lab);
+    }
+
+    /// Contact c's overlap d and elastic force into `overlap_m` and `force_n`; returns the
+    /// force's rate at the overlap's rate `rate_m_s`.
+    #[inline(always)]
+    fn set_elastic(&mut self, c: usize, d: f64, rate_m_s: f64) -> f64 {
+        let f = ContactLaw::elastic_force(self.beta[c], d);
+        self.overlap_m[c] = d;
+        self.force_n[c] = f;
+        ContactLaw::elastic_force_rate(f, d, rate_m_s)
     }
 
     /// Every contact's overlap and force at state y (positions, and with lab physics
@@ -439,28 +557,24 @@ impl LatticeOde {
         self.bodies.len() + usize::from(self.actuator)
     }
 
-    /// Contact c's Hertz potential (2/5) β δ₊^{5/2} at positions q \[J\]: 0 at a load point of
-    /// a prescribed force (its work is W); at an actuator's tip, of the overlap of the last
-    /// evaluation ([`LatticeOde::contact_forces_at`], which knows the time).
+    /// Contact c's Hertz potential (2/5) β δ₊^{5/2} at the overlap of the last evaluation
+    /// ([`LatticeOde::contact_forces_at`]) \[J\]: 0 at a load point of a prescribed force (its
+    /// work is W).
     #[inline]
-    fn contact_potential_j(&self, c: usize, q: &[f64]) -> f64 {
-        if c < self.loads {
-            return if self.actuator {
-                ContactLaw::potential_j(self.beta[c], self.overlap_m[c])
-            } else {
-                0.0
-            };
+    fn contact_potential_j(&self, c: usize) -> f64 {
+        if c < self.loads && !self.actuator {
+            return 0.0;
         }
-        ContactLaw::potential_j(self.beta[c], self.overlap(c, q))
+        ContactLaw::potential_j(self.beta[c], self.overlap_m[c])
     }
 
-    /// Every contact's Hertz potential in state y into `out` (one per contact, output order)
-    /// \[J\], after [`LatticeOde::contact_forces_at`] at the state's time (an actuator's tip
-    /// overlaps depend on it).
-    pub fn contact_energies_j(&self, y: &[f64], out: &mut [f64]) {
-        let x = &y[..self.coordinates()];
+    /// Every contact's Hertz potential into `out` (one per contact, output order) \[J\], at the
+    /// state of the last [`LatticeOde::contact_forces_at`] (its overlaps: an actuator's tip
+    /// overlaps depend on the time). [`LatticeOde::energy_j`] and
+    /// [`LatticeOde::body_energies_j`] take these.
+    pub fn contact_energies_j(&self, out: &mut [f64]) {
         for (c, e) in out.iter_mut().enumerate() {
-            *e = self.contact_potential_j(c, x);
+            *e = self.contact_potential_j(c);
         }
     }
 
@@ -468,10 +582,10 @@ impl LatticeOde {
     /// striker or a displacement actuator first, if any, then the rods in the lattice's order),
     /// as a chain's layer energies (docs/physics.md §7): its modes' kinetic and strain energy
     /// Σ ½ (q̇_j² + ω_j² q_j²) plus half of the Hertz potential of every contact it takes part
-    /// in (the actuator: half of each tip contact's). Returns the supports' halves \[J\]; the
-    /// sum of both is [`LatticeOde::energy_j`]. Call after [`LatticeOde::contact_forces_at`]
-    /// at the state's time.
-    pub fn body_energies_j(&self, y: &[f64], out: &mut [f64]) -> f64 {
+    /// in (the actuator: half of each tip contact's), from `contact_energies_j`
+    /// ([`LatticeOde::contact_energies_j`] at y). Returns the supports' halves \[J\]; the sum of
+    /// both is [`LatticeOde::energy_j`].
+    pub fn body_energies_j(&self, y: &[f64], contact_energies_j: &[f64], out: &mut [f64]) -> f64 {
         let q = self.coordinates();
         let (x, v) = (&y[..q], &y[q + 3..2 * q + 3]);
         let first = usize::from(self.actuator);
@@ -483,8 +597,8 @@ impl LatticeOde {
         }
         let body = |side: Side| first + self.bodies.partition_point(|b| b.0 <= side.offset) - 1;
         let mut supports = 0.0;
-        for c in 0..self.beta.len() {
-            let half = 0.5 * self.contact_potential_j(c, x);
+        for (c, &potential) in contact_energies_j.iter().enumerate() {
+            let half = 0.5 * potential;
             if half == 0.0 {
                 continue;
             }
@@ -502,18 +616,17 @@ impl LatticeOde {
         supports
     }
 
-    /// Kinetic, modal strain and contact energy of a state \[J\] (an actuator's tip contacts
-    /// included: call after [`LatticeOde::contact_forces_at`] at the state's time).
-    pub fn energy_j(&self, y: &[f64]) -> f64 {
+    /// Kinetic, modal strain and contact energy of state y \[J\], the contacts' from
+    /// `contact_energies_j` ([`LatticeOde::contact_energies_j`] at y; an actuator's tip
+    /// contacts included).
+    pub fn energy_j(&self, y: &[f64], contact_energies_j: &[f64]) -> f64 {
         let q = self.coordinates();
         let (x, v) = (&y[..q], &y[q + 3..2 * q + 3]);
         let motion: f64 = (0..q)
             .map(|j| 0.5 * (v[j] * v[j] + self.omega2[j] * x[j] * x[j]))
             .sum();
         // (Load points of a prescribed force have no potential: their work is W.)
-        let contacts: f64 = (0..self.beta.len())
-            .map(|c| self.contact_potential_j(c, x))
-            .sum();
+        let contacts: f64 = contact_energies_j.iter().sum();
         motion + contacts
     }
 
@@ -713,26 +826,6 @@ impl LatticeOde {
     /// Each load point's prescribed force at t \[N\] (0 without a load).
     pub(crate) fn load_per_point_n(&self, t: f64) -> f64 {
         self.lab.as_ref().map_or(0.0, |lab| lab.load_per_point_n(t))
-    }
-
-    /// Every contact's force rate dF/dt \[N/s\] in state y at t into `rate`, after
-    /// [`LatticeOde::contact_forces_at`] at (t, y), for a run that [`LatticeOde::fits_exact_modes`]:
-    /// the elastic (3/2) F δ̇ / δ at the contacts, the load's rate at the load points.
-    pub(crate) fn exact_modes_force_rates(&self, t: f64, y: &[f64], rate: &mut [f64]) {
-        let q = self.coordinates();
-        let v = &y[q + 3..2 * q + 3];
-        let load = self
-            .lab
-            .as_ref()
-            .map_or(0.0, |l| l.load_rate_per_point_n_s(t));
-        for (c, r) in rate.iter_mut().enumerate() {
-            *r = if c < self.loads {
-                load
-            } else {
-                let dv = self.overlap(c, v);
-                ContactLaw::elastic_force_rate(self.force_n[c], self.overlap_m[c], dv)
-            };
-        }
     }
 
     /// The shortest Hertz contact time of the run's scale \[s\]: the striker's

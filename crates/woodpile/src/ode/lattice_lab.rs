@@ -168,7 +168,7 @@ impl LabTerms {
                 self.dissipated_w[c] = 0.0;
                 continue;
             }
-            let (d, r) = (ode.overlap(c, x), ode.overlap(c, v));
+            let [d, r] = ode.overlaps(c, [x, v]);
             let (f, p) = self.laws[c].force(self.law_coef[c], ode.beta[c], d, r, self.allow_pull);
             ode.overlap_m[c] = d;
             ode.force_n[c] = f;
@@ -335,6 +335,11 @@ impl LabTerms {
         kinks.retain(|&t| t > 0.0);
         kinks.sort_by(f64::total_cmp);
         kinks
+    }
+
+    /// Per contact at the last evaluation: the overlap rate (a load point's velocity) \[m/s\].
+    pub(super) fn overlap_rates_m_s(&self) -> &[f64] {
+        &self.rate_m_s
     }
 
     /// Each load point's force rate at t \[N/s\]: a drive's; 0 for a blast (a Friedlander
