@@ -17,9 +17,7 @@
 //! over, and the step compiled with AVX2 where the CPU has it (no FMA contraction: bit for bit
 //! the portable build's results, claim `simd_step_bit_identical`).
 
-use super::exponential::{
-    damped_kernel, kernel, lagrange, nodes, DampedKernel, Kernel, ERROR_POLY,
-};
+use super::exponential::{lagrange, nodes, work_of_cubics, Flow, ERROR_POLY};
 use super::modal_step::{
     adaptive_step, first_crossing, Attempt, ExactStepper, Ladder, FIXED_POINT_TOLERANCE,
     LOAD_CONTACT_SPEED_M_S, MAX_ITERATIONS, MAX_STEP_OF_CONTACT_TIME, VELOCITY_UNIT,
@@ -36,7 +34,7 @@ type V = Lane<4>;
 /// What a step of size h needs of one frequency ω (z = hω): per node σ = c₁, c₂, 1 the free
 /// motion cos(σz), h sin(σz)/z and the response h² S_n(σ, z) to σⁿ; at the end the velocity's
 /// −(z/h) sin z and h C_n(1, z); the error weights h² Σ E_n S_n(1, z), h Σ E_n C_n(1, z). A
-/// damped mode (damping rate 2γ > 0) has the damped kernels' ([`damped_kernel`]) in their
+/// damped mode (damping rate 2γ > 0) has the damped kernels' ([`Flow`]) in their
 /// places: `cos` the position's response to the position, `vel_of_vel` the velocity's to the
 /// velocity (cos z undamped).
 #[derive(Debug, Clone, Copy, Default)]
@@ -53,38 +51,14 @@ struct FrequencyWeights {
 
 impl FrequencyWeights {
     fn new(h: f64, omega: f64, rate: f64) -> Self {
-        let c = nodes();
-        if rate > 0.0 {
-            let (a, z) = (0.5 * rate * h, h * omega);
-            let k: [DampedKernel; 3] = [
-                damped_kernel(c[1], a, z),
-                damped_kernel(c[2], a, z),
-                damped_kernel(1.0, a, z),
-            ];
-            let end = &k[2];
-            return FrequencyWeights {
-                cos: k.map(|k| k.pos_of_pos),
-                hsinc: k.map(|k| h * k.pos_of_rate),
-                pos: k.map(|k| k.s.map(|s| h * h * s)),
-                vel_of_pos: end.rate_of_pos / h,
-                vel_of_vel: end.rate_of_rate,
-                vel: end.c.map(|c| h * c),
-                err_pos: h * h * (0..4).map(|n| ERROR_POLY[n] * end.s[n]).sum::<f64>(),
-                err_vel: h * (0..4).map(|n| ERROR_POLY[n] * end.c[n]).sum::<f64>(),
-            };
-        }
-        let k: [Kernel; 3] = [
-            kernel(c[1], h * omega),
-            kernel(c[2], h * omega),
-            kernel(1.0, h * omega),
-        ];
+        let k = Flow::at_nodes(h, omega, rate);
         let end = &k[2];
         FrequencyWeights {
-            cos: k.map(|k| k.cos),
-            hsinc: k.map(|k| h * k.sinc),
+            cos: k.map(|k| k.pos_of_pos),
+            hsinc: k.map(|k| h * k.pos_of_rate),
             pos: k.map(|k| k.s.map(|s| h * h * s)),
-            vel_of_pos: -end.zsin / h,
-            vel_of_vel: end.cos,
+            vel_of_pos: end.rate_of_pos / h,
+            vel_of_vel: end.rate_of_rate,
             vel: end.c.map(|c| h * c),
             err_pos: h * h * (0..4).map(|n| ERROR_POLY[n] * end.s[n]).sum::<f64>(),
             err_vel: h * (0..4).map(|n| ERROR_POLY[n] * end.c[n]).sum::<f64>(),
@@ -321,7 +295,7 @@ impl Layout {
     }
 }
 
-/// One mode's flow at θ of a step of size h (from [`kernel`] or [`damped_kernel`]): position
+/// One mode's flow at θ of a step of size h (from [`Flow`]): position
 /// from position and from velocity (h × the kernel's), velocity from position (the kernel's / h)
 /// and from velocity, and the responses S_n, C_n (the factors of h taken once per frequency,
 /// not per mode).
@@ -336,21 +310,14 @@ struct FlowAt {
 
 impl FlowAt {
     fn new(theta: f64, h: f64, omega: f64, rate: f64) -> Self {
-        let (pp, pv, vp, vv, s, c) = if rate > 0.0 {
-            let k = damped_kernel(theta, 0.5 * rate * h, h * omega);
-            let (pp, pv) = (k.pos_of_pos, k.pos_of_rate);
-            (pp, pv, k.rate_of_pos, k.rate_of_rate, k.s, k.c)
-        } else {
-            let k = kernel(theta, h * omega);
-            (k.cos, k.sinc, -k.zsin, k.cos, k.s, k.c)
-        };
+        let k = Flow::new(theta, h, omega, rate);
         FlowAt {
-            pp,
-            pv: h * pv,
-            vp: vp / h,
-            vv,
-            s,
-            c,
+            pp: k.pos_of_pos,
+            pv: h * k.pos_of_rate,
+            vp: k.rate_of_pos / h,
+            vv: k.rate_of_rate,
+            s: k.s,
+            c: k.c,
         }
     }
 }
@@ -831,7 +798,7 @@ impl GraphModalIntegrator {
             if a.iter().all(|&x| x == 0.0) {
                 continue;
             }
-            let w = contact_work(a, p, theta);
+            let w = -work_of_cubics(a, p, theta);
             w_all += w;
             if c < loads {
                 w_loads += w;
@@ -1027,19 +994,6 @@ pub fn exact_modes_lattice_state(
         }
     }
     Ok(stepper.y)
-}
-
-/// −∫₀^θ a(σ) p'(σ) dσ for a force cubic a and an overlap cubic p (monomials in σ) \[J\]: the
-/// work a contact's force does on the bodies over the first θ of a step.
-fn contact_work(a: &[f64; 4], p: &[f64; 4], theta: f64) -> f64 {
-    let mut w = 0.0;
-    for (n, an) in a.iter().enumerate() {
-        for (k, pk) in p.iter().enumerate().skip(1) {
-            let e = (n + k) as i32;
-            w += an * k as f64 * pk * theta.powi(e) / f64::from(e);
-        }
-    }
-    -w
 }
 
 /// The modes' kinetic and strain energy Σ ½ (q̇² + ω² q²) of a state \[J\].
