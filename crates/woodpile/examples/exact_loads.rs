@@ -21,13 +21,14 @@ use woodpile::{
 };
 
 fn fe_chain(force_n: f64, gravity_m_s2: f64) -> woodpile::Result<Chain> {
-    damped_fe_chain(force_n, gravity_m_s2, None)
+    damped_fe_chain(force_n, gravity_m_s2, None, 0.0)
 }
 
 fn damped_fe_chain(
     force_n: f64,
     gravity_m_s2: f64,
     on_site_time_s: Option<f64>,
+    resonator_ratio: f64,
 ) -> woodpile::Result<Chain> {
     let rod = Rod::new(80e-3, 5e-3, 0.0, Material::fused_quartz())?;
     let cell = UnitCell::from_rod_fe(&rod, 16)?;
@@ -43,6 +44,7 @@ fn damped_fe_chain(
     };
     let damping = Damping {
         on_site_time_s,
+        resonator_ratio,
         ..Damping::default()
     };
     ChainBuilder::new(list)
@@ -134,12 +136,22 @@ fn cases() -> woodpile::Result<Vec<(&'static str, Chain, Excitation)>> {
         ),
         (
             "damped impact",
-            damped_fe_chain(0.0, 0.0, Some(2e-4))?,
+            damped_fe_chain(0.0, 0.0, Some(2e-4), 0.0)?,
             Excitation::Impact(Striker::paper()),
         ),
         (
             "damped preloaded blast",
-            damped_fe_chain(5.0, 9.81, Some(2e-4))?,
+            damped_fe_chain(5.0, 9.81, Some(2e-4), 0.0)?,
+            Excitation::Blast(BlastProfile::paper()),
+        ),
+        (
+            "resonator-damped impact",
+            damped_fe_chain(0.0, 0.0, None, 0.01)?,
+            Excitation::Impact(Striker::paper()),
+        ),
+        (
+            "resonator-damped preloaded blast",
+            damped_fe_chain(5.0, 9.81, Some(2e-4), 0.01)?,
             Excitation::Blast(BlastProfile::paper()),
         ),
     ])
