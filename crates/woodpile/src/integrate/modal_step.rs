@@ -925,9 +925,9 @@ pub(crate) fn check_fits(ode: &ChainOde) -> Result<()> {
         return Err(Error::invalid(
             "run.method",
             "exact-modes",
-            "advances a chain whose contacts are elastic and whose masses are undamped (an \
-             impact, a blast, a drive, a preload, gravity); with damping use dopri5, or \
-             run.peak_tolerance (which chooses the method for the run)",
+            "advances a chain whose contacts are elastic (under an impact, a blast, a drive, a \
+             preload, gravity, resonator and on-site damping); with a damped contact law use \
+             dopri5, or run.peak_tolerance (which chooses the method for the run)",
         ));
     }
     Ok(())

@@ -218,6 +218,56 @@ fn effective_mass(primary_mass: f64, resonators: &[DampedResonator], rho: f64, s
     (value, slope)
 }
 
+/// D(s) times the denominators m_q s (s + ρ) + κ_q of the resonators `poles` (one or two: the
+/// poles next to a mode), and its slope: the same zeros near those poles without their
+/// poles, so that Newton's steps converge even for a mode of tiny effective mass lying next to
+/// its pole (as for the undamped cell's secular equation, `ode::modal`).
+fn deflated(
+    primary_mass: f64,
+    resonators: &[DampedResonator],
+    rho: f64,
+    s: C,
+    poles: &[usize],
+) -> (C, C) {
+    let u = s * (s + rho);
+    let du = s * 2.0 + rho;
+    let den = |j: usize| {
+        let (m, k, c) = resonators[j];
+        (u * m + s * c + k, du * m + c)
+    };
+    // P = Π den_q, P' and, per pole, P_j = P / den_j and its slope.
+    let (mut p, mut dp) = (C::new(1.0, 0.0), C::new(0.0, 0.0));
+    for &q in poles {
+        let (d, dd) = den(q);
+        dp = dp * d + p * dd;
+        p *= d;
+    }
+    let (mut rest, mut drest) = (C::new(primary_mass, 0.0), C::new(0.0, 0.0));
+    for (j, &(m, k, c)) in resonators.iter().enumerate() {
+        if poles.contains(&j) {
+            continue;
+        }
+        let kappa = s * c + k;
+        let d = u * m + kappa;
+        rest += kappa * m / d;
+        drest += (u * c - kappa * du) * (m * m) / (d * d);
+    }
+    let (mut value, mut slope) = (p * rest, dp * rest + p * drest);
+    for &j in poles {
+        let (m, k, c) = resonators[j];
+        let kappa = s * c + k;
+        let (mut pj, mut dpj) = (C::new(1.0, 0.0), C::new(0.0, 0.0));
+        for &q in poles.iter().filter(|&&q| q != j) {
+            let (d, dd) = den(q);
+            dpj = dpj * d + pj * dd;
+            pj *= d;
+        }
+        value += kappa * m * pj;
+        slope += pj * (m * c) + kappa * m * dpj;
+    }
+    (value, slope)
+}
+
 /// The residue of H(s) = 1/(s (s + ρ) D(s)) at a zero λ of D, and D'(λ).
 fn residue_and_slope(
     primary_mass: f64,
@@ -241,15 +291,20 @@ fn follow_roots(
         .iter()
         .map(|&w| C::new(0.0, w))
         .collect();
+    // Mode k lies between the poles of the resonators k − 1 and k in ascending frequency.
+    let mut order: Vec<usize> = (0..resonators.len()).collect();
+    let w2 = |j: usize| resonators[j].1 / resonators[j].0;
+    order.sort_by(|&a, &b| w2(a).total_cmp(&w2(b)));
     for step in 1..=HOMOTOPY_STEPS {
         let t = step as f64 / HOMOTOPY_STEPS as f64;
         let scaled: Vec<DampedResonator> =
             resonators.iter().map(|&(m, k, c)| (m, k, c * t)).collect();
-        for root in roots.iter_mut() {
+        for (mode, root) in roots.iter_mut().enumerate() {
+            let poles = &order[mode..(mode + 2).min(order.len())];
             let mut s = *root;
             let mut last = f64::INFINITY;
             for _ in 0..NEWTON_ITERATIONS {
-                let (value, slope) = effective_mass(primary_mass, &scaled, rho * t, s);
+                let (value, slope) = deflated(primary_mass, &scaled, rho * t, s, poles);
                 let delta = value / slope;
                 s -= delta;
                 last = delta.norm() / s.norm();
@@ -258,7 +313,6 @@ fn follow_roots(
                 }
             }
             // Converged to rounding (Newton's steps then stall at a few ulps).
-            if std::env::var("DEBUG_ROOTS").is_ok() { eprintln!("t {t} root {root} -> {s} last {last:e}"); }
             if last > 1e-12 || s.im <= 0.0 || !s.re.is_finite() {
                 return Err(fail(root.im));
             }
