@@ -237,3 +237,37 @@ fn damped_contact_law_is_refused() {
         "{text}"
     );
 }
+
+/// An overdamped cell (ζ = 3 on every resonator: its damped modes are not oscillations) cannot
+/// be followed: the exact method refuses it naming `damping.resonator_ratio`, and a stated peak
+/// tolerance falls back to what it resolves to without the exact method (DOPRI5 with events),
+/// the same run bit for bit.
+#[test]
+fn overdamped_cell_falls_back_under_a_peak_tolerance() {
+    let chain = damped_chain(0.0, 0.0, None, 3.0);
+    let excitation = Excitation::Impact(Striker::paper());
+    let settings = |method| RunSettings {
+        duration_s: 1e-4,
+        method,
+        sample_interval_s: 1e-6,
+    };
+    let exact = Method::ExactModes {
+        rtol: 1e-7,
+        atol: 1e-13,
+    };
+    let e = simulate(&chain, &excitation, &settings(exact), &mut ()).unwrap_err();
+    assert!(e.to_string().contains("damping.resonator_ratio"), "{e}");
+    let tolerance = Method::PeakTolerance {
+        peak_tolerance: 1e-5,
+    };
+    let chosen = simulate(&chain, &excitation, &settings(tolerance), &mut ()).unwrap();
+    let dopri = simulate(
+        &chain,
+        &excitation,
+        &settings(tolerance.resolve(false)),
+        &mut (),
+    )
+    .unwrap();
+    assert_eq!(chosen.contact_peak_forces_n, dopri.contact_peak_forces_n);
+    assert_eq!(chosen.stats.steps, dopri.stats.steps);
+}
