@@ -3,7 +3,9 @@
 //! every 1 µs, under the paper's blast; a 10 N, 5 kHz harmonic force drive (its default ramp);
 //! that drive over a 20 N preload under gravity; a 0.2 µm, 5 kHz displacement drive (0.1 ms ramp)
 //! through the paper's sensor as the actuator's tip over a 20 N preload under gravity; the
-//! paper's impact under a 5 N preload and gravity; the column at rest under that preload. For
+//! paper's impact under a 5 N preload and gravity; the column at rest under that preload; the
+//! impact with on-site damping (τ = 0.2 ms); the blast over a 5 N preload under gravity with that
+//! damping; the impact with resonator damping (ζ = 1 %); the preloaded blast with both. For
 //! each: DOPRI5 with events at rtol 1e-11 (converged), then `peak_tolerance` 1e-4, 1e-5, 1e-6
 //! as woodpile resolves them (the exact modal method), DOPRI5 with events at the rtol
 //! `peak_tolerance = 1e-5` gave it before, and the exact method at each rtol given as an

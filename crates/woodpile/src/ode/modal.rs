@@ -17,6 +17,10 @@
 //! M + Σ_i m_i ω_i² / ((ω_i² − ω_s²) − τ) = 0 (one root above each pole ω_s², the function
 //! increasing from −∞ to +∞ between poles), so that every gap ω_i² − Ω_k² is computed without
 //! cancellation, however close a mode of tiny effective mass lies to its pole.
+//!
+//! Damped cells: on-site damping (every mass at 1/τ) keeps these modes, each decaying at 1/τ;
+//! resonator dashpots do not, and such a cell is held in its complex modes
+//! ([`DampedCell`]), each a damped oscillator whose weights B, A enter where 1/μ_k and 0 do here.
 
 use super::damped_modes::{DampedCell, DampedResonator};
 use super::ChainOde;
