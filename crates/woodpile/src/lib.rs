@@ -26,9 +26,9 @@
 //!    Runge–Kutta–Nyström pair RKN6(4) for x'' = a(x); the adaptive ones optionally landing
 //!    steps on contacts' predicted openings and closings); a stated peak tolerance
 //!    ([`Method::PeakTolerance`]) picks the method per run; with finite-element rods
-//!    [`Method::ExactModes`] integrates the cells' vibrations exactly in modal form (under an
-//!    impact, a blast, a drive, a preload and gravity; undamped cells), so that the contacts, not
-//!    the stiffest mode, set the step. The equations, the stage loop, the
+//!    [`Method::ExactModes`] integrates the cells' vibrations exactly in modal form (damped
+//!    cells in their complex modes; under an impact, a blast, a drive, a preload and gravity),
+//!    so that the contacts, not the stiffest mode, set the step. The equations, the stage loop, the
 //!    error norm, the crossing prediction and the step control are written once over the number
 //!    type, so [`simulate_many`] runs many designs in SIMD lanes ([`lanes`]) with any physics,
 //!    bit for bit as [`simulate()`] runs each (docs/extending.md: adding a law or a method).

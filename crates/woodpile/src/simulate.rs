@@ -731,16 +731,19 @@ pub(crate) fn simulate_watching(
     check_method_fits(&ode, settings.method)?;
     let method = resolve_method(&ode, settings.method);
     if let Method::ExactModes { .. } = method {
-        return modal::simulate_modal(
-            ode,
-            method,
-            excitation,
-            settings,
-            recorder,
-            peak_watch,
-            stop_above_n,
-            started,
-        );
+        match modal::stepper(&ode, method, settings) {
+            Ok(stepper) => {
+                let watching = (peak_watch, stop_above_n, started);
+                return modal::simulate_modal(
+                    ode, stepper, excitation, settings, recorder, watching,
+                );
+            }
+            // A stated peak tolerance falls back to the integrator it resolves to without the
+            // exact method (DOPRI5 with events here) where a cell's damped modes cannot be
+            // followed (overdamped, or two roots meeting).
+            Err(_) if matches!(settings.method, Method::PeakTolerance { .. }) => {}
+            Err(e) => return Err(e),
+        }
     }
     let dim = ode.dimension();
     let (mut integrator, _) = start_integrator(&mut ode, settings);

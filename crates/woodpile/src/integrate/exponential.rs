@@ -272,7 +272,8 @@ impl StepWeights {
         let mut node_groups = vec![NodeGroup::default(); groups];
         let mut end = vec![EndGroup::default(); groups];
         for (mode, &u) in m.frequency_index.iter().enumerate() {
-            let (k, inv_mu) = (&kernels[u], m.inv_modal_mass[mode]);
+            let (k, b, a) = (&kernels[u], m.inv_modal_mass[mode], m.a_weight[mode]);
+            let (w2, r) = (m.frequencies[u].0 * m.frequencies[u].0, m.frequencies[u].1);
             let (g, l) = (mode / 4, mode % 4);
             let node = &mut node_groups[g];
             for ((cos, hsinc), kj) in node.cos.iter_mut().zip(&mut node.hsinc).zip(k) {
@@ -284,9 +285,11 @@ impl StepWeights {
             e.hsinc[l] = h * k[2].pos_of_rate;
             e.vel_of_pos[l] = k[2].rate_of_pos / h;
             e.vel_of_vel[l] = k[2].rate_of_rate;
+            // The mode's response to the force: the oscillator's, times T = B + A K (B = 1/μ and
+            // A = 0 but under dashpots, `ode::damped_modes`).
             for n in 0..4 {
-                e.pos_force[n][l] = h * h * k[2].s[n] * inv_mu;
-                e.vel_force[n][l] = h * k[2].c[n] * inv_mu;
+                e.pos_force[n][l] = h * h * k[2].s[n] * b + a * h * k[2].c[n];
+                e.vel_force[n][l] = h * k[2].c[n] * (b - r * a) - a * w2 * h * h * k[2].s[n];
             }
             e.half_modal_mass[l] = 0.5 * m.modal_mass[mode];
             e.omega2[l] = m.omega2[mode];
@@ -297,16 +300,20 @@ impl StepWeights {
             let mut g = [[0.0; 4]; 3];
             let (mut ex, mut ev) = (0.0, 0.0);
             for mode in range.clone() {
-                let k = &kernels[m.frequency_index[mode]];
-                let inv_mu = m.inv_modal_mass[mode];
+                let u = m.frequency_index[mode];
+                let k = &kernels[u];
+                let (b, a) = (m.inv_modal_mass[mode], m.a_weight[mode]);
+                let (w2, r) = (m.frequencies[u].0 * m.frequencies[u].0, m.frequencies[u].1);
                 for (row, kj) in g.iter_mut().zip(k) {
-                    for (r, s) in row.iter_mut().zip(&kj.s) {
-                        *r += s * inv_mu;
+                    for (n, x) in row.iter_mut().enumerate() {
+                        *x += kj.s[n] * b + kj.c[n] * a / h;
                     }
                 }
                 let end = &k[2];
-                ex += (0..4).map(|n| ERROR_POLY[n] * end.s[n]).sum::<f64>() * inv_mu;
-                ev += (0..4).map(|n| ERROR_POLY[n] * end.c[n]).sum::<f64>() * inv_mu;
+                let error_s = (0..4).map(|n| ERROR_POLY[n] * end.s[n]).sum::<f64>();
+                let error_c = (0..4).map(|n| ERROR_POLY[n] * end.c[n]).sum::<f64>();
+                ex += error_s * b + error_c * a / h;
+                ev += error_c * (b - r * a) - error_s * a * w2 * h;
             }
             node_response.push(g.map(|row| {
                 [0, 1, 2, 3].map(|k| (0..4).map(|n| row[n] * lagrange[n][k]).sum::<f64>())

@@ -71,8 +71,6 @@ pub(crate) struct ModalIntegrator {
     scratch: Scratch,
     /// Each primary at the start and the end of the last step.
     ends: [Vec<PrimaryEnd>; 2],
-    /// Per distinct element: Σ_k 1/μ_k \[1/kg\] (its primary's acceleration per newton).
-    inv_mass_sum: Vec<f64>,
     /// Per primary: a constant force through it besides its weight (a preload beside a
     /// striker) \[N\].
     constant_n: Vec<f64>,
@@ -292,7 +290,8 @@ impl ModalIntegrator {
                 dissipated: [(0.0, 0.0); 2],
                 work_index,
                 dissipation: ode.has_lab_physics(),
-                damped: modal.kind_rate.iter().any(|&r| r > 0.0),
+                damped: modal.kind_rate.iter().any(|&r| r > 0.0)
+                    || modal.damped.iter().any(Option::is_some),
             })
         });
         let (mut c, mut cdot) = (vec![0.0; n], vec![0.0; n]);
@@ -326,11 +325,6 @@ impl ModalIntegrator {
                 vec![PrimaryEnd::default(); p],
                 vec![PrimaryEnd::default(); p],
             ],
-            inv_mass_sum: modal
-                .kind_ranges
-                .iter()
-                .map(|r| modal.inv_modal_mass[r.clone()].iter().sum())
-                .collect(),
             modal,
             constant_n,
             loads,
@@ -566,7 +560,7 @@ impl ModalIntegrator {
                 ),
             );
             let (rigid, kind) = (range.start, m.kind[i]);
-            let mu0 = m.modal_mass[m.kind_ranges[kind].start];
+            let mu0 = 1.0 / m.inv_modal_mass[m.kind_ranges[kind].start];
             if g != 0.0 {
                 // Gravity moves the rigid mode alone (½ g h² and g h undamped).
                 let response = weights.rigid[kind];
@@ -581,19 +575,17 @@ impl ModalIntegrator {
             let f = sc.node_force[i][3];
             self.force_net[i] = f;
             let rigid_v = self.cdot[rigid];
-            let rate = m.kind_rate[kind];
-            let dissipation = if rate > 0.0 {
-                rate * dissipation_sum(
-                    &self.cdot[range.clone()],
-                    &m.modal_mass[m.kind_ranges[kind].clone()],
-                )
-            } else {
-                0.0
-            };
+            let (energy, dissipation, damping) = element_energy(
+                m,
+                i,
+                (&self.c[range.clone()], &self.cdot[range.clone()]),
+                energy,
+                v,
+            );
             self.ends[1][i] = PrimaryEnd {
                 x,
                 v,
-                a: f * self.inv_mass_sum[kind] - w2c + g - rate * v,
+                a: f * m.accel_per_newton[kind] - w2c + g - damping,
                 energy,
                 power: f * v + g * mu0 * rigid_v - dissipation,
                 rigid_x: self.c[rigid],
@@ -744,11 +736,12 @@ impl ModalIntegrator {
                 e.energy += 0.5 * mu[k] * (cd[k] * cd[k] + w2[k] * c[k] * c[k]);
             }
             let g = self.loads.as_ref().map_or(0.0, |l| l.gravity_m_s2);
-            let rate = m.kind_rate[m.kind[i]];
             (e.rigid_x, e.rigid_v) = (c[0], cd[0]);
-            e.dissipation = rate * dissipation_sum(cd, mu);
-            e.a = f * self.inv_mass_sum[m.kind[i]] - w2c + g - rate * e.v;
-            e.power = f * e.v + g * mu[0] * e.rigid_v - e.dissipation;
+            let damping;
+            (e.energy, e.dissipation, damping) = element_energy(m, i, (c, cd), e.energy, e.v);
+            let mu0 = 1.0 / m.inv_modal_mass[m.kind_ranges[m.kind[i]].start];
+            e.a = f * m.accel_per_newton[m.kind[i]] - w2c + g - damping;
+            e.power = f * e.v + g * mu0 * e.rigid_v - e.dissipation;
             out[i] = e;
         }
     }
@@ -796,6 +789,29 @@ struct PrimaryEnd {
 /// Σ_k μ_k ċ_k² over one element's modes (twice their kinetic energy).
 fn dissipation_sum(cdot: &[f64], modal_mass: &[f64]) -> f64 {
     cdot.iter().zip(modal_mass).map(|(v, m)| m * v * v).sum()
+}
+
+/// Primary i's element at the end of a step, from its modes' (c, ċ): its energy (`energy`, the
+/// sum over its modes, unless its resonators have dashpots: then rebuilt from every
+/// resonator, `ode::damped_modes`), the power its damping dissipates, and the damping's part of
+/// the primary's acceleration (1/τ v under on-site damping, `v` the primary's velocity).
+fn element_energy(
+    m: &ModalChain,
+    i: usize,
+    (c, cdot): (&[f64], &[f64]),
+    energy: f64,
+    v: f64,
+) -> (f64, f64, f64) {
+    let kind = m.kind[i];
+    if let Some(cell) = &m.damped[kind] {
+        return cell.energy(c, cdot);
+    }
+    let rate = m.kind_rate[kind];
+    if rate == 0.0 {
+        return (energy, 0.0, 0.0);
+    }
+    let mu = &m.modal_mass[m.kind_ranges[kind].clone()];
+    (energy, rate * dissipation_sum(cdot, mu), rate * v)
 }
 
 /// The cubic Hermite interpolant at the fraction s of a step of size h through the values and
@@ -909,9 +925,9 @@ pub(crate) fn check_fits(ode: &ChainOde) -> Result<()> {
         return Err(Error::invalid(
             "run.method",
             "exact-modes",
-            "advances a chain whose contacts are elastic and whose masses are undamped (an \
-             impact, a blast, a drive, a preload, gravity); with damping use dopri5, or \
-             run.peak_tolerance (which chooses the method for the run)",
+            "advances a chain whose contacts are elastic (under an impact, a blast, a drive, a \
+             preload, gravity, resonator and on-site damping); with a damped contact law use \
+             dopri5, or run.peak_tolerance (which chooses the method for the run)",
         ));
     }
     Ok(())

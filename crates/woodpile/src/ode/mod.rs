@@ -20,6 +20,7 @@
 //! wall. The paper's contact c is slot c + 1 − s and its layer L is primary L − s, where s = 1 for a
 //! blast (no striker body) and 0 for an impact.
 
+mod damped_modes;
 mod equations;
 mod lab;
 mod lattice;
@@ -498,12 +499,13 @@ impl ChainOde {
 
     /// Whether [`crate::Method::ExactModes`] can advance this run (docs/physics.md §8): the
     /// paper's model under an impact or a blast, or the lab physics with every contact elastic
-    /// and the resonators undamped (a force or displacement drive, a column at rest, a preload,
-    /// gravity, on-site damping).
+    /// (a force or displacement drive, a column at rest, a preload, gravity, on-site and
+    /// resonator damping).
     pub(crate) fn fits_exact_modes(&self) -> bool {
-        self.eq.lab.as_ref().is_none_or(|lab| {
-            lab.shape.laws.iter().all(|&l| l == ContactLaw::Elastic) && !lab.shape.resonator_damping
-        })
+        self.eq
+            .lab
+            .as_ref()
+            .is_none_or(|lab| lab.shape.laws.iter().all(|&l| l == ContactLaw::Elastic))
     }
 
     /// Gravity \[m/s²\] and, per primary, the constant force acting on it besides its weight

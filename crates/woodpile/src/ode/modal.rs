@@ -17,7 +17,12 @@
 //! M + Σ_i m_i ω_i² / ((ω_i² − ω_s²) − τ) = 0 (one root above each pole ω_s², the function
 //! increasing from −∞ to +∞ between poles), so that every gap ω_i² − Ω_k² is computed without
 //! cancellation, however close a mode of tiny effective mass lies to its pole.
+//!
+//! Damped cells: on-site damping (every mass at 1/τ) keeps these modes, each decaying at 1/τ;
+//! resonator dashpots do not, and such a cell is held in its complex modes
+//! ([`DampedCell`]), each a damped oscillator whose weights B, A enter where 1/μ_k and 0 do here.
 
+use super::damped_modes::{DampedCell, DampedResonator};
 use super::ChainOde;
 use crate::error::{Error, Result};
 
@@ -222,15 +227,42 @@ pub(crate) struct ModalChain {
     pub inv_modal_mass: Vec<f64>,
     pub modal_mass: Vec<f64>,
     pub omega2: Vec<f64>,
+    /// Per mode of a distinct element: the weight A \[s/kg\] of its rate in the primary's
+    /// displacement (0 but for a cell with dashpots, whose B is in `inv_modal_mass` and whose
+    /// `modal_mass` is 0: its energy is not diagonal in the modes).
+    pub a_weight: Vec<f64>,
+    /// Per distinct element: its complex modes when its resonators have dashpots.
+    pub damped: Vec<Option<std::sync::Arc<DampedCell>>>,
+    /// Per distinct element: its primary's acceleration per newton of net force, Σ_k (B_k −
+    /// 2γ_k A_k) (Σ 1/μ_k undamped) \[1/kg\].
+    pub accel_per_newton: Vec<f64>,
 }
 
-impl ModalChain {
-    /// The modal form of a compiled chain (its resonators undamped; on-site damping allowed).
-    pub fn new(ode: &ChainOde) -> Result<Self> {
+/// A chain's cells: per primary its modes and its distinct element, per distinct element its
+/// on-site rate and, with dashpots, its complex modes.
+struct Cells {
+    elements: Vec<std::sync::Arc<ElementModes>>,
+    res_ranges: Vec<std::ops::Range<usize>>,
+    kind: Vec<usize>,
+    distinct: Vec<std::sync::Arc<ElementModes>>,
+    kind_rate: Vec<f64>,
+    damped: Vec<Option<std::sync::Arc<DampedCell>>>,
+}
+
+impl Cells {
+    fn of(ode: &ChainOde) -> Result<Self> {
         let (p, eq) = (ode.eq.p, &ode.eq);
         let rate = |i: usize| eq.lab.as_ref().map_or(0.0, |l| l.on_site_rate[i]);
-        let mut elements: Vec<std::sync::Arc<ElementModes>> = Vec::with_capacity(p);
-        let mut res_ranges = Vec::with_capacity(p);
+        let dashpot = |j: usize| eq.lab.as_ref().map_or(0.0, |l| l.res_damping[j]);
+        let resonator = |j: usize| (ode.res_mass_kg[j], ode.res_stiffness[j], dashpot(j));
+        let mut cells = Cells {
+            elements: Vec::with_capacity(p),
+            res_ranges: Vec::with_capacity(p),
+            kind: Vec::with_capacity(p),
+            distinct: Vec::new(),
+            kind_rate: Vec::new(),
+            damped: Vec::new(),
+        };
         let mut start = 0;
         for i in 0..p {
             let end = start
@@ -238,99 +270,133 @@ impl ModalChain {
                     .iter()
                     .take_while(|&&o| o == i)
                     .count();
-            let cell: Vec<(f64, f64)> = (start..end)
-                .map(|j| (ode.res_mass_kg[j], ode.res_stiffness[j]))
-                .collect();
-            let known = elements
-                .iter()
-                .zip(&res_ranges)
-                .enumerate()
-                .find(|(k, (e, range))| {
-                    let range: &std::ops::Range<usize> = range;
-                    rate(*k) == rate(i)
-                        && e.primary_mass == ode.mass_kg[i]
-                        && range.len() == cell.len()
-                        && range
-                            .clone()
-                            .zip(&cell)
-                            .all(|(j, c)| (ode.res_mass_kg[j], ode.res_stiffness[j]) == *c)
-                });
-            let modes = match known {
-                Some((_, (e, _))) => e.clone(),
-                None => std::sync::Arc::new(ElementModes::new(ode.mass_kg[i], &cell)?),
-            };
-            elements.push(modes);
-            res_ranges.push(start..end);
+            let cell: Vec<DampedResonator> = (start..end).map(resonator).collect();
+            let known = (0..i).find(|&k| {
+                let range = cells.res_ranges[k].clone();
+                rate(k) == rate(i)
+                    && ode.mass_kg[k] == ode.mass_kg[i]
+                    && range.len() == cell.len()
+                    && range.zip(&cell).all(|(j, c)| resonator(j) == *c)
+            });
+            match known {
+                Some(k) => {
+                    cells.elements.push(cells.elements[k].clone());
+                    cells.kind.push(cells.kind[k]);
+                }
+                None => {
+                    let undamped: Vec<(f64, f64)> = cell.iter().map(|r| (r.0, r.1)).collect();
+                    let modes = std::sync::Arc::new(ElementModes::new(ode.mass_kg[i], &undamped)?);
+                    let damped = if cell.iter().any(|r| r.2 > 0.0) {
+                        let d = DampedCell::new(ode.mass_kg[i], &cell, rate(i), &modes)?;
+                        Some(std::sync::Arc::new(d))
+                    } else {
+                        None
+                    };
+                    cells.kind.push(cells.distinct.len());
+                    cells.distinct.push(modes.clone());
+                    cells.kind_rate.push(rate(i));
+                    cells.damped.push(damped);
+                    cells.elements.push(modes);
+                }
+            }
+            cells.res_ranges.push(start..end);
             start = end;
         }
-        let mut ranges = Vec::with_capacity(p);
-        let mut n = 0;
-        for e in &elements {
-            ranges.push(n..n + padded(e.len()));
-            n += padded(e.len());
+        Ok(cells)
+    }
+
+    /// Number of modes of distinct element k.
+    fn modes_of(&self, k: usize) -> usize {
+        self.distinct[k].len()
+    }
+}
+
+/// The per-mode lists of the distinct elements, built kind by kind.
+#[derive(Default)]
+struct ModeLists {
+    frequencies: Vec<(f64, f64)>,
+    frequency_index: Vec<usize>,
+    inv_modal_mass: Vec<f64>,
+    a_weight: Vec<f64>,
+    force_accel: Vec<f64>,
+    damped_mode: Vec<bool>,
+}
+
+impl ModeLists {
+    /// Appends distinct element k's modes, padded to whole groups of four with modes of
+    /// frequency 0 and no weight, which stay at rest.
+    fn push_kind(&mut self, cells: &Cells, k: usize) {
+        let e = &cells.distinct[k];
+        let rate = cells.kind_rate[k];
+        // (ω, 2γ, B, A) per mode.
+        let modes: Vec<(f64, f64, f64, f64)> = match &cells.damped[k] {
+            Some(d) => (0..d.len())
+                .map(|m| (d.omega[m], d.rate[m], d.b[m], d.a[m]))
+                .collect(),
+            None => (e.omega.iter().zip(&e.modal_mass))
+                .map(|(&w, &mu)| (w, rate, 1.0 / mu, 0.0))
+                .collect(),
+        };
+        let padding = (modes.len()..padded(modes.len())).map(|_| (0.0, rate, 0.0, 0.0));
+        for (w, r, b, a) in modes.into_iter().chain(padding) {
+            let index = (self.frequencies.iter().position(|&f| f == (w, r))).unwrap_or_else(|| {
+                self.frequencies.push((w, r));
+                self.frequencies.len() - 1
+            });
+            self.frequency_index.push(index);
+            self.inv_modal_mass.push(b);
+            self.a_weight.push(a);
+            self.force_accel.push(b - r * a);
+            self.damped_mode.push(cells.damped[k].is_some());
         }
-        // The distinct elements (equal cells at equal damping share one `Arc`), their modes in
-        // one list.
-        let mut distinct: Vec<&std::sync::Arc<ElementModes>> = Vec::new();
-        let mut kind_rate = Vec::new();
-        let kind: Vec<usize> = elements
-            .iter()
-            .enumerate()
-            .map(|(i, e)| {
-                distinct
-                    .iter()
-                    .position(|d| std::sync::Arc::ptr_eq(d, e))
-                    .unwrap_or_else(|| {
-                        distinct.push(e);
-                        kind_rate.push(rate(i));
-                        distinct.len() - 1
-                    })
-            })
-            .collect();
-        let (mut frequencies, mut frequency_index, mut inv_modal_mass) =
-            (Vec::<(f64, f64)>::new(), Vec::new(), Vec::new());
-        let mut kind_ranges = Vec::with_capacity(distinct.len());
-        let mut start = 0;
-        for (e, &r) in distinct.iter().zip(&kind_rate) {
-            kind_ranges.push(start..start + padded(e.len()));
-            start += padded(e.len());
-            // The padding: modes of frequency 0 and no mass (1/μ = 0), which stay at rest.
-            let padding = (e.len()..padded(e.len())).map(|_| (0.0, f64::INFINITY));
-            for (w, mu) in e
-                .omega
-                .iter()
-                .copied()
-                .zip(e.modal_mass.iter().copied())
-                .chain(padding)
-            {
-                let index = (frequencies.iter().position(|&f| f == (w, r))).unwrap_or_else(|| {
-                    frequencies.push((w, r));
-                    frequencies.len() - 1
-                });
-                frequency_index.push(index);
-                inv_modal_mass.push(1.0 / mu);
-            }
+    }
+}
+
+impl ModalChain {
+    /// The modal form of a compiled chain: its cells' modes, undamped or under on-site damping
+    /// (the undamped modes, each decaying at 1/τ) or under resonator dashpots (the cell's
+    /// complex modes, [`DampedCell`]).
+    pub fn new(ode: &ChainOde) -> Result<Self> {
+        let cells = Cells::of(ode)?;
+        let (p, mut ranges, mut n) = (cells.elements.len(), Vec::new(), 0);
+        for i in 0..p {
+            let len = cells.modes_of(cells.kind[i]);
+            ranges.push(n..n + padded(len));
+            n += padded(len);
         }
-        let modal_mass = inv_modal_mass
+        let mut lists = ModeLists::default();
+        let mut kind_ranges = Vec::with_capacity(cells.distinct.len());
+        for k in 0..cells.distinct.len() {
+            let start = lists.frequency_index.len();
+            lists.push_kind(&cells, k);
+            kind_ranges.push(start..lists.frequency_index.len());
+        }
+        let accel_per_newton = kind_ranges
             .iter()
-            .map(|&m| if m == 0.0 { 0.0 } else { 1.0 / m })
+            .map(|r| r.clone().map(|m| lists.force_accel[m]).sum())
             .collect();
-        let omega2 = frequency_index
-            .iter()
-            .map(|&u| frequencies[u].0 * frequencies[u].0)
+        let modal_mass = (lists.inv_modal_mass.iter())
+            .zip(&lists.damped_mode)
+            .map(|(&m, &damped)| if m == 0.0 || damped { 0.0 } else { 1.0 / m })
+            .collect();
+        let omega2 = (lists.frequency_index.iter())
+            .map(|&u| lists.frequencies[u].0 * lists.frequencies[u].0)
             .collect();
         Ok(ModalChain {
             modal_mass,
             omega2,
-            elements,
             ranges,
-            res_ranges,
-            kind,
+            res_ranges: cells.res_ranges,
+            kind: cells.kind,
             kind_ranges,
-            frequency_index,
-            frequencies,
-            kind_rate,
-            inv_modal_mass,
+            frequency_index: lists.frequency_index,
+            frequencies: lists.frequencies,
+            kind_rate: cells.kind_rate,
+            damped: cells.damped,
+            accel_per_newton,
+            a_weight: lists.a_weight,
+            inv_modal_mass: lists.inv_modal_mass,
+            elements: cells.elements,
         })
     }
 
@@ -353,6 +419,17 @@ impl ModalChain {
             let (res, start) = (self.res_ranges[i].clone(), self.ranges[i].start);
             let modes = start..start + e.len();
             let (ra, rb) = (p + res.start, p + res.end);
+            if let Some(d) = &self.damped[self.kind[i]] {
+                let (x, v) = (&y[ra..rb], &y[nd + ra..nd + rb]);
+                d.project(
+                    (y[i], y[nd + i]),
+                    x,
+                    v,
+                    &mut c[modes.clone()],
+                    &mut cdot[modes],
+                );
+                continue;
+            }
             e.project(y[i], &y[ra..rb], &mut c[modes.clone()]);
             e.project(y[nd + i], &y[nd + ra..nd + rb], &mut cdot[modes]);
         }

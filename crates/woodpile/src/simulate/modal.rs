@@ -15,27 +15,34 @@ use crate::record::{Layout, Recorder};
 /// to five times a step).
 const FIRST_STEP_OF_SAMPLE: f64 = 0.01;
 
-/// [`super::simulate_watching`] for [`Method::ExactModes`] (`method`, resolved).
-#[allow(clippy::too_many_arguments)]
-pub(super) fn simulate_modal(
-    mut ode: ChainOde,
+/// The exact modal method's stepper for `ode` at `method`'s tolerances (errors: the run does not
+/// fit the method, or a cell's damped modes cannot be followed).
+pub(super) fn stepper(
+    ode: &ChainOde,
     method: Method,
-    excitation: &Excitation,
     settings: &RunSettings,
-    recorder: &mut dyn Recorder,
-    peak_watch: PeakWatch,
-    stop_above_n: f64,
-    started: std::time::Instant,
-) -> Result<RunSummary> {
+) -> Result<ModalIntegrator> {
     let Method::ExactModes { rtol, atol } = method else {
         unreachable!("called for the exact modal method")
     };
-    check_fits(&ode)?;
+    check_fits(ode)?;
+    let h0 = FIRST_STEP_OF_SAMPLE * settings.sample_interval_s.min(settings.duration_s);
+    ModalIntegrator::new(ode, &ode.initial_state(), rtol, atol, h0)
+}
+
+/// [`super::simulate_watching`] for [`Method::ExactModes`] with its `stepper`; `watching`: the
+/// peaks watched, the transmitted peak that stops the run, the start of the run's clock.
+pub(super) fn simulate_modal(
+    mut ode: ChainOde,
+    mut stepper: ModalIntegrator,
+    excitation: &Excitation,
+    settings: &RunSettings,
+    recorder: &mut dyn Recorder,
+    (peak_watch, stop_above_n, started): (PeakWatch, f64, std::time::Instant),
+) -> Result<RunSummary> {
     let dim = ode.dimension();
     let mut y = ode.initial_state();
     let mut scratch = vec![0.0; dim];
-    let h0 = FIRST_STEP_OF_SAMPLE * settings.sample_interval_s.min(settings.duration_s);
-    let mut stepper = ModalIntegrator::new(&ode, &y, rtol, atol, h0)?;
     ode.rhs(0.0, &y, &mut scratch);
     recorder.start(&Layout {
         n_elements: ode.n_elements(),
