@@ -3,15 +3,17 @@
 //! on the primaries, steps from a geometric ladder (so that the weights of a step size are
 //! computed once), and steps retaken to end where a contact opens or closes.
 //!
-//! Besides the contacts, the loads of docs/physics.md §14 that need no damping ([`Loads`]): a
-//! prescribed force on the top element (a blast, a force drive, a preload) or a displacement
-//! actuator's tip contact, both in slot 0 and interpolated through the nodes with the contacts;
-//! a constant force on a primary (a preload beside a striker), in its node forces; and gravity,
-//! which pulls every mass of an element alike and so moves only its rigid mode (the flexible
-//! modes are mass-orthogonal to it), exactly: ½ g t² on the rigid amplitude. The work W of
-//! those forces is carried with the state: the constant ones' exactly (force times
-//! displacement), slot 0's as the integral of its force's cubic against the cubic through the
-//! top primary's (or the tip's) node positions.
+//! Besides the contacts, the loads of docs/physics.md §14 ([`Loads`]): a prescribed force on the
+//! top element (a blast, a force drive, a preload) or a displacement actuator's tip contact,
+//! both in slot 0 and interpolated through the nodes with the contacts; a constant force on a
+//! primary (a preload beside a striker), in its node forces; and gravity, which pulls every mass
+//! of an element alike and so moves only its rigid mode (the flexible modes carry no momentum),
+//! exactly, through the rigid mode's own kernel (½ g t² undamped). The cells' damping is in
+//! their modes (`ode::ModalChain`: on-site damping decays each mode at 1/τ, resonator dashpots
+//! make them complex). The work W of those forces is carried with the state: the constant ones'
+//! exactly (force times displacement), slot 0's as the integral of its force's cubic against
+//! the cubic through the top primary's (or the tip's) node positions; the dissipated energy D by
+//! each element's balance.
 
 use super::exponential::{lagrange, nodes, work_of_cubics, StepWeights};
 use super::{IntegratorStats, StepControl, Verdict, EVENT_LANDING_FRACTION, NYSTROM_LANDING_END};
@@ -655,8 +657,8 @@ impl ModalIntegrator {
         }
     }
 
-    /// The primaries' positions and velocities now into y, and the loads' work W (and D = 0
-    /// with the lab physics) at the state's end (the rest of y is left).
+    /// The primaries' positions and velocities now into y, and the loads' work W (and the
+    /// dissipated energy D with the lab physics) at the state's end (the rest of y is left).
     pub fn primaries_into(&self, y: &mut [f64]) {
         let nd = self.dof(y);
         for (i, e) in self.ends[1].iter().enumerate() {
