@@ -115,6 +115,9 @@ impl DampedCell {
             }
         }
         cell.to_state = cell.state_map().lu();
+        if !cell.to_state.is_invertible() {
+            return Err(fail(cell.omega.get(1).copied().unwrap_or(0.0)));
+        }
         Ok(cell)
     }
 
@@ -204,7 +207,7 @@ fn oscillator_weights(residue: C, lambda: C) -> (f64, f64) {
     (-2.0 * (residue * lambda.conj()).re, 2.0 * residue.re)
 }
 
-/// D(s) and D'(s) of the cell with its damping scaled by `scale`.
+/// D(s) and D'(s) of the cell (the resonators' dashpots and the on-site rate ρ as given).
 fn effective_mass(primary_mass: f64, resonators: &[DampedResonator], rho: f64, s: C) -> (C, C) {
     let u = s * (s + rho);
     let du = s * 2.0 + rho;
