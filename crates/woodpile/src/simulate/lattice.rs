@@ -200,6 +200,14 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
              state run.peak_tolerance instead",
         ));
     }
+    if settings.method.needs_second_order() && ode.second_order().is_none() {
+        return Err(Error::invalid(
+            "run.integrator",
+            "rkn64",
+            "RKN 6(4) advances only x'' = a(x): a lossless, unloaded impact; with damping, a \
+             load or a preload use dopri5, or state run.peak_tolerance",
+        ));
+    }
     let method = lattice_method(ode, settings.method);
     let mut stepper = Stepper::new(ode, method, settings);
     // With lab physics whose contacts are all elastic (what the exact modal method runs), the

@@ -401,3 +401,25 @@ fn damped_lattice_takes_the_blast_impulse() {
     );
     assert!(err < 1e-10, "impulse off by {err:e}");
 }
+
+/// RKN 6(4) stated for a damped lattice (its accelerations depend on the velocities) is refused
+/// with an error naming `run.integrator`, not a panic.
+#[test]
+fn damped_lattice_refuses_rkn64() {
+    let lattice = three_by_four(4);
+    let excitation = LatticeExcitation::Impact {
+        striker: Striker::paper(),
+        at_m: [0.0, 0.0],
+    };
+    let mut ode = LatticeOde::build(&lattice, &excitation, &damped_lab()).unwrap();
+    let settings = RunSettings {
+        duration_s: 1e-5,
+        method: Method::Rkn64 {
+            rtol: 1e-8,
+            atol: 1e-14,
+        },
+        sample_interval_s: 1e-6,
+    };
+    let e = simulate_lattice(&mut ode, &settings).unwrap_err();
+    assert!(e.to_string().contains("run.integrator"), "{e}");
+}
