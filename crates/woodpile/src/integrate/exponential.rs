@@ -183,16 +183,8 @@ pub(crate) struct RigidResponse {
 
 /// One mode's kernels at a point θ of a step, damped or not: the free flow (position's and
 /// rate's response to the initial position and rate, in σ = t/h) and the responses S_n, C_n to
-/// σⁿ ([`kernel`] undamped, [`damped_kernel`] damped).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Flow {
-    pub pos_of_pos: f64,
-    pub pos_of_rate: f64,
-    pub rate_of_pos: f64,
-    pub rate_of_rate: f64,
-    pub s: [f64; 4],
-    pub c: [f64; 4],
-}
+/// σⁿ, in [`DampedKernel`]'s form ([`kernel`] undamped, [`damped_kernel`] damped).
+pub(crate) type Flow = DampedKernel;
 
 impl Flow {
     /// The kernels at θ of a step h of a mode of frequency ω \[rad/s\] and damping rate
