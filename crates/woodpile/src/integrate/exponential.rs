@@ -189,6 +189,7 @@ pub(crate) type Flow = DampedKernel;
 impl Flow {
     /// The kernels at θ of a step h of a mode of frequency ω \[rad/s\] and damping rate
     /// 2γ \[1/s\] (0: undamped).
+    #[inline]
     pub fn new(theta: f64, h: f64, omega: f64, rate: f64) -> Self {
         if rate > 0.0 {
             let k = damped_kernel(theta, 0.5 * rate * h, h * omega);
@@ -213,9 +214,14 @@ impl Flow {
     }
 
     /// The kernels at the three nodes σ = c₁, c₂, 1.
+    #[inline]
     pub fn at_nodes(h: f64, omega: f64, rate: f64) -> [Self; 3] {
         let c = nodes();
-        [c[1], c[2], 1.0].map(|theta| Flow::new(theta, h, omega, rate))
+        [
+            Flow::new(c[1], h, omega, rate),
+            Flow::new(c[2], h, omega, rate),
+            Flow::new(1.0, h, omega, rate),
+        ]
     }
 }
 

@@ -797,6 +797,7 @@ fn dissipation_sum(cdot: &[f64], modal_mass: &[f64]) -> f64 {
 /// sum over its modes, unless its resonators have dashpots: then rebuilt from every
 /// resonator, `ode::damped_modes`), the power its damping dissipates, and the damping's part of
 /// the primary's acceleration (1/τ v under on-site damping, `v` the primary's velocity).
+#[inline(always)]
 fn element_energy(
     m: &ModalChain,
     i: usize,
