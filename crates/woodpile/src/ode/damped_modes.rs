@@ -83,7 +83,7 @@ impl DampedCell {
             cell.velocity[j * kk] = [0.0, 1.0]; // the rigid mode moves every mass alike
         }
         for (k, &lambda) in roots.iter().enumerate() {
-            let (residue, _) = residue_and_slope(primary_mass, resonators, on_site_rate, lambda);
+            let residue = residue(primary_mass, resonators, on_site_rate, lambda);
             let (b, a) = oscillator_weights(residue, lambda);
             let (omega, gamma) = (lambda.norm(), -lambda.re);
             cell.omega.push(omega);
@@ -271,15 +271,10 @@ fn deflated(
     (value, slope)
 }
 
-/// The residue of H(s) = 1/(s (s + ρ) D(s)) at a zero λ of D, and D'(λ).
-fn residue_and_slope(
-    primary_mass: f64,
-    resonators: &[DampedResonator],
-    rho: f64,
-    lambda: C,
-) -> (C, C) {
+/// The residue of H(s) = 1/(s (s + ρ) D(s)) at a zero λ of D: 1/(λ (λ + ρ) D'(λ)).
+fn residue(primary_mass: f64, resonators: &[DampedResonator], rho: f64, lambda: C) -> C {
     let (_, slope) = effective_mass(primary_mass, resonators, rho, lambda);
-    (C::new(1.0, 0.0) / (lambda * (lambda + rho) * slope), slope)
+    C::new(1.0, 0.0) / (lambda * (lambda + rho) * slope)
 }
 
 /// The zeros of D with Im > 0, one per flexible mode of `undamped`, followed from iΩ_k as the
