@@ -19,7 +19,7 @@ use super::exponential::{lagrange, nodes, work_of_cubics, StepWeights};
 use super::{IntegratorStats, StepControl, Verdict, EVENT_LANDING_FRACTION, NYSTROM_LANDING_END};
 use crate::error::{Error, Result};
 use crate::model::ContactLaw;
-use crate::ode::{ChainOde, ModalChain};
+use crate::ode::{load_slot, ChainOde, ModalChain};
 
 /// The order that sets the step control: that of the embedded estimate's leading term (the
 /// cubic's σ³ part times h², h⁵), as for RKN 6(4).
@@ -110,13 +110,12 @@ impl Loads {
     /// Slot 0's force and overlap at node `node` of the attempt, the top primary at `x0` \[m\].
     #[inline(always)]
     fn top_force(&self, node: usize, x0: f64) -> (f64, f64) {
-        match self.actuator_rest_m {
-            Some(rest) => {
-                let d = rest + self.top[node] - x0;
-                (ContactLaw::elastic_force(self.ode.eq.beta[0], d), d)
-            }
-            None => (self.top[node], 0.0),
-        }
+        load_slot(
+            self.ode.eq.beta[0],
+            self.actuator_rest_m,
+            self.top[node],
+            x0,
+        )
     }
 
     /// Slot 0 at the nodes of a step of size h from t ([`Loads::top`]).

@@ -479,13 +479,13 @@ impl ChainOde {
         debug_assert!(self.fits_exact_modes());
         let p = self.eq.p;
         let load = self.load_at(t);
-        (self.force_n[0], self.overlap_m[0]) = match self.actuator_rest_m() {
-            Some(rest) => {
-                let d = rest + load.tip_m - y[0];
-                (ContactLaw::elastic_force(self.eq.beta[0], d), d)
-            }
-            None => (load.force_n, 0.0),
+        let rest = self.actuator_rest_m();
+        let value = if rest.is_some() {
+            load.tip_m
+        } else {
+            load.force_n
         };
+        (self.force_n[0], self.overlap_m[0]) = load_slot(self.eq.beta[0], rest, value, y[0]);
         for slot in 1..=p {
             let d = if slot < p {
                 y[slot - 1] - y[slot]
@@ -647,6 +647,26 @@ impl ChainOde {
                 }
             }
         }
+    }
+}
+
+/// Slot 0's force and overlap for the exact modal method (elastic contacts): under a
+/// displacement actuator resting at `actuator_rest_m`, its tip's Hertz contact (β `beta`) with
+/// the tip at `value` \[m\] and the top primary at `x0` \[m\]; otherwise the prescribed force
+/// `value` \[N\] (0 beside a striker), with no overlap.
+#[inline(always)]
+pub(crate) fn load_slot(
+    beta: f64,
+    actuator_rest_m: Option<f64>,
+    value: f64,
+    x0: f64,
+) -> (f64, f64) {
+    match actuator_rest_m {
+        Some(rest) => {
+            let d = rest + value - x0;
+            (ContactLaw::elastic_force(beta, d), d)
+        }
+        None => (value, 0.0),
     }
 }
 
