@@ -107,22 +107,43 @@ impl WeightGroup {
     }
 }
 
-/// One body's coordinates: where they sit in the state, in the groups of four of the passes
-/// over the modes (its own, padded to whole groups) and in its kind's weights (bodies with
-/// equal modes share theirs).
+/// A mode's row at a point is taken as zero when it is at most this fraction ε of the point's
+/// largest row entry: an antisymmetric mode at a rod's centre is zero but for the rounding of
+/// the eigenvectors (up to 3e-12 of the largest entry on a rod of 32 elements). Leaving such a
+/// mode out changes the point's response by its share of the compliance Σ r_j²/ω_j², at most
+/// ε² (ω_max/ω_1)² ≈ 1e-20 · 1e6 of it for these rods.
+const ZERO_ROW_OF_LARGEST: f64 = 1e-10;
+
+/// Two contacts' sides on one body are one point when their rows agree to this fraction of the
+/// largest entry: the same crossing reached from the layer above and from the layer below,
+/// whose positions along the rod were computed through different rotations and differ by
+/// rounding (of the order of 1e-18 m).
+const SAME_POINT_ROW_OF_LARGEST: f64 = 1e-13;
+
+/// One body's coordinates: the modes the passes carry (state indices, ascending), where they
+/// sit in the groups of four (padded) and in its kind's weights (bodies with equal carried modes
+/// share theirs). A mode whose row is zero at every point of the body, and that starts at rest
+/// under no static force, is never moved by anything: it is left out of the passes (it stays at
+/// rest in the state), as are a centred column's antisymmetric modes.
 #[derive(Debug, Clone)]
 struct Body {
+    /// Every coordinate of the body in the state.
     state: std::ops::Range<usize>,
+    /// The carried modes; `whole` when they are all of `state`.
+    modes: Vec<usize>,
+    whole: bool,
     group: usize,
     kind: usize,
     groups: usize,
 }
 
-/// One side of a contact in groups of four: its body (index into [`Layout::bodies`]), the
-/// body's first group and first weight group, its row's first group in [`Layout::rows`], and the
-/// number of groups (0: a load's empty side).
+/// A point of a body that contacts act on, in groups of four: its body (index into
+/// [`Layout::bodies`]), the body's first group and first weight group, its row's first group in
+/// [`Layout::rows`], and the number of groups. Contacts at the same point of a body (a rod
+/// pressed from above and below at one crossing) share one point: its deflection is computed
+/// once, and their forces act through its row as one.
 #[derive(Debug, Clone, Copy, Default)]
-struct GroupedSide {
+struct Point {
     body: usize,
     group: usize,
     kind: usize,
@@ -130,50 +151,54 @@ struct GroupedSide {
     groups: usize,
 }
 
-/// The lattice's coordinates in groups of four: each body's modes padded to whole groups with
-/// massless modes at rest (zero weights, zero rows), so that the passes over the modes run four
-/// modes per vector with no remainder.
+/// The lattice's coordinates in groups of four: each body's carried modes padded to whole
+/// groups with massless modes at rest (zero weights, zero rows), so that the passes over the
+/// modes run four modes per vector with no remainder.
 #[derive(Debug, Clone, Default)]
 struct Layout {
     bodies: Vec<Body>,
-    /// Per distinct body: its modes' (frequency, damping rate), padded.
+    /// Per distinct body: its carried modes' (frequency, damping rate), padded.
     kind_modes: Vec<[Option<(f64, f64)>; 4]>,
-    /// Per contact: its sides (a missing side below: no groups).
-    above: Vec<GroupedSide>,
-    below: Vec<GroupedSide>,
-    /// Every side's row, padded to whole groups.
+    /// The distinct points contacts act on.
+    points: Vec<Point>,
+    /// Per contact: its point above and below (None: a load's empty side, a support).
+    above: Vec<Option<usize>>,
+    below: Vec<Option<usize>>,
+    /// Every point's row over its body's carried modes, padded to whole groups.
     rows: Vec<V>,
     /// Number of groups.
     groups: usize,
 }
 
 impl Layout {
-    fn new(ode: &LatticeOde, rates: &[f64]) -> Self {
+    /// The layout of `ode` with damping rates `rates` per coordinate, whose state starts at
+    /// `start` (positions, velocities and static modal forces, each per coordinate).
+    fn new(ode: &LatticeOde, rates: &[f64], start: [&[f64]; 3]) -> Self {
         let mut me = Layout::default();
-        let mut kinds: Vec<(std::ops::Range<usize>, usize)> = Vec::new();
+        let mut kinds: Vec<(Vec<(f64, f64)>, usize)> = Vec::new();
         for state in ode.body_ranges() {
-            let same = |r: &std::ops::Range<usize>| {
-                ode.omega2[r.clone()] == ode.omega2[state.clone()]
-                    && rates[r.clone()] == rates[state.clone()]
-            };
-            let kind = match kinds.iter().find(|(r, _)| same(r)) {
+            let modes = carried_modes(ode, state.clone(), start);
+            let key: Vec<(f64, f64)> = modes.iter().map(|&m| (ode.omega2[m], rates[m])).collect();
+            let kind = match kinds.iter().find(|(k, _)| *k == key) {
                 Some(&(_, k)) => k,
                 None => {
                     let k = me.kind_modes.len();
-                    for start in state.clone().step_by(4) {
+                    for chunk in key.chunks(4) {
                         let mut g = [None; 4];
-                        for (l, m) in (start..state.end.min(start + 4)).enumerate() {
-                            g[l] = Some((ode.omega2[m].sqrt(), rates[m]));
+                        for (l, &(w2, rate)) in chunk.iter().enumerate() {
+                            g[l] = Some((w2.sqrt(), rate));
                         }
                         me.kind_modes.push(g);
                     }
-                    kinds.push((state.clone(), k));
+                    kinds.push((key, k));
                     k
                 }
             };
-            let groups = state.len().div_ceil(4);
+            let groups = modes.len().div_ceil(4);
             me.bodies.push(Body {
+                whole: modes.len() == state.len(),
                 state,
+                modes,
                 group: me.groups,
                 kind,
                 groups,
@@ -181,49 +206,64 @@ impl Layout {
             me.groups += groups;
         }
         for c in 0..ode.beta.len() {
-            let above = me.side(ode, Some(ode.above[c]));
-            let below = me.side(ode, ode.below[c]);
+            let above = me.point(ode, Some(ode.above[c]));
+            let below = me.point(ode, ode.below[c]);
             me.above.push(above);
             me.below.push(below);
         }
         me
     }
 
-    /// A contact's side in groups; its row appended to [`Layout::rows`].
-    fn side(&mut self, ode: &LatticeOde, side: Option<crate::ode::Side>) -> GroupedSide {
-        let Some(side) = side.filter(|s| s.len > 0) else {
-            return GroupedSide::default();
-        };
+    /// The point of a contact's side (None for an empty side): one of its body's points whose
+    /// row agrees with the side's to [`SAME_POINT_ROW_OF_LARGEST`], or a new one, its row
+    /// appended to [`Layout::rows`].
+    fn point(&mut self, ode: &LatticeOde, side: Option<crate::ode::Side>) -> Option<usize> {
+        let side = side.filter(|s| s.len > 0)?;
         let index = self
             .bodies
             .iter()
             .position(|b| b.state == (side.offset..side.offset + side.len))
             .expect("a contact's side spans its body's coordinates");
         let body = &self.bodies[index];
-        let row = self.rows.len();
-        for chunk in ode.rows[side.row..side.row + side.len].chunks(4) {
+        let row: Vec<f64> = body
+            .modes
+            .iter()
+            .map(|&m| ode.rows[side.row + m - side.offset])
+            .collect();
+        let largest = row.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
+        let same = |p: &Point| {
+            let rows = self.rows[p.row..p.row + p.groups].iter().flat_map(|r| r.0);
+            p.body == index
+                && rows
+                    .zip(&row)
+                    .all(|(a, b)| (a - b).abs() <= SAME_POINT_ROW_OF_LARGEST * largest)
+        };
+        if let Some(p) = self.points.iter().position(same) {
+            return Some(p);
+        }
+        let first = self.rows.len();
+        for chunk in row.chunks(4) {
             let mut r = V::ZERO;
             r.0[..chunk.len()].copy_from_slice(chunk);
             self.rows.push(r);
         }
-        GroupedSide {
+        self.points.push(Point {
             body: index,
             group: body.group,
             kind: body.kind,
-            row,
+            row: first,
             groups: body.groups,
-        }
+        });
+        Some(self.points.len() - 1)
     }
 
     /// The values of coordinates `x` (the state's layout) in groups.
     fn gather(&self, x: &[f64], out: &mut [V]) {
         for b in &self.bodies {
-            for (g, chunk) in out[b.group..b.group + b.groups]
-                .iter_mut()
-                .zip(x[b.state.clone()].chunks(4))
-            {
-                *g = V::ZERO;
-                g.0[..chunk.len()].copy_from_slice(chunk);
+            let groups = &mut out[b.group..b.group + b.groups];
+            groups.fill(V::ZERO);
+            for (k, &m) in b.modes.iter().enumerate() {
+                groups[k / 4].0[k % 4] = x[m];
             }
         }
     }
@@ -240,15 +280,19 @@ impl Layout {
             .collect()
     }
 
-    /// Grouped values back into the state's layout (whole groups as one move of four: a copy of
-    /// a length unknown at compile time is a call to `memcpy` per group).
+    /// Grouped values back into the state's layout (a body of whole groups as one move of four
+    /// per group: a copy of a length unknown at compile time is a call to `memcpy` per group).
     #[inline(always)]
     fn scatter(&self, groups: &[V], x: &mut [f64]) {
         for b in &self.bodies {
-            for (chunk, g) in x[b.state.clone()]
-                .chunks_mut(4)
-                .zip(&groups[b.group..b.group + b.groups])
-            {
+            let groups = &groups[b.group..b.group + b.groups];
+            if !b.whole {
+                for (k, &m) in b.modes.iter().enumerate() {
+                    x[m] = groups[k / 4].0[k % 4];
+                }
+                continue;
+            }
+            for (chunk, g) in x[b.state.clone()].chunks_mut(4).zip(groups) {
                 match <&mut [f64; 4]>::try_from(&mut *chunk) {
                     Ok(whole) => *whole = g.0,
                     Err(_) => {
@@ -260,15 +304,16 @@ impl Layout {
         }
     }
 
-    /// Σ r x at the three nodes over a side's groups (`values`: per group, the three nodes);
-    /// zero without a look where the side's body is not `active` (its values all zero).
+    /// Σ r x at the three nodes over point p's groups (`values`: per group, the three nodes);
+    /// zero without a look where the point's body is not `active` (its values all zero).
     #[inline(always)]
-    fn dot3(&self, side: GroupedSide, values: &[[V; 3]], active: &[bool]) -> [f64; 3] {
-        if side.groups == 0 || !active[side.body] {
+    fn dot3(&self, p: usize, values: &[[V; 3]], active: &[bool]) -> [f64; 3] {
+        let point = self.points[p];
+        if !active[point.body] {
             return [0.0; 3];
         }
-        let rows = &self.rows[side.row..side.row + side.groups];
-        let values = &values[side.group..side.group + side.groups];
+        let rows = &self.rows[point.row..point.row + point.groups];
+        let values = &values[point.group..point.group + point.groups];
         let (mut a0, mut a1, mut a2) = (V::ZERO, V::ZERO, V::ZERO);
         for (&r, &[x0, x1, x2]) in rows.iter().zip(values) {
             a0 = a0 + r * x0;
@@ -281,18 +326,57 @@ impl Layout {
         [a0.sum(), a1.sum(), a2.sum()]
     }
 
-    /// A contact's overlap at the three nodes for grouped values (above minus below; `active`
-    /// as [`Layout::dot3`]).
+    /// Every point's deflection at the three nodes for grouped values into `out` (`active` as
+    /// [`Layout::dot3`]).
     #[inline(always)]
-    fn overlap3(&self, c: usize, values: &[[V; 3]], active: &[bool]) -> [f64; 3] {
-        let above = self.dot3(self.above[c], values, active);
-        let below = self.dot3(self.below[c], values, active);
+    fn deflections3(&self, values: &[[V; 3]], active: &[bool], out: &mut [[f64; 3]]) {
+        for (p, d) in out.iter_mut().enumerate() {
+            *d = self.dot3(p, values, active);
+        }
+    }
+
+    /// Contact c's overlap at the three nodes from its points' deflections (above minus below).
+    #[inline(always)]
+    fn overlap3(&self, c: usize, deflections: &[[f64; 3]]) -> [f64; 3] {
+        let at = |p: Option<usize>| p.map_or([0.0; 3], |p| deflections[p]);
+        let (above, below) = (at(self.above[c]), at(self.below[c]));
         [
             above[0] - below[0],
             above[1] - below[1],
             above[2] - below[2],
         ]
     }
+}
+
+/// The modes of the body at `state` that anything moves: a row above [`ZERO_ROW_OF_LARGEST`] at
+/// any point of the body a contact acts on, or a start (position, velocity, static force) not
+/// zero.
+fn carried_modes(
+    ode: &LatticeOde,
+    state: std::ops::Range<usize>,
+    start: [&[f64]; 3],
+) -> Vec<usize> {
+    let mut carried: Vec<bool> = state
+        .clone()
+        .map(|m| start.iter().any(|values| values[m] != 0.0))
+        .collect();
+    let sides = ode
+        .above
+        .iter()
+        .copied()
+        .chain(ode.below.iter().flatten().copied());
+    for side in sides.filter(|s| s.len > 0 && s.offset == state.start) {
+        let row = &ode.rows[side.row..side.row + side.len];
+        let largest = row.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
+        for (keep, r) in carried.iter_mut().zip(row) {
+            *keep |= r.abs() > ZERO_ROW_OF_LARGEST * largest;
+        }
+    }
+    state
+        .zip(carried)
+        .filter(|&(_, keep)| keep)
+        .map(|(m, _)| m)
+        .collect()
 }
 
 /// One mode's flow at θ of a step of size h (from [`Flow`]): position
@@ -412,6 +496,16 @@ struct Scratch {
     /// true before the first pass), and whether its forced response is all zero.
     loaded: Vec<bool>,
     unforced: Vec<bool>,
+    /// Per point and node σ = c₁, c₂, 1: its deflection in the free motion and in the forced
+    /// response.
+    point_free: Vec<[f64; 3]>,
+    point_forced: Vec<[f64; 3]>,
+    /// Per point: the net cubic of the forces on it (monomials in σ), and whether any acts.
+    point_cubic: Vec<[f64; 4]>,
+    point_pushed: Vec<bool>,
+    /// Per point: whether the error norm needs its error, and that error.
+    point_needed: Vec<bool>,
+    point_errors: Vec<PointError>,
     /// Per contact and node 1..3: the free overlap.
     free_overlap: Vec<[f64; 3]>,
     /// Per contact and node 0..3: force and overlap.
@@ -444,7 +538,6 @@ impl GraphModalIntegrator {
                 });
             frequency_index.push(index);
         }
-        let layout = Layout::new(ode, &rates);
         let n = ode.contacts();
         let y = ode.initial_state();
         let mut ode = ode.clone();
@@ -455,6 +548,8 @@ impl GraphModalIntegrator {
         let static_force = ode
             .static_modal_forces()
             .map_or_else(|| vec![0.0; q], |f| f.to_vec());
+        let start = [&y[..q], &y[q + 3..2 * q + 3], &static_force[..]];
+        let layout = Layout::new(&ode, &rates, start);
         let groups = layout.groups;
         let grouped = |values: &[f64]| {
             let mut out = vec![V::ZERO; groups];
@@ -505,7 +600,7 @@ impl GraphModalIntegrator {
                 rhs_evaluations: 1,
                 ..IntegratorStats::default()
             },
-            sc: Scratch::new(groups, n, layout.bodies.len()),
+            sc: Scratch::new(groups, n, layout.bodies.len(), layout.points.len()),
             layout,
             ode,
         }
@@ -549,8 +644,10 @@ impl GraphModalIntegrator {
                 *free = [at(0), at(1), at(2)];
             }
         }
+        let layout = &self.layout;
+        layout.deflections3(&sc.free, &self.moving, &mut sc.point_free);
         for c in 0..self.force.len() {
-            sc.free_overlap[c] = self.layout.overlap3(c, &sc.free, &self.moving);
+            sc.free_overlap[c] = layout.overlap3(c, &sc.point_free);
             sc.node_overlap[c][0] = self.overlap[c];
             let f = &mut sc.node_force[c];
             f[0] = self.force[c];
@@ -587,6 +684,8 @@ impl GraphModalIntegrator {
             }
         }
         sc.loaded.copy_from_slice(&self.static_loaded);
+        sc.point_cubic.fill([0.0; 4]);
+        sc.point_pushed.fill(false);
         for (c, (a, f)) in sc.coef.iter_mut().zip(&sc.node_force).enumerate() {
             for (an, l) in a.iter_mut().zip(&self.lagrange) {
                 *an = (0..4).map(|j| l[j] * f[j]).sum();
@@ -594,20 +693,29 @@ impl GraphModalIntegrator {
             if f.iter().all(|&x| x == 0.0) {
                 continue;
             }
-            // −r a on the body above, +r a below ((±r) a rounds as r (±a)).
-            for (side, sign) in [(layout.above[c], -1.0), (layout.below[c], 1.0)] {
-                if side.groups == 0 {
-                    continue;
-                }
-                sc.loaded[side.body] = true;
-                let rows = &layout.rows[side.row..side.row + side.groups];
-                let b = &mut sc.modal_force[side.group..side.group + side.groups];
-                let s = |n: usize| V::splat(sign * a[n]);
-                let signed = [s(0), s(1), s(2), s(3)];
-                for (bm, &r) in b.iter_mut().zip(rows) {
-                    for (bn, &an) in bm.iter_mut().zip(&signed) {
-                        *bn = *bn + r * an;
+            // −a on the point above, +a below.
+            for (p, sign) in [(layout.above[c], -1.0), (layout.below[c], 1.0)] {
+                if let Some(p) = p {
+                    sc.point_pushed[p] = true;
+                    for (b, an) in sc.point_cubic[p].iter_mut().zip(a.iter()) {
+                        *b += sign * an;
                     }
+                }
+            }
+        }
+        // Each pushed point's net cubic on its body's modes through its row.
+        for (p, point) in layout.points.iter().enumerate() {
+            if !sc.point_pushed[p] {
+                continue;
+            }
+            sc.loaded[point.body] = true;
+            let rows = &layout.rows[point.row..point.row + point.groups];
+            let b = &mut sc.modal_force[point.group..point.group + point.groups];
+            let s = |n: usize| V::splat(sc.point_cubic[p][n]);
+            let signed = [s(0), s(1), s(2), s(3)];
+            for (bm, &r) in b.iter_mut().zip(rows) {
+                for (bn, &an) in bm.iter_mut().zip(&signed) {
+                    *bn = *bn + r * an;
                 }
             }
         }
@@ -645,9 +753,12 @@ impl GraphModalIntegrator {
             self.cubics();
             self.forced(weights);
             let (mut change, mut scale) = (0.0_f64, 0.0_f64);
+            let sc = &mut self.sc;
+            self.layout
+                .deflections3(&sc.forced, &sc.loaded, &mut sc.point_forced);
             for c in 0..self.force.len() {
                 let beta = self.ode.beta[c];
-                let forced = self.layout.overlap3(c, &self.sc.forced, &self.sc.loaded);
+                let forced = self.layout.overlap3(c, &self.sc.point_forced);
                 for (j, (&free, forced)) in self.sc.free_overlap[c].iter().zip(forced).enumerate() {
                     let d = free + forced;
                     if c < loads {
@@ -681,18 +792,37 @@ impl GraphModalIntegrator {
     /// largest overlap so far (a point can move far more than a contact deep in the lattice is
     /// compressed, and a peak force's relative error is 1.5 times its overlap's).
     #[inline(always)]
-    fn error_norm(&self, weights: &[WeightGroup]) -> f64 {
+    fn error_norm(&mut self, weights: &[WeightGroup]) -> f64 {
+        let loaded = |f: &[f64; 4]| f.iter().any(|&f| f != 0.0);
+        self.sc.point_needed.fill(false);
+        for c in 0..self.force.len() {
+            if loaded(&self.sc.node_force[c]) {
+                for p in [self.layout.above[c], self.layout.below[c]]
+                    .into_iter()
+                    .flatten()
+                {
+                    self.sc.point_needed[p] = true;
+                }
+            }
+        }
+        for p in 0..self.layout.points.len() {
+            if self.sc.point_needed[p] {
+                let e = self.point_error(p, weights);
+                self.sc.point_errors[p] = e;
+            }
+        }
+        let errors = &self.sc.point_errors;
         let (mut worst_point, mut worst_force) = (0.0_f64, 0.0_f64);
         for c in 0..self.force.len() {
-            let f = &self.sc.node_force[c];
-            if f.iter().all(|&f| f == 0.0) {
+            if !loaded(&self.sc.node_force[c]) {
                 continue;
             }
-            let above = self.point_error(self.layout.above[c], weights);
+            // (A load's side above is empty: no error.)
+            let above = self.layout.above[c].map_or_else(PointError::default, |p| errors[p]);
             worst_point = worst_point.max(above.norm2(self.rtol, self.atol));
             let mut overlap_error = above.position;
-            if self.ode.below[c].is_some() {
-                let below = self.point_error(self.layout.below[c], weights);
+            if let Some(p) = self.layout.below[c] {
+                let below = errors[p];
                 worst_point = worst_point.max(below.norm2(self.rtol, self.atol));
                 overlap_error -= below.position;
             }
@@ -713,10 +843,11 @@ impl GraphModalIntegrator {
     /// The σ³ part's effect on a point's position and velocity, and the point's position at the
     /// step's end and velocity at its start.
     #[inline(always)]
-    fn point_error(&self, side: GroupedSide, weights: &[WeightGroup]) -> PointError {
-        let (g, n) = (side.group, side.groups);
-        let rows = &self.layout.rows[side.row..side.row + n];
-        let w = &weights[side.kind..side.kind + n];
+    fn point_error(&self, p: usize, weights: &[WeightGroup]) -> PointError {
+        let point = self.layout.points[p];
+        let (g, n) = (point.group, point.groups);
+        let rows = &self.layout.rows[point.row..point.row + n];
+        let w = &weights[point.kind..point.kind + n];
         let modes = self.sc.modal_force[g..g + n].iter().zip(&self.v[g..g + n]);
         let nodes = self.sc.free[g..g + n].iter().zip(&self.sc.forced[g..g + n]);
         let mut acc = [V::ZERO; 4];
@@ -759,18 +890,19 @@ impl GraphModalIntegrator {
             .collect();
         let q = self.frequency_index.len();
         let (x0, v0) = (&self.y_prev[..q], &self.y_prev[q + 3..2 * q + 3]);
+        // The modes the passes leave out stay where they are (at rest).
+        out[..q].copy_from_slice(x0);
+        out[q + 3..2 * q + 3].copy_from_slice(v0);
         let h2 = h * h;
         for body in &self.layout.bodies {
             let groups = &self.modal_force[body.group..body.group + body.groups];
-            for (group, first) in groups.iter().zip(body.state.clone().step_by(4)) {
-                for (l, m) in (first..body.state.end.min(first + 4)).enumerate() {
-                    let k = &kernels[self.frequency_index[m]];
-                    let b = group.map(|b| b.0[l]);
-                    let sb: f64 = (0..4).map(|n| k.s[n] * b[n]).sum();
-                    let cb: f64 = (0..4).map(|n| k.c[n] * b[n]).sum();
-                    out[m] = k.pp * x0[m] + k.pv * v0[m] + h2 * sb;
-                    out[q + 3 + m] = k.vp * x0[m] + k.vv * v0[m] + h * cb;
-                }
+            for (l, &m) in body.modes.iter().enumerate() {
+                let k = &kernels[self.frequency_index[m]];
+                let b = groups[l / 4].map(|b| b.0[l % 4]);
+                let sb: f64 = (0..4).map(|n| k.s[n] * b[n]).sum();
+                let cb: f64 = (0..4).map(|n| k.c[n] * b[n]).sum();
+                out[m] = k.pp * x0[m] + k.pv * v0[m] + h2 * sb;
+                out[q + 3 + m] = k.vp * x0[m] + k.vv * v0[m] + h * cb;
             }
         }
         self.supports_flow(theta, h, &self.y_prev, out);
@@ -956,8 +1088,14 @@ impl GraphModalIntegrator {
 }
 
 impl Scratch {
-    fn new(groups: usize, contacts: usize, bodies: usize) -> Self {
+    fn new(groups: usize, contacts: usize, bodies: usize, points: usize) -> Self {
         Scratch {
+            point_free: vec![[0.0; 3]; points],
+            point_forced: vec![[0.0; 3]; points],
+            point_cubic: vec![[0.0; 4]; points],
+            point_pushed: vec![false; points],
+            point_needed: vec![false; points],
+            point_errors: vec![PointError::default(); points],
             loaded: vec![true; bodies],
             unforced: vec![true; bodies],
             free: vec![[V::ZERO; 3]; groups],
