@@ -27,6 +27,19 @@ use crate::error::Result;
 use crate::model::ContactLaw;
 use crate::ode::LatticeOde;
 use crate::real::{Lane, Real};
+use influence::Influence;
+use layout::Layout;
+
+mod influence;
+mod layout;
+
+/// The weights of one step size: per group of each kind's modes, and (a rung of the ladder's)
+/// the influence of every family's points on each other.
+#[derive(Debug, Clone)]
+struct StepWeights {
+    groups: Vec<WeightGroup>,
+    influence: Option<Influence>,
+}
 
 /// Four modes at once, as [`Lane`] values (the form that runs in vectors).
 type V = Lane<4>;
@@ -105,278 +118,6 @@ impl WeightGroup {
         }
         g
     }
-}
-
-/// A mode's row at a point is taken as zero when it is at most this fraction ε of the point's
-/// largest row entry: an antisymmetric mode at a rod's centre is zero but for the rounding of
-/// the eigenvectors (up to 3e-12 of the largest entry on a rod of 32 elements). Leaving such a
-/// mode out changes the point's response by its share of the compliance Σ r_j²/ω_j², at most
-/// ε² (ω_max/ω_1)² ≈ 1e-20 · 1e6 of it for these rods.
-const ZERO_ROW_OF_LARGEST: f64 = 1e-10;
-
-/// Two contacts' sides on one body are one point when their rows agree to this fraction of the
-/// largest entry: the same crossing reached from the layer above and from the layer below,
-/// whose positions along the rod were computed through different rotations and differ by
-/// rounding (of the order of 1e-18 m).
-const SAME_POINT_ROW_OF_LARGEST: f64 = 1e-13;
-
-/// One body's coordinates: the modes the passes carry (state indices, ascending), where they
-/// sit in the groups of four (padded) and in its kind's weights (bodies with equal carried modes
-/// share theirs). A mode whose row is zero at every point of the body, and that starts at rest
-/// under no static force, is never moved by anything: it is left out of the passes (it stays at
-/// rest in the state), as are a centred column's antisymmetric modes.
-#[derive(Debug, Clone)]
-struct Body {
-    /// Every coordinate of the body in the state.
-    state: std::ops::Range<usize>,
-    /// The carried modes; `whole` when they are all of `state`.
-    modes: Vec<usize>,
-    whole: bool,
-    group: usize,
-    kind: usize,
-    groups: usize,
-}
-
-/// A point of a body that contacts act on, in groups of four: its body (index into
-/// [`Layout::bodies`]), the body's first group and first weight group, its row's first group in
-/// [`Layout::rows`], and the number of groups. Contacts at the same point of a body (a rod
-/// pressed from above and below at one crossing) share one point: its deflection is computed
-/// once, and their forces act through its row as one.
-#[derive(Debug, Clone, Copy, Default)]
-struct Point {
-    body: usize,
-    group: usize,
-    kind: usize,
-    row: usize,
-    groups: usize,
-}
-
-/// The lattice's coordinates in groups of four: each body's carried modes padded to whole
-/// groups with massless modes at rest (zero weights, zero rows), so that the passes over the
-/// modes run four modes per vector with no remainder.
-#[derive(Debug, Clone, Default)]
-struct Layout {
-    bodies: Vec<Body>,
-    /// Per distinct body: its carried modes' (frequency, damping rate), padded.
-    kind_modes: Vec<[Option<(f64, f64)>; 4]>,
-    /// The distinct points contacts act on.
-    points: Vec<Point>,
-    /// Per contact: its point above and below (None: a load's empty side, a support).
-    above: Vec<Option<usize>>,
-    below: Vec<Option<usize>>,
-    /// Every point's row over its body's carried modes, padded to whole groups.
-    rows: Vec<V>,
-    /// Number of groups.
-    groups: usize,
-}
-
-impl Layout {
-    /// The layout of `ode` with damping rates `rates` per coordinate, whose state starts at
-    /// `start` (positions, velocities and static modal forces, each per coordinate).
-    fn new(ode: &LatticeOde, rates: &[f64], start: [&[f64]; 3]) -> Self {
-        let mut me = Layout::default();
-        let mut kinds: Vec<(Vec<(f64, f64)>, usize)> = Vec::new();
-        for state in ode.body_ranges() {
-            let modes = carried_modes(ode, state.clone(), start);
-            let key: Vec<(f64, f64)> = modes.iter().map(|&m| (ode.omega2[m], rates[m])).collect();
-            let kind = match kinds.iter().find(|(k, _)| *k == key) {
-                Some(&(_, k)) => k,
-                None => {
-                    let k = me.kind_modes.len();
-                    for chunk in key.chunks(4) {
-                        let mut g = [None; 4];
-                        for (l, &(w2, rate)) in chunk.iter().enumerate() {
-                            g[l] = Some((w2.sqrt(), rate));
-                        }
-                        me.kind_modes.push(g);
-                    }
-                    kinds.push((key, k));
-                    k
-                }
-            };
-            let groups = modes.len().div_ceil(4);
-            me.bodies.push(Body {
-                whole: modes.len() == state.len(),
-                state,
-                modes,
-                group: me.groups,
-                kind,
-                groups,
-            });
-            me.groups += groups;
-        }
-        for c in 0..ode.beta.len() {
-            let above = me.point(ode, Some(ode.above[c]));
-            let below = me.point(ode, ode.below[c]);
-            me.above.push(above);
-            me.below.push(below);
-        }
-        me
-    }
-
-    /// The point of a contact's side (None for an empty side): one of its body's points whose
-    /// row agrees with the side's to [`SAME_POINT_ROW_OF_LARGEST`], or a new one, its row
-    /// appended to [`Layout::rows`].
-    fn point(&mut self, ode: &LatticeOde, side: Option<crate::ode::Side>) -> Option<usize> {
-        let side = side.filter(|s| s.len > 0)?;
-        let index = self
-            .bodies
-            .iter()
-            .position(|b| b.state == (side.offset..side.offset + side.len))
-            .expect("a contact's side spans its body's coordinates");
-        let body = &self.bodies[index];
-        let row: Vec<f64> = body
-            .modes
-            .iter()
-            .map(|&m| ode.rows[side.row + m - side.offset])
-            .collect();
-        let largest = row.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
-        let same = |p: &Point| {
-            let rows = self.rows[p.row..p.row + p.groups].iter().flat_map(|r| r.0);
-            p.body == index
-                && rows
-                    .zip(&row)
-                    .all(|(a, b)| (a - b).abs() <= SAME_POINT_ROW_OF_LARGEST * largest)
-        };
-        if let Some(p) = self.points.iter().position(same) {
-            return Some(p);
-        }
-        let first = self.rows.len();
-        for chunk in row.chunks(4) {
-            let mut r = V::ZERO;
-            r.0[..chunk.len()].copy_from_slice(chunk);
-            self.rows.push(r);
-        }
-        self.points.push(Point {
-            body: index,
-            group: body.group,
-            kind: body.kind,
-            row: first,
-            groups: body.groups,
-        });
-        Some(self.points.len() - 1)
-    }
-
-    /// The values of coordinates `x` (the state's layout) in groups.
-    fn gather(&self, x: &[f64], out: &mut [V]) {
-        for b in &self.bodies {
-            let groups = &mut out[b.group..b.group + b.groups];
-            groups.fill(V::ZERO);
-            for (k, &m) in b.modes.iter().enumerate() {
-                groups[k / 4].0[k % 4] = x[m];
-            }
-        }
-    }
-
-    /// Per body: whether any of its grouped `values` is not zero.
-    fn nonzero_bodies(&self, values: &[&[V]]) -> Vec<bool> {
-        let nonzero = |g: &V| g.0.iter().any(|&x| x != 0.0);
-        self.bodies
-            .iter()
-            .map(|b| {
-                let groups = b.group..b.group + b.groups;
-                values.iter().any(|v| v[groups.clone()].iter().any(nonzero))
-            })
-            .collect()
-    }
-
-    /// Grouped values back into the state's layout (a body of whole groups as one move of four
-    /// per group: a copy of a length unknown at compile time is a call to `memcpy` per group).
-    #[inline(always)]
-    fn scatter(&self, groups: &[V], x: &mut [f64]) {
-        for b in &self.bodies {
-            let groups = &groups[b.group..b.group + b.groups];
-            if !b.whole {
-                for (k, &m) in b.modes.iter().enumerate() {
-                    x[m] = groups[k / 4].0[k % 4];
-                }
-                continue;
-            }
-            for (chunk, g) in x[b.state.clone()].chunks_mut(4).zip(groups) {
-                match <&mut [f64; 4]>::try_from(&mut *chunk) {
-                    Ok(whole) => *whole = g.0,
-                    Err(_) => {
-                        let n = chunk.len();
-                        chunk.copy_from_slice(&g.0[..n]);
-                    }
-                }
-            }
-        }
-    }
-
-    /// Σ r x at the three nodes over point p's groups (`values`: per group, the three nodes);
-    /// zero without a look where the point's body is not `active` (its values all zero).
-    #[inline(always)]
-    fn dot3(&self, p: usize, values: &[[V; 3]], active: &[bool]) -> [f64; 3] {
-        let point = self.points[p];
-        if !active[point.body] {
-            return [0.0; 3];
-        }
-        let rows = &self.rows[point.row..point.row + point.groups];
-        let values = &values[point.group..point.group + point.groups];
-        let (mut a0, mut a1, mut a2) = (V::ZERO, V::ZERO, V::ZERO);
-        for (&r, &[x0, x1, x2]) in rows.iter().zip(values) {
-            a0 = a0 + r * x0;
-            a1 = a1 + r * x1;
-            a2 = a2 + r * x2;
-        }
-        // The lanes summed out of sight of the loop: otherwise the compiler regroups the loop's
-        // lanes for the final sums, two per vector.
-        let [a0, a1, a2] = std::hint::black_box([a0, a1, a2]);
-        [a0.sum(), a1.sum(), a2.sum()]
-    }
-
-    /// Every point's deflection at the three nodes for grouped values into `out` (`active` as
-    /// [`Layout::dot3`]).
-    #[inline(always)]
-    fn deflections3(&self, values: &[[V; 3]], active: &[bool], out: &mut [[f64; 3]]) {
-        for (p, d) in out.iter_mut().enumerate() {
-            *d = self.dot3(p, values, active);
-        }
-    }
-
-    /// Contact c's overlap at the three nodes from its points' deflections (above minus below).
-    #[inline(always)]
-    fn overlap3(&self, c: usize, deflections: &[[f64; 3]]) -> [f64; 3] {
-        let at = |p: Option<usize>| p.map_or([0.0; 3], |p| deflections[p]);
-        let (above, below) = (at(self.above[c]), at(self.below[c]));
-        [
-            above[0] - below[0],
-            above[1] - below[1],
-            above[2] - below[2],
-        ]
-    }
-}
-
-/// The modes of the body at `state` that anything moves: a row above [`ZERO_ROW_OF_LARGEST`] at
-/// any point of the body a contact acts on, or a start (position, velocity, static force) not
-/// zero.
-fn carried_modes(
-    ode: &LatticeOde,
-    state: std::ops::Range<usize>,
-    start: [&[f64]; 3],
-) -> Vec<usize> {
-    let mut carried: Vec<bool> = state
-        .clone()
-        .map(|m| start.iter().any(|values| values[m] != 0.0))
-        .collect();
-    let sides = ode
-        .above
-        .iter()
-        .copied()
-        .chain(ode.below.iter().flatten().copied());
-    for side in sides.filter(|s| s.len > 0 && s.offset == state.start) {
-        let row = &ode.rows[side.row..side.row + side.len];
-        let largest = row.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
-        for (keep, r) in carried.iter_mut().zip(row) {
-            *keep |= r.abs() > ZERO_ROW_OF_LARGEST * largest;
-        }
-    }
-    state
-        .zip(carried)
-        .filter(|&(_, keep)| keep)
-        .map(|(m, _)| m)
-        .collect()
 }
 
 /// One mode's flow at θ of a step of size h (from [`Flow`]): position
@@ -474,7 +215,7 @@ pub(crate) struct GraphModalIntegrator {
     /// The longest step \[s\]: a quarter of the striker's Hertz contact time.
     max_step_s: f64,
     /// Per step size: the weights of every group of the distinct bodies' modes.
-    ladder: Ladder<Vec<WeightGroup>>,
+    ladder: Ladder<StepWeights>,
     lagrange: [[f64; 4]; 4],
     stats: IntegratorStats,
     sc: Scratch,
@@ -500,6 +241,10 @@ struct Scratch {
     /// response.
     point_free: Vec<[f64; 3]>,
     point_forced: Vec<[f64; 3]>,
+    /// Per group and node: the response to the static modal forces alone; per point, its
+    /// deflection (the iteration through the influence adds it to the free motion).
+    static_response: Vec<[V; 3]>,
+    point_static: Vec<[f64; 3]>,
     /// Per point: the net cubic of the forces on it (monomials in σ), and whether any acts.
     point_cubic: Vec<[f64; 4]>,
     point_pushed: Vec<bool>,
@@ -633,8 +378,8 @@ impl GraphModalIntegrator {
     /// The attempt's free motion at the nodes and the first guess of the node forces (the last
     /// step's cubics continued; constant at the start).
     #[inline(always)]
-    fn start_attempt(&mut self, h: f64, weights: &[WeightGroup]) {
-        let c_nodes = nodes();
+    fn start_attempt(&mut self, h: f64, step: &StepWeights) {
+        let (c_nodes, weights) = (nodes(), &step.groups[..]);
         let sc = &mut self.sc;
         for (b, _) in self.layout.bodies.iter().zip(&self.moving).filter(|m| *m.1) {
             let (g, k) = (b.group..b.group + b.groups, b.kind..b.kind + b.groups);
@@ -646,6 +391,32 @@ impl GraphModalIntegrator {
         }
         let layout = &self.layout;
         layout.deflections3(&sc.free, &self.moving, &mut sc.point_free);
+        if step.influence.is_some() && self.static_loaded.iter().any(|&s| s) {
+            // The iteration through the influence leaves the static forces out: their
+            // response (a constant cubic) joins the free motion.
+            for (b, _) in layout
+                .bodies
+                .iter()
+                .zip(&self.static_loaded)
+                .filter(|s| *s.1)
+            {
+                let (g, k) = (b.group..b.group + b.groups, b.kind..b.kind + b.groups);
+                let forces = self.static_groups[g.clone()].iter().zip(&weights[k]);
+                for (x, (&f, w)) in sc.static_response[g].iter_mut().zip(forces) {
+                    *x = [w.pos[0][0] * f, w.pos[1][0] * f, w.pos[2][0] * f];
+                }
+            }
+            layout.deflections3(
+                &sc.static_response,
+                &self.static_loaded,
+                &mut sc.point_static,
+            );
+            for (free, d) in sc.point_free.iter_mut().zip(&sc.point_static) {
+                for (x, dx) in free.iter_mut().zip(d) {
+                    *x += dx;
+                }
+            }
+        }
         for c in 0..self.force.len() {
             sc.free_overlap[c] = layout.overlap3(c, &sc.point_free);
             sc.node_overlap[c][0] = self.overlap[c];
@@ -671,6 +442,7 @@ impl GraphModalIntegrator {
     /// Each contact's cubic from its node forces, and each group's modal force cubic.
     #[inline(always)]
     fn cubics(&mut self) {
+        self.point_cubics();
         let layout = &self.layout;
         let sc = &mut self.sc;
         // Back to the static force where a force acted in the last pass (elsewhere it is there).
@@ -684,6 +456,30 @@ impl GraphModalIntegrator {
             }
         }
         sc.loaded.copy_from_slice(&self.static_loaded);
+        // Each pushed point's net cubic on its body's modes through its row.
+        for (p, point) in layout.points.iter().enumerate() {
+            if !sc.point_pushed[p] {
+                continue;
+            }
+            sc.loaded[point.body] = true;
+            let rows = &layout.rows[point.row..point.row + point.groups];
+            let b = &mut sc.modal_force[point.group..point.group + point.groups];
+            let s = |n: usize| V::splat(sc.point_cubic[p][n]);
+            let signed = [s(0), s(1), s(2), s(3)];
+            for (bm, &r) in b.iter_mut().zip(rows) {
+                for (bn, &an) in bm.iter_mut().zip(&signed) {
+                    *bn = *bn + r * an;
+                }
+            }
+        }
+    }
+
+    /// Each contact's cubic from its node forces, and each point's net cubic (the forces of
+    /// the contacts at it, −a from below it, +a from above).
+    #[inline(always)]
+    fn point_cubics(&mut self) {
+        let layout = &self.layout;
+        let sc = &mut self.sc;
         sc.point_cubic.fill([0.0; 4]);
         sc.point_pushed.fill(false);
         for (c, (a, f)) in sc.coef.iter_mut().zip(&sc.node_force).enumerate() {
@@ -700,22 +496,6 @@ impl GraphModalIntegrator {
                     for (b, an) in sc.point_cubic[p].iter_mut().zip(a.iter()) {
                         *b += sign * an;
                     }
-                }
-            }
-        }
-        // Each pushed point's net cubic on its body's modes through its row.
-        for (p, point) in layout.points.iter().enumerate() {
-            if !sc.point_pushed[p] {
-                continue;
-            }
-            sc.loaded[point.body] = true;
-            let rows = &layout.rows[point.row..point.row + point.groups];
-            let b = &mut sc.modal_force[point.group..point.group + point.groups];
-            let s = |n: usize| V::splat(sc.point_cubic[p][n]);
-            let signed = [s(0), s(1), s(2), s(3)];
-            for (bm, &r) in b.iter_mut().zip(rows) {
-                for (bn, &an) in bm.iter_mut().zip(&signed) {
-                    *bn = *bn + r * an;
                 }
             }
         }
@@ -745,17 +525,30 @@ impl GraphModalIntegrator {
     }
 
     /// The fixed-point iteration of the collocation conditions: node forces → cubics → node
-    /// overlaps → node forces. False when it did not converge.
+    /// overlaps → node forces, the overlaps through the points' influence on each other where
+    /// the step has it, else through a pass over the modes. Leaves the modal force cubics and
+    /// their response at the nodes of the converged forces. False when it did not converge.
     #[inline(always)]
-    fn solve_nodes(&mut self, weights: &[WeightGroup]) -> bool {
+    fn solve_nodes(&mut self, weights: &StepWeights) -> bool {
         let loads = self.ode.load_contacts();
         for _ in 0..MAX_ITERATIONS {
-            self.cubics();
-            self.forced(weights);
+            if let Some(influence) = &weights.influence {
+                self.point_cubics();
+                let sc = &mut self.sc;
+                influence.deflections3(
+                    &self.layout,
+                    &sc.point_cubic,
+                    &sc.point_pushed,
+                    &mut sc.point_forced,
+                );
+            } else {
+                self.cubics();
+                self.forced(&weights.groups);
+                let sc = &mut self.sc;
+                self.layout
+                    .deflections3(&sc.forced, &sc.loaded, &mut sc.point_forced);
+            }
             let (mut change, mut scale) = (0.0_f64, 0.0_f64);
-            let sc = &mut self.sc;
-            self.layout
-                .deflections3(&sc.forced, &sc.loaded, &mut sc.point_forced);
             for c in 0..self.force.len() {
                 let beta = self.ode.beta[c];
                 let forced = self.layout.overlap3(c, &self.sc.point_forced);
@@ -779,6 +572,7 @@ impl GraphModalIntegrator {
             self.stats.rhs_evaluations += 3;
             if change <= (FIXED_POINT_TOLERANCE * self.rtol).max(1e-13) * scale || scale == 0.0 {
                 self.cubics();
+                self.forced(&weights.groups);
                 return true;
             }
         }
@@ -870,8 +664,13 @@ impl GraphModalIntegrator {
     /// Makes sure the weights of the step h are at hand (a rung's, or off the ladder).
     fn weights(&mut self, h: f64, rung: Option<i64>) {
         let modes = &self.layout.kind_modes;
+        let layout = &self.layout;
         self.ladder.ensure(h, rung, || {
-            modes.iter().map(|m| WeightGroup::new(h, m)).collect()
+            let groups: Vec<WeightGroup> = modes.iter().map(|m| WeightGroup::new(h, m)).collect();
+            // A rung's steps are many: their influence pays for itself. An off-ladder step (a
+            // landing, the run's end) is taken once and iterates through the modes.
+            let influence = rung.map(|_| Influence::new(layout, &groups));
+            StepWeights { groups, influence }
         });
     }
 
@@ -1002,6 +801,7 @@ impl ExactStepper for GraphModalIntegrator {
         let weights = ladder.get(rung);
         self.start_attempt(h, weights);
         let converged = self.solve_nodes(weights);
+        let weights = &weights.groups[..];
         // (No closure here: it would compile outside the AVX2 build.)
         let err = if converged {
             self.error_norm(weights)
@@ -1056,7 +856,7 @@ impl GraphModalIntegrator {
     /// groups' positions and velocities into `x`, `v`, the cubics into `modal_force`.
     #[inline(always)]
     fn advance_modes(&mut self, rung: Option<i64>) {
-        let weights = self.ladder.get(rung);
+        let weights = &self.ladder.get(rung).groups;
         let sc = &mut self.sc;
         for (i, body) in self.layout.bodies.iter().enumerate() {
             if !(self.moving[i] || sc.loaded[i]) {
@@ -1092,6 +892,8 @@ impl Scratch {
         Scratch {
             point_free: vec![[0.0; 3]; points],
             point_forced: vec![[0.0; 3]; points],
+            static_response: vec![[V::ZERO; 3]; groups],
+            point_static: vec![[0.0; 3]; points],
             point_cubic: vec![[0.0; 4]; points],
             point_pushed: vec![false; points],
             point_needed: vec![false; points],

@@ -1,0 +1,91 @@
+//! The influence of a body's points on each other over a step: the deflection of point p at
+//! the nodes σ = c₁, c₂, 1 per unit monomial σⁿ of the force at point q,
+//!
+//! G_pq,jn = Σ_k r_pk r_qk h² S_n(σ_j, z_k),
+//!
+//! summed once per step size over the body's modes ([`super::WeightGroup`]'s `pos`). With it
+//! the node iteration of the contact graph's stepper costs (points of a body)² per body and
+//! iteration instead of (points) × (modes): a rod's modes are passed over once per attempt,
+//! not once per iteration. Bodies of one family (one kind, the same rows at their points:
+//! a layer's rods between equal layers) share their matrices.
+
+use super::layout::Layout;
+use super::{WeightGroup, V};
+use crate::real::Real;
+
+/// The influence matrices of every family of bodies for one step size.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Influence {
+    /// Per family, row-major over its points (p, q): G_pq per node and monomial.
+    matrices: Vec<[[f64; 4]; 3]>,
+    /// Per family: where its matrix starts.
+    offsets: Vec<usize>,
+}
+
+impl Influence {
+    /// The matrices for the step whose weights (per group of each kind's modes) are `weights`.
+    pub(super) fn new(layout: &Layout, weights: &[WeightGroup]) -> Self {
+        let mut me = Influence::default();
+        for &b in &layout.families {
+            let body = &layout.bodies[b];
+            let points = &layout.body_points[b];
+            let n = points.len();
+            let start = me.matrices.len();
+            me.offsets.push(start);
+            me.matrices.resize(start + n * n, [[0.0; 4]; 3]);
+            let w = &weights[body.kind..body.kind + body.groups];
+            for (i, &p) in points.iter().enumerate() {
+                for (j, &q) in points.iter().enumerate().skip(i) {
+                    let g = pair(layout.point_row(p), layout.point_row(q), w);
+                    me.matrices[start + i * n + j] = g;
+                    me.matrices[start + j * n + i] = g;
+                }
+            }
+        }
+        me
+    }
+
+    /// Every point's deflection at the nodes in response to the net force cubics at the points
+    /// of its body (`cubics`, monomials in σ; `pushed`: the points a force acts on) into `out`.
+    #[inline(always)]
+    pub(super) fn deflections3(
+        &self,
+        layout: &Layout,
+        cubics: &[[f64; 4]],
+        pushed: &[bool],
+        out: &mut [[f64; 3]],
+    ) {
+        for (points, &family) in layout.body_points.iter().zip(&layout.body_family) {
+            let n = points.len();
+            let matrix = &self.matrices[self.offsets[family]..];
+            let any = points.iter().any(|&q| pushed[q]);
+            for (i, &p) in points.iter().enumerate() {
+                let mut d = [0.0; 3];
+                for (g, &q) in matrix[i * n..(i + 1) * n].iter().zip(points) {
+                    if !(any && pushed[q]) {
+                        continue;
+                    }
+                    let a = &cubics[q];
+                    for (dj, gj) in d.iter_mut().zip(g) {
+                        *dj += (gj[0] * a[0] + gj[1] * a[1]) + (gj[2] * a[2] + gj[3] * a[3]);
+                    }
+                }
+                out[p] = d;
+            }
+        }
+    }
+}
+
+/// G_pq for rows `rp`, `rq` over one body's groups with weights `w`.
+fn pair(rp: &[V], rq: &[V], w: &[WeightGroup]) -> [[f64; 4]; 3] {
+    let mut acc = [[V::ZERO; 4]; 3];
+    for ((&a, &b), w) in rp.iter().zip(rq).zip(w) {
+        let ab = a * b;
+        for (accj, posj) in acc.iter_mut().zip(&w.pos) {
+            for (x, &s) in accj.iter_mut().zip(posj) {
+                *x = *x + ab * s;
+            }
+        }
+    }
+    acc.map(|row| row.map(|v| v.sum()))
+}
