@@ -4,6 +4,9 @@
 //! step each contact force F_c is replaced by its cubic through the four Lobatto nodes, every
 //! mode is advanced against the cubic its contacts exert (Σ_c ∓r_cm a_c, [`super::exponential`])
 //! exactly, and the node forces are found by fixed-point iteration on the contacts' overlaps.
+//! Contacts at one point of a body share it, and a body's modes that no point moves are left
+//! out ([`layout`]); on the ladder's steps the iteration runs through the points' influence on
+//! each other over the step ([`influence`]), not through the modes.
 //!
 //! The embedded error estimate is that of the chain's stepper (the cubic's σ³ part against the
 //! quadratic through 0, ½, 1), mapped from the modes to the two points of every loaded contact
