@@ -477,8 +477,8 @@ impl GraphModalIntegrator {
         }
     }
 
-    /// Each contact's cubic from its node forces, and each point's net cubic (the forces of
-    /// the contacts at it, −a from below it, +a from above).
+    /// Each contact's cubic a from its node forces, and each point's net cubic: −a where the
+    /// point is a contact's upper side (pushed up), +a where it is its lower side.
     #[inline(always)]
     fn point_cubics(&mut self) {
         let layout = &self.layout;
