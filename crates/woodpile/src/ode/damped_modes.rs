@@ -13,7 +13,8 @@
 //! e^{Kh}), its response to F is T times the oscillator's, and the primary moves as x = Σ c,
 //! v = Σ d (the A terms cancel over the modes: H falls as s^{−2}). The exact stepper's loops
 //! are therefore those of undamped modes with these weights; the cell's energy, no longer
-//! diagonal in the modes, is rebuilt from every resonator's own residues.
+//! diagonal in the modes, is rebuilt from every resonator's own residues where it is read (at
+//! the samples: a step needs only the damping's part of the primary's acceleration).
 
 use super::modal::ElementModes;
 use crate::error::{Error, Result};
@@ -193,12 +194,17 @@ impl DampedCell {
             strain += self.res_stiffness[j] * ext * ext;
             dashpots += self.res_damping[j] * (v - v0) * (v - v0);
         }
-        let damping_accel: f64 = (0..kk).map(|k| self.rate[k] * d[k]).sum();
         (
             0.5 * (kinetic + strain),
             dashpots + self.on_site_rate * kinetic,
-            damping_accel,
+            self.damping_accel(d),
         )
+    }
+
+    /// Σ_k 2γ_k d_k \[m/s²\]: the damping's part of the primary's acceleration, from every
+    /// mode's rate d (what a step needs of the cell; its energy is needed only where read).
+    pub fn damping_accel(&self, d: &[f64]) -> f64 {
+        (0..self.len()).map(|k| self.rate[k] * d[k]).sum()
     }
 }
 
