@@ -984,6 +984,38 @@ pub fn exact_modes_state(
     Ok([stepper.c, stepper.cdot].concat())
 }
 
+/// Each primary's internal energy, then the chain's state as [`ModalIntegrator::observe_at`]
+/// gives it (the primaries' positions and velocities, W and D; the resonators' entries as at
+/// the start), at each of `times` (ascending) of a run of [`super::Method::ExactModes`] (rtol,
+/// atol \[m\], first step `h0`) on `ode` stepped to the last of them; with `every_step`, the
+/// energies are also read at the end of every step: what the claim `exact_modes_lazy_energy`
+/// compares bit for bit.
+#[doc(hidden)]
+pub fn exact_modes_observations(
+    ode: &ChainOde,
+    (rtol, atol, h0): (f64, f64, f64),
+    times: &[f64],
+    every_step: bool,
+) -> Result<Vec<Vec<f64>>> {
+    check_fits(ode)?;
+    let mut y = ode.initial_state();
+    let mut stepper = ModalIntegrator::new(ode, &y, rtol, atol, h0)?;
+    let mut internal = vec![0.0; ode.eq.p];
+    let t_end = times.last().copied().unwrap_or(0.0);
+    let mut out = Vec::with_capacity(times.len());
+    while out.len() < times.len() {
+        stepper.step(t_end)?;
+        if every_step {
+            stepper.observe_at(stepper.t(), &mut y, &mut internal);
+        }
+        while let Some(&ts) = times.get(out.len()).filter(|&&ts| ts <= stepper.t()) {
+            stepper.observe_at(ts, &mut y, &mut internal);
+            out.push([internal.as_slice(), &y].concat());
+        }
+    }
+    Ok(out)
+}
+
 /// Refuses a chain the exact modal method cannot run ([`ChainOde::fits_exact_modes`]).
 pub(crate) fn check_fits(ode: &ChainOde) -> Result<()> {
     if !ode.fits_exact_modes() {
