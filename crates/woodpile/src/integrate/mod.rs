@@ -22,7 +22,7 @@ pub(crate) use control::{StepControl, Verdict};
 #[doc(hidden)]
 pub use modal_graph::exact_modes_lattice_state;
 #[doc(hidden)]
-pub use modal_step::exact_modes_state;
+pub use modal_step::{exact_modes_observations, exact_modes_state};
 
 pub(crate) use kernels::{attempt, missed_crossings, predict_crossings, rms, weighted_squares};
 

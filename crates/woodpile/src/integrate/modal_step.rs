@@ -13,7 +13,9 @@
 //! make them complex). The work W of those forces is carried with the state: the constant ones'
 //! exactly (force times displacement), slot 0's as the integral of its force's cubic against
 //! the cubic through the top primary's (or the tip's) node positions; the dissipated energy D by
-//! each element's balance.
+//! each element's balance. A cell with resonator dashpots has an energy that is not a sum over
+//! its modes: it is computed only where read (the samples), and D's balance is carried without
+//! its change, subtracted there (the change telescopes over the steps).
 
 use super::exponential::{lagrange, nodes, work_of_cubics, StepWeights};
 use super::{IntegratorStats, StepControl, Verdict, EVENT_LANDING_FRACTION, NYSTROM_LANDING_END};
@@ -80,6 +82,11 @@ pub(crate) struct ModalIntegrator {
     loads: Option<Box<Loads>>,
     /// The longest step \[s\] ([`MAX_STEP_OF_CONTACT_TIME`]).
     max_step_s: f64,
+    /// Whether some cell has resonator dashpots, and whether the energies of those cells (their
+    /// damping's power, D) are at hand at the start and the end of the last step
+    /// ([`ModalIntegrator::settle`]).
+    lazy: bool,
+    settled: [bool; 2],
 }
 
 /// What acts on the chain besides its contacts (docs/physics.md §14), as the exact method takes
@@ -100,6 +107,11 @@ struct Loads {
     work: [(f64, f64); 2],
     /// The energy D the on-site damping dissipated \[J\] and its rate \[W\], likewise.
     dissipated: [(f64, f64); 2],
+    /// D plus the change of the energy of the cells with resonator dashpots since the start
+    /// \[J\], at the start and the end of the last step (D itself without such cells), and
+    /// those cells' energy at the start \[J\].
+    balance: [f64; 2],
+    resonator_energy_0_j: f64,
     /// Where W sits in the chain's state, whether D follows it, and whether any mode is damped.
     work_index: usize,
     dissipation: bool,
@@ -289,6 +301,8 @@ impl ModalIntegrator {
                 top: [0.0; 4],
                 work: [(y0[work_index], 0.0); 2],
                 dissipated: [(0.0, 0.0); 2],
+                balance: [0.0; 2],
+                resonator_energy_0_j: 0.0,
                 work_index,
                 dissipation: ode.has_lab_physics(),
                 damped: modal.kind_rate.iter().any(|&r| r > 0.0)
@@ -297,6 +311,7 @@ impl ModalIntegrator {
         });
         let (mut c, mut cdot) = (vec![0.0; n], vec![0.0; n]);
         modal.project_state(y0, &mut c, &mut cdot);
+        let lazy = modal.damped.iter().any(Option::is_some);
         let mut me = ModalIntegrator {
             beta: ode.eq.beta.clone(),
             rtol,
@@ -330,6 +345,8 @@ impl ModalIntegrator {
             constant_n,
             loads,
             max_step_s: MAX_STEP_OF_CONTACT_TIME * ode.contact_time_s(LOAD_CONTACT_SPEED_M_S),
+            lazy,
+            settled: [true; 2],
         };
         let x: Vec<f64> = me
             .modal
@@ -352,7 +369,12 @@ impl ModalIntegrator {
             if loads.dissipation {
                 let rate = ends.iter().map(|e| e.dissipation).sum();
                 loads.dissipated = [(y0[work_index + 1], rate); 2];
+                loads.balance = [y0[work_index + 1]; 2];
             }
+            loads.resonator_energy_0_j = (ends.iter().zip(&me.modal.kind))
+                .filter(|(_, &k)| me.modal.damped[k].is_some())
+                .map(|(e, _)| e.energy)
+                .sum();
         }
         me.ends = [ends.clone(), ends];
         Ok(me)
@@ -576,19 +598,16 @@ impl ModalIntegrator {
             let f = sc.node_force[i][3];
             self.force_net[i] = f;
             let rigid_v = self.cdot[rigid];
-            let (energy, dissipation, damping) = element_energy(
-                m,
-                i,
-                (&self.c[range.clone()], &self.cdot[range.clone()]),
-                energy,
-                v,
-            );
+            let (energy, dissipation, damping) =
+                element_energy(m, i, &self.cdot[range.clone()], energy, v);
+            let power_in = f * v + g * mu0 * rigid_v;
             self.ends[1][i] = PrimaryEnd {
                 x,
                 v,
                 a: f * m.accel_per_newton[kind] - w2c + g - damping,
                 energy,
-                power: f * v + g * mu0 * rigid_v - dissipation,
+                power: power_in - dissipation,
+                power_in,
                 rigid_x: self.c[rigid],
                 rigid_v,
                 dissipation,
@@ -601,6 +620,7 @@ impl ModalIntegrator {
         self.h_last = h;
         self.t_prev = self.t;
         self.t += h;
+        self.settled = [self.settled[1], !self.lazy];
         if self.loads.is_some() {
             self.add_work(&sc);
         }
@@ -642,29 +662,34 @@ impl ModalIntegrator {
         loads.work = [loads.work[1], (w, power)];
         if loads.damped {
             // D by the balance of each element: the work of its net force (∫ F dx over the
-            // cubics through the nodes) and of gravity, less the change of its modes' energy.
-            let mut d = loads.dissipated[1].0;
+            // cubics through the nodes) and of gravity, less the change of its modes' energy
+            // (a cell with resonator dashpots: at the samples, `settle`).
+            let mut d = loads.balance[1];
             for (i, (a, b)) in before.iter().zip(after).enumerate() {
                 let x = &sc.node_x[i];
                 let position = monomials(&[a.x, x[0], x[1], x[2]]);
+                let change = match self.modal.damped[self.modal.kind[i]] {
+                    Some(_) => 0.0,
+                    None => b.energy - a.energy,
+                };
                 d += work_of_cubics(&sc.coef[i], &position, 1.0)
                     + loads.gravity_m_s2 * loads.total_mass_kg[i] * (b.rigid_x - a.rigid_x)
-                    - (b.energy - a.energy);
+                    - change;
             }
             let rate = after.iter().map(|e| e.dissipation).sum();
+            loads.balance = [loads.balance[1], d];
             loads.dissipated = [loads.dissipated[1], (d, rate)];
         }
     }
 
-    /// The primaries' positions and velocities now into y, and the loads' work W (and the
-    /// dissipated energy D with the lab physics) at the state's end (the rest of y is left).
+    /// The primaries' positions and velocities now into y (the rest of y, W and D included, is
+    /// left: [`ModalIntegrator::observe_at`] gives them).
     pub fn primaries_into(&self, y: &mut [f64]) {
         let nd = self.dof(y);
         for (i, e) in self.ends[1].iter().enumerate() {
             y[i] = e.x;
             y[nd + i] = e.v;
         }
-        self.integrals_into(1.0, y);
     }
 
     /// The number of point masses of the chain's state `y`.
@@ -700,9 +725,14 @@ impl ModalIntegrator {
     /// exact formula at θ would cost a kernel per frequency and a pass over every mode per sample.
     pub fn observe_at(&mut self, ts: f64, y: &mut [f64], internal: &mut [f64]) {
         let nd = self.dof(y);
-        let (now, before) = (&self.ends[1], &self.ends[0]);
         let h = self.h_last;
-        if ts >= self.t || h == 0.0 {
+        let at_end = ts >= self.t || h == 0.0;
+        self.settle(1);
+        if !at_end {
+            self.settle(0);
+        }
+        let (now, before) = (&self.ends[1], &self.ends[0]);
+        if at_end {
             for (i, e) in now.iter().enumerate() {
                 y[i] = e.x;
                 y[nd + i] = e.v;
@@ -718,6 +748,36 @@ impl ModalIntegrator {
             internal[i] = hermite(s, h, [a.energy, a.power, b.energy, b.power]);
         }
         self.integrals_into(s, y);
+    }
+
+    /// Computes what a step leaves out at the start (`end` 0) or the end (1) of the last step,
+    /// unless done: the energy of each cell with resonator dashpots, the power its damping
+    /// dissipates, and so the rate of its energy, D and D's rate. D is the balance carried by
+    /// the steps less the change of those cells' energy since the start: the same sum over the
+    /// steps as each step's balance, its energy terms telescoped.
+    fn settle(&mut self, end: usize) {
+        if self.settled[end] {
+            return;
+        }
+        self.settled[end] = true;
+        let (c, cdot) = match end {
+            0 => (&self.c_prev, &self.cdot_prev),
+            _ => (&self.c, &self.cdot),
+        };
+        let m = &self.modal;
+        let mut energy = 0.0;
+        for (i, (range, e)) in m.ranges.iter().zip(&mut self.ends[end]).enumerate() {
+            if let Some(cell) = &m.damped[m.kind[i]] {
+                (e.energy, e.dissipation, _) = cell.energy(&c[range.clone()], &cdot[range.clone()]);
+                e.power = e.power_in - e.dissipation;
+                energy += e.energy;
+            }
+        }
+        if let Some(loads) = self.loads.as_mut().filter(|l| l.damped) {
+            let rate = self.ends[end].iter().map(|e| e.dissipation).sum();
+            let change = energy - loads.resonator_energy_0_j;
+            loads.dissipated[end] = (loads.balance[end] - change, rate);
+        }
     }
 
     /// Each primary's position, velocity, acceleration, internal energy and its rate now.
@@ -739,10 +799,14 @@ impl ModalIntegrator {
             let g = self.loads.as_ref().map_or(0.0, |l| l.gravity_m_s2);
             (e.rigid_x, e.rigid_v) = (c[0], cd[0]);
             let damping;
-            (e.energy, e.dissipation, damping) = element_energy(m, i, (c, cd), e.energy, e.v);
+            (e.energy, e.dissipation, damping) = match &m.damped[m.kind[i]] {
+                Some(cell) => cell.energy(c, cd),
+                None => element_energy(m, i, cd, e.energy, e.v),
+            };
             let mu0 = 1.0 / m.inv_modal_mass[m.kind_ranges[m.kind[i]].start];
             e.a = f * m.accel_per_newton[m.kind[i]] - w2c + g - damping;
-            e.power = f * e.v + g * mu0 * e.rigid_v - e.dissipation;
+            e.power_in = f * e.v + g * mu0 * e.rigid_v;
+            e.power = e.power_in - e.dissipation;
             out[i] = e;
         }
     }
@@ -772,7 +836,9 @@ impl ExactStepper for ModalIntegrator {
     }
 }
 
-/// A primary at a step's end: what the samples inside the step are interpolated from.
+/// A primary at a step's end: what the samples inside the step are interpolated from (for a
+/// cell with resonator dashpots, `energy`, `power` and `dissipation` are NaN until
+/// [`ModalIntegrator::settle`]).
 #[derive(Debug, Clone, Copy, Default)]
 struct PrimaryEnd {
     x: f64,
@@ -780,6 +846,8 @@ struct PrimaryEnd {
     a: f64,
     energy: f64,
     power: f64,
+    /// The power of its net force and of gravity on it (`power` less its damping's) \[W\].
+    power_in: f64,
     /// Its rigid mode's amplitude and rate (what gravity works on).
     rigid_x: f64,
     rigid_v: f64,
@@ -792,21 +860,16 @@ fn dissipation_sum(cdot: &[f64], modal_mass: &[f64]) -> f64 {
     cdot.iter().zip(modal_mass).map(|(v, m)| m * v * v).sum()
 }
 
-/// Primary i's element at the end of a step, from its modes' (c, ċ): its energy (`energy`, the
-/// sum over its modes, unless its resonators have dashpots: then rebuilt from every
-/// resonator, `ode::damped_modes`), the power its damping dissipates, and the damping's part of
-/// the primary's acceleration (1/τ v under on-site damping, `v` the primary's velocity).
+/// Primary i's element at the end of a step, from its modes' rates ċ: its energy (`energy`, the
+/// sum over its modes), the power its damping dissipates, and the damping's part of the
+/// primary's acceleration (1/τ v under on-site damping, `v` the primary's velocity). A cell
+/// whose resonators have dashpots gets NaN for the first two: they are rebuilt from every
+/// resonator (`ode::damped_modes`) where read ([`ModalIntegrator::settle`]).
 #[inline(always)]
-fn element_energy(
-    m: &ModalChain,
-    i: usize,
-    (c, cdot): (&[f64], &[f64]),
-    energy: f64,
-    v: f64,
-) -> (f64, f64, f64) {
+fn element_energy(m: &ModalChain, i: usize, cdot: &[f64], energy: f64, v: f64) -> (f64, f64, f64) {
     let kind = m.kind[i];
     if let Some(cell) = &m.damped[kind] {
-        return cell.energy(c, cdot);
+        return (f64::NAN, f64::NAN, cell.damping_accel(cdot));
     }
     let rate = m.kind_rate[kind];
     if rate == 0.0 {
@@ -919,6 +982,38 @@ pub fn exact_modes_state(
         }
     }
     Ok([stepper.c, stepper.cdot].concat())
+}
+
+/// Each primary's internal energy, then the chain's state as [`ModalIntegrator::observe_at`]
+/// gives it (the primaries' positions and velocities, W and D; the resonators' entries as at
+/// the start), at each of `times` (ascending) of a run of [`super::Method::ExactModes`] (rtol,
+/// atol \[m\], first step `h0`) on `ode` stepped to the last of them; with `every_step`, the
+/// energies are also read at the end of every step: what the claim `exact_modes_lazy_energy`
+/// compares bit for bit.
+#[doc(hidden)]
+pub fn exact_modes_observations(
+    ode: &ChainOde,
+    (rtol, atol, h0): (f64, f64, f64),
+    times: &[f64],
+    every_step: bool,
+) -> Result<Vec<Vec<f64>>> {
+    check_fits(ode)?;
+    let mut y = ode.initial_state();
+    let mut stepper = ModalIntegrator::new(ode, &y, rtol, atol, h0)?;
+    let mut internal = vec![0.0; ode.eq.p];
+    let t_end = times.last().copied().unwrap_or(0.0);
+    let mut out = Vec::with_capacity(times.len());
+    while out.len() < times.len() {
+        stepper.step(t_end)?;
+        if every_step {
+            stepper.observe_at(stepper.t(), &mut y, &mut internal);
+        }
+        while let Some(&ts) = times.get(out.len()).filter(|&&ts| ts <= stepper.t()) {
+            stepper.observe_at(ts, &mut y, &mut internal);
+            out.push([internal.as_slice(), &y].concat());
+        }
+    }
+    Ok(out)
 }
 
 /// Refuses a chain the exact modal method cannot run ([`ChainOde::fits_exact_modes`]).

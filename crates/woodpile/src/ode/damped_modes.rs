@@ -13,7 +13,8 @@
 //! e^{Kh}), its response to F is T times the oscillator's, and the primary moves as x = Σ c,
 //! v = Σ d (the A terms cancel over the modes: H falls as s^{−2}). The exact stepper's loops
 //! are therefore those of undamped modes with these weights; the cell's energy, no longer
-//! diagonal in the modes, is rebuilt from every resonator's own residues.
+//! diagonal in the modes, is rebuilt from every resonator's own residues where it is read (at
+//! the samples: a step needs only the damping's part of the primary's acceleration).
 
 use super::modal::ElementModes;
 use crate::error::{Error, Result};
@@ -25,6 +26,9 @@ type C = Complex<f64>;
 const HOMOTOPY_STEPS: usize = 16;
 /// Newton's iterations per homotopy step, at most.
 const NEWTON_ITERATIONS: usize = 60;
+/// Resonators whose displacements and velocities the energy sums at once (independent sums,
+/// each over the modes in order: they fill the vector lanes instead of waiting on each other).
+const RESONATOR_GROUP: usize = 8;
 
 /// One cell's damped modes (rigid first, then one per flexible mode in ascending frequency).
 #[derive(Debug, Clone)]
@@ -35,10 +39,10 @@ pub(crate) struct DampedCell {
     pub rate: Vec<f64>,
     pub b: Vec<f64>,
     pub a: Vec<f64>,
-    /// Per resonator j and mode k (row j): the weights of (c_k, d_k) in its displacement less
-    /// the primary's, and in its velocity.
-    extension: Vec<[f64; 2]>,
-    velocity: Vec<[f64; 2]>,
+    /// Per resonator j and mode k: the weights of (c_k, d_k) in its displacement less the
+    /// primary's, and in its velocity.
+    extension: ModeWeights,
+    velocity: ModeWeights,
     primary_mass: f64,
     res_mass: Vec<f64>,
     res_stiffness: Vec<f64>,
@@ -70,8 +74,8 @@ impl DampedCell {
             rate: vec![on_site_rate],
             b: vec![1.0 / total],
             a: vec![0.0],
-            extension: vec![[0.0; 2]; r * kk],
-            velocity: vec![[0.0; 2]; r * kk],
+            extension: ModeWeights::zeros(kk, r),
+            velocity: ModeWeights::zeros(kk, r),
             primary_mass,
             res_mass: resonators.iter().map(|r| r.0).collect(),
             res_stiffness: resonators.iter().map(|r| r.1).collect(),
@@ -80,7 +84,7 @@ impl DampedCell {
             to_state: DMatrix::<f64>::identity(1, 1).lu(),
         };
         for j in 0..r {
-            cell.velocity[j * kk] = [0.0, 1.0]; // the rigid mode moves every mass alike
+            cell.velocity.set(0, j, [0.0, 1.0]); // the rigid mode moves every mass alike
         }
         for (k, &lambda) in roots.iter().enumerate() {
             let residue = residue(primary_mass, resonators, on_site_rate, lambda);
@@ -108,10 +112,13 @@ impl DampedCell {
                 let transfer = kappa / (u * m + kappa);
                 let (bj, aj) = oscillator_weights(transfer * residue, lambda);
                 let x = times_t_inv([bj, aj]);
-                cell.extension[j * kk + k + 1] = [x[0] - 1.0, x[1]];
+                cell.extension.set(k + 1, j, [x[0] - 1.0, x[1]]);
                 // The velocity's weights: [B_j, A_j] K T⁻¹, K = [[0, 1], [−ω², −2γ]].
-                cell.velocity[j * kk + k + 1] =
-                    times_t_inv([-aj * omega * omega, bj - 2.0 * gamma * aj]);
+                cell.velocity.set(
+                    k + 1,
+                    j,
+                    times_t_inv([-aj * omega * omega, bj - 2.0 * gamma * aj]),
+                );
             }
         }
         cell.to_state = cell.state_map().lu();
@@ -135,10 +142,10 @@ impl DampedCell {
             map[(0, 2 * k)] = 1.0;
             map[(n, 2 * k + 1)] = 1.0;
             for j in 0..r {
-                let e = self.extension[j * kk + k];
+                let e = self.extension.get(k, j);
                 map[(1 + j, 2 * k)] = 1.0 + e[0];
                 map[(1 + j, 2 * k + 1)] = e[1];
-                let v = self.velocity[j * kk + k];
+                let v = self.velocity.get(k, j);
                 map[(n + 1 + j, 2 * k)] = v[0];
                 map[(n + 1 + j, 2 * k + 1)] = v[1];
             }
@@ -176,29 +183,108 @@ impl DampedCell {
 
     /// The cell's energy (kinetic and in its springs) \[J\], the power its dashpots and on-site
     /// damping dissipate \[W\], and Σ_k 2γ_k d_k \[m/s²\] (the damping's part of the primary's
-    /// acceleration), from every mode's (c, d).
+    /// acceleration), from every mode's (c, d). Run in the AVX2 build where the CPU has it (its
+    /// groups of resonators then fill 256-bit vectors): bit for bit [`DampedCell::energy_portable`],
+    /// with no FMA contraction and every sum in its order (claim `simd_step_bit_identical`).
+    #[allow(unsafe_code)]
     pub fn energy(&self, c: &[f64], d: &[f64]) -> (f64, f64, f64) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2 (checked on the line above).
+            return unsafe { self.energy_avx2(c, d) };
+        }
+        self.energy_portable(c, d)
+    }
+
+    /// [`DampedCell::energy`] compiled with 256-bit vectors.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[allow(unsafe_code)]
+    unsafe fn energy_avx2(&self, c: &[f64], d: &[f64]) -> (f64, f64, f64) {
+        self.energy_portable(c, d)
+    }
+
+    /// [`DampedCell::energy`] without run-time SIMD dispatch: the reference the AVX2 build is
+    /// checked against.
+    #[inline(always)]
+    pub fn energy_portable(&self, c: &[f64], d: &[f64]) -> (f64, f64, f64) {
         let kk = self.len();
         let v0: f64 = d[..kk].iter().sum();
         let mut kinetic = self.primary_mass * v0 * v0;
         let (mut strain, mut dashpots) = (0.0, 0.0);
-        for (j, &m) in self.res_mass.iter().enumerate() {
-            let (mut ext, mut v) = (0.0, 0.0);
-            for k in 0..kk {
-                let (e, u) = (self.extension[j * kk + k], self.velocity[j * kk + k]);
-                ext += e[0] * c[k] + e[1] * d[k];
-                v += u[0] * c[k] + u[1] * d[k];
+        for (group, masses) in self.res_mass.chunks(RESONATOR_GROUP).enumerate() {
+            let first = group * RESONATOR_GROUP;
+            let ext = self.extension.group_sum(first, &c[..kk], &d[..kk]);
+            let vel = self.velocity.group_sum(first, &c[..kk], &d[..kk]);
+            for (jj, &m) in masses.iter().enumerate() {
+                let (j, ext, v) = (first + jj, ext[jj], vel[jj]);
+                kinetic += m * v * v;
+                strain += self.res_stiffness[j] * ext * ext;
+                dashpots += self.res_damping[j] * (v - v0) * (v - v0);
             }
-            kinetic += m * v * v;
-            strain += self.res_stiffness[j] * ext * ext;
-            dashpots += self.res_damping[j] * (v - v0) * (v - v0);
         }
-        let damping_accel: f64 = (0..kk).map(|k| self.rate[k] * d[k]).sum();
         (
             0.5 * (kinetic + strain),
             dashpots + self.on_site_rate * kinetic,
-            damping_accel,
+            self.damping_accel(d),
         )
+    }
+
+    /// Σ_k 2γ_k d_k \[m/s²\]: the damping's part of the primary's acceleration, from every
+    /// mode's rate d (what a step needs of the cell; its energy is needed only where read).
+    pub fn damping_accel(&self, d: &[f64]) -> f64 {
+        (0..self.len()).map(|k| self.rate[k] * d[k]).sum()
+    }
+}
+
+/// Weights of every mode's (c_k, d_k) in a quantity of each resonator j, stored mode by mode
+/// (the resonators padded with zeros to whole groups of [`RESONATOR_GROUP`]).
+#[derive(Debug, Clone)]
+struct ModeWeights {
+    c: Vec<f64>,
+    d: Vec<f64>,
+    /// The resonators' count, padded.
+    stride: usize,
+}
+
+impl ModeWeights {
+    fn zeros(modes: usize, resonators: usize) -> Self {
+        let stride = resonators.div_ceil(RESONATOR_GROUP) * RESONATOR_GROUP;
+        ModeWeights {
+            c: vec![0.0; modes * stride],
+            d: vec![0.0; modes * stride],
+            stride,
+        }
+    }
+
+    fn set(&mut self, mode: usize, resonator: usize, [wc, wd]: [f64; 2]) {
+        let at = mode * self.stride + resonator;
+        (self.c[at], self.d[at]) = (wc, wd);
+    }
+
+    fn get(&self, mode: usize, resonator: usize) -> [f64; 2] {
+        let at = mode * self.stride + resonator;
+        [self.c[at], self.d[at]]
+    }
+
+    /// Σ_k (w_c c_k + w_d d_k) for the group of resonators from `first`, each summed over the
+    /// modes in order.
+    #[inline(always)]
+    fn group_sum(&self, first: usize, c: &[f64], d: &[f64]) -> [f64; RESONATOR_GROUP] {
+        let mut sum = [0.0; RESONATOR_GROUP];
+        for (k, (&ck, &dk)) in c.iter().zip(d).enumerate() {
+            let at = k * self.stride + first;
+            let wc: &[f64; RESONATOR_GROUP] = self.c[at..at + RESONATOR_GROUP]
+                .try_into()
+                .expect("padded to whole groups");
+            let wd: &[f64; RESONATOR_GROUP] = self.d[at..at + RESONATOR_GROUP]
+                .try_into()
+                .expect("padded to whole groups");
+            for jj in 0..RESONATOR_GROUP {
+                sum[jj] += wc[jj] * ck + wd[jj] * dk;
+            }
+        }
+        sum
     }
 }
 

@@ -31,6 +31,8 @@ mod modal;
 pub(crate) use equations::{Equations, LabEquations, LabShape, Load};
 pub use lattice::LatticeOde;
 pub(crate) use lattice::Side;
+#[doc(hidden)]
+pub use modal::damped_cell_energies;
 pub(crate) use modal::ModalChain;
 
 use crate::error::{Error, Result};

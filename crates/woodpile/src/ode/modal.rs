@@ -435,3 +435,23 @@ impl ModalChain {
         }
     }
 }
+
+/// Each cell with resonator dashpots of `ode` at its state y: [`DampedCell::energy`]'s
+/// (energy, dissipated power, damping acceleration) as run (the AVX2 build where the CPU has
+/// it), then the portable build's: what the claim `simd_step_bit_identical` compares bit for
+/// bit.
+#[doc(hidden)]
+pub fn damped_cell_energies(ode: &ChainOde, y: &[f64]) -> Result<Vec<[(f64, f64, f64); 2]>> {
+    let modal = ModalChain::new(ode)?;
+    let n = modal.n_modes();
+    let (mut c, mut cdot) = (vec![0.0; n], vec![0.0; n]);
+    modal.project_state(y, &mut c, &mut cdot);
+    let cells = modal.ranges.iter().zip(&modal.kind);
+    Ok(cells
+        .filter_map(|(range, &kind)| {
+            let (c, cdot) = (&c[range.clone()], &cdot[range.clone()]);
+            let cell = modal.damped[kind].as_ref()?;
+            Some([cell.energy(c, cdot), cell.energy_portable(c, cdot)])
+        })
+        .collect())
+}

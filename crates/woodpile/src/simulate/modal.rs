@@ -59,7 +59,8 @@ pub(super) fn simulate_modal(
     while stepper.t() < t_end * (1.0 - 1e-14) {
         stepper.step(t_end)?;
         let (t0, t1) = (stepper.t_prev(), stepper.t());
-        // The force cache at the new primaries (the resonators' part of y is not read).
+        // The force cache at the new primaries (the resonators' part of y, W and D are not
+        // read: they are the samples', `observe_at`).
         stepper.primaries_into(&mut y);
         ode.set_contacts_at(t1, &y);
         ode.check_contacts(t1)?;

@@ -30,6 +30,7 @@ mod damping_zero_bit_identical;
 mod energy_conservation_impact;
 mod event_stepping_accuracy;
 mod exact_modes;
+mod exact_modes_lazy_energy;
 mod exact_modes_loads;
 mod fe_rod_frequencies;
 mod fit_common;
