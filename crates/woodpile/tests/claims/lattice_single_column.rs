@@ -17,8 +17,10 @@
 use super::lattice_common::fe_rod_elements;
 use woodpile::model::LatticeBuilder;
 use woodpile::ode::LatticeOde;
-use woodpile::simulate::simulate_lattice;
-use woodpile::{simulate, ChainBuilder, Excitation, Method, RunSettings, Striker, Trajectory};
+use woodpile::simulate::{simulate_lattice, LatticeRun};
+use woodpile::{
+    simulate, ChainBuilder, Excitation, Method, RunSettings, RunSummary, Striker, Trajectory,
+};
 
 const LENGTHS_MM: [f64; 3] = [80.0, 40.0, 20.0];
 const ELEMENTS: usize = 4;
@@ -33,51 +35,16 @@ fn settings() -> RunSettings {
 
 #[test]
 fn one_rod_per_layer_is_the_fe_rod_chain() {
-    let elements = fe_rod_elements(&LENGTHS_MM, ELEMENTS);
-    let chain = ChainBuilder::new(elements).build().unwrap();
-    let mut trajectory = Trajectory::default();
-    let striker = Striker::paper();
-    simulate(
-        &chain,
-        &Excitation::Impact(striker.clone()),
-        &settings(),
-        &mut trajectory,
-    )
-    .unwrap();
-
-    let layers = LENGTHS_MM
-        .iter()
-        .map(|&l| super::lattice_common::quartz_layer(1, l * 1e-3))
-        .collect();
-    let lattice = LatticeBuilder::new(layers, ELEMENTS).build().unwrap();
-    let mut ode = LatticeOde::new(&lattice, &striker, [0.0, 0.0]).unwrap();
-    let run = simulate_lattice(&mut ode, &settings()).unwrap();
-
+    let (_, trajectory, run, ode) = both_forms(&settings());
     assert_eq!(run.contacts, trajectory.n_contacts());
     assert_eq!(run.times_s.len(), trajectory.len());
-    let peak = run
-        .contact_peak_forces_n
-        .iter()
-        .fold(0.0_f64, |a, &b| a.max(b));
+    let peak = largest_peak(&run);
     assert!(
         run.contact_peak_forces_n[3] > 0.01 * peak,
         "the wave reached the wall"
     );
-    let mut worst_force = 0.0_f64;
-    for c in 0..run.contacts {
-        let (a, b) = (run.contact_force_n(c), trajectory.contact_force_n(c));
-        for (x, y) in a.iter().zip(&b) {
-            worst_force = worst_force.max((x - y).abs() / peak);
-        }
-    }
+    let (worst_force, worst_energy) = force_and_energy_differences(&run, &trajectory);
     let e0 = run.energy_j[0];
-    let chain_energy = trajectory.total_energy_j();
-    let worst_energy = run
-        .energy_j
-        .iter()
-        .zip(&chain_energy)
-        .map(|(a, b)| (a - b).abs() / e0)
-        .fold(0.0_f64, f64::max);
     let mut worst_body = 0.0_f64;
     for layer in 0..run.bodies {
         let chain_layer = trajectory.layer_energy_j(layer);
@@ -139,41 +106,10 @@ fn one_rod_per_layer_under_the_exact_method_is_the_chain_under_it() {
         },
         sample_interval_s: 1e-6,
     };
-    let chain = ChainBuilder::new(fe_rod_elements(&LENGTHS_MM, ELEMENTS))
-        .build()
-        .unwrap();
-    let mut trajectory = Trajectory::default();
-    let striker = Striker::paper();
-    let excitation = Excitation::Impact(striker.clone());
-    let summary = simulate(&chain, &excitation, &settings, &mut trajectory).unwrap();
-
-    let layers = LENGTHS_MM
-        .iter()
-        .map(|&l| super::lattice_common::quartz_layer(1, l * 1e-3))
-        .collect();
-    let lattice = LatticeBuilder::new(layers, ELEMENTS).build().unwrap();
-    let mut ode = LatticeOde::new(&lattice, &striker, [0.0, 0.0]).unwrap();
-    let run = simulate_lattice(&mut ode, &settings).unwrap();
+    let (summary, trajectory, run, _) = both_forms(&settings);
     assert!(matches!(run.method, Method::ExactModes { .. }));
-
-    let peak = run
-        .contact_peak_forces_n
-        .iter()
-        .fold(0.0_f64, |a, &b| a.max(b));
-    let mut worst_force = 0.0_f64;
-    for c in 0..run.contacts {
-        let (a, b) = (run.contact_force_n(c), trajectory.contact_force_n(c));
-        for (x, y) in a.iter().zip(&b) {
-            worst_force = worst_force.max((x - y).abs() / peak);
-        }
-    }
-    let e0 = run.energy_j[0];
-    let worst_energy = run
-        .energy_j
-        .iter()
-        .zip(&trajectory.total_energy_j())
-        .map(|(a, b)| (a - b).abs() / e0)
-        .fold(0.0_f64, f64::max);
+    let peak = largest_peak(&run);
+    let (worst_force, worst_energy) = force_and_energy_differences(&run, &trajectory);
     let worst_peak = run
         .contact_peak_forces_n
         .iter()
@@ -190,4 +126,51 @@ fn one_rod_per_layer_under_the_exact_method_is_the_chain_under_it() {
         "forces differ by {worst_force:e} of the peak"
     );
     assert!(worst_energy < 1e-7, "energies differ by {worst_energy:e}");
+}
+
+/// The column run as a chain and as a lattice of one rod per layer under `settings`: the chain's
+/// summary and trajectory, the lattice's run and equations.
+fn both_forms(settings: &RunSettings) -> (RunSummary, Trajectory, LatticeRun, LatticeOde) {
+    let chain = ChainBuilder::new(fe_rod_elements(&LENGTHS_MM, ELEMENTS))
+        .build()
+        .unwrap();
+    let mut trajectory = Trajectory::default();
+    let striker = Striker::paper();
+    let excitation = Excitation::Impact(striker.clone());
+    let summary = simulate(&chain, &excitation, settings, &mut trajectory).unwrap();
+    let layers = LENGTHS_MM
+        .iter()
+        .map(|&l| super::lattice_common::quartz_layer(1, l * 1e-3))
+        .collect();
+    let lattice = LatticeBuilder::new(layers, ELEMENTS).build().unwrap();
+    let mut ode = LatticeOde::new(&lattice, &striker, [0.0, 0.0]).unwrap();
+    let run = simulate_lattice(&mut ode, settings).unwrap();
+    (summary, trajectory, run, ode)
+}
+
+fn largest_peak(run: &LatticeRun) -> f64 {
+    run.contact_peak_forces_n
+        .iter()
+        .fold(0.0_f64, |a, &b| a.max(b))
+}
+
+/// The largest difference of any sampled contact force (of the largest peak) and of the total
+/// energy (of the initial energy) between the two forms.
+fn force_and_energy_differences(run: &LatticeRun, trajectory: &Trajectory) -> (f64, f64) {
+    let peak = largest_peak(run);
+    let mut worst_force = 0.0_f64;
+    for c in 0..run.contacts {
+        let (a, b) = (run.contact_force_n(c), trajectory.contact_force_n(c));
+        for (x, y) in a.iter().zip(&b) {
+            worst_force = worst_force.max((x - y).abs() / peak);
+        }
+    }
+    let e0 = run.energy_j[0];
+    let worst_energy = run
+        .energy_j
+        .iter()
+        .zip(&trajectory.total_energy_j())
+        .map(|(a, b)| (a - b).abs() / e0)
+        .fold(0.0_f64, f64::max);
+    (worst_force, worst_energy)
 }
