@@ -221,8 +221,10 @@ impl Layout {
         for b in &self.bodies {
             let groups = &groups[b.group..b.group + b.groups];
             if !b.whole {
-                for (k, &m) in b.modes.iter().enumerate() {
-                    x[m] = groups[k / 4].0[k % 4];
+                for (g, modes) in groups.iter().zip(b.modes.chunks(4)) {
+                    for (&value, &m) in g.0.iter().zip(modes) {
+                        x[m] = value;
+                    }
                 }
                 continue;
             }
