@@ -671,8 +671,11 @@ impl GraphModalIntegrator {
         self.ladder.ensure(h, rung, || {
             let groups: Vec<WeightGroup> = modes.iter().map(|m| WeightGroup::new(h, m)).collect();
             // A rung's steps are many: their influence pays for itself. An off-ladder step (a
-            // landing, the run's end) is taken once and iterates through the modes.
-            let influence = rung.map(|_| Influence::new(layout, &groups));
+            // landing, the run's end) is taken once and iterates through the modes, as every
+            // step does where the influence would cost more ([`Influence::pays`]).
+            let influence = rung
+                .filter(|_| Influence::pays(layout))
+                .map(|_| Influence::new(layout, &groups));
             StepWeights { groups, influence }
         });
     }

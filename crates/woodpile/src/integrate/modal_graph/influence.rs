@@ -22,7 +22,32 @@ pub(super) struct Influence {
     offsets: Vec<usize>,
 }
 
+/// The most matrix entries (point pairs, summed over the families) the influence is kept for:
+/// each rung of the ladder holds its own, 14 numbers an entry (about 1.8 MB a rung at this
+/// bound, a few tens of rungs a run).
+const MAX_PAIRS: usize = 16_384;
+
 impl Influence {
+    /// Whether iterating through the influence is cheaper than through the modes for `layout`:
+    /// per iteration, (points)² × 12 products a body against (points) × (groups) × 7 vector
+    /// products of four (the rows' passes) plus (groups) × 12 (the forced response); and its
+    /// matrices within [`MAX_PAIRS`]. Rods with many crossings and few modes (`rod = { modes = l
+    /// }` with small l) iterate through the modes.
+    pub(super) fn pays(layout: &Layout) -> bool {
+        let pairs: usize = layout
+            .families
+            .iter()
+            .map(|&b| layout.body_points[b].len().pow(2))
+            .sum();
+        let (mut influence, mut modes) = (0, 0);
+        for (b, points) in layout.bodies.iter().zip(&layout.body_points) {
+            let p = points.len();
+            influence += p * p * 12;
+            modes += 4 * (p * b.groups * 7 + b.groups * 12);
+        }
+        pairs <= MAX_PAIRS && influence <= modes
+    }
+
     /// The matrices for the step whose weights (per group of each kind's modes) are `weights`.
     pub(super) fn new(layout: &Layout, weights: &[WeightGroup]) -> Self {
         let mut me = Influence::default();
