@@ -111,27 +111,24 @@ impl Layout {
             });
             me.groups += groups;
         }
+        me.body_points = vec![Vec::new(); me.bodies.len()];
         for c in 0..ode.beta.len() {
             let above = me.point(ode, Some(ode.above[c]));
             let below = me.point(ode, ode.below[c]);
             me.above.push(above);
             me.below.push(below);
         }
-        me.body_points = vec![Vec::new(); me.bodies.len()];
-        for (p, point) in me.points.iter().enumerate() {
-            me.body_points[point.body].push(p);
-        }
-        let mut keys: Vec<(usize, Vec<u64>)> = Vec::new();
+        let mut families = std::collections::HashMap::new();
         for (b, body) in me.bodies.iter().enumerate() {
             let rows = me.body_points[b].iter().flat_map(|&p| me.point_row(p));
-            let key = (
+            let key: (usize, Vec<u64>) = (
                 body.kind,
                 rows.flat_map(|r| r.0).map(f64::to_bits).collect(),
             );
-            let family = keys.iter().position(|k| *k == key).unwrap_or_else(|| {
-                keys.push(key);
+            let next = families.len();
+            let family = *families.entry(key).or_insert_with(|| {
                 me.families.push(b);
-                keys.len() - 1
+                next
             });
             me.body_family.push(family);
         }
@@ -153,26 +150,22 @@ impl Layout {
         side: Option<crate::ode::Side>,
     ) -> Option<usize> {
         let side = side.filter(|s| s.len > 0)?;
-        let index = self
-            .bodies
-            .iter()
-            .position(|b| b.state == (side.offset..side.offset + side.len))
-            .expect("a contact's side spans its body's coordinates");
+        // (The bodies lie in the state in order.)
+        let index = self.bodies.partition_point(|b| b.state.start < side.offset);
         let body = &self.bodies[index];
+        debug_assert_eq!(body.state, side.offset..side.offset + side.len);
         let row: Vec<f64> = body
             .modes
             .iter()
             .map(|&m| ode.rows[side.row + m - side.offset])
             .collect();
         let largest = row.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
-        let same = |p: &Point| {
-            let rows = self.rows[p.row..p.row + p.groups].iter().flat_map(|r| r.0);
-            p.body == index
-                && rows
-                    .zip(&row)
-                    .all(|(a, b)| (a - b).abs() <= SAME_POINT_ROW_OF_LARGEST * largest)
+        let same = |&p: &usize| {
+            let rows = self.point_row(p).iter().flat_map(|r| r.0);
+            rows.zip(&row)
+                .all(|(a, b)| (a - b).abs() <= SAME_POINT_ROW_OF_LARGEST * largest)
         };
-        if let Some(p) = self.points.iter().position(same) {
+        if let Some(&p) = self.body_points[index].iter().find(|p| same(p)) {
             return Some(p);
         }
         let first = self.rows.len();
@@ -188,6 +181,7 @@ impl Layout {
             row: first,
             groups: body.groups,
         });
+        self.body_points[index].push(self.points.len() - 1);
         Some(self.points.len() - 1)
     }
 
