@@ -115,6 +115,15 @@ def test_contacts_table_supports_and_transmitted_force_agree():
     np.testing.assert_array_equal(frame["transmitted_n"].to_numpy(), run.transmitted_n)
 
 
+def test_a_run_too_short_for_the_wave_says_so():
+    """Over 5 µs the wave has not reached the supports (their force below a thousandth of the
+    striker's): ``wave_arrived`` is False, so ``transmitted_peak_force_n`` means nothing; over
+    the suite's 0.1 ms it is True."""
+    short = woodpile.simulate(woodpile.Scenario(LATTICE.replace("duration_s = 1e-4", "duration_s = 5e-6")))
+    assert short.wave_arrived is False
+    assert woodpile.simulate(woodpile.Scenario(LATTICE)).wave_arrived is True
+
+
 def test_a_centred_strike_gives_mirror_equal_forces():
     """Struck at the centre, the lattice is symmetric under x → −x: contact forces at mirrored
     crossings are equal to 1e-9 of the largest force (the claim core's lattice tests make to

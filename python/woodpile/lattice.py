@@ -153,6 +153,13 @@ class LatticeRun:
         return float(self.summary["transmitted_peak_force_n"])
 
     @property
+    def wave_arrived(self) -> bool:
+        """Whether the wave reached the supports: the transmitted peak (less the supports'
+        static forces) is at least a thousandth of the incident one's. False: the run was too
+        short for ``transmitted_peak_force_n`` to mean anything; lengthen ``run.duration_s``."""
+        return bool(self.summary.get("wave_arrived", True))
+
+    @property
     def energy_max_relative_error(self) -> float:
         """Largest |E(t) − E(0)| / E(0) over the samples (the run is lossless)."""
         return float(self.summary["energy_max_relative_error"])

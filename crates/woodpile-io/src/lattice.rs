@@ -1150,6 +1150,11 @@ pub struct LatticeSummaryJson {
     pub incident_peak_force_n: f64,
     /// Peak of the sum of the support forces \[N\].
     pub transmitted_peak_force_n: f64,
+    /// Whether the wave reached the supports (the transmitted peak's dynamic part at least
+    /// `woodpile::defaults::WAVE_ARRIVAL_FRACTION` of the incident one's); false: the run was too
+    /// short for the transmitted force to mean anything. (Files written before it: true.)
+    #[serde(default = "arrived")]
+    pub wave_arrived: bool,
     /// Largest |E(t) + D(t) − E(0) − W(t)| over the samples, relative to the larger of E(0)
     /// and the largest |W| (lossless impact: |E(t) − E(0)| / E(0)).
     pub energy_max_relative_error: f64,
@@ -1161,6 +1166,11 @@ pub struct LatticeSummaryJson {
     /// static state ([`LatticeLabSummary`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lab: Option<LatticeLabSummary>,
+}
+
+/// `wave_arrived` of a `summary.json` written before the key existed.
+fn arrived() -> bool {
+    true
 }
 
 /// The lab part of a lattice run's `summary.json`.
@@ -1224,6 +1234,7 @@ impl LatticeSummaryJson {
             contact_peak_times_s: run.contact_peak_times_s.clone(),
             incident_peak_force_n: run.incident_peak_force_n,
             transmitted_peak_force_n: run.transmitted_peak_force_n,
+            wave_arrived: run.wave_arrived,
             integrator: Some(crate::rundir::IntegratorJson {
                 method: crate::rundir::method_label(run.method).to_string(),
                 steps: run.stats.steps,

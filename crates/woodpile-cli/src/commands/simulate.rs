@@ -239,6 +239,18 @@ fn run_lattice(args: &Args, file: &Path, text: &str, ctx: &Context) -> Result<()
         &run,
     )?;
     let dir = staging.commit(LATTICE_RUN_FILES, RUN_MARKER)?;
+    let at_rest = matches!(
+        resolved.excitation,
+        woodpile::model::LatticeExcitation::Rest { .. }
+    );
+    if !run.wave_arrived && !at_rest {
+        crate::out::eprintln(format_args!(
+            "warning: the wave did not reach the supports within run.duration_s = {:e} s (transmitted peak {:.3e} N, incident {:.3e} N): the transmitted force means nothing; increase run.duration_s",
+            resolved.settings.duration_s,
+            run.transmitted_peak_force_n,
+            run.incident_peak_force_n
+        ));
+    }
     if !ctx.quiet {
         print_lattice_run(&name, &resolved, &ode, &run, &dir)?;
     }
@@ -262,8 +274,16 @@ fn print_lattice_run(
             ode.incident_contacts().len()
         ),
     };
+    let transmitted = if run.wave_arrived {
+        format!(
+            "{:.4} N   (peak of the sum of the supports)",
+            run.transmitted_peak_force_n
+        )
+    } else {
+        "none: the wave did not reach the supports within run.duration_s; increase it".to_string()
+    };
     let mut text = format!(
-        "scenario     {name}\nlattice      {} layers, {rods} rods, {} contacts ({} supports)\nexcitation   {}\nincident     {:.4} N   ({incident})\ntransmitted  {:.4} N   (peak of the sum of the supports)\n",
+        "scenario     {name}\nlattice      {} layers, {rods} rods, {} contacts ({} supports)\nexcitation   {}\nincident     {:.4} N   ({incident})\ntransmitted  {transmitted}\n",
         resolved.lattice.layers,
         run.contacts,
         run.supports.len(),
@@ -273,7 +293,6 @@ fn print_lattice_run(
             x => x.as_chain_excitation().to_string(),
         },
         run.incident_peak_force_n,
-        run.transmitted_peak_force_n,
     );
     let e = &run.energy;
     if ode.has_lab() {

@@ -22,6 +22,11 @@ pub struct LatticeRun {
     pub incident_peak_force_n: f64,
     /// Peak over the steps of the transmitted force, the sum of the support forces \[N\].
     pub transmitted_peak_force_n: f64,
+    /// Whether the wave reached the supports: the transmitted peak's dynamic part (less the
+    /// supports' static forces) is at least [`crate::defaults::WAVE_ARRIVAL_FRACTION`] of the
+    /// incident one's (as a chain's `RunSummary::wave_arrived`). False: the run was too short
+    /// for the transmitted force to mean anything, or nothing struck or loaded the lattice.
+    pub wave_arrived: bool,
     /// Energy balance over the samples (lossless: E(t) = E(0); with lab physics
     /// E(t) + D(t) − E(0) − W(t) = 0).
     pub energy: EnergyBalance,
@@ -273,6 +278,7 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
     run.contact_peak_times_s.copy_from_slice(&peaks.time[..nc]);
     run.incident_peak_force_n = peaks.peak[nc];
     run.transmitted_peak_force_n = peaks.peak[nc + 1];
+    run.wave_arrived = wave_arrived(&run, ode);
     run.energy = energy_balance(&run, e0);
     if ode.has_lab() {
         let y = stepper.y();
@@ -293,6 +299,7 @@ impl LatticeRun {
             contact_peak_times_s: vec![0.0; nc],
             incident_peak_force_n: 0.0,
             transmitted_peak_force_n: 0.0,
+            wave_arrived: false,
             energy: EnergyBalance {
                 initial_j: 0.0,
                 final_j: 0.0,
@@ -363,6 +370,20 @@ fn watch_forces(
     rates[nc] = rates[incident].iter().sum();
     forces[nc + 1] = supports.iter().map(|&s| forces[s]).sum();
     rates[nc + 1] = supports.iter().map(|&s| rates[s]).sum();
+}
+
+/// Whether the transmitted peak's dynamic part reached [`crate::defaults::WAVE_ARRIVAL_FRACTION`]
+/// of the incident peak's (the static forces of the run's start taken off both).
+fn wave_arrived(run: &LatticeRun, ode: &LatticeOde) -> bool {
+    let statics = &run.contact_static_forces_n;
+    let at_rest = |contacts: &mut dyn Iterator<Item = usize>| -> f64 {
+        contacts
+            .map(|c| statics.get(c).copied().unwrap_or(0.0))
+            .sum()
+    };
+    let incident = run.incident_peak_force_n - at_rest(&mut ode.incident_contacts());
+    let transmitted = run.transmitted_peak_force_n - at_rest(&mut run.supports.iter().copied());
+    incident > 0.0 && transmitted >= crate::defaults::WAVE_ARRIVAL_FRACTION * incident
 }
 
 /// Sample k's time, if within the run.
