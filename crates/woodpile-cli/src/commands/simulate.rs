@@ -274,7 +274,9 @@ fn print_lattice_run(
             ode.incident_contacts().len()
         ),
     };
-    let transmitted = if run.wave_arrived {
+    // (A lattice left at rest has no wave: its supports' peak is its static load.)
+    let at_rest = matches!(resolved.excitation, LatticeExcitation::Rest { .. });
+    let transmitted = if run.wave_arrived || at_rest {
         format!(
             "{:.4} N   (peak of the sum of the supports)",
             run.transmitted_peak_force_n
@@ -292,7 +294,7 @@ fn print_lattice_run(
                 "rest: the lattice is left alone (a check of its static equilibrium)".to_string(),
             x => x.as_chain_excitation().to_string(),
         },
-        run.incident_peak_force_n,
+        run.incident_peak_force_n + 0.0, // (no -0.0 where no load point is)
     );
     let e = &run.energy;
     if ode.has_lab() {
