@@ -23,7 +23,7 @@ pub(super) struct Influence {
 }
 
 /// The most matrix entries (point pairs, summed over the families) the influence is kept for:
-/// each rung of the ladder holds its own, 14 numbers an entry (about 1.8 MB a rung at this
+/// each rung of the ladder holds its own, 12 numbers an entry (about 1.5 MB a rung at this
 /// bound, a few tens of rungs a run).
 const MAX_PAIRS: usize = 16_384;
 
