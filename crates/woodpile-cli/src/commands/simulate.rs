@@ -239,11 +239,7 @@ fn run_lattice(args: &Args, file: &Path, text: &str, ctx: &Context) -> Result<()
         &run,
     )?;
     let dir = staging.commit(LATTICE_RUN_FILES, RUN_MARKER)?;
-    let at_rest = matches!(
-        resolved.excitation,
-        woodpile::model::LatticeExcitation::Rest { .. }
-    );
-    if !run.wave_arrived && !at_rest {
+    if !run.wave_arrived && !left_at_rest(&resolved) {
         crate::out::eprintln(format_args!(
             "warning: the wave did not reach the supports within run.duration_s = {:e} s (transmitted peak {:.3e} N, incident {:.3e} N): the transmitted force means nothing; increase run.duration_s",
             resolved.settings.duration_s,
@@ -255,6 +251,15 @@ fn run_lattice(args: &Args, file: &Path, text: &str, ctx: &Context) -> Result<()
         print_lattice_run(&name, &resolved, &ode, &run, &dir)?;
     }
     Ok(())
+}
+
+/// Whether the lattice is left at rest: it has no wave to wait for (its supports' peak is its
+/// static load).
+fn left_at_rest(resolved: &woodpile_io::lattice::ResolvedLattice) -> bool {
+    matches!(
+        resolved.excitation,
+        woodpile::model::LatticeExcitation::Rest { .. }
+    )
 }
 
 /// The terminal summary of a lattice run.
@@ -274,9 +279,7 @@ fn print_lattice_run(
             ode.incident_contacts().len()
         ),
     };
-    // (A lattice left at rest has no wave: its supports' peak is its static load.)
-    let at_rest = matches!(resolved.excitation, LatticeExcitation::Rest { .. });
-    let transmitted = if run.wave_arrived || at_rest {
+    let transmitted = if run.wave_arrived || left_at_rest(resolved) {
         format!(
             "{:.4} N   (peak of the sum of the supports)",
             run.transmitted_peak_force_n
