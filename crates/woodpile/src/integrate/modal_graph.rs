@@ -42,6 +42,29 @@ mod layout;
 struct StepWeights {
     groups: Vec<WeightGroup>,
     influence: Option<Influence>,
+    /// With the influence and static forces: each point's deflection at the nodes under the
+    /// static modal forces alone (else empty).
+    point_static: Vec<[f64; 3]>,
+}
+
+/// Each point's deflection at the nodes of a step (weights `groups`) under the static modal
+/// forces alone (`statics`: per group the forces, per body whether any acts).
+fn static_deflections(
+    layout: &Layout,
+    (static_groups, static_loaded): (&[V], &[bool]),
+    groups: &[WeightGroup],
+) -> Vec<[f64; 3]> {
+    let mut response = vec![[V::ZERO; 3]; layout.groups];
+    for (b, _) in layout.bodies.iter().zip(static_loaded).filter(|s| *s.1) {
+        let (g, k) = (b.group..b.group + b.groups, b.kind..b.kind + b.groups);
+        let forces = static_groups[g.clone()].iter().zip(&groups[k]);
+        for (x, (&f, w)) in response[g].iter_mut().zip(forces) {
+            *x = [w.pos[0][0] * f, w.pos[1][0] * f, w.pos[2][0] * f];
+        }
+    }
+    let mut out = vec![[0.0; 3]; layout.points.len()];
+    layout.deflections3(&response, static_loaded, &mut out);
+    out
 }
 
 /// Four modes at once, as [`Lane`] values (the form that runs in vectors).
@@ -244,10 +267,6 @@ struct Scratch {
     /// response.
     point_free: Vec<[f64; 3]>,
     point_forced: Vec<[f64; 3]>,
-    /// Per group and node: the response to the static modal forces alone; per point, its
-    /// deflection (the iteration through the influence adds it to the free motion).
-    static_response: Vec<[V; 3]>,
-    point_static: Vec<[f64; 3]>,
     /// Per point: the net cubic of the forces on it (monomials in σ), and whether any acts.
     point_cubic: Vec<[f64; 4]>,
     point_pushed: Vec<bool>,
@@ -394,30 +413,11 @@ impl GraphModalIntegrator {
         }
         let layout = &self.layout;
         layout.deflections3(&sc.free, &self.moving, &mut sc.point_free);
-        if step.influence.is_some() && self.static_loaded.iter().any(|&s| s) {
-            // The iteration through the influence leaves the static forces out: their
-            // response (a constant cubic) joins the free motion.
-            for (b, _) in layout
-                .bodies
-                .iter()
-                .zip(&self.static_loaded)
-                .filter(|s| *s.1)
-            {
-                let (g, k) = (b.group..b.group + b.groups, b.kind..b.kind + b.groups);
-                let forces = self.static_groups[g.clone()].iter().zip(&weights[k]);
-                for (x, (&f, w)) in sc.static_response[g].iter_mut().zip(forces) {
-                    *x = [w.pos[0][0] * f, w.pos[1][0] * f, w.pos[2][0] * f];
-                }
-            }
-            layout.deflections3(
-                &sc.static_response,
-                &self.static_loaded,
-                &mut sc.point_static,
-            );
-            for (free, d) in sc.point_free.iter_mut().zip(&sc.point_static) {
-                for (x, dx) in free.iter_mut().zip(d) {
-                    *x += dx;
-                }
+        // The iteration through the influence leaves the static forces out: their response
+        // (a constant cubic, the same every step of this size) joins the free motion.
+        for (free, d) in sc.point_free.iter_mut().zip(&step.point_static) {
+            for (x, dx) in free.iter_mut().zip(d) {
+                *x += dx;
             }
         }
         for c in 0..self.force.len() {
@@ -575,7 +575,10 @@ impl GraphModalIntegrator {
             self.stats.rhs_evaluations += 3;
             if change <= (FIXED_POINT_TOLERANCE * self.rtol).max(1e-13) * scale || scale == 0.0 {
                 self.cubics();
-                self.forced(&weights.groups);
+                if weights.influence.is_some() {
+                    // (The modes' path has it from its last iteration.)
+                    self.forced(&weights.groups);
+                }
                 return true;
             }
         }
@@ -668,6 +671,7 @@ impl GraphModalIntegrator {
     fn weights(&mut self, h: f64, rung: Option<i64>) {
         let modes = &self.layout.kind_modes;
         let layout = &self.layout;
+        let statics = (&self.static_groups[..], &self.static_loaded[..]);
         self.ladder.ensure(h, rung, || {
             let groups: Vec<WeightGroup> = modes.iter().map(|m| WeightGroup::new(h, m)).collect();
             // A rung's steps are many: their influence pays for itself. An off-ladder step (a
@@ -676,7 +680,17 @@ impl GraphModalIntegrator {
             let influence = rung
                 .filter(|_| Influence::pays(layout))
                 .map(|_| Influence::new(layout, &groups));
-            StepWeights { groups, influence }
+            let point_static = match influence {
+                Some(_) if statics.1.iter().any(|&s| s) => {
+                    static_deflections(layout, statics, &groups)
+                }
+                _ => Vec::new(),
+            };
+            StepWeights {
+                groups,
+                influence,
+                point_static,
+            }
         });
     }
 
@@ -898,8 +912,6 @@ impl Scratch {
         Scratch {
             point_free: vec![[0.0; 3]; points],
             point_forced: vec![[0.0; 3]; points],
-            static_response: vec![[V::ZERO; 3]; groups],
-            point_static: vec![[0.0; 3]; points],
             point_cubic: vec![[0.0; 4]; points],
             point_pushed: vec![false; points],
             point_needed: vec![false; points],
