@@ -195,8 +195,8 @@ impl PointError {
 #[derive(Debug, Clone)]
 pub(crate) struct GraphModalIntegrator {
     ode: LatticeOde,
-    /// The distinct (frequency \[rad/s\], damping rate 2γ \[1/s\]) pairs and each coordinate's
-    /// index into them (for the samples inside a step).
+    /// The distinct (frequency \[rad/s\], damping rate 2γ \[1/s\]) pairs of the carried modes
+    /// and each carried coordinate's index into them (for the samples inside a step).
     frequencies: Vec<(f64, f64)>,
     frequency_index: Vec<usize>,
     /// The coordinates in groups of four.
@@ -233,6 +233,8 @@ pub(crate) struct GraphModalIntegrator {
     /// (zeros without), and the same in groups.
     static_force: Vec<f64>,
     static_groups: Vec<V>,
+    /// Per point: its deflection and its rate now \[m, m/s\].
+    point_end: Vec<[f64; 2]>,
     /// Per contact: force and overlap now, and the largest overlap at any node so far \[m\].
     force: Vec<f64>,
     largest_overlap: Vec<f64>,
@@ -273,6 +275,8 @@ struct Scratch {
     /// Per point: whether the error norm needs its error, and that error.
     point_needed: Vec<bool>,
     point_errors: Vec<PointError>,
+    /// Per point (through the influence): the σ³ part's effect on its position and velocity.
+    point_sigma3: Vec<[f64; 2]>,
     /// Per contact and node 1..3: the free overlap.
     free_overlap: Vec<[f64; 3]>,
     /// Per contact and node 0..3: force and overlap.
@@ -293,18 +297,6 @@ impl GraphModalIntegrator {
         let rates = ode
             .damping_rates()
             .map_or_else(|| vec![0.0; q], |r| r.to_vec());
-        let (mut frequencies, mut frequency_index) = (Vec::new(), Vec::with_capacity(q));
-        for (&w2, &rate) in ode.omega2.iter().zip(&rates) {
-            let key = (w2.sqrt(), rate);
-            let index = frequencies
-                .iter()
-                .position(|&f| f == key)
-                .unwrap_or_else(|| {
-                    frequencies.push(key);
-                    frequencies.len() - 1
-                });
-            frequency_index.push(index);
-        }
         let n = ode.contacts();
         let y = ode.initial_state();
         let mut ode = ode.clone();
@@ -317,6 +309,7 @@ impl GraphModalIntegrator {
             .map_or_else(|| vec![0.0; q], |f| f.to_vec());
         let start = [&y[..q], &y[q + 3..2 * q + 3], &static_force[..]];
         let layout = Layout::new(&ode, &rates, start);
+        let (frequencies, frequency_index) = sample_frequencies(&layout, &ode.omega2, &rates);
         let groups = layout.groups;
         let grouped = |values: &[f64]| {
             let mut out = vec![V::ZERO; groups];
@@ -333,7 +326,7 @@ impl GraphModalIntegrator {
             layout.nonzero_bodies(&[&static_groups]),
         );
         let modal_energy = [modal_energy_j(&y, &ode.omega2); 2];
-        GraphModalIntegrator {
+        let mut me = GraphModalIntegrator {
             frequencies,
             frequency_index,
             moving,
@@ -368,8 +361,21 @@ impl GraphModalIntegrator {
                 ..IntegratorStats::default()
             },
             sc: Scratch::new(groups, n, layout.bodies.len(), layout.points.len()),
+            point_end: Vec::new(),
             layout,
             ode,
+        };
+        me.points_now();
+        me
+    }
+
+    /// Every point's deflection and rate in the state now into `point_end`.
+    #[inline(always)]
+    fn points_now(&mut self) {
+        let layout = &self.layout;
+        self.point_end.resize(layout.points.len(), [0.0; 2]);
+        for (p, end) in self.point_end.iter_mut().enumerate() {
+            *end = layout.dot2(p, &self.x, &self.v, &self.moving);
         }
     }
 
@@ -574,10 +580,11 @@ impl GraphModalIntegrator {
             }
             self.stats.rhs_evaluations += 3;
             if change <= (FIXED_POINT_TOLERANCE * self.rtol).max(1e-13) * scale || scale == 0.0 {
-                self.cubics();
                 if weights.influence.is_some() {
-                    // (The modes' path has it from its last iteration.)
-                    self.forced(&weights.groups);
+                    // The points' cubics for the error; the modes' forces wait for the commit.
+                    self.point_cubics();
+                } else {
+                    self.cubics();
                 }
                 return true;
             }
@@ -592,7 +599,7 @@ impl GraphModalIntegrator {
     /// largest overlap so far (a point can move far more than a contact deep in the lattice is
     /// compressed, and a peak force's relative error is 1.5 times its overlap's).
     #[inline(always)]
-    fn error_norm(&mut self, weights: &[WeightGroup]) -> f64 {
+    fn error_norm(&mut self, step: &StepWeights) -> f64 {
         let loaded = |f: &[f64; 4]| f.iter().any(|&f| f != 0.0);
         self.sc.point_needed.fill(false);
         for c in 0..self.force.len() {
@@ -605,12 +612,7 @@ impl GraphModalIntegrator {
                 }
             }
         }
-        for p in 0..self.layout.points.len() {
-            if self.sc.point_needed[p] {
-                let e = self.point_error(p, weights);
-                self.sc.point_errors[p] = e;
-            }
-        }
+        self.point_errors(step);
         let errors = &self.sc.point_errors;
         let (mut worst_point, mut worst_force) = (0.0_f64, 0.0_f64);
         for c in 0..self.force.len() {
@@ -638,6 +640,35 @@ impl GraphModalIntegrator {
             worst_force = worst_force.max(overlap_error.abs() / scale);
         }
         (0.5 * worst_point).sqrt().max(worst_force)
+    }
+
+    /// Every needed point's error ([`PointError`]): through the influence where the step has
+    /// it, else through a pass over its modes.
+    #[inline(always)]
+    fn point_errors(&mut self, step: &StepWeights) {
+        let Some(influence) = &step.influence else {
+            for p in 0..self.layout.points.len() {
+                if self.sc.point_needed[p] {
+                    let e = self.point_error(p, &step.groups);
+                    self.sc.point_errors[p] = e;
+                }
+            }
+            return;
+        };
+        let sc = &mut self.sc;
+        let cubics = (&sc.point_cubic[..], &sc.point_pushed[..]);
+        influence.errors(&self.layout, cubics, &sc.point_needed, &mut sc.point_sigma3);
+        for (p, e) in sc.point_errors.iter_mut().enumerate() {
+            if sc.point_needed[p] {
+                let [position, velocity] = sc.point_sigma3[p];
+                *e = PointError {
+                    position,
+                    velocity,
+                    x: sc.point_free[p][2] + sc.point_forced[p][2],
+                    v: self.point_end[p][1],
+                };
+            }
+        }
     }
 
     /// The σ³ part's effect on a point's position and velocity, and the point's position at the
@@ -707,7 +738,7 @@ impl GraphModalIntegrator {
             .iter()
             .map(|&(w, rate)| FlowAt::new(theta, h, w, rate))
             .collect();
-        let q = self.frequency_index.len();
+        let q = self.ode.coordinates();
         let (x0, v0) = (&self.y_prev[..q], &self.y_prev[q + 3..2 * q + 3]);
         // The modes the passes leave out stay where they are (at rest).
         out[..q].copy_from_slice(x0);
@@ -726,6 +757,36 @@ impl GraphModalIntegrator {
         }
         self.supports_flow(theta, h, &self.y_prev, out);
         self.work_and_dissipation(theta, &self.coef, &self.overlap_coef, out);
+    }
+
+    /// Every contact's overlap and force at the last step's end into `ode`'s `overlap_m` and
+    /// `force_n`, and its force rate into `rate` \[N/s\]: what
+    /// [`LatticeOde::contact_forces_and_rates_at`] gives from the state under elastic rates
+    /// (the elastic contacts' (3/2) F δ̇ / δ, the load's force and rate at a load point, whose
+    /// overlap reads 0), but from the points' deflections and rates, each summed once per step
+    /// over its carried modes four at a time, rather than from every side's full row. The same sums in another order: they differ by
+    /// rounding.
+    pub fn contact_forces_and_rates(&mut self, ode: &mut LatticeOde, rate: &mut [f64]) {
+        let (layout, ends) = (&self.layout, &self.point_end);
+        let loads = self.ode.load_contacts();
+        let (load, load_rate) = if loads > 0 {
+            let t = self.t;
+            (ode.load_per_point_n(t), ode.load_rate_per_point_n_s(t))
+        } else {
+            (0.0, 0.0)
+        };
+        let at = |p: Option<usize>| p.map_or([0.0; 2], |p| ends[p]);
+        for (c, r) in rate.iter_mut().enumerate() {
+            if c < loads {
+                (ode.force_n[c], ode.overlap_m[c], *r) = (load, 0.0, load_rate);
+                continue;
+            }
+            let (above, below) = (at(layout.above[c]), at(layout.below[c]));
+            let (d, dv) = (above[0] - below[0], above[1] - below[1]);
+            let f = ContactLaw::elastic_force(self.ode.beta[c], d);
+            (ode.force_n[c], ode.overlap_m[c]) = (f, d);
+            *r = ContactLaw::elastic_force_rate(f, d, dv);
+        }
     }
 
     /// W and D_modes at θ of the step from the last step's start into `out` (which holds the
@@ -775,7 +836,7 @@ impl GraphModalIntegrator {
     /// The supports' impulses J and their integrals ∫J dt at θ of a step of size h from `from`
     /// (the support forces' cubics of that step) into `out`.
     fn supports_flow(&self, theta: f64, h: f64, from: &[f64], out: &mut [f64]) {
-        let q = self.frequency_index.len();
+        let q = self.ode.coordinates();
         let (mut dj, mut djint) = ([0.0; 3], [0.0; 3]);
         for &(c, dx, dy) in &self.ode.supports {
             let a = &self.coef[c];
@@ -821,7 +882,6 @@ impl ExactStepper for GraphModalIntegrator {
         let weights = ladder.get(rung);
         self.start_attempt(h, weights);
         let converged = self.solve_nodes(weights);
-        let weights = &weights.groups[..];
         // (No closure here: it would compile outside the AVX2 build.)
         let err = if converged {
             self.error_norm(weights)
@@ -841,8 +901,13 @@ impl ExactStepper for GraphModalIntegrator {
     #[inline(always)]
     fn commit(&mut self, h: f64, rung: Option<i64>) {
         std::mem::swap(&mut self.y, &mut self.y_prev);
+        if self.ladder.get(rung).influence.is_some() {
+            // The converged forces on the modes (the iteration ran through the points).
+            self.cubics();
+        }
         self.advance_modes(rung);
-        let q = self.frequency_index.len();
+        self.points_now();
+        let q = self.ode.coordinates();
         let mut y = std::mem::take(&mut self.y);
         self.layout.scatter(&self.x, &mut y[..q]);
         self.layout.scatter(&self.v, &mut y[q + 3..2 * q + 3]);
@@ -892,6 +957,9 @@ impl GraphModalIntegrator {
             let to = sc.x1[g.clone()].iter_mut().zip(&mut sc.v1[g.clone()]);
             let modes = weights[k].iter().zip(&sc.modal_force[g]);
             for ((w, b), ((&x0, &v0), (x1, v1))) in modes.zip(from.zip(to)) {
+                // Each group in its own vectors: without this opaque step the compiler
+                // vectorises the loop across groups, gathering every weight lane by lane.
+                let w = std::hint::black_box(w);
                 let (p, u) = (&w.pos[2], &w.vel);
                 *x1 = w.cos[2] * x0
                     + w.hsinc[2] * v0
@@ -916,6 +984,7 @@ impl Scratch {
             point_pushed: vec![false; points],
             point_needed: vec![false; points],
             point_errors: vec![PointError::default(); points],
+            point_sigma3: vec![[0.0; 2]; points],
             loaded: vec![true; bodies],
             unforced: vec![true; bodies],
             free: vec![[V::ZERO; 3]; groups],
@@ -952,6 +1021,28 @@ pub fn exact_modes_lattice_state(
         }
     }
     Ok(stepper.y)
+}
+
+/// The distinct (frequency \[rad/s\], damping rate \[1/s\]) pairs of the modes the passes
+/// carry, and per coordinate its pair's index (`usize::MAX` for a mode left out: it stays at
+/// rest, and a sample needs no flow of it).
+fn sample_frequencies(
+    layout: &Layout,
+    omega2: &[f64],
+    rates: &[f64],
+) -> (Vec<(f64, f64)>, Vec<usize>) {
+    let (mut frequencies, mut index) = (Vec::new(), vec![usize::MAX; omega2.len()]);
+    let mut seen = std::collections::HashMap::new();
+    for &m in layout.bodies.iter().flat_map(|b| &b.modes) {
+        let key = (omega2[m].sqrt(), rates[m]);
+        index[m] = *seen
+            .entry((key.0.to_bits(), key.1.to_bits()))
+            .or_insert_with(|| {
+                frequencies.push(key);
+                frequencies.len() - 1
+            });
+    }
+    (frequencies, index)
 }
 
 /// The modes' kinetic and strain energy Σ ½ (q̇² + ω² q²) of a state \[J\].

@@ -828,6 +828,14 @@ impl LatticeOde {
         self.lab.as_ref().map_or(0.0, |lab| lab.load_per_point_n(t))
     }
 
+    /// Each load point's prescribed force rate at t \[N/s\] (a drive's; 0 for a blast, or
+    /// without a load).
+    pub(crate) fn load_rate_per_point_n_s(&self, t: f64) -> f64 {
+        self.lab
+            .as_ref()
+            .map_or(0.0, |lab| lab.load_rate_per_point_n_s(t))
+    }
+
     /// The shortest Hertz contact time of the run's scale \[s\]: the striker's
     /// ([`LatticeOde::striker_contact_time_s`]), or under a load the shortest of every contact's
     /// two bodies (their whole masses, reduced; a rod's alone on a support) meeting at

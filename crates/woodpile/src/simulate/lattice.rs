@@ -152,6 +152,16 @@ impl Stepper {
         }
     }
 
+    /// Every contact's overlap and force at the last step's end into `ode`'s `overlap_m` and
+    /// `force_n`, its force rate into `rate` (as [`LatticeOde::contact_forces_and_rates_at`]).
+    fn contact_forces_and_rates(&mut self, ode: &mut LatticeOde, elastic: bool, rate: &mut [f64]) {
+        match self {
+            Stepper::Explicit(i) => ode.contact_forces_and_rates_at(i.t(), i.y(), elastic, rate),
+            // (Every contact of a run the exact method takes is elastic.)
+            Stepper::ExactModes(m) => m.contact_forces_and_rates(ode, rate),
+        }
+    }
+
     fn stats(&self) -> IntegratorStats {
         match self {
             Stepper::Explicit(i) => i.stats(),
@@ -232,15 +242,8 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
     // blast's F0, the static forces under a static load) count.
     let mut peaks = PeakTracker::new(nc + 2);
     let mut forces = vec![0.0; nc + 2];
-    watch_forces(
-        ode,
-        0.0,
-        &y0,
-        &run.supports,
-        elastic_rates,
-        &mut forces,
-        &mut peaks.rate,
-    );
+    ode.contact_forces_and_rates_at(0.0, &y0, elastic_rates, &mut peaks.rate[..nc]);
+    watch_sums(ode, &run.supports, &mut forces, &mut peaks.rate);
     peaks.start(&forces);
     let interval = settings.sample_interval_s;
     let mut next = 1usize;
@@ -253,17 +256,9 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         let t0 = stepper.t();
         let h = stepper.step(ode, settings.duration_s)?;
         let t = stepper.t();
-        let y = stepper.y();
-        watch_forces(
-            ode,
-            t,
-            y,
-            &run.supports,
-            elastic_rates,
-            &mut forces,
-            &mut peaks.rate,
-        );
-        check(ode, t, y)?;
+        stepper.contact_forces_and_rates(ode, elastic_rates, &mut peaks.rate[..nc]);
+        watch_sums(ode, &run.supports, &mut forces, &mut peaks.rate);
+        check(ode, t, stepper.y())?;
         peaks.update(t0, t, &forces);
         while let Some(ts) = sample_time(next, interval, settings.duration_s) {
             if ts > t + 1e-9 * h {
@@ -349,21 +344,11 @@ fn energy_balance(run: &LatticeRun, e0: f64) -> EnergyBalance {
     }
 }
 
-/// Every contact's force and its rate in state y at t, then the incident force (the striker's,
-/// or the load points' sum) and the transmitted force (the supports' sum) and their rates, into
-/// `forces` and `rates` (contacts + 2 each). `elastic_rates`: lab physics with every contact
-/// elastic ([`LatticeOde::fits_exact_modes`]), whose rates refine the peaks as a lossless run's.
-fn watch_forces(
-    ode: &mut LatticeOde,
-    t: f64,
-    y: &[f64],
-    supports: &[usize],
-    elastic_rates: bool,
-    forces: &mut [f64],
-    rates: &mut [f64],
-) {
+/// Every contact's force (from `ode`) into `forces`, then the incident force (the striker's, or
+/// the load points' sum) and the transmitted force (the supports' sum) and their rates (from
+/// the contacts' `rates`) into both.
+fn watch_sums(ode: &LatticeOde, supports: &[usize], forces: &mut [f64], rates: &mut [f64]) {
     let nc = ode.contacts();
-    ode.contact_forces_and_rates_at(t, y, elastic_rates, &mut rates[..nc]);
     forces[..nc].copy_from_slice(&ode.force_n);
     let incident = ode.incident_contacts();
     forces[nc] = forces[incident.clone()].iter().sum();

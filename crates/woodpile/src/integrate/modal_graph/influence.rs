@@ -6,7 +6,10 @@
 //! summed once per step size over the body's modes ([`super::WeightGroup`]'s `pos`). With it
 //! the node iteration of the contact graph's stepper costs (points of a body)² per body and
 //! iteration instead of (points) × (modes): a rod's modes are passed over once per attempt,
-//! not once per iteration. Bodies of one family (one kind, the same rows at their points:
+//! not once per iteration. The attempt's error comes the same way: the σ³ part's effect on
+//! point p's position and velocity is Σ_q E_pq a³_q, with E_pq = Σ_k r_pk r_qk (h² Σ_n E_n
+//! S_n(1, z_k), h Σ_n E_n C_n(1, z_k)) (`err_pos`, `err_vel`) and a³_q the σ³ coefficient of the
+//! net force at q, so an attempt passes over the modes only for its free motion. Bodies of one family (one kind, the same rows at their points:
 //! a layer's rods between equal layers) share their matrices.
 
 use super::layout::Layout;
@@ -18,12 +21,14 @@ use crate::real::Real;
 pub(super) struct Influence {
     /// Per family, row-major over its points (p, q): G_pq per node and monomial.
     matrices: Vec<[[f64; 4]; 3]>,
+    /// Per family, as `matrices`: E_pq for the position and for the velocity.
+    errors: Vec<[f64; 2]>,
     /// Per family: where its matrix starts.
     offsets: Vec<usize>,
 }
 
 /// The most matrix entries (point pairs, summed over the families) the influence is kept for:
-/// each rung of the ladder holds its own, 12 numbers an entry (about 1.5 MB a rung at this
+/// each rung of the ladder holds its own, 14 numbers an entry (about 1.5 MB a rung at this
 /// bound, a few tens of rungs a run).
 const MAX_PAIRS: usize = 16_384;
 
@@ -58,12 +63,15 @@ impl Influence {
             let start = me.matrices.len();
             me.offsets.push(start);
             me.matrices.resize(start + n * n, [[0.0; 4]; 3]);
+            me.errors.resize(start + n * n, [0.0; 2]);
             let w = &weights[body.kind..body.kind + body.groups];
             for (i, &p) in points.iter().enumerate() {
                 for (j, &q) in points.iter().enumerate().skip(i) {
-                    let g = pair(layout.point_row(p), layout.point_row(q), w);
+                    let (g, e) = pair(layout.point_row(p), layout.point_row(q), w);
                     me.matrices[start + i * n + j] = g;
                     me.matrices[start + j * n + i] = g;
+                    me.errors[start + i * n + j] = e;
+                    me.errors[start + j * n + i] = e;
                 }
             }
         }
@@ -99,11 +107,39 @@ impl Influence {
             }
         }
     }
+
+    /// The σ³ part's effect on the position and the velocity of every point in `needed`
+    /// (the net force cubics at the points of its body: `cubics`, `pushed` as
+    /// [`Influence::deflections3`]) into `out`.
+    #[inline(always)]
+    pub(super) fn errors(
+        &self,
+        layout: &Layout,
+        (cubics, pushed): (&[[f64; 4]], &[bool]),
+        needed: &[bool],
+        out: &mut [[f64; 2]],
+    ) {
+        for (points, &family) in layout.body_points.iter().zip(&layout.body_family) {
+            let n = points.len();
+            let matrix = &self.errors[self.offsets[family]..];
+            for (i, &p) in points.iter().enumerate().filter(|&(_, &p)| needed[p]) {
+                let mut e = [0.0; 2];
+                for (g, &q) in matrix[i * n..(i + 1) * n].iter().zip(points) {
+                    if pushed[q] {
+                        e[0] += g[0] * cubics[q][3];
+                        e[1] += g[1] * cubics[q][3];
+                    }
+                }
+                out[p] = e;
+            }
+        }
+    }
 }
 
-/// G_pq for rows `rp`, `rq` over one body's groups with weights `w`.
-fn pair(rp: &[V], rq: &[V], w: &[WeightGroup]) -> [[f64; 4]; 3] {
+/// G_pq and E_pq for rows `rp`, `rq` over one body's groups with weights `w`.
+fn pair(rp: &[V], rq: &[V], w: &[WeightGroup]) -> ([[f64; 4]; 3], [f64; 2]) {
     let mut acc = [[V::ZERO; 4]; 3];
+    let mut err = [V::ZERO; 2];
     for ((&a, &b), w) in rp.iter().zip(rq).zip(w) {
         let ab = a * b;
         for (accj, posj) in acc.iter_mut().zip(&w.pos) {
@@ -111,6 +147,8 @@ fn pair(rp: &[V], rq: &[V], w: &[WeightGroup]) -> [[f64; 4]; 3] {
                 *x = *x + ab * s;
             }
         }
+        err[0] = err[0] + ab * w.err_pos;
+        err[1] = err[1] + ab * w.err_vel;
     }
-    acc.map(|row| row.map(|v| v.sum()))
+    (acc.map(|row| row.map(|v| v.sum())), err.map(|v| v.sum()))
 }

@@ -256,6 +256,26 @@ impl Layout {
         [a0.sum(), a1.sum(), a2.sum()]
     }
 
+    /// Σ r x and Σ r v over point p's groups (`x`, `v`: per group); zero without a look where
+    /// the point's body is not `active`.
+    #[inline(always)]
+    pub(super) fn dot2(&self, p: usize, x: &[V], v: &[V], active: &[bool]) -> [f64; 2] {
+        let point = self.points[p];
+        if !active[point.body] {
+            return [0.0; 2];
+        }
+        let g = point.group..point.group + point.groups;
+        let rows = &self.rows[point.row..point.row + point.groups];
+        let (mut a0, mut a1) = (V::ZERO, V::ZERO);
+        for (&r, (&x, &v)) in rows.iter().zip(x[g.clone()].iter().zip(&v[g])) {
+            a0 = a0 + r * x;
+            a1 = a1 + r * v;
+        }
+        // (Summed out of sight of the loop, as in `Layout::dot3`.)
+        let [a0, a1] = std::hint::black_box([a0, a1]);
+        [a0.sum(), a1.sum()]
+    }
+
     /// Every point's deflection at the three nodes for grouped values into `out` (`active` as
     /// [`Layout::dot3`]).
     #[inline(always)]
