@@ -269,8 +269,10 @@ struct Scratch {
     /// response.
     point_free: Vec<[f64; 3]>,
     point_forced: Vec<[f64; 3]>,
-    /// Per point: the net cubic of the forces on it (monomials in σ), and whether any acts.
+    /// Per point: the net cubic of the forces on it (monomials in σ), its net forces at the
+    /// nodes, and whether any acts.
     point_cubic: Vec<[f64; 4]>,
+    point_force: Vec<[f64; 4]>,
     point_pushed: Vec<bool>,
     /// Per point: whether the error norm needs its error, and that error.
     point_needed: Vec<bool>,
@@ -510,6 +512,29 @@ impl GraphModalIntegrator {
         }
     }
 
+    /// Each point's net forces at the four nodes (−f where the point is a contact's upper side,
+    /// +f where it is its lower side, as [`Self::point_cubics`]), and whether any acts.
+    #[inline(always)]
+    fn point_forces(&mut self) {
+        let layout = &self.layout;
+        let sc = &mut self.sc;
+        sc.point_force.fill([0.0; 4]);
+        sc.point_pushed.fill(false);
+        for (c, f) in sc.node_force.iter().enumerate() {
+            if f.iter().all(|&x| x == 0.0) {
+                continue;
+            }
+            for (p, sign) in [(layout.above[c], -1.0), (layout.below[c], 1.0)] {
+                if let Some(p) = p {
+                    sc.point_pushed[p] = true;
+                    for (b, fj) in sc.point_force[p].iter_mut().zip(f) {
+                        *b += sign * fj;
+                    }
+                }
+            }
+        }
+    }
+
     /// Each group's response at the nodes to its modal force's cubic.
     #[inline(always)]
     fn forced(&mut self, weights: &[WeightGroup]) {
@@ -542,11 +567,11 @@ impl GraphModalIntegrator {
         let loads = self.ode.load_contacts();
         for _ in 0..MAX_ITERATIONS {
             if let Some(influence) = &weights.influence {
-                self.point_cubics();
+                self.point_forces();
                 let sc = &mut self.sc;
                 influence.deflections3(
                     &self.layout,
-                    &sc.point_cubic,
+                    &sc.point_force,
                     &sc.point_pushed,
                     &mut sc.point_forced,
                 );
@@ -759,6 +784,20 @@ impl GraphModalIntegrator {
         self.work_and_dissipation(theta, &self.coef, &self.overlap_coef, out);
     }
 
+    /// Whether the state now is finite: the sum of every carried mode's position and velocity
+    /// (a non-finite one makes it so; the modes left out stay at rest), and the supports'
+    /// impulses and W, D (in the state's tail).
+    pub fn state_finite(&self) -> bool {
+        let modes = self
+            .x
+            .iter()
+            .chain(&self.v)
+            .fold(V::ZERO, |sum, &g| sum + g);
+        let q = self.ode.coordinates();
+        let tail: f64 = self.y[q..q + 3].iter().chain(&self.y[2 * q + 3..]).sum();
+        (modes.sum() + tail).is_finite()
+    }
+
     /// Every contact's overlap and force at the last step's end into `ode`'s `overlap_m` and
     /// `force_n`, and its force rate into `rate` \[N/s\]: what
     /// [`LatticeOde::contact_forces_and_rates_at`] gives from the state under elastic rates
@@ -891,7 +930,7 @@ impl ExactStepper for GraphModalIntegrator {
         let err = if err.is_finite() { err } else { f64::INFINITY };
         self.ladder = ladder;
         let missed = if err <= 1.0 {
-            first_crossing(&self.sc.node_overlap, &self.ode.beta, &nodes()).map(|theta| theta * h)
+            first_crossing(&self.sc.node_overlap, &self.ode.beta).map(|theta| theta * h)
         } else {
             None
         };
@@ -981,6 +1020,7 @@ impl Scratch {
             point_free: vec![[0.0; 3]; points],
             point_forced: vec![[0.0; 3]; points],
             point_cubic: vec![[0.0; 4]; points],
+            point_force: vec![[0.0; 4]; points],
             point_pushed: vec![false; points],
             point_needed: vec![false; points],
             point_errors: vec![PointError::default(); points],

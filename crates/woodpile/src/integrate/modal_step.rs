@@ -482,7 +482,7 @@ impl ModalIntegrator {
             f64::INFINITY
         };
         let missed = if err <= 1.0 {
-            first_crossing(&sc.node_overlap, &self.beta, &c_nodes).map(|theta| theta * h)
+            first_crossing(&sc.node_overlap, &self.beta).map(|theta| theta * h)
         } else {
             None
         };
@@ -918,9 +918,12 @@ pub(super) fn ladder_floor(h: f64) -> (f64, Option<i64>) {
 }
 
 /// The first point θ ∈ (EVENT_LANDING_FRACTION, NYSTROM_LANDING_END) of a step where a contact
-/// (β > 0) opens or closes, from its overlaps at the four nodes (the cubic through them, bisected
-/// in the first node interval whose ends differ in sign).
-pub(super) fn first_crossing(overlaps: &[[f64; 4]], beta: &[f64], c: &[f64; 4]) -> Option<f64> {
+/// (β > 0) opens or closes, from its overlaps at the four nodes (the cubic through them, in
+/// monomials by Horner's rule, bisected in the first node interval whose ends differ in sign
+/// until the interval is a single point).
+pub(super) fn first_crossing(overlaps: &[[f64; 4]], beta: &[f64]) -> Option<f64> {
+    let c = super::exponential::nodes();
+    let mut lagrange = None;
     let mut first: Option<f64> = None;
     for (s, d) in overlaps.iter().enumerate() {
         if beta[s] == 0.0 {
@@ -929,21 +932,16 @@ pub(super) fn first_crossing(overlaps: &[[f64; 4]], beta: &[f64], c: &[f64; 4]) 
         let Some(j) = (0..3).find(|&j| (d[j] > 0.0) != (d[j + 1] > 0.0)) else {
             continue;
         };
-        let cubic = |x: f64| -> f64 {
-            (0..4)
-                .map(|i| {
-                    let li: f64 = (0..4)
-                        .filter(|&k| k != i)
-                        .map(|k| (x - c[k]) / (c[i] - c[k]))
-                        .product();
-                    li * d[i]
-                })
-                .sum()
-        };
+        let l: &[[f64; 4]; 4] = lagrange.get_or_insert_with(super::exponential::lagrange);
+        let a = l.map(|row| (0..4).map(|k| row[k] * d[k]).sum::<f64>());
+        let cubic = |x: f64| ((a[3] * x + a[2]) * x + a[1]) * x + a[0];
         let (mut lo, mut hi) = (c[j], c[j + 1]);
         let closed_lo = d[j] > 0.0;
-        for _ in 0..60 {
+        for _ in 0..64 {
             let mid = 0.5 * (lo + hi);
+            if mid == lo || mid == hi {
+                break;
+            }
             if (cubic(mid) > 0.0) == closed_lo {
                 lo = mid;
             } else {

@@ -162,6 +162,14 @@ impl Stepper {
         }
     }
 
+    /// Whether the state now is finite.
+    fn state_finite(&self) -> bool {
+        match self {
+            Stepper::Explicit(i) => all_finite(i.y()),
+            Stepper::ExactModes(m) => m.state_finite(),
+        }
+    }
+
     fn stats(&self) -> IntegratorStats {
         match self {
             Stepper::Explicit(i) => i.stats(),
@@ -258,7 +266,7 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         let t = stepper.t();
         stepper.contact_forces_and_rates(ode, elastic_rates, &mut peaks.rate[..nc]);
         watch_sums(ode, &run.supports, &mut forces, &mut peaks.rate);
-        check(ode, t, stepper.y())?;
+        check(ode, t, stepper.state_finite())?;
         peaks.update(t0, t, &forces);
         while let Some(ts) = sample_time(next, interval, settings.duration_s) {
             if ts > t + 1e-9 * h {
@@ -403,9 +411,9 @@ fn record(ode: &mut LatticeOde, run: &mut LatticeRun, t: f64, y: &[f64]) {
     run.momentum.push(ode.momentum_audit(y));
 }
 
-/// A non-finite state or an overlap beyond the Hertz law's range ends the run with the contact
-/// named (its index in output order).
-fn check(ode: &LatticeOde, t: f64, y: &[f64]) -> Result<()> {
+/// A non-finite state (`finite` false) or an overlap beyond the Hertz law's range ends the run
+/// with the contact named (its index in output order).
+fn check(ode: &LatticeOde, t: f64, finite: bool) -> Result<()> {
     for (c, (&d, &limit)) in ode.overlap_m.iter().zip(&ode.overlap_limit_m).enumerate() {
         if !d.is_finite() {
             return Err(Error::NonFiniteState {
@@ -422,7 +430,7 @@ fn check(ode: &LatticeOde, t: f64, y: &[f64]) -> Result<()> {
             });
         }
     }
-    if !all_finite(y) {
+    if !finite {
         return Err(Error::NonFiniteState {
             time_s: t,
             contact: 0,

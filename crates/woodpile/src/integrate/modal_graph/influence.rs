@@ -1,9 +1,11 @@
 //! The influence of a body's points on each other over a step: the deflection of point p at
-//! the nodes σ = c₁, c₂, 1 per unit monomial σⁿ of the force at point q,
+//! the nodes σ = c₁, c₂, 1 per unit force at node i of point q (the force interpolated by the
+//! cubic through the four nodes, ℓ_ni its Lagrange coefficients in monomials),
 //!
-//! G_pq,jn = Σ_k r_pk r_qk h² S_n(σ_j, z_k),
+//! G_pq,ji = Σ_n Σ_k r_pk r_qk h² S_n(σ_j, z_k) ℓ_ni,
 //!
-//! summed once per step size over the body's modes ([`super::WeightGroup`]'s `pos`). With it
+//! summed once per step size over the body's modes ([`super::WeightGroup`]'s `pos`), so that an
+//! iteration maps node forces to node deflections with no cubic in between. With it
 //! the node iteration of the contact graph's stepper costs (points of a body)² per body and
 //! iteration instead of (points) × (modes): a rod's modes are passed over once per attempt,
 //! not once per iteration. The attempt's error comes the same way: the σ³ part's effect on
@@ -19,7 +21,8 @@ use crate::real::Real;
 /// The influence matrices of every family of bodies for one step size.
 #[derive(Debug, Clone, Default)]
 pub(super) struct Influence {
-    /// Per family, row-major over its points (p, q): G_pq per node and monomial.
+    /// Per family, row-major over its points (p, q): G_pq per node of the deflection and node
+    /// of the force.
     matrices: Vec<[[f64; 4]; 3]>,
     /// Per family, as `matrices`: E_pq for the position and for the velocity.
     errors: Vec<[f64; 2]>,
@@ -55,6 +58,7 @@ impl Influence {
 
     /// The matrices for the step whose weights (per group of each kind's modes) are `weights`.
     pub(super) fn new(layout: &Layout, weights: &[WeightGroup]) -> Self {
+        let lagrange = super::lagrange();
         let mut me = Influence::default();
         for &b in &layout.families {
             let body = &layout.bodies[b];
@@ -67,7 +71,10 @@ impl Influence {
             let w = &weights[body.kind..body.kind + body.groups];
             for (i, &p) in points.iter().enumerate() {
                 for (j, &q) in points.iter().enumerate().skip(i) {
-                    let (g, e) = pair(layout.point_row(p), layout.point_row(q), w);
+                    let (monomials, e) = pair(layout.point_row(p), layout.point_row(q), w);
+                    let g = monomials.map(|gj| {
+                        std::array::from_fn(|i| (0..4).map(|n| gj[n] * lagrange[n][i]).sum())
+                    });
                     me.matrices[start + i * n + j] = g;
                     me.matrices[start + j * n + i] = g;
                     me.errors[start + i * n + j] = e;
@@ -78,13 +85,13 @@ impl Influence {
         me
     }
 
-    /// Every point's deflection at the nodes in response to the net force cubics at the points
-    /// of its body (`cubics`, monomials in σ; `pushed`: the points a force acts on) into `out`.
+    /// Every point's deflection at the nodes in response to the net forces at the four nodes
+    /// at the points of its body (`forces`; `pushed`: the points a force acts on) into `out`.
     #[inline(always)]
     pub(super) fn deflections3(
         &self,
         layout: &Layout,
-        cubics: &[[f64; 4]],
+        forces: &[[f64; 4]],
         pushed: &[bool],
         out: &mut [[f64; 3]],
     ) {
@@ -98,7 +105,7 @@ impl Influence {
                     if !(any && pushed[q]) {
                         continue;
                     }
-                    let a = &cubics[q];
+                    let a = &forces[q];
                     for (dj, gj) in d.iter_mut().zip(g) {
                         *dj += (gj[0] * a[0] + gj[1] * a[1]) + (gj[2] * a[2] + gj[3] * a[3]);
                     }
