@@ -173,6 +173,46 @@ impl FlowAt {
     }
 }
 
+/// [`FlowAt`] of a group of four modes (a padding lane's all zero), the factors h², h in its
+/// responses.
+#[derive(Debug, Clone, Copy, Default)]
+struct FlowGroup {
+    pp: V,
+    pv: V,
+    vp: V,
+    vv: V,
+    s: [V; 4],
+    c: [V; 4],
+}
+
+impl FlowGroup {
+    /// The group whose lanes are the frequencies `lanes` (indices into `kernels`; `usize::MAX`:
+    /// padding) of a step h.
+    fn new(lanes: &[usize; 4], kernels: &[FlowAt], h: f64) -> Self {
+        let mut g = FlowGroup::default();
+        for (l, &f) in lanes.iter().enumerate() {
+            let Some(k) = kernels.get(f) else { continue };
+            (g.pp.0[l], g.pv.0[l], g.vp.0[l], g.vv.0[l]) = (k.pp, k.pv, k.vp, k.vv);
+            for n in 0..4 {
+                g.s[n].0[l] = h * h * k.s[n];
+                g.c[n].0[l] = h * k.c[n];
+            }
+        }
+        g
+    }
+
+    /// Positions and velocities at θ from (x0, v0) at the step's start under the modal force
+    /// cubic b.
+    #[inline(always)]
+    fn flow(&self, x0: V, v0: V, b: &[V; 4]) -> (V, V) {
+        let (s, c) = (&self.s, &self.c);
+        (
+            self.pp * x0 + self.pv * v0 + (s[0] * b[0] + s[1] * b[1] + s[2] * b[2] + s[3] * b[3]),
+            self.vp * x0 + self.vv * v0 + (c[0] * b[0] + c[1] * b[1] + c[2] * b[2] + c[3] * b[3]),
+        )
+    }
+}
+
 /// An attempt's error at one point of a contact.
 #[derive(Debug, Clone, Copy, Default)]
 struct PointError {
@@ -195,10 +235,11 @@ impl PointError {
 #[derive(Debug, Clone)]
 pub(crate) struct GraphModalIntegrator {
     ode: LatticeOde,
-    /// The distinct (frequency \[rad/s\], damping rate 2γ \[1/s\]) pairs of the carried modes
-    /// and each carried coordinate's index into them (for the samples inside a step).
+    /// The distinct (frequency \[rad/s\], damping rate 2γ \[1/s\]) pairs of the carried modes,
+    /// and per group of each kind's modes each lane's index into them (`usize::MAX`: padding),
+    /// for the samples inside a step.
     frequencies: Vec<(f64, f64)>,
-    frequency_index: Vec<usize>,
+    kind_frequencies: Vec<[usize; 4]>,
     /// The coordinates in groups of four.
     layout: Layout,
     rtol: f64,
@@ -206,12 +247,17 @@ pub(crate) struct GraphModalIntegrator {
     t: f64,
     t_prev: f64,
     h_last: f64,
-    /// The state in [`LatticeOde`]'s layout, now and at the last step's start.
+    /// The state in [`LatticeOde`]'s layout, now and at the last step's start: the supports'
+    /// impulses and their integrals, W and D always; the modes only where `y_fresh` (scattered
+    /// from the groups when the state is asked for) — a mode left out stays at rest there.
     y: Vec<f64>,
     y_prev: Vec<f64>,
-    /// The modal positions and velocities now, in groups.
+    y_fresh: bool,
+    /// The modal positions and velocities now and at the last step's start, in groups.
     x: Vec<V>,
     v: Vec<V>,
+    x_prev: Vec<V>,
+    v_prev: Vec<V>,
     /// Per body: whether it has moved (a body at rest, under no force, stays at rest and is
     /// passed over), and whether a static force acts on it.
     moving: Vec<bool>,
@@ -229,9 +275,8 @@ pub(crate) struct GraphModalIntegrator {
     modal_energy: [f64; 2],
     /// The load's kinks \[s\], ascending: steps end on them, so that no step's cubic straddles one.
     kinks: Vec<f64>,
-    /// Per coordinate: the constant modal force of gravity and a striker's preload \[N/√kg\]
-    /// (zeros without), and the same in groups.
-    static_force: Vec<f64>,
+    /// Per group: the constant modal force of gravity and a striker's preload \[N/√kg\]
+    /// (zeros without).
     static_groups: Vec<V>,
     /// Per point: its deflection and its rate now \[m, m/s\].
     point_end: Vec<[f64; 2]>,
@@ -258,9 +303,6 @@ struct Scratch {
     forced: Vec<[V; 3]>,
     /// Per group: the cubic of its modal force (monomials in σ).
     modal_force: Vec<[V; 4]>,
-    /// Per group: the positions and velocities at the step's end.
-    x1: Vec<V>,
-    v1: Vec<V>,
     /// Per body: whether a force acts on it (its modal force is more than the static force; all
     /// true before the first pass), and whether its forced response is all zero.
     loaded: Vec<bool>,
@@ -311,7 +353,7 @@ impl GraphModalIntegrator {
             .map_or_else(|| vec![0.0; q], |f| f.to_vec());
         let start = [&y[..q], &y[q + 3..2 * q + 3], &static_force[..]];
         let layout = Layout::new(&ode, &rates, start);
-        let (frequencies, frequency_index) = sample_frequencies(&layout, &ode.omega2, &rates);
+        let (frequencies, kind_frequencies) = sample_frequencies(&layout);
         let groups = layout.groups;
         let grouped = |values: &[f64]| {
             let mut out = vec![V::ZERO; groups];
@@ -327,10 +369,10 @@ impl GraphModalIntegrator {
             layout.nonzero_bodies(&[&x, &v]),
             layout.nonzero_bodies(&[&static_groups]),
         );
-        let modal_energy = [modal_energy_j(&y, &ode.omega2); 2];
+        let modal_energy = [layout.modal_energy_j(&x, &v); 2];
         let mut me = GraphModalIntegrator {
             frequencies,
-            frequency_index,
+            kind_frequencies,
             moving,
             static_loaded,
             rtol,
@@ -339,6 +381,9 @@ impl GraphModalIntegrator {
             t_prev: 0.0,
             h_last: 0.0,
             y_prev: y.clone(),
+            y_fresh: true,
+            x_prev: x.clone(),
+            v_prev: v.clone(),
             y,
             x,
             v,
@@ -349,7 +394,6 @@ impl GraphModalIntegrator {
             damped: rates.iter().any(|&r| r > 0.0),
             modal_energy,
             kinks: ode.load_kinks_s(),
-            static_force,
             static_groups,
             force: ode.force_n.clone(),
             largest_overlap: ode.overlap_m.iter().map(|d| d.max(0.0)).collect(),
@@ -386,7 +430,13 @@ impl GraphModalIntegrator {
     }
 
     /// The state now, in [`LatticeOde`]'s layout.
-    pub fn y(&self) -> &[f64] {
+    pub fn y(&mut self) -> &[f64] {
+        if !self.y_fresh {
+            let q = self.ode.coordinates();
+            self.layout.scatter(&self.x, &mut self.y[..q]);
+            self.layout.scatter(&self.v, &mut self.y[q + 3..2 * q + 3]);
+            self.y_fresh = true;
+        }
         &self.y
     }
 
@@ -750,11 +800,16 @@ impl GraphModalIntegrator {
         });
     }
 
-    /// The state at ts inside the last step (the exact flow under the step's cubics) into y.
+    /// The state at ts inside the last step (the exact flow under the step's cubics) into
+    /// `out` ([`LatticeOde`]'s layout), from the groups of the step's start: per distinct
+    /// frequency its flow at θ, per group of a kind's modes their flows side by side.
     pub fn observe_at(&self, ts: f64, out: &mut [f64]) {
         let h = self.h_last;
+        let q = self.ode.coordinates();
         if ts >= self.t || h == 0.0 {
             out.copy_from_slice(&self.y);
+            self.layout.scatter(&self.x, &mut out[..q]);
+            self.layout.scatter(&self.v, &mut out[q + 3..2 * q + 3]);
             return;
         }
         let theta = ((ts - self.t_prev) / h).clamp(0.0, 1.0);
@@ -763,25 +818,34 @@ impl GraphModalIntegrator {
             .iter()
             .map(|&(w, rate)| FlowAt::new(theta, h, w, rate))
             .collect();
-        let q = self.ode.coordinates();
-        let (x0, v0) = (&self.y_prev[..q], &self.y_prev[q + 3..2 * q + 3]);
-        // The modes the passes leave out stay where they are (at rest).
-        out[..q].copy_from_slice(x0);
-        out[q + 3..2 * q + 3].copy_from_slice(v0);
-        let h2 = h * h;
+        let flows: Vec<FlowGroup> = self
+            .kind_frequencies
+            .iter()
+            .map(|lanes| FlowGroup::new(lanes, &kernels, h))
+            .collect();
+        let (mut x, mut v) = (
+            vec![V::ZERO; self.layout.groups],
+            vec![V::ZERO; self.layout.groups],
+        );
         for body in &self.layout.bodies {
-            let groups = &self.modal_force[body.group..body.group + body.groups];
-            for (l, &m) in body.modes.iter().enumerate() {
-                let k = &kernels[self.frequency_index[m]];
-                let b = groups[l / 4].map(|b| b.0[l % 4]);
-                let sb: f64 = (0..4).map(|n| k.s[n] * b[n]).sum();
-                let cb: f64 = (0..4).map(|n| k.c[n] * b[n]).sum();
-                out[m] = k.pp * x0[m] + k.pv * v0[m] + h2 * sb;
-                out[q + 3 + m] = k.vp * x0[m] + k.vv * v0[m] + h * cb;
+            let (g, k) = (
+                body.group..body.group + body.groups,
+                body.kind..body.kind + body.groups,
+            );
+            let from = self.x_prev[g.clone()].iter().zip(&self.v_prev[g.clone()]);
+            let to = x[g.clone()].iter_mut().zip(&mut v[g.clone()]);
+            for ((f, b), ((&x0, &v0), (x, v))) in
+                flows[k].iter().zip(&self.modal_force[g]).zip(from.zip(to))
+            {
+                (*x, *v) = f.flow(x0, v0, b);
             }
         }
+        // (The modes the passes leave out are at rest in the state.)
+        out.copy_from_slice(&self.y_prev);
+        self.layout.scatter(&x, &mut out[..q]);
+        self.layout.scatter(&v, &mut out[q + 3..2 * q + 3]);
         self.supports_flow(theta, h, &self.y_prev, out);
-        self.work_and_dissipation(theta, &self.coef, &self.overlap_coef, out);
+        self.work_and_dissipation(theta, &self.coef, &self.overlap_coef, (&x, &v), out);
     }
 
     /// Whether the state now is finite: the sum of every carried mode's position and velocity
@@ -840,6 +904,7 @@ impl GraphModalIntegrator {
         theta: f64,
         coef: &[[f64; 4]],
         overlap_coef: &[[f64; 4]],
+        (x, v): (&[V], &[V]),
         out: &mut [f64],
     ) -> f64 {
         let Some(i) = self.lab else { return 0.0 };
@@ -855,19 +920,20 @@ impl GraphModalIntegrator {
                 w_loads += w;
             }
         }
-        // Gravity's and a striker's preload's constant modal forces: their work is f Δq.
-        let w_static: f64 = self
-            .static_force
+        // Gravity's and a striker's preload's constant modal forces: their work is f Δq (a
+        // mode they act on is carried).
+        let w_static = self
+            .static_groups
             .iter()
-            .zip(out.iter().zip(&self.y_prev))
-            .map(|(f, (q1, q0))| f * (q1 - q0))
+            .zip(x.iter().zip(&self.x_prev))
+            .fold(V::ZERO, |w, (&f, (&q1, &q0))| w + f * (q1 - q0))
             .sum();
         out[i] = self.y_prev[i] + w_loads + w_static;
         if !self.damped {
             out[i + 1] = self.y_prev[i + 1];
             return 0.0;
         }
-        let e1 = modal_energy_j(out, &self.ode.omega2);
+        let e1 = self.layout.modal_energy_j(x, v);
         out[i + 1] = self.y_prev[i + 1] - (e1 - self.modal_energy[0]) + w_all + w_static;
         e1
     }
@@ -946,10 +1012,8 @@ impl ExactStepper for GraphModalIntegrator {
         }
         self.advance_modes(rung);
         self.points_now();
-        let q = self.ode.coordinates();
+        self.y_fresh = false;
         let mut y = std::mem::take(&mut self.y);
-        self.layout.scatter(&self.x, &mut y[..q]);
-        self.layout.scatter(&self.v, &mut y[q + 3..2 * q + 3]);
         self.coef.copy_from_slice(&self.sc.coef);
         self.supports_flow(1.0, h, &self.y_prev, &mut y);
         if self.lab.is_some() {
@@ -959,8 +1023,9 @@ impl ExactStepper for GraphModalIntegrator {
                 }
             }
             self.modal_energy[0] = self.modal_energy[1];
+            let now = (&self.x[..], &self.v[..]);
             self.modal_energy[1] =
-                self.work_and_dissipation(1.0, &self.sc.coef, &self.overlap_coef, &mut y);
+                self.work_and_dissipation(1.0, &self.sc.coef, &self.overlap_coef, now, &mut y);
         }
         self.y = y;
         for c in 0..self.force.len() {
@@ -977,9 +1042,13 @@ impl ExactStepper for GraphModalIntegrator {
 
 impl GraphModalIntegrator {
     /// Every mode over the step just attempted, exactly under its modal force's cubic: the
-    /// groups' positions and velocities into `x`, `v`, the cubics into `modal_force`.
+    /// groups' positions and velocities into `x`, `v` (their values at the step's start into
+    /// `x_prev`, `v_prev`), the cubics into `modal_force`. A body passed over has been at rest
+    /// from the start (a body once moved is advanced every step): zeros in both.
     #[inline(always)]
     fn advance_modes(&mut self, rung: Option<i64>) {
+        std::mem::swap(&mut self.x, &mut self.x_prev);
+        std::mem::swap(&mut self.v, &mut self.v_prev);
         let weights = &self.ladder.get(rung).groups;
         let sc = &mut self.sc;
         for (i, body) in self.layout.bodies.iter().enumerate() {
@@ -992,8 +1061,8 @@ impl GraphModalIntegrator {
                 body.group..body.group + body.groups,
                 body.kind..body.kind + body.groups,
             );
-            let from = self.x[g.clone()].iter().zip(&self.v[g.clone()]);
-            let to = sc.x1[g.clone()].iter_mut().zip(&mut sc.v1[g.clone()]);
+            let from = self.x_prev[g.clone()].iter().zip(&self.v_prev[g.clone()]);
+            let to = self.x[g.clone()].iter_mut().zip(&mut self.v[g.clone()]);
             let modes = weights[k].iter().zip(&sc.modal_force[g]);
             for ((w, b), ((&x0, &v0), (x1, v1))) in modes.zip(from.zip(to)) {
                 // Each group in its own vectors: without this opaque step the compiler
@@ -1008,8 +1077,6 @@ impl GraphModalIntegrator {
                     + (u[0] * b[0] + u[1] * b[1] + u[2] * b[2] + u[3] * b[3]);
             }
         }
-        std::mem::swap(&mut self.x, &mut sc.x1);
-        std::mem::swap(&mut self.v, &mut sc.v1);
         self.modal_force.copy_from_slice(&sc.modal_force);
     }
 }
@@ -1030,8 +1097,6 @@ impl Scratch {
             free: vec![[V::ZERO; 3]; groups],
             forced: vec![[V::ZERO; 3]; groups],
             modal_force: vec![[V::ZERO; 4]; groups],
-            x1: vec![V::ZERO; groups],
-            v1: vec![V::ZERO; groups],
             free_overlap: vec![[0.0; 3]; contacts],
             node_force: vec![[0.0; 4]; contacts],
             node_overlap: vec![[0.0; 4]; contacts],
@@ -1060,35 +1125,29 @@ pub fn exact_modes_lattice_state(
             stepper.step(duration_s)?;
         }
     }
-    Ok(stepper.y)
+    Ok(stepper.y().to_vec())
 }
 
 /// The distinct (frequency \[rad/s\], damping rate \[1/s\]) pairs of the modes the passes
-/// carry, and per coordinate its pair's index (`usize::MAX` for a mode left out: it stays at
-/// rest, and a sample needs no flow of it).
-fn sample_frequencies(
-    layout: &Layout,
-    omega2: &[f64],
-    rates: &[f64],
-) -> (Vec<(f64, f64)>, Vec<usize>) {
-    let (mut frequencies, mut index) = (Vec::new(), vec![usize::MAX; omega2.len()]);
+/// carry, and per group of each kind's modes each lane's pair (`usize::MAX`: padding).
+fn sample_frequencies(layout: &Layout) -> (Vec<(f64, f64)>, Vec<[usize; 4]>) {
+    let mut frequencies = Vec::new();
     let mut seen = std::collections::HashMap::new();
-    for &m in layout.bodies.iter().flat_map(|b| &b.modes) {
-        let key = (omega2[m].sqrt(), rates[m]);
-        index[m] = *seen
-            .entry((key.0.to_bits(), key.1.to_bits()))
-            .or_insert_with(|| {
-                frequencies.push(key);
-                frequencies.len() - 1
-            });
-    }
-    (frequencies, index)
-}
-
-/// The modes' kinetic and strain energy Σ ½ (q̇² + ω² q²) of a state \[J\].
-fn modal_energy_j(y: &[f64], omega2: &[f64]) -> f64 {
-    let q = omega2.len();
-    (0..q)
-        .map(|j| 0.5 * (y[q + 3 + j] * y[q + 3 + j] + omega2[j] * y[j] * y[j]))
-        .sum()
+    let lanes = layout
+        .kind_modes
+        .iter()
+        .map(|group| {
+            group.map(|mode| {
+                mode.map_or(usize::MAX, |(omega, rate)| {
+                    *seen
+                        .entry((omega.to_bits(), rate.to_bits()))
+                        .or_insert_with(|| {
+                            frequencies.push((omega, rate));
+                            frequencies.len() - 1
+                        })
+                })
+            })
+        })
+        .collect();
+    (frequencies, lanes)
 }

@@ -138,7 +138,7 @@ impl Stepper {
         }
     }
 
-    fn y(&self) -> &[f64] {
+    fn y(&mut self) -> &[f64] {
         match self {
             Stepper::Explicit(i) => i.y(),
             Stepper::ExactModes(m) => m.y(),

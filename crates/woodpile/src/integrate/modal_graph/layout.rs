@@ -58,6 +58,8 @@ pub(super) struct Layout {
     pub(super) bodies: Vec<Body>,
     /// Per distinct body: its carried modes' (frequency, damping rate), padded.
     pub(super) kind_modes: Vec<[Option<(f64, f64)>; 4]>,
+    /// Per distinct body: its carried modes' ω² \[1/s²\], padded with zeros.
+    pub(super) kind_omega2: Vec<V>,
     /// The distinct points contacts act on.
     pub(super) points: Vec<Point>,
     /// Per contact: its point above and below (None: a load's empty side, a support).
@@ -90,11 +92,13 @@ impl Layout {
                 None => {
                     let k = me.kind_modes.len();
                     for chunk in key.chunks(4) {
-                        let mut g = [None; 4];
+                        let (mut g, mut omega2) = ([None; 4], V::ZERO);
                         for (l, &(w2, rate)) in chunk.iter().enumerate() {
                             g[l] = Some((w2.sqrt(), rate));
+                            omega2.0[l] = w2;
                         }
                         me.kind_modes.push(g);
+                        me.kind_omega2.push(omega2);
                     }
                     kinds.push((key, k));
                     k
@@ -254,6 +258,20 @@ impl Layout {
         // lanes for the final sums, two per vector.
         let [a0, a1, a2] = std::hint::black_box([a0, a1, a2]);
         [a0.sum(), a1.sum(), a2.sum()]
+    }
+
+    /// The carried modes' kinetic and strain energy Σ ½ (q̇² + ω² q²) for grouped positions
+    /// and velocities `x`, `v` \[J\] (the modes left out are at rest).
+    pub(super) fn modal_energy_j(&self, x: &[V], v: &[V]) -> f64 {
+        let mut energy = V::ZERO;
+        for b in &self.bodies {
+            let g = b.group..b.group + b.groups;
+            let kinds = &self.kind_omega2[b.kind..b.kind + b.groups];
+            for ((&x, &v), &omega2) in x[g.clone()].iter().zip(&v[g]).zip(kinds) {
+                energy = energy + V::splat(0.5) * (v * v + omega2 * x * x);
+            }
+        }
+        energy.sum()
     }
 
     /// Σ r x and Σ r v over point p's groups (`x`, `v`: per group); zero without a look where
