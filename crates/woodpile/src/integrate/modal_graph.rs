@@ -150,6 +150,7 @@ impl WeightGroup {
 /// from position and from velocity (h × the kernel's), velocity from position (the kernel's / h)
 /// and from velocity, and the responses S_n, C_n (the factors of h taken once per frequency,
 /// not per mode).
+#[derive(Debug, Clone, Copy)]
 struct FlowAt {
     pp: f64,
     pv: f64,
@@ -292,6 +293,18 @@ pub(crate) struct GraphModalIntegrator {
     lagrange: [[f64; 4]; 4],
     stats: IntegratorStats,
     sc: Scratch,
+    /// Buffers of a sample inside a step.
+    sample: Sample,
+}
+
+/// Buffers of a sample inside a step: each frequency's flow, each kind group's, and the modes'
+/// positions and velocities in groups.
+#[derive(Debug, Clone, Default)]
+struct Sample {
+    kernels: Vec<FlowAt>,
+    flows: Vec<FlowGroup>,
+    x: Vec<V>,
+    v: Vec<V>,
 }
 
 /// Buffers of an attempt.
@@ -408,6 +421,7 @@ impl GraphModalIntegrator {
             },
             sc: Scratch::new(groups, n, layout.bodies.len(), layout.points.len()),
             point_end: Vec::new(),
+            sample: Sample::default(),
             layout,
             ode,
         };
@@ -803,7 +817,7 @@ impl GraphModalIntegrator {
     /// The state at ts inside the last step (the exact flow under the step's cubics) into
     /// `out` ([`LatticeOde`]'s layout), from the groups of the step's start: per distinct
     /// frequency its flow at θ, per group of a kind's modes their flows side by side.
-    pub fn observe_at(&self, ts: f64, out: &mut [f64]) {
+    pub fn observe_at(&mut self, ts: f64, out: &mut [f64]) {
         let h = self.h_last;
         let q = self.ode.coordinates();
         if ts >= self.t || h == 0.0 {
@@ -813,20 +827,20 @@ impl GraphModalIntegrator {
             return;
         }
         let theta = ((ts - self.t_prev) / h).clamp(0.0, 1.0);
-        let kernels: Vec<FlowAt> = self
-            .frequencies
-            .iter()
-            .map(|&(w, rate)| FlowAt::new(theta, h, w, rate))
-            .collect();
-        let flows: Vec<FlowGroup> = self
-            .kind_frequencies
-            .iter()
-            .map(|lanes| FlowGroup::new(lanes, &kernels, h))
-            .collect();
-        let (mut x, mut v) = (
-            vec![V::ZERO; self.layout.groups],
-            vec![V::ZERO; self.layout.groups],
-        );
+        let mut sample = std::mem::take(&mut self.sample);
+        let kernels = self.frequencies.iter();
+        sample.kernels.clear();
+        sample
+            .kernels
+            .extend(kernels.map(|&(w, rate)| FlowAt::new(theta, h, w, rate)));
+        sample.flows.clear();
+        let flows = self.kind_frequencies.iter();
+        sample
+            .flows
+            .extend(flows.map(|lanes| FlowGroup::new(lanes, &sample.kernels, h)));
+        let Sample { flows, x, v, .. } = &mut sample;
+        x.resize(self.layout.groups, V::ZERO);
+        v.resize(self.layout.groups, V::ZERO);
         for body in &self.layout.bodies {
             let (g, k) = (
                 body.group..body.group + body.groups,
@@ -842,24 +856,22 @@ impl GraphModalIntegrator {
         }
         // (The modes the passes leave out are at rest in the state.)
         out.copy_from_slice(&self.y_prev);
-        self.layout.scatter(&x, &mut out[..q]);
-        self.layout.scatter(&v, &mut out[q + 3..2 * q + 3]);
+        self.layout.scatter(x, &mut out[..q]);
+        self.layout.scatter(v, &mut out[q + 3..2 * q + 3]);
         self.supports_flow(theta, h, &self.y_prev, out);
-        self.work_and_dissipation(theta, &self.coef, &self.overlap_coef, (&x, &v), out);
+        self.work_and_dissipation(theta, &self.coef, &self.overlap_coef, (x, v), out);
+        self.sample = sample;
     }
 
-    /// Whether the state now is finite: the sum of every carried mode's position and velocity
-    /// (a non-finite one makes it so; the modes left out stay at rest), and the supports'
-    /// impulses and W, D (in the state's tail).
+    /// Whether the state now is finite: every point's deflection and rate (a mode with a row at
+    /// some point shows there; a mode with none is carried only for its start and moves by its
+    /// free flow alone, the modes left out stay at rest), and the supports' impulses and W, D
+    /// (in the state's tail).
     pub fn state_finite(&self) -> bool {
-        let modes = self
-            .x
-            .iter()
-            .chain(&self.v)
-            .fold(V::ZERO, |sum, &g| sum + g);
+        let points: f64 = self.point_end.iter().map(|[d, r]| d + r).sum();
         let q = self.ode.coordinates();
         let tail: f64 = self.y[q..q + 3].iter().chain(&self.y[2 * q + 3..]).sum();
-        (modes.sum() + tail).is_finite()
+        (points + tail).is_finite()
     }
 
     /// Every contact's overlap and force at the last step's end into `ode`'s `overlap_m` and

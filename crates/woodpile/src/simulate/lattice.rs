@@ -145,7 +145,7 @@ impl Stepper {
         }
     }
 
-    fn interpolate(&self, ts: f64, out: &mut [f64]) {
+    fn interpolate(&mut self, ts: f64, out: &mut [f64]) {
         match self {
             Stepper::Explicit(i) => i.interpolate(ts, out),
             Stepper::ExactModes(m) => m.observe_at(ts, out),
@@ -395,12 +395,13 @@ fn record(ode: &mut LatticeOde, run: &mut LatticeRun, t: f64, y: &[f64]) {
     run.contact_energies_j.resize(start + run.contacts, 0.0);
     let contact_energies = &mut run.contact_energies_j[start..];
     ode.contact_energies_j(contact_energies);
-    run.energy_j.push(ode.energy_j(y, contact_energies));
     let start = run.body_energies_j.len();
     run.body_energies_j.resize(start + run.bodies, 0.0);
     let bodies = &mut run.body_energies_j[start..];
-    run.support_energy_j
-        .push(ode.body_energies_j(y, contact_energies, bodies));
+    let supports = ode.body_energies_j(y, contact_energies, bodies);
+    run.support_energy_j.push(supports);
+    // ([`LatticeOde::energy_j`] in other words: the bodies' shares and the supports'.)
+    run.energy_j.push(bodies.iter().sum::<f64>() + supports);
     if ode.has_lab() {
         let (w, d) = ode.work_and_dissipation_j(y);
         run.work_j.push(w);
