@@ -879,8 +879,8 @@ impl GraphModalIntegrator {
     /// [`LatticeOde::contact_forces_and_rates_at`] gives from the state under elastic rates
     /// (the elastic contacts' (3/2) F δ̇ / δ, the load's force and rate at a load point, whose
     /// overlap reads 0), but from the points' deflections and rates, each summed once per step
-    /// over its carried modes four at a time, rather than from every side's full row. The same sums in another order: they differ by
-    /// rounding.
+    /// over its carried modes four at a time, rather than from every side's full row: the same
+    /// sums in another order, equal to rounding.
     pub fn contact_forces_and_rates(&mut self, ode: &mut LatticeOde, rate: &mut [f64]) {
         let (layout, ends) = (&self.layout, &self.point_end);
         let loads = self.ode.load_contacts();

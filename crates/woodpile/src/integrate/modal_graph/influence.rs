@@ -11,8 +11,9 @@
 //! not once per iteration. The attempt's error comes the same way: the σ³ part's effect on
 //! point p's position and velocity is Σ_q E_pq a³_q, with E_pq = Σ_k r_pk r_qk (h² Σ_n E_n
 //! S_n(1, z_k), h Σ_n E_n C_n(1, z_k)) (`err_pos`, `err_vel`) and a³_q the σ³ coefficient of the
-//! net force at q, so an attempt passes over the modes only for its free motion. Bodies of one family (one kind, the same rows at their points:
-//! a layer's rods between equal layers) share their matrices.
+//! net force at q, so an attempt passes over the modes only for its free motion. Bodies of one
+//! family (one kind, the same rows at their points: a layer's rods between equal layers) share
+//! their matrices.
 
 use super::layout::Layout;
 use super::{WeightGroup, V};
@@ -31,7 +32,7 @@ pub(super) struct Influence {
 }
 
 /// The most matrix entries (point pairs, summed over the families) the influence is kept for:
-/// each rung of the ladder holds its own, 14 numbers an entry (about 1.5 MB a rung at this
+/// each rung of the ladder holds its own, 14 numbers an entry (about 1.8 MB a rung at this
 /// bound, a few tens of rungs a run).
 const MAX_PAIRS: usize = 16_384;
 
