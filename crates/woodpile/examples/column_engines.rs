@@ -8,15 +8,17 @@
 //! contact peak between the two.
 //!
 //! Run: `cargo run --release -p woodpile --example column_engines -- 1e-8`
-//! (`SAMPLE_S=5e-4`: one sample at the end, as a design study takes, instead of every µs;
+//! (`CELLS=table1`: five 80 mm Table 1 cells instead, the contact graph
+//! `LatticeOde::from_chain`'s one-point bodies; `SAMPLE_S=5e-4`: one sample at the end, as a
+//! design study takes, instead of every µs;
 //! `PROFILE=chain|lattice`: `RUNS` runs, 300 by default, for a profiler)
 
 use woodpile::model::{LatticeBuilder, LayerSpec};
 use woodpile::ode::LatticeOde;
 use woodpile::simulate::{simulate_lattice, LatticeRun};
 use woodpile::{
-    simulate, Body, Chain, ChainBuilder, Element, Excitation, Material, Method, Rod, RunSettings,
-    RunSummary, Striker, Trajectory, UnitCell,
+    simulate, Body, CellModel, Chain, ChainBuilder, Element, Excitation, Material, Method, Rod,
+    RunSettings, RunSummary, Striker, Trajectory, UnitCell,
 };
 
 const RODS: usize = 5;
@@ -36,6 +38,9 @@ fn settings(rtol: f64) -> RunSettings {
 }
 
 fn chain() -> woodpile::Result<Chain> {
+    if table1() {
+        return ChainBuilder::table1_rods(&[80; RODS], CellModel::Resonant)?.build();
+    }
     let quartz = Material::fused_quartz();
     let rod = Rod::new(LENGTH_M, DIAMETER_M, 0.0, quartz.clone())?;
     let cell = UnitCell::from_rod_fe(&rod, ELEMENTS)?;
@@ -51,7 +56,15 @@ fn chain() -> woodpile::Result<Chain> {
     ChainBuilder::new(vec![element; RODS]).build()
 }
 
+/// Whether `CELLS=table1` asks for Table 1 cells.
+fn table1() -> bool {
+    std::env::var("CELLS").is_ok_and(|c| c == "table1")
+}
+
 fn lattice_ode() -> woodpile::Result<LatticeOde> {
+    if table1() {
+        return LatticeOde::from_chain(&chain()?, &Striker::paper());
+    }
     let layer = LayerSpec {
         rods: 1,
         pitch_m: 20e-3,

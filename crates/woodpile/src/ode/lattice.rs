@@ -29,6 +29,8 @@
 //! y = [ q | ∫J dt (3) | q̇ | J (3) | W | D_modes | D_0 … D_{C−1} ]
 //! ```
 
+mod chain;
+
 use super::lattice_lab::LabTerms;
 use crate::error::{require_positive, Result};
 use crate::excitation::Striker;

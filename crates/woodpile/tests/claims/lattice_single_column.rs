@@ -148,7 +148,7 @@ fn both_forms(settings: &RunSettings) -> (RunSummary, Trajectory, LatticeRun, La
     (summary, trajectory, run, ode)
 }
 
-fn largest_peak(run: &LatticeRun) -> f64 {
+pub(super) fn largest_peak(run: &LatticeRun) -> f64 {
     run.contact_peak_forces_n
         .iter()
         .fold(0.0_f64, |a, &b| a.max(b))
@@ -156,7 +156,10 @@ fn largest_peak(run: &LatticeRun) -> f64 {
 
 /// The largest difference of any sampled contact force (of the largest peak) and of the total
 /// energy (of the initial energy) between the two forms.
-fn force_and_energy_differences(run: &LatticeRun, trajectory: &Trajectory) -> (f64, f64) {
+pub(super) fn force_and_energy_differences(
+    run: &LatticeRun,
+    trajectory: &Trajectory,
+) -> (f64, f64) {
     let peak = largest_peak(run);
     let mut worst_force = 0.0_f64;
     for c in 0..run.contacts {
