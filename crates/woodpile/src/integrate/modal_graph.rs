@@ -518,6 +518,12 @@ impl GraphModalIntegrator {
     #[inline(always)]
     fn cubics(&mut self) {
         self.point_cubics();
+        self.modal_forces();
+    }
+
+    /// Each group's modal force cubic from the points' net cubics ([`Self::point_cubics`]).
+    #[inline(always)]
+    fn modal_forces(&mut self) {
         let layout = &self.layout;
         let sc = &mut self.sc;
         // Back to the static force where a force acted in the last pass (elsewhere it is there).
@@ -1019,8 +1025,9 @@ impl ExactStepper for GraphModalIntegrator {
     fn commit(&mut self, h: f64, rung: Option<i64>) {
         std::mem::swap(&mut self.y, &mut self.y_prev);
         if self.ladder.get(rung).influence.is_some() {
-            // The converged forces on the modes (the iteration ran through the points).
-            self.cubics();
+            // The converged forces on the modes (the iteration ran through the points, whose
+            // cubics the error took).
+            self.modal_forces();
         }
         self.advance_modes(rung);
         self.points_now();

@@ -27,8 +27,6 @@ pub(super) struct Influence {
     matrices: Vec<[[f64; 4]; 3]>,
     /// Per family, as `matrices`: E_pq for the position and for the velocity.
     errors: Vec<[f64; 2]>,
-    /// Per family: where its matrix starts.
-    offsets: Vec<usize>,
 }
 
 /// The most matrix entries (point pairs, summed over the families) the influence is kept for:
@@ -66,7 +64,6 @@ impl Influence {
             let points = &layout.body_points[b];
             let n = points.len();
             let start = me.matrices.len();
-            me.offsets.push(start);
             me.matrices.resize(start + n * n, [[0.0; 4]; 3]);
             me.errors.resize(start + n * n, [0.0; 2]);
             let w = &weights[body.kind..body.kind + body.groups];
@@ -96,19 +93,22 @@ impl Influence {
         pushed: &[bool],
         out: &mut [[f64; 3]],
     ) {
-        for (points, &family) in layout.body_points.iter().zip(&layout.body_family) {
-            let n = points.len();
-            let matrix = &self.matrices[self.offsets[family]..];
+        for span in &layout.body_spans {
+            let (n, start) = (span.points, span.matrix);
+            let points = &layout.point_list[span.start..span.start + n];
+            let matrix = &self.matrices[start..start + n * n];
             let any = points.iter().any(|&q| pushed[q]);
             for (i, &p) in points.iter().enumerate() {
                 let mut d = [0.0; 3];
-                for (g, &q) in matrix[i * n..(i + 1) * n].iter().zip(points) {
-                    if !(any && pushed[q]) {
-                        continue;
-                    }
-                    let a = &forces[q];
-                    for (dj, gj) in d.iter_mut().zip(g) {
-                        *dj += (gj[0] * a[0] + gj[1] * a[1]) + (gj[2] * a[2] + gj[3] * a[3]);
+                if any {
+                    for (g, &q) in matrix[i * n..(i + 1) * n].iter().zip(points) {
+                        if !pushed[q] {
+                            continue;
+                        }
+                        let a = &forces[q];
+                        for (dj, gj) in d.iter_mut().zip(g) {
+                            *dj += (gj[0] * a[0] + gj[1] * a[1]) + (gj[2] * a[2] + gj[3] * a[3]);
+                        }
                     }
                 }
                 out[p] = d;
@@ -127,9 +127,10 @@ impl Influence {
         needed: &[bool],
         out: &mut [[f64; 2]],
     ) {
-        for (points, &family) in layout.body_points.iter().zip(&layout.body_family) {
-            let n = points.len();
-            let matrix = &self.errors[self.offsets[family]..];
+        for span in &layout.body_spans {
+            let (n, start) = (span.points, span.matrix);
+            let points = &layout.point_list[span.start..span.start + n];
+            let matrix = &self.errors[start..start + n * n];
             for (i, &p) in points.iter().enumerate().filter(|&(_, &p)| needed[p]) {
                 let mut e = [0.0; 2];
                 for (g, &q) in matrix[i * n..(i + 1) * n].iter().zip(points) {

@@ -50,6 +50,14 @@ pub(super) struct Point {
     pub(super) groups: usize,
 }
 
+/// A body's points in [`Layout::point_list`] and its family's influence block.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct BodySpan {
+    pub(super) start: usize,
+    pub(super) points: usize,
+    pub(super) matrix: usize,
+}
+
 /// The lattice's coordinates in groups of four: each body's carried modes padded to whole
 /// groups with massless modes at rest (zero weights, zero rows), so that the passes over the
 /// modes run four modes per vector with no remainder.
@@ -76,6 +84,11 @@ pub(super) struct Layout {
     /// ([`super::influence::Influence`]).
     pub(super) body_family: Vec<usize>,
     pub(super) families: Vec<usize>,
+    /// `body_points` flattened, and per body its points' span in it and where its family's
+    /// influence matrix starts ([`super::influence::Influence`]: the families' (points)²
+    /// blocks in order).
+    pub(super) point_list: Vec<usize>,
+    pub(super) body_spans: Vec<BodySpan>,
 }
 
 impl Layout {
@@ -135,6 +148,20 @@ impl Layout {
                 next
             });
             me.body_family.push(family);
+        }
+        let mut matrix_starts = Vec::with_capacity(me.families.len());
+        let mut next = 0;
+        for &b in &me.families {
+            matrix_starts.push(next);
+            next += me.body_points[b].len().pow(2);
+        }
+        for (points, &family) in me.body_points.iter().zip(&me.body_family) {
+            me.body_spans.push(BodySpan {
+                start: me.point_list.len(),
+                points: points.len(),
+                matrix: matrix_starts[family],
+            });
+            me.point_list.extend_from_slice(points);
         }
         me
     }
