@@ -108,14 +108,8 @@ fn one_rod_per_layer_under_the_exact_method_is_the_chain_under_it() {
     };
     let (summary, trajectory, run, _) = both_forms(&settings);
     assert!(matches!(run.method, Method::ExactModes { .. }));
-    let peak = largest_peak(&run);
     let (worst_force, worst_energy) = force_and_energy_differences(&run, &trajectory);
-    let worst_peak = run
-        .contact_peak_forces_n
-        .iter()
-        .zip(&summary.contact_peak_forces_n)
-        .map(|(a, b)| (a - b).abs() / peak)
-        .fold(0.0_f64, f64::max);
+    let worst_peak = peak_difference(&run, &summary);
     eprintln!("exact method: largest force difference {worst_force:e} of the peak, peaks {worst_peak:e}, energy {worst_energy:e}");
     assert!(
         worst_peak < 1e-8,
@@ -152,6 +146,16 @@ pub(super) fn largest_peak(run: &LatticeRun) -> f64 {
     run.contact_peak_forces_n
         .iter()
         .fold(0.0_f64, |a, &b| a.max(b))
+}
+
+/// The largest difference of any contact peak between the two forms, of the largest peak.
+pub(super) fn peak_difference(run: &LatticeRun, summary: &RunSummary) -> f64 {
+    let peak = largest_peak(run);
+    run.contact_peak_forces_n
+        .iter()
+        .zip(&summary.contact_peak_forces_n)
+        .map(|(a, b)| (a - b).abs() / peak)
+        .fold(0.0_f64, f64::max)
 }
 
 /// The largest difference of any sampled contact force (of the largest peak) and of the total
