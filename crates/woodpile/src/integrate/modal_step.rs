@@ -917,10 +917,44 @@ pub(super) fn ladder_floor(h: f64) -> (f64, Option<i64>) {
     )
 }
 
+/// The root of f in the bracket (lo, hi) whose values (f_lo, f_hi) differ in sign (f_lo > 0, the
+/// contact closed there, or f_hi > 0): Newton's steps on f from the chord's root, each evaluation
+/// narrowing the bracket, a bisection wherever a step would leave it, until a step moves less
+/// than 4 ulp or the bracket is a single point (at most 100 evaluations, then its middle).
+fn newton_in_bracket(
+    f: impl Fn(f64) -> f64,
+    slope: impl Fn(f64) -> f64,
+    (mut lo, mut hi): (f64, f64),
+    (f_lo, f_hi): (f64, f64),
+) -> f64 {
+    let closed_lo = f_lo > 0.0;
+    let mut x = lo + (hi - lo) * f_lo / (f_lo - f_hi);
+    for _ in 0..100 {
+        if !(x > lo && x < hi) {
+            x = 0.5 * (lo + hi);
+            if x == lo || x == hi {
+                return x;
+            }
+        }
+        let fx = f(x);
+        if (fx > 0.0) == closed_lo {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        let next = x - fx / slope(x);
+        if (next - x).abs() <= 4.0 * f64::EPSILON * x.abs() {
+            return if next > lo && next < hi { next } else { x };
+        }
+        x = next;
+    }
+    0.5 * (lo + hi)
+}
+
 /// The first point θ ∈ (EVENT_LANDING_FRACTION, NYSTROM_LANDING_END) of a step where a contact
-/// (β > 0) opens or closes, from its overlaps at the four nodes (the cubic through them, in
-/// monomials by Horner's rule, bisected in the first node interval whose ends differ in sign
-/// until the interval is a single point).
+/// (β > 0) opens or closes, from its overlaps at the four nodes: the root of the cubic through
+/// them (in monomials, by Horner's rule) in the first node interval whose ends differ in sign
+/// ([`newton_in_bracket`]).
 pub(super) fn first_crossing(overlaps: &[[f64; 4]], beta: &[f64]) -> Option<f64> {
     let c = super::exponential::nodes();
     let mut lagrange = None;
@@ -935,20 +969,8 @@ pub(super) fn first_crossing(overlaps: &[[f64; 4]], beta: &[f64]) -> Option<f64>
         let l: &[[f64; 4]; 4] = lagrange.get_or_insert_with(super::exponential::lagrange);
         let a = l.map(|row| (0..4).map(|k| row[k] * d[k]).sum::<f64>());
         let cubic = |x: f64| ((a[3] * x + a[2]) * x + a[1]) * x + a[0];
-        let (mut lo, mut hi) = (c[j], c[j + 1]);
-        let closed_lo = d[j] > 0.0;
-        for _ in 0..64 {
-            let mid = 0.5 * (lo + hi);
-            if mid == lo || mid == hi {
-                break;
-            }
-            if (cubic(mid) > 0.0) == closed_lo {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        let theta = 0.5 * (lo + hi);
+        let slope = |x: f64| (3.0 * a[3] * x + 2.0 * a[2]) * x + a[1];
+        let theta = newton_in_bracket(cubic, slope, (c[j], c[j + 1]), (d[j], d[j + 1]));
         if theta > EVENT_LANDING_FRACTION
             && theta < NYSTROM_LANDING_END
             && first.is_none_or(|f| theta < f)
