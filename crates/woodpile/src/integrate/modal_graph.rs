@@ -297,14 +297,16 @@ pub(crate) struct GraphModalIntegrator {
     sample: Sample,
 }
 
-/// Buffers of a sample inside a step: each frequency's flow, each kind group's, and the modes'
-/// positions and velocities in groups.
+/// Buffers of a sample inside a step: each frequency's flow, each kind group's, the modes'
+/// positions and velocities in groups, and the points' deflections.
 #[derive(Debug, Clone, Default)]
 struct Sample {
     kernels: Vec<FlowAt>,
     flows: Vec<FlowGroup>,
     x: Vec<V>,
     v: Vec<V>,
+    /// Per point: its deflection and rate at the sample.
+    points: Vec<[f64; 2]>,
 }
 
 /// Buffers of an attempt.
@@ -830,6 +832,7 @@ impl GraphModalIntegrator {
             out.copy_from_slice(&self.y);
             self.layout.scatter(&self.x, &mut out[..q]);
             self.layout.scatter(&self.v, &mut out[q + 3..2 * q + 3]);
+            self.sample.points.clone_from(&self.point_end);
             return;
         }
         let theta = ((ts - self.t_prev) / h).clamp(0.0, 1.0);
@@ -844,7 +847,13 @@ impl GraphModalIntegrator {
         sample
             .flows
             .extend(flows.map(|lanes| FlowGroup::new(lanes, &sample.kernels, h)));
-        let Sample { flows, x, v, .. } = &mut sample;
+        let Sample {
+            flows,
+            x,
+            v,
+            points,
+            ..
+        } = &mut sample;
         x.resize(self.layout.groups, V::ZERO);
         v.resize(self.layout.groups, V::ZERO);
         for body in &self.layout.bodies {
@@ -866,6 +875,11 @@ impl GraphModalIntegrator {
         self.layout.scatter(v, &mut out[q + 3..2 * q + 3]);
         self.supports_flow(theta, h, &self.y_prev, out);
         self.work_and_dissipation(theta, &self.coef, &self.overlap_coef, (x, v), out);
+        let layout = &self.layout;
+        points.resize(layout.points.len(), [0.0; 2]);
+        for (p, d) in points.iter_mut().enumerate() {
+            *d = layout.dot2(p, x, v, &self.moving);
+        }
         self.sample = sample;
     }
 
@@ -888,25 +902,46 @@ impl GraphModalIntegrator {
     /// over its carried modes four at a time, rather than from every side's full row: the same
     /// sums in another order, equal to rounding.
     pub fn contact_forces_and_rates(&mut self, ode: &mut LatticeOde, rate: &mut [f64]) {
-        let (layout, ends) = (&self.layout, &self.point_end);
+        self.set_contacts(ode, self.t, &self.point_end, Some(rate));
+    }
+
+    /// Every contact's overlap and force at the last sample ([`Self::observe_at`], at `ts`)
+    /// into `ode`'s `overlap_m` and `force_n`, from the points as
+    /// [`Self::contact_forces_and_rates`].
+    pub fn sample_contact_forces(&self, ode: &mut LatticeOde, ts: f64) {
+        self.set_contacts(ode, ts, &self.sample.points, None);
+    }
+
+    /// Every contact's overlap and force (and with `rate` its force rate) at t from the
+    /// points' deflections and rates `points`.
+    fn set_contacts(
+        &self,
+        ode: &mut LatticeOde,
+        t: f64,
+        points: &[[f64; 2]],
+        mut rate: Option<&mut [f64]>,
+    ) {
+        let layout = &self.layout;
         let loads = self.ode.load_contacts();
         let (load, load_rate) = if loads > 0 {
-            let t = self.t;
             (ode.load_per_point_n(t), ode.load_rate_per_point_n_s(t))
         } else {
             (0.0, 0.0)
         };
-        let at = |p: Option<usize>| p.map_or([0.0; 2], |p| ends[p]);
-        for (c, r) in rate.iter_mut().enumerate() {
-            if c < loads {
-                (ode.force_n[c], ode.overlap_m[c], *r) = (load, 0.0, load_rate);
-                continue;
-            }
-            let (above, below) = (at(layout.above[c]), at(layout.below[c]));
-            let (d, dv) = (above[0] - below[0], above[1] - below[1]);
-            let f = ContactLaw::elastic_force(self.ode.beta[c], d);
+        let at = |p: Option<usize>| p.map_or([0.0; 2], |p| points[p]);
+        for c in 0..self.force.len() {
+            let (f, d, r) = if c < loads {
+                (load, 0.0, load_rate)
+            } else {
+                let (above, below) = (at(layout.above[c]), at(layout.below[c]));
+                let (d, dv) = (above[0] - below[0], above[1] - below[1]);
+                let f = ContactLaw::elastic_force(self.ode.beta[c], d);
+                (f, d, ContactLaw::elastic_force_rate(f, d, dv))
+            };
             (ode.force_n[c], ode.overlap_m[c]) = (f, d);
-            *r = ContactLaw::elastic_force_rate(f, d, dv);
+            if let Some(rate) = rate.as_deref_mut() {
+                rate[c] = r;
+            }
         }
     }
 

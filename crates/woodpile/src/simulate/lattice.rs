@@ -162,6 +162,14 @@ impl Stepper {
         }
     }
 
+    /// Every contact's overlap and force at the sample `y` just interpolated at ts into `ode`.
+    fn sample_contact_forces(&self, ode: &mut LatticeOde, ts: f64, y: &[f64]) {
+        match self {
+            Stepper::Explicit(_) => ode.contact_forces_at(ts, y),
+            Stepper::ExactModes(m) => m.sample_contact_forces(ode, ts),
+        }
+    }
+
     /// Whether the state now is finite.
     fn state_finite(&self) -> bool {
         match self {
@@ -242,6 +250,7 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
     let q = ode.coordinates();
     let mut run = LatticeRun::empty(ode, method);
     let mut sample = y0.clone();
+    ode.contact_forces_at(0.0, &sample);
     record(ode, &mut run, 0.0, &sample);
     // (After the forces at t = 0: an actuator's tip overlaps depend on the time.)
     let e0 = run.energy_j[0];
@@ -273,6 +282,7 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
                 break;
             }
             stepper.interpolate(ts, &mut sample);
+            stepper.sample_contact_forces(ode, ts, &sample);
             record(ode, &mut run, ts, &sample);
             next += 1;
         }
@@ -385,8 +395,8 @@ fn sample_time(k: usize, interval: f64, duration: f64) -> Option<f64> {
     (t <= duration * (1.0 + 1e-12)).then_some(t.min(duration))
 }
 
-fn record(ode: &mut LatticeOde, run: &mut LatticeRun, t: f64, y: &[f64]) {
-    ode.contact_forces_at(t, y);
+/// Sample y at t into `run`, the contacts' forces and overlaps already in `ode`.
+fn record(ode: &LatticeOde, run: &mut LatticeRun, t: f64, y: &[f64]) {
     run.times_s.push(t);
     run.contact_forces_n.extend_from_slice(&ode.force_n);
     // Each contact's potential once, from the overlaps just evaluated: the total and the
