@@ -79,10 +79,8 @@ pub(super) struct Layout {
     pub(super) groups: usize,
     /// Per body: its points (indices into `points`, ascending).
     pub(super) body_points: Vec<Vec<usize>>,
-    /// Per body: its family, and per family one body of it: bodies of one kind whose points
-    /// have the same rows share the influence of their points on each other
-    /// ([`super::influence::Influence`]).
-    pub(super) body_family: Vec<usize>,
+    /// Per family one body of it: bodies of one kind whose points have the same rows share the
+    /// influence of their points on each other ([`super::influence::Influence`]).
     pub(super) families: Vec<usize>,
     /// `body_points` flattened, and per body its points' span in it and where its family's
     /// influence matrix starts ([`super::influence::Influence`]: the families' (points)²
@@ -135,35 +133,42 @@ impl Layout {
             me.above.push(above);
             me.below.push(below);
         }
+        me.group_families();
+        me
+    }
+
+    /// The families of bodies (one kind, the same rows at their points) and each body's span
+    /// of points and influence block.
+    fn group_families(&mut self) {
         let mut families = std::collections::HashMap::new();
-        for (b, body) in me.bodies.iter().enumerate() {
-            let rows = me.body_points[b].iter().flat_map(|&p| me.point_row(p));
+        let mut body_family = Vec::with_capacity(self.bodies.len());
+        for (b, body) in self.bodies.iter().enumerate() {
+            let rows = self.body_points[b].iter().flat_map(|&p| self.point_row(p));
             let key: (usize, Vec<u64>) = (
                 body.kind,
                 rows.flat_map(|r| r.0).map(f64::to_bits).collect(),
             );
             let next = families.len();
             let family = *families.entry(key).or_insert_with(|| {
-                me.families.push(b);
+                self.families.push(b);
                 next
             });
-            me.body_family.push(family);
+            body_family.push(family);
         }
-        let mut matrix_starts = Vec::with_capacity(me.families.len());
+        let mut matrix_starts = Vec::with_capacity(self.families.len());
         let mut next = 0;
-        for &b in &me.families {
+        for &b in &self.families {
             matrix_starts.push(next);
-            next += me.body_points[b].len().pow(2);
+            next += self.body_points[b].len().pow(2);
         }
-        for (points, &family) in me.body_points.iter().zip(&me.body_family) {
-            me.body_spans.push(BodySpan {
-                start: me.point_list.len(),
+        for (points, &family) in self.body_points.iter().zip(&body_family) {
+            self.body_spans.push(BodySpan {
+                start: self.point_list.len(),
                 points: points.len(),
                 matrix: matrix_starts[family],
             });
-            me.point_list.extend_from_slice(points);
+            self.point_list.extend_from_slice(points);
         }
-        me
     }
 
     /// Point p's row over its body's carried modes, in groups.
