@@ -63,7 +63,7 @@ fn table1() -> bool {
 
 fn lattice_ode() -> woodpile::Result<LatticeOde> {
     if table1() {
-        return LatticeOde::from_chain(&chain()?, &Striker::paper());
+        return LatticeOde::from_chain(&chain()?, &Excitation::Impact(Striker::paper()));
     }
     let layer = LayerSpec {
         rods: 1,

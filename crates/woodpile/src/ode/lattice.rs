@@ -37,7 +37,7 @@ use crate::error::{require_positive, Result};
 use crate::excitation::Striker;
 use crate::integrate::OdeSystem;
 use crate::model::{
-    hertz_beta, ContactLaw, Lattice, LatticeExcitation, LatticeLab, RodPoint, Surface,
+    hertz_beta, ContactLaw, Lattice, LatticeExcitation, LatticeLab, LoadPoints, RodPoint, Surface,
 };
 
 /// One side of a contact: a body's first coordinate, its number of coordinates and where its
@@ -144,7 +144,14 @@ impl LatticeOde {
                 ode
             }
         };
-        let terms = LabTerms::compile(&ode, lattice, excitation, lab)?;
+        let mut preload_points = Vec::new();
+        if ode.struck && lab.preload.force_n != 0.0 {
+            for p in LoadPoints::TopCrossings.on(lattice)? {
+                let row = lattice.rods[p.rod].modes.modal_row(p.s_m);
+                preload_points.push((ode.rod_coordinates(p.rod).0, row));
+            }
+        }
+        let terms = LabTerms::compile(&ode, &preload_points, excitation, lab)?;
         ode.lab = Some(Box::new(terms));
         Ok(ode)
     }

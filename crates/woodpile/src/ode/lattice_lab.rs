@@ -7,9 +7,7 @@
 use super::lattice::LatticeOde;
 use super::lattice_static::StaticState;
 use crate::error::{Error, Result};
-use crate::model::{
-    ContactDamping, ContactLaw, Lattice, LatticeExcitation, LatticeLab, LoadPoints,
-};
+use crate::model::{ContactDamping, ContactLaw, LatticeExcitation, LatticeLab};
 
 /// The compiled lab terms of a [`LatticeOde`].
 #[derive(Debug, Clone)]
@@ -20,6 +18,9 @@ pub(crate) struct LabTerms {
     allow_pull: bool,
     /// Damping rate per coordinate [1/s]: 2 ζ ω_j + 1/τ on the rods' modes, 0 on the striker.
     damping_rate: Vec<f64>,
+    /// Damping that couples a body's modes (a chain cell's resonator dashpots), on top of
+    /// `damping_rate`.
+    damping_blocks: Vec<DampingBlock>,
     /// Constant generalised force per coordinate: gravity g ψ_tᵀMφ_j on every body, and a
     /// preload beside a striker (on the top-layer crossings).
     static_force: Vec<f64>,
@@ -46,9 +47,11 @@ pub(crate) struct LabTerms {
 
 impl LabTerms {
     /// Compiles the laws, damping and loads of `lab` on `ode` and solves for the equilibrium.
+    /// `preload_points`: where a preload beside a striker acts, each point's first coordinate
+    /// and row (a lattice's top-layer crossings, a chain's top element).
     pub(super) fn compile(
         ode: &LatticeOde,
-        lattice: &Lattice,
+        preload_points: &[(usize, Vec<f64>)],
         excitation: &LatticeExcitation,
         lab: &LatticeLab,
     ) -> Result<Self> {
@@ -70,16 +73,9 @@ impl LabTerms {
         let mut static_force: Vec<f64> = ode.translation.iter().map(|t| g * t).collect();
         let preload = lab.preload.force_n;
         if ode.struck && preload != 0.0 {
-            let points = LoadPoints::TopCrossings.on(lattice)?;
-            let per_point = preload / points.len() as f64;
-            for p in points {
-                let (offset, _) = ode.rod_coordinates(p.rod);
-                for (k, r) in lattice.rods[p.rod]
-                    .modes
-                    .modal_row(p.s_m)
-                    .iter()
-                    .enumerate()
-                {
+            let per_point = preload / preload_points.len() as f64;
+            for (offset, row) in preload_points {
+                for (k, r) in row.iter().enumerate() {
                     static_force[offset + k] += per_point * r;
                 }
             }
@@ -90,6 +86,7 @@ impl LabTerms {
             law_coef,
             allow_pull: lab.damping.allow_pull,
             damping_rate,
+            damping_blocks: Vec::new(),
             static_force,
             excitation: excitation.clone(),
             preload_n: preload,
@@ -191,6 +188,9 @@ impl LabTerms {
             work += self.static_force[j] * v[j];
             modal += damping * v[j];
         }
+        for block in &self.damping_blocks {
+            modal += block.apply(v, a);
+        }
         ode.apply_contact_forces(a);
         a[q..q + 3].copy_from_slice(&ode.support_impulse_rates());
         for c in 0..ode.loads {
@@ -219,6 +219,43 @@ impl LabTerms {
         f[..first].iter_mut().for_each(|x| *x = 0.0);
         let actuator = (ode.actuator && self.preload_n > 0.0).then_some(self.preload_n);
         super::lattice_static::static_equilibrium(ode, &f, actuator)
+    }
+}
+
+/// A damping matrix C (len × len, row-major) [1/s] over one body's modal velocities
+/// `offset..offset + len`: the accelerations −C q̇.
+#[derive(Debug, Clone)]
+pub(super) struct DampingBlock {
+    pub offset: usize,
+    pub len: usize,
+    pub matrix: Vec<f64>,
+}
+
+impl DampingBlock {
+    /// Subtracts C q̇ from the accelerations `a`; returns the power it dissipates, q̇ᵀ C q̇ \[W\].
+    fn apply(&self, v: &[f64], a: &mut [f64]) -> f64 {
+        let v = &v[self.offset..self.offset + self.len];
+        let mut power = 0.0;
+        for (i, row) in self.matrix.chunks_exact(self.len).enumerate() {
+            let f: f64 = row.iter().zip(v).map(|(c, v)| c * v).sum();
+            a[self.offset + i] -= f;
+            power += f * v[i];
+        }
+        power
+    }
+}
+
+impl LabTerms {
+    /// Replaces every contact's law and coefficient (a chain's, as the chain compiles them).
+    pub(super) fn set_laws(&mut self, laws: Vec<ContactLaw>, law_coef: Vec<f64>) {
+        debug_assert_eq!(laws.len(), self.laws.len());
+        self.laws = laws;
+        self.law_coef = law_coef;
+    }
+
+    /// Adds damping that couples one body's modes.
+    pub(super) fn add_damping_block(&mut self, block: DampingBlock) {
+        self.damping_blocks.push(block);
     }
 }
 
@@ -291,7 +328,7 @@ impl LabTerms {
     /// elastic forces: every contact law elastic (damping of the modes, prescribed load forces,
     /// gravity and a preload — constant modal forces — are what the method advances exactly).
     pub(super) fn linear_modes_only(&self) -> bool {
-        self.laws.iter().all(|&l| l == ContactLaw::Elastic)
+        self.laws.iter().all(|&l| l == ContactLaw::Elastic) && self.damping_blocks.is_empty()
     }
 
     /// Per coordinate: the constant generalised force of gravity and a striker's preload.

@@ -91,6 +91,15 @@ impl ElementModes {
         self.omega.len()
     }
 
+    /// u_jk: resonator j's amplitude in mode k per unit primary amplitude (1 in the rigid
+    /// mode k = 0).
+    pub fn resonator_amplitude(&self, j: usize, k: usize) -> f64 {
+        match k {
+            0 => 1.0,
+            _ => 1.0 + self.extension[j * self.res_mass.len() + k - 1],
+        }
+    }
+
     /// Modal amplitudes c (rigid first) of the primary's value `x0` and the resonators' `w`
     /// (positions or velocities): c_k = (M x0 + Σ m_j u_jk w_j) / μ_k, the mass-weighted
     /// projection.

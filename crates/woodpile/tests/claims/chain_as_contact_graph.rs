@@ -42,7 +42,7 @@ fn both_forms(chain: &Chain) -> (f64, f64, bool) {
         &mut trajectory,
     )
     .unwrap();
-    let mut ode = LatticeOde::from_chain(chain, &striker).unwrap();
+    let mut ode = LatticeOde::from_chain(chain, &Excitation::Impact(striker.clone())).unwrap();
     let run = simulate_lattice(&mut ode, &settings()).unwrap();
     assert_eq!(run.contacts, trajectory.n_contacts());
     let arrived = run.contact_peak_forces_n[run.contacts - 1] > 0.01 * largest_peak(&run);
@@ -93,7 +93,7 @@ fn a_chain_without_a_wall_is_refused_naming_the_key() {
         .wall(woodpile::Wall::Free)
         .build()
         .unwrap();
-    let error = LatticeOde::from_chain(&chain, &Striker::paper()).unwrap_err();
+    let error = LatticeOde::from_chain(&chain, &Excitation::Impact(Striker::paper())).unwrap_err();
     assert!(error.to_string().contains("wall"), "{error}");
 }
 
@@ -123,7 +123,7 @@ fn table1_chain_as_a_contact_graph_under_the_exact_method_is_the_chain_under_it(
         &mut Trajectory::default(),
     )
     .unwrap();
-    let mut ode = LatticeOde::from_chain(&chain, &striker).unwrap();
+    let mut ode = LatticeOde::from_chain(&chain, &Excitation::Impact(striker.clone())).unwrap();
     let run = simulate_lattice(&mut ode, &settings).unwrap();
     assert!(matches!(run.method, Method::ExactModes { .. }));
     let worst = peak_difference(&run, &summary);

@@ -20,6 +20,7 @@ mod cell_reduction_in_time;
 mod cell_table1_frequencies;
 mod cell_table1_from_beam;
 mod chain_as_contact_graph;
+mod chain_lab_as_contact_graph;
 mod collision;
 mod contact_beta_reference;
 mod contact_peak_pressure;

@@ -1,0 +1,259 @@
+//! Claim: a chain's lab physics (docs/physics.md §14) runs on the contact graph with the chain's
+//! numbers (docs/physics.md §16, "A column"). `LatticeOde::from_chain` turns the chain's contact
+//! laws, on-site damping, resonator dashpots (a damping matrix over each cell's modes), gravity,
+//! preload, blast and drives into the graph's lab terms, and the graph finds the static
+//! equilibrium by its own solve. With RK4 at one fixed step both forms are linear changes of
+//! coordinates of one system (RK4 commutes with them), so they differ by rounding and by the
+//! static solve's residual (≤ 1e-12 of the static forces; Newton's last step leaves rounding):
+//! every sampled contact force within 1e-11 of the largest peak, and the sampled total energy,
+//! the work of the loads and the energy dissipated within 1e-11 of the largest of them, under a
+//! striker, a blast, a force drive and a displacement drive. The bound is ten times the lossless
+//! claim's (`chain_as_contact_graph`), for the static solve and the dissipative terms' sums in
+//! another order. Under the exact method (elastic contacts; damping of each mode on its own, a
+//! static load) both steppers meet rtol 1e-9, so their peaks agree within 1e-8 of the largest;
+//! resonator dashpots couple a cell's modes, which the graph's exact stepper refuses, naming
+//! `run.integrator`.
+
+use super::lattice_common::fe_rod_elements;
+use super::lattice_single_column::{largest_peak, peak_difference};
+use woodpile::ode::LatticeOde;
+use woodpile::simulate::{simulate_lattice, LatticeRun};
+use woodpile::{
+    simulate, BlastProfile, CellModel, Chain, ChainBuilder, ContactDamping, Damping, Drive,
+    DriveQuantity, Element, Excitation, Material, Method, Preload, ResonatorDamping, RunSettings,
+    RunSummary, Signal, Striker, Sweep, Trajectory, Wall,
+};
+
+/// RK4 at 40 ns over 0.3 ms, sampled every µs.
+fn rk4() -> RunSettings {
+    RunSettings {
+        duration_s: 3e-4,
+        method: Method::Rk4 { time_step_s: 4e-8 },
+        sample_interval_s: 1e-6,
+    }
+}
+
+/// Every lab term of a chain at once (the chains' `lab_energy_balance` claim's).
+fn every_damping() -> Damping {
+    Damping {
+        contacts: ContactDamping::Restitution { coefficient: 0.8 },
+        wall: Some(ContactDamping::HuntCrossley { restitution: 0.9 }),
+        striker: Some(ContactDamping::Viscoelastic { time_s: 1e-7 }),
+        allow_pull: false,
+        resonator_ratio: 0.02,
+        resonator_overrides: vec![ResonatorDamping {
+            element: 1,
+            resonator: 2,
+            ratio: 0.1,
+        }],
+        on_site_time_s: Some(1e-3),
+        impact_speed_m_s: Some(0.1),
+    }
+}
+
+fn preload() -> Preload {
+    Preload {
+        force_n: 5.0,
+        gravity_m_s2: 9.81,
+    }
+}
+
+/// Four Table 1 rods with resonators, every lab term and a preload.
+fn table1_chain() -> Chain {
+    ChainBuilder::table1_rods(&[80, 40, 20, 60], CellModel::Resonant)
+        .unwrap()
+        .preload(preload())
+        .damping(every_damping())
+        .build()
+        .unwrap()
+}
+
+/// A Table 1 rod, a steel sphere, a finite-element rod and a rigid rod, with every lab term.
+fn mixed_chain() -> Chain {
+    let mut elements = vec![Element::table1_rod(80, CellModel::Resonant).unwrap()];
+    elements.push(Element::sphere(9.525e-3, Material::preset("steel").unwrap()).unwrap());
+    elements.extend(fe_rod_elements(&[40.0], 4));
+    elements.push(Element::table1_rod(20, CellModel::Rigid).unwrap());
+    ChainBuilder::new(elements)
+        .preload(preload())
+        .damping(every_damping())
+        .build()
+        .unwrap()
+}
+
+/// `chain` under `excitation` as a chain and as a contact graph.
+fn both_forms(
+    chain: &Chain,
+    excitation: &Excitation,
+    settings: &RunSettings,
+) -> (RunSummary, Trajectory, LatticeRun) {
+    let mut trajectory = Trajectory::default();
+    let summary = simulate(chain, excitation, settings, &mut trajectory).unwrap();
+    let mut ode = LatticeOde::from_chain(chain, excitation).unwrap();
+    let run = simulate_lattice(&mut ode, settings).unwrap();
+    assert_eq!(run.contacts, trajectory.n_contacts());
+    (summary, trajectory, run)
+}
+
+/// The largest difference of any sampled contact force (of the largest peak), and of the
+/// sampled total energy, work and dissipation (of the largest of any of them).
+fn differences(run: &LatticeRun, trajectory: &Trajectory) -> (f64, f64) {
+    let peak = largest_peak(run);
+    let mut force = 0.0_f64;
+    for c in 0..run.contacts {
+        for (a, b) in run
+            .contact_force_n(c)
+            .iter()
+            .zip(&trajectory.contact_force_n(c))
+        {
+            force = force.max((a - b).abs() / peak);
+        }
+    }
+    let energy = trajectory.total_energy_j();
+    let pairs = [
+        (&run.energy_j, &energy),
+        (&run.work_j, &trajectory.input_work_j),
+        (&run.dissipated_j, &trajectory.dissipated_j),
+    ];
+    let scale = pairs
+        .iter()
+        .flat_map(|(a, b)| a.iter().chain(b.iter()))
+        .fold(0.0_f64, |m, x| m.max(x.abs()));
+    let mut worst = 0.0_f64;
+    for (a, b) in pairs {
+        assert_eq!(a.len(), b.len(), "sample counts");
+        for (x, y) in a.iter().zip(b) {
+            worst = worst.max((x - y).abs() / scale);
+        }
+    }
+    (force, worst)
+}
+
+/// Runs both forms under RK4 and asserts the claim's bounds; returns the run for further
+/// checks.
+fn agree(label: &str, chain: &Chain, excitation: &Excitation) -> (Trajectory, LatticeRun) {
+    let (_, trajectory, run) = both_forms(chain, excitation, &rk4());
+    let (force, energy) = differences(&run, &trajectory);
+    let dissipated = *run.dissipated_j.last().unwrap();
+    eprintln!(
+        "{label}: forces {force:e} of the peak, energies {energy:e}; dissipated {dissipated:e} J"
+    );
+    assert!(
+        force < 1e-11,
+        "{label}: forces differ by {force:e} of the peak"
+    );
+    assert!(energy < 1e-11, "{label}: energies differ by {energy:e}");
+    // The comparison means something only if the lab terms act.
+    assert!(dissipated > 0.0, "{label}: nothing was dissipated");
+    (trajectory, run)
+}
+
+#[test]
+fn struck_chain_with_every_lab_term_is_the_chain() {
+    let (_, run) = agree(
+        "Table 1, striker",
+        &table1_chain(),
+        &Excitation::Impact(Striker::paper()),
+    );
+    assert!(
+        run.static_residual <= 1e-12,
+        "static residual {:e}",
+        run.static_residual
+    );
+    agree(
+        "mixed, striker",
+        &mixed_chain(),
+        &Excitation::Impact(Striker::paper()),
+    );
+}
+
+#[test]
+fn blasted_chain_is_the_chain() {
+    agree(
+        "mixed, blast",
+        &mixed_chain(),
+        &Excitation::Blast(BlastProfile::paper()),
+    );
+}
+
+#[test]
+fn driven_chain_is_the_chain() {
+    let chirp = |amplitude: f64| Signal::Chirp {
+        amplitude,
+        start_hz: 2e3,
+        end_hz: 40e3,
+        duration_s: 3e-4,
+        sweep: Sweep::Logarithmic,
+    };
+    agree(
+        "Table 1, force drive",
+        &table1_chain(),
+        &Excitation::Drive(Drive::force(chirp(2.0))),
+    );
+    let displacement = Drive {
+        quantity: DriveQuantity::Displacement {
+            tip: Wall::paper_sensor(),
+        },
+        ..Drive::force(chirp(2e-7))
+    };
+    agree(
+        "Table 1, displacement drive",
+        &table1_chain(),
+        &Excitation::Drive(displacement),
+    );
+}
+
+#[test]
+fn exact_method_on_a_damped_loaded_chain_is_the_chains() {
+    // Elastic contacts, on-site damping, gravity and a preload: what both exact steppers take.
+    let chain = ChainBuilder::table1_rods(&[80, 60, 40, 30, 20], CellModel::Resonant)
+        .unwrap()
+        .preload(preload())
+        .damping(Damping {
+            on_site_time_s: Some(2e-4),
+            ..Damping::default()
+        })
+        .build()
+        .unwrap();
+    let settings = RunSettings {
+        duration_s: 3e-4,
+        method: Method::ExactModes {
+            rtol: 1e-9,
+            atol: 1e-18,
+        },
+        sample_interval_s: 1e-6,
+    };
+    for excitation in [
+        Excitation::Impact(Striker::paper()),
+        Excitation::Blast(BlastProfile::paper()),
+    ] {
+        let (summary, _, run) = both_forms(&chain, &excitation, &settings);
+        assert!(matches!(run.method, Method::ExactModes { .. }));
+        let peaks = peak_difference(&run, &summary);
+        eprintln!("exact method: peaks differ by {peaks:e} of the largest");
+        assert!(peaks < 1e-8, "peaks differ by {peaks:e} of the largest");
+    }
+}
+
+#[test]
+fn resonator_dashpots_are_refused_by_the_graphs_exact_stepper() {
+    // Elastic contacts: the dashpots alone stand in the way.
+    let chain = ChainBuilder::table1_rods(&[80, 40, 20, 60], CellModel::Resonant)
+        .unwrap()
+        .damping(Damping {
+            resonator_ratio: 0.02,
+            ..Damping::default()
+        })
+        .build()
+        .unwrap();
+    let mut ode = LatticeOde::from_chain(&chain, &Excitation::Impact(Striker::paper())).unwrap();
+    let settings = RunSettings {
+        method: Method::ExactModes {
+            rtol: 1e-8,
+            atol: 1e-18,
+        },
+        ..rk4()
+    };
+    let error = simulate_lattice(&mut ode, &settings).unwrap_err();
+    assert!(error.to_string().contains("run.integrator"), "{error}");
+}
