@@ -10,15 +10,16 @@
 //! Run: `cargo run --release -p woodpile --example column_engines -- 1e-8`
 //! (`CELLS=table1`: five 80 mm Table 1 cells instead, the contact graph
 //! `LatticeOde::from_chain`'s one-point bodies; `SAMPLE_S=5e-4`: one sample at the end, as a
-//! design study takes, instead of every µs;
+//! design study takes, instead of every µs; `LOAD=damped`: on-site damping (τ = 0.2 ms),
+//! gravity and a 5 N preload on both forms, which the exact method takes;
 //! `PROFILE=chain|lattice`: `RUNS` runs, 300 by default, for a profiler)
 
-use woodpile::model::{LatticeBuilder, LayerSpec};
+use woodpile::model::{LatticeBuilder, LatticeExcitation, LatticeLab, LayerSpec};
 use woodpile::ode::LatticeOde;
 use woodpile::simulate::{simulate_lattice, LatticeRun};
 use woodpile::{
-    simulate, Body, CellModel, Chain, ChainBuilder, Element, Excitation, Material, Method, Rod,
-    RunSettings, RunSummary, Striker, Trajectory, UnitCell,
+    simulate, Body, CellModel, Chain, ChainBuilder, Damping, Element, Excitation, Material,
+    Method, Preload, Rod, RunSettings, RunSummary, Striker, Trajectory, UnitCell,
 };
 
 const RODS: usize = 5;
@@ -37,9 +38,36 @@ fn settings(rtol: f64) -> RunSettings {
     }
 }
 
+/// Whether `LOAD=damped` asks for the lab terms.
+fn damped() -> bool {
+    std::env::var("LOAD").is_ok_and(|c| c == "damped")
+}
+
+fn damping() -> Damping {
+    Damping {
+        on_site_time_s: Some(2e-4),
+        ..Damping::default()
+    }
+}
+
+fn preload() -> Preload {
+    Preload {
+        force_n: 5.0,
+        gravity_m_s2: 9.81,
+    }
+}
+
 fn chain() -> woodpile::Result<Chain> {
+    let builder = chain_builder()?;
+    if damped() {
+        return builder.damping(damping()).preload(preload()).build();
+    }
+    builder.build()
+}
+
+fn chain_builder() -> woodpile::Result<ChainBuilder> {
     if table1() {
-        return ChainBuilder::table1_rods(&[80; RODS], CellModel::Resonant)?.build();
+        return ChainBuilder::table1_rods(&[80; RODS], CellModel::Resonant);
     }
     let quartz = Material::fused_quartz();
     let rod = Rod::new(LENGTH_M, DIAMETER_M, 0.0, quartz.clone())?;
@@ -53,7 +81,7 @@ fn chain() -> woodpile::Result<Chain> {
         material: quartz,
         cell,
     };
-    ChainBuilder::new(vec![element; RODS]).build()
+    Ok(ChainBuilder::new(vec![element; RODS]))
 }
 
 /// Whether `CELLS=table1` asks for Table 1 cells.
@@ -74,7 +102,21 @@ fn lattice_ode() -> woodpile::Result<LatticeOde> {
         angle_deg: 90.0,
     };
     let lattice = LatticeBuilder::new(vec![layer; RODS], ELEMENTS).build()?;
-    LatticeOde::new(&lattice, &Striker::paper(), [0.0, 0.0])
+    let lab = if damped() {
+        LatticeLab {
+            damping: damping(),
+            modal_ratio: 0.0,
+            preload: preload(),
+        }
+    } else {
+        LatticeLab::default()
+    };
+    let striker = Striker::paper();
+    let impact = LatticeExcitation::Impact {
+        striker,
+        at_m: [0.0, 0.0],
+    };
+    LatticeOde::build(&lattice, &impact, &lab)
 }
 
 fn run_chain(chain: &Chain, rtol: f64) -> woodpile::Result<(RunSummary, f64)> {
