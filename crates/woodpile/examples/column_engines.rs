@@ -18,8 +18,8 @@ use woodpile::model::{LatticeBuilder, LatticeExcitation, LatticeLab, LayerSpec};
 use woodpile::ode::LatticeOde;
 use woodpile::simulate::{simulate_lattice, LatticeRun};
 use woodpile::{
-    simulate, Body, CellModel, Chain, ChainBuilder, Damping, Element, Excitation, Material,
-    Method, Preload, Rod, RunSettings, RunSummary, Striker, Trajectory, UnitCell,
+    simulate, Body, CellModel, Chain, ChainBuilder, Damping, Element, Excitation, Material, Method,
+    Preload, Rod, RunSettings, RunSummary, Striker, Trajectory, UnitCell,
 };
 
 const RODS: usize = 5;

@@ -470,7 +470,9 @@ fn damped_free(theta: f64, a: f64, z: f64) -> [f64; 4] {
     [ec + a * es, es, -z * z * es, ec - a * es]
 }
 
-/// [`DampedKernel`] at θ ∈ [0, 1] for a = γh ≥ 0, z = hΩ ≥ 0 (θ = 0: the identity). The responses S_n, C_n: where the
+/// [`DampedKernel`] at θ ∈ [0, 1] for a = γh ≥ 0, z = hΩ ≥ 0 (θ = 0: the identity). The
+/// responses S_n, C_n of a lightly damped mode (a ≤ z/2): from the φ-functions of its complex
+/// root ([`light_responses`]). Otherwise, where the
 /// roots of λ² + 2aλ + z² are small on [0, θ] (r θ ≤ 1, r the larger root's modulus), the Taylor
 /// series of the response (its coefficients by the equation's recurrence); where the mode is
 /// stiff (z²θ² ≥ 16 and z²θ ≥ 8a), the polynomial particular solution p (p'' + 2ap' + z²p = σⁿ,
@@ -493,6 +495,10 @@ pub fn damped_kernel(theta: f64, a: f64, z: f64) -> DampedKernel {
         rate_of_rate: free[3],
         ..DampedKernel::default()
     };
+    if a <= LIGHT_DAMPING * z {
+        (k.s, k.c) = light_responses(theta, a, z);
+        return k;
+    }
     let d = (z - a) * (z + a);
     let r = if d >= 0.0 { z } else { a + (-d).sqrt() };
     if r * theta <= 1.0 {
@@ -528,6 +534,69 @@ pub fn damped_kernel(theta: f64, a: f64, z: f64) -> DampedKernel {
         }
     }
     k
+}
+
+/// Modes with a ≤ this × z (ζ ≤ 1/2: every structural damping) take their responses from the
+/// φ-functions of the complex root ([`light_responses`]); heavier ones (and rigid modes under
+/// on-site damping) by series, particular solutions and halving.
+const LIGHT_DAMPING: f64 = 0.5;
+
+/// Terms of φ_4's series summed below |x| = 2: the first left out, 2²⁴/28!, is below 1e-22 of
+/// φ_4 ≥ 1/24 · e^{−2}.
+const PHI4_COMPLEX_TERMS: usize = 24;
+
+/// 1/(m + 4)!, m < [`PHI4_COMPLEX_TERMS`].
+const PHI4_COEFFICIENTS: [f64; PHI4_COMPLEX_TERMS] = {
+    let mut c = [0.0; PHI4_COMPLEX_TERMS];
+    let mut inv_fact = 1.0 / 24.0;
+    let mut m = 0;
+    while m < PHI4_COMPLEX_TERMS {
+        c[m] = inv_fact;
+        inv_fact /= (m + 5) as f64;
+        m += 1;
+    }
+    c
+};
+
+/// The responses S_n(θ), C_n(θ), n = 0..3, of a lightly damped mode (a ≤ z/2) through the
+/// φ-functions of x = λθ, λ = −a + iw the root of λ² + 2aλ + z² (w = √(z² − a²) ≥ 0.86 z):
+/// the impulse response is G(σ) = Im e^{λσ}/w, and ∫₀^θ e^{λ(θ−σ)} σⁿ dσ = n! θ^{n+1}
+/// φ_{n+1}(x), so S_n = n! θ^{n+1} Im φ_{n+1}/w and C_n = n! θ^{n+1} (Re φ_{n+1} − (a/w)
+/// Im φ_{n+1}). As the undamped [`kernel`]: φ_4 by its series below |x| = 2 and downward
+/// φ_k = 1/k! + x φ_{k+1}; above, φ_0 = e^x and upward φ_{k+1} = (φ_k − 1/k!)/x, which
+/// divides each rounding by |x| ≥ 2.
+fn light_responses(theta: f64, a: f64, z: f64) -> ([f64; 4], [f64; 4]) {
+    use rustfft::num_complex::Complex64;
+    const INV_FACT: [f64; 4] = [1.0, 1.0, 0.5, 1.0 / 6.0];
+    let w = ((z - a) * (z + a)).sqrt();
+    let x = Complex64::new(-a * theta, w * theta);
+    let mut phi = [Complex64::new(0.0, 0.0); 5];
+    if x.norm_sqr() < 4.0 {
+        phi[4] = PHI4_COEFFICIENTS
+            .iter()
+            .rev()
+            .fold(Complex64::new(0.0, 0.0), |acc, &c| acc * x + c);
+        for k in (0..4).rev() {
+            phi[k] = x * phi[k + 1] + INV_FACT[k];
+        }
+    } else {
+        let (sin, cos) = (w * theta).sin_cos();
+        phi[0] = Complex64::new(cos, sin) * (-a * theta).exp();
+        for k in 0..4 {
+            phi[k + 1] = (phi[k] - INV_FACT[k]) / x;
+        }
+    }
+    let (mut s, mut c) = ([0.0; 4], [0.0; 4]);
+    let mut scale = theta; // n! θ^{n+1}
+    for n in 0..4 {
+        if n > 0 {
+            scale *= n as f64 * theta;
+        }
+        let p = phi[n + 1];
+        s[n] = scale * p.im / w;
+        c[n] = scale * (p.re - a / w * p.im);
+    }
+    (s, c)
 }
 
 const BINOMIAL: [[f64; 4]; 4] = [
