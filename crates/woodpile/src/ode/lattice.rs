@@ -1,6 +1,6 @@
 //! A lattice struck by a sphere, loaded or left at rest, as y' = f(t, y) (docs/physics.md §16):
-//! a contact graph. A lossless chain is one too, its cells bodies of one point
-//! ([`LatticeOde::from_chain`]).
+//! a contact graph. A chain is one too, its cells bodies of one point, under its load and lab
+//! physics ([`LatticeOde::from_chain`]).
 //!
 //! Every body moves in mass-normalised modal coordinates q (the striker: one coordinate
 //! q = √m u; a rod: its free–free modes), so that q̈_j = −ω_j² q_j + Σ_c row_cj F_c: contact c
