@@ -472,7 +472,7 @@ fn damped_free(theta: f64, a: f64, z: f64) -> [f64; 4] {
 
 /// [`DampedKernel`] at θ ∈ [0, 1] for a = γh ≥ 0, z = hΩ ≥ 0 (θ = 0: the identity). The
 /// responses S_n, C_n of a lightly damped mode (a ≤ z/2): from the φ-functions of its complex
-/// root ([`light_responses`]). Otherwise, where the
+/// root (as the undamped [`kernel`]'s from those of iz). Otherwise, where the
 /// roots of λ² + 2aλ + z² are small on [0, θ] (r θ ≤ 1, r the larger root's modulus), the Taylor
 /// series of the response (its coefficients by the equation's recurrence); where the mode is
 /// stiff (z²θ² ≥ 16 and z²θ ≥ 8a), the polynomial particular solution p (p'' + 2ap' + z²p = σⁿ,

@@ -164,7 +164,7 @@ fn chain_lab(
     let lab = LatticeLab {
         damping: chain.damping().clone(),
         modal_ratio: 0.0,
-        preload: chain.preload().clone(),
+        preload: *chain.preload(),
     };
     let first = ode.above[1];
     let preload_points = vec![(
