@@ -14,14 +14,15 @@
 //! resonator dashpots couple a cell's modes, which the graph's exact stepper refuses, naming
 //! `run.integrator`.
 
+use super::lab_energy_balance::every_damping;
 use super::lattice_common::fe_rod_elements;
 use super::lattice_single_column::{largest_peak, peak_difference};
 use woodpile::ode::LatticeOde;
 use woodpile::simulate::{simulate_lattice, LatticeRun};
 use woodpile::{
-    simulate, BlastProfile, CellModel, Chain, ChainBuilder, ContactDamping, Damping, Drive,
-    DriveQuantity, Element, Excitation, Material, Method, Preload, ResonatorDamping, RunSettings,
-    RunSummary, Signal, Striker, Sweep, Trajectory, Wall,
+    simulate, BlastProfile, CellModel, Chain, ChainBuilder, Damping, Drive, DriveQuantity, Element,
+    Excitation, Material, Method, Preload, RunSettings, RunSummary, Signal, Striker, Sweep,
+    Trajectory, Wall,
 };
 
 /// RK4 at 40 ns over 0.3 ms, sampled every µs.
@@ -30,24 +31,6 @@ fn rk4() -> RunSettings {
         duration_s: 3e-4,
         method: Method::Rk4 { time_step_s: 4e-8 },
         sample_interval_s: 1e-6,
-    }
-}
-
-/// Every lab term of a chain at once (the chains' `lab_energy_balance` claim's).
-fn every_damping() -> Damping {
-    Damping {
-        contacts: ContactDamping::Restitution { coefficient: 0.8 },
-        wall: Some(ContactDamping::HuntCrossley { restitution: 0.9 }),
-        striker: Some(ContactDamping::Viscoelastic { time_s: 1e-7 }),
-        allow_pull: false,
-        resonator_ratio: 0.02,
-        resonator_overrides: vec![ResonatorDamping {
-            element: 1,
-            resonator: 2,
-            ratio: 0.1,
-        }],
-        on_site_time_s: Some(1e-3),
-        impact_speed_m_s: Some(0.1),
     }
 }
 
