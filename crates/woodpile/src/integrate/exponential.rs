@@ -487,6 +487,9 @@ pub fn damped_kernel(theta: f64, a: f64, z: f64) -> DampedKernel {
             ..DampedKernel::default()
         };
     }
+    if a <= LIGHT_DAMPING * z {
+        return light_kernel(theta, a, z);
+    }
     let free = damped_free(theta, a, z);
     let mut k = DampedKernel {
         pos_of_pos: free[0],
@@ -495,10 +498,6 @@ pub fn damped_kernel(theta: f64, a: f64, z: f64) -> DampedKernel {
         rate_of_rate: free[3],
         ..DampedKernel::default()
     };
-    if a <= LIGHT_DAMPING * z {
-        (k.s, k.c) = light_responses(theta, a, z);
-        return k;
-    }
     let d = (z - a) * (z + a);
     let r = if d >= 0.0 { z } else { a + (-d).sqrt() };
     if r * theta <= 1.0 {
@@ -537,7 +536,7 @@ pub fn damped_kernel(theta: f64, a: f64, z: f64) -> DampedKernel {
 }
 
 /// Modes with a ≤ this × z (ζ ≤ 1/2: every structural damping) take their responses from the
-/// φ-functions of the complex root ([`light_responses`]); heavier ones (and rigid modes under
+/// φ-functions of the complex root ([`light_kernel`]); heavier ones (and rigid modes under
 /// on-site damping) by series, particular solutions and halving.
 const LIGHT_DAMPING: f64 = 0.5;
 
@@ -558,20 +557,22 @@ const PHI4_COEFFICIENTS: [f64; PHI4_COMPLEX_TERMS] = {
     c
 };
 
-/// The responses S_n(θ), C_n(θ), n = 0..3, of a lightly damped mode (a ≤ z/2) through the
-/// φ-functions of x = λθ, λ = −a + iw the root of λ² + 2aλ + z² (w = √(z² − a²) ≥ 0.86 z):
-/// the impulse response is G(σ) = Im e^{λσ}/w, and ∫₀^θ e^{λ(θ−σ)} σⁿ dσ = n! θ^{n+1}
-/// φ_{n+1}(x), so S_n = n! θ^{n+1} Im φ_{n+1}/w and C_n = n! θ^{n+1} (Re φ_{n+1} − (a/w)
-/// Im φ_{n+1}). As the undamped [`kernel`]: φ_4 by its series below |x| = 2 and downward
-/// φ_k = 1/k! + x φ_{k+1}; above, φ_0 = e^x and upward φ_{k+1} = (φ_k − 1/k!)/x, which
-/// divides each rounding by |x| ≥ 2.
-fn light_responses(theta: f64, a: f64, z: f64) -> ([f64; 4], [f64; 4]) {
+/// [`DampedKernel`] of a lightly damped mode (a ≤ z/2). The responses S_n(θ), C_n(θ),
+/// n = 0..3, through the φ-functions of x = λθ, λ = −a + iw the root of λ² + 2aλ + z²
+/// (w = √(z² − a²) ≥ 0.86 z): the impulse response is G(σ) = Im e^{λσ}/w, and
+/// ∫₀^θ e^{λ(θ−σ)} σⁿ dσ = n! θ^{n+1} φ_{n+1}(x), so S_n = n! θ^{n+1} Im φ_{n+1}/w and
+/// C_n = n! θ^{n+1} (Re φ_{n+1} − (a/w) Im φ_{n+1}). As the undamped [`kernel`]: φ_4 by its
+/// series below |x| = 2 and downward φ_k = 1/k! + x φ_{k+1}; above, φ_0 = e^x and upward
+/// φ_{k+1} = (φ_k − 1/k!)/x, which divides each rounding by |x| ≥ 2. There the free flow comes
+/// from φ_0 = e^{−aθ}(cos wθ + i sin wθ), as [`damped_free`] computes it (the same products:
+/// bit for bit); below, from [`damped_free`].
+fn light_kernel(theta: f64, a: f64, z: f64) -> DampedKernel {
     use rustfft::num_complex::Complex64;
     const INV_FACT: [f64; 4] = [1.0, 1.0, 0.5, 1.0 / 6.0];
     let w = ((z - a) * (z + a)).sqrt();
     let x = Complex64::new(-a * theta, w * theta);
     let mut phi = [Complex64::new(0.0, 0.0); 5];
-    if x.norm_sqr() < 4.0 {
+    let free = if x.norm_sqr() < 4.0 {
         phi[4] = PHI4_COEFFICIENTS
             .iter()
             .rev()
@@ -579,14 +580,25 @@ fn light_responses(theta: f64, a: f64, z: f64) -> ([f64; 4], [f64; 4]) {
         for k in (0..4).rev() {
             phi[k] = x * phi[k + 1] + INV_FACT[k];
         }
+        damped_free(theta, a, z)
     } else {
         let (sin, cos) = (w * theta).sin_cos();
-        phi[0] = Complex64::new(cos, sin) * (-a * theta).exp();
+        let decay = (-a * theta).exp();
+        phi[0] = Complex64::new(decay * cos, decay * sin);
         for k in 0..4 {
             phi[k + 1] = (phi[k] - INV_FACT[k]) / x;
         }
-    }
-    let (mut s, mut c) = ([0.0; 4], [0.0; 4]);
+        let (ec, es) = (phi[0].re, phi[0].im / w);
+        [ec + a * es, es, -z * z * es, ec - a * es]
+    };
+    let mut k = DampedKernel {
+        pos_of_pos: free[0],
+        pos_of_rate: free[1],
+        rate_of_pos: free[2],
+        rate_of_rate: free[3],
+        ..DampedKernel::default()
+    };
+    let (s, c) = (&mut k.s, &mut k.c);
     let mut scale = theta; // n! θ^{n+1}
     for n in 0..4 {
         if n > 0 {
@@ -596,7 +608,7 @@ fn light_responses(theta: f64, a: f64, z: f64) -> ([f64; 4], [f64; 4]) {
         s[n] = scale * p.im / w;
         c[n] = scale * (p.re - a / w * p.im);
     }
-    (s, c)
+    k
 }
 
 const BINOMIAL: [[f64; 4]; 4] = [

@@ -12,7 +12,8 @@
 //! another order. Under the exact method (elastic contacts; damping of each mode on its own, a
 //! static load) both steppers meet rtol 1e-9, so their peaks agree within 1e-8 of the largest;
 //! resonator dashpots couple a cell's modes, which the graph's exact stepper refuses, naming
-//! `run.integrator`.
+//! `run.integrator`. And the graph's static solve finds the chain's static contact forces (summed
+//! in closed form from the top down) within 1e-11 of the largest.
 
 use super::lab_energy_balance::every_damping;
 use super::lattice_common::fe_rod_elements;
@@ -148,6 +149,40 @@ fn struck_chain_with_every_lab_term_is_the_chain() {
         &mixed_chain(),
         &Excitation::Impact(Striker::paper()),
     );
+}
+
+/// The graph's static solve (damped Newton on the potential, `ode::lattice_static`) finds the
+/// chain's static contact forces, which the chain sums from the top down in closed form: under
+/// gravity and a 5 N preload, struck and at rest, every contact within 1e-11 of the largest:
+/// ten times the residual, 1e-12 of the static forces, at which the solve may stop (it stops
+/// lower: 1.9e-13 here).
+#[test]
+fn the_graphs_static_solve_finds_the_chains_static_forces() {
+    let chain = table1_chain();
+    for excitation in [Excitation::Impact(Striker::paper()), Excitation::Rest] {
+        let ode = LatticeOde::from_chain(&chain, &excitation).unwrap();
+        let (graph, residual) = ode.static_forces_n();
+        let expected = woodpile::ode::ChainOde::new(&chain, &excitation)
+            .unwrap()
+            .static_contact_forces_n();
+        let largest = expected.iter().fold(0.0_f64, |m, f| m.max(f.abs()));
+        let worst = graph
+            .iter()
+            .zip(&expected)
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs() / largest));
+        eprintln!(
+            "static forces: {worst:e} of the largest ({largest:.4} N), residual {residual:e}"
+        );
+        assert_eq!(graph.len(), expected.len());
+        assert!(
+            largest > 5.0,
+            "the preload and the rods' weight load every contact"
+        );
+        assert!(
+            worst < 1e-11,
+            "static forces differ by {worst:e} of the largest"
+        );
+    }
 }
 
 #[test]
