@@ -21,8 +21,12 @@ import woodpile
 from woodpile import LimitError
 
 # 1 s of simulated time at the paper's 0.1 µs step: 10 million steps of 20 rods.
+# The child installs Python's Ctrl-C handler itself, as an interactive Python has it: a runner
+# that starts the tests with SIGINT ignored (nohup, a background job) would otherwise pass that
+# on to the child, and Python installs no handler for an ignored signal.
 CHILD = """
-import sys, woodpile
+import signal, sys, woodpile
+signal.signal(signal.SIGINT, signal.default_int_handler)
 s = woodpile.Scenario.builtin("paper-impact-optimized").replace(**{{
     "run.duration_s": 1.0, "run.sample_interval_s": 1.0}})
 short = s.replace(**{{"run.duration_s": 1e-4, "run.sample_interval_s": 1e-4}})
