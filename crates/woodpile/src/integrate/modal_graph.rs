@@ -272,8 +272,12 @@ pub(crate) struct GraphModalIntegrator {
     /// Where W and D_modes sit in the state (lab physics), and whether any mode is damped.
     lab: Option<usize>,
     damped: bool,
-    /// With damped modes: their energy Σ ½ (q̇² + ω² q²) at the last step's start and now \[J\].
-    modal_energy: [f64; 2],
+    /// With damped modes: their energy Σ ½ (q̇² + ω² q²) at the run's start \[J\], and
+    /// S = D_modes + E_modes − E_modes(0), the contacts' and static forces' work on the modes
+    /// summed step by step, at the last step's start and now \[J\]: D_modes is formed from S
+    /// only where the state is read (the modes' energy then once, not every step).
+    modal_energy_j: f64,
+    work_sums_j: [f64; 2],
     /// The load's kinks \[s\], ascending: steps end on them, so that no step's cubic straddles one.
     kinks: Vec<f64>,
     /// Per group: the constant modal force of gravity and a striker's preload \[N/√kg\]
@@ -384,7 +388,9 @@ impl GraphModalIntegrator {
             layout.nonzero_bodies(&[&x, &v]),
             layout.nonzero_bodies(&[&static_groups]),
         );
-        let modal_energy = [layout.modal_energy_j(&x, &v); 2];
+        let modal_energy_j = layout.modal_energy_j(&x, &v);
+        let lab = ode.has_lab().then_some(2 * (q + 3));
+        let work_sums_j = [lab.map_or(0.0, |i| y[i + 1]); 2];
         let mut me = GraphModalIntegrator {
             frequencies,
             kind_frequencies,
@@ -405,9 +411,10 @@ impl GraphModalIntegrator {
             coef: vec![[0.0; 4]; n],
             modal_force: vec![[V::ZERO; 4]; groups],
             overlap_coef: vec![[0.0; 4]; n],
-            lab: ode.has_lab().then_some(2 * (q + 3)),
+            lab,
             damped: rates.iter().any(|&r| r > 0.0),
-            modal_energy,
+            modal_energy_j,
+            work_sums_j,
             kinks: ode.load_kinks_s(),
             static_groups,
             force: ode.force_n.clone(),
@@ -449,8 +456,11 @@ impl GraphModalIntegrator {
     pub fn y(&mut self) -> &[f64] {
         if !self.y_fresh {
             let q = self.ode.coordinates();
-            self.layout.scatter(&self.x, &mut self.y[..q]);
-            self.layout.scatter(&self.v, &mut self.y[q + 3..2 * q + 3]);
+            let mut y = std::mem::take(&mut self.y);
+            self.layout.scatter(&self.x, &mut y[..q]);
+            self.layout.scatter(&self.v, &mut y[q + 3..2 * q + 3]);
+            self.set_dissipation(self.work_sums_j[1], (&self.x, &self.v), &mut y);
+            self.y = y;
             self.y_fresh = true;
         }
         &self.y
@@ -829,9 +839,7 @@ impl GraphModalIntegrator {
         let h = self.h_last;
         let q = self.ode.coordinates();
         if ts >= self.t || h == 0.0 {
-            out.copy_from_slice(&self.y);
-            self.layout.scatter(&self.x, &mut out[..q]);
-            self.layout.scatter(&self.v, &mut out[q + 3..2 * q + 3]);
+            out.copy_from_slice(self.y());
             self.sample.points.clone_from(&self.point_end);
             return;
         }
@@ -874,7 +882,8 @@ impl GraphModalIntegrator {
         self.layout.scatter(x, &mut out[..q]);
         self.layout.scatter(v, &mut out[q + 3..2 * q + 3]);
         self.supports_flow(theta, h, &self.y_prev, out);
-        self.work_and_dissipation(theta, &self.coef, &self.overlap_coef, (x, v), out);
+        let work_sum = self.work_and_dissipation(theta, &self.coef, &self.overlap_coef, x, out);
+        self.set_dissipation(work_sum, (x, v), out);
         let layout = &self.layout;
         points.resize(layout.points.len(), [0.0; 2]);
         for (p, d) in points.iter_mut().enumerate() {
@@ -891,7 +900,7 @@ impl GraphModalIntegrator {
         let points: f64 = self.point_end.iter().map(|[d, r]| d + r).sum();
         let q = self.ode.coordinates();
         let tail: f64 = self.y[q..q + 3].iter().chain(&self.y[2 * q + 3..]).sum();
-        (points + tail).is_finite()
+        (points + tail + self.work_sums_j[1]).is_finite()
     }
 
     /// Every contact's overlap and force at the last step's end into `ode`'s `overlap_m` and
@@ -945,19 +954,20 @@ impl GraphModalIntegrator {
         }
     }
 
-    /// W and D_modes at θ of the step from the last step's start into `out` (which holds the
-    /// modes at θ), with lab physics. W: the load points' forces' work, −∫ a_c p_c' over their
-    /// cubics (force a_c, overlap p_c: minus the point's deflection). D_modes, if any mode is
-    /// damped: the modes' energy balance, D = −ΔE_modes + Σ_c −∫ a_c p_c' (every mode is
-    /// advanced exactly under the cubics, so the energy the modes lost beyond the work the
-    /// contacts' cubics did on them is what their damping took); docs/physics.md §8. Returns
-    /// the modes' energy at θ (0 without damped modes).
+    /// W at θ of the step from the last step's start into `out`, with lab physics: the load
+    /// points' forces' work, −∫ a_c p_c' over their cubics (force a_c, overlap p_c: minus the
+    /// point's deflection), and the static forces'. Returns S at θ (0 without damped modes): the
+    /// work summed on the modes, −∫ a_c p_c' over every loaded contact and the static forces'
+    /// f Δq, from which D_modes = S − (E_modes − E_modes(0)) is formed where the state is read
+    /// ([`Self::set_dissipation`]): every mode is advanced exactly under the cubics, so the
+    /// energy the modes lost beyond the work done on them is what their damping took
+    /// (docs/physics.md §8).
     fn work_and_dissipation(
         &self,
         theta: f64,
         coef: &[[f64; 4]],
         overlap_coef: &[[f64; 4]],
-        (x, v): (&[V], &[V]),
+        x: &[V],
         out: &mut [f64],
     ) -> f64 {
         let Some(i) = self.lab else { return 0.0 };
@@ -986,9 +996,15 @@ impl GraphModalIntegrator {
             out[i + 1] = self.y_prev[i + 1];
             return 0.0;
         }
-        let e1 = self.layout.modal_energy_j(x, v);
-        out[i + 1] = self.y_prev[i + 1] - (e1 - self.modal_energy[0]) + w_all + w_static;
-        e1
+        self.work_sums_j[0] + w_all + w_static
+    }
+
+    /// D_modes = S − (E_modes − E_modes(0)) into `out` (which holds the modes (x, v) whose work
+    /// sum is `work_sum_j`), with damped modes.
+    fn set_dissipation(&self, work_sum_j: f64, (x, v): (&[V], &[V]), out: &mut [f64]) {
+        if let (Some(i), true) = (self.lab, self.damped) {
+            out[i + 1] = work_sum_j - (self.layout.modal_energy_j(x, v) - self.modal_energy_j);
+        }
     }
 
     /// The supports' impulses J and their integrals ∫J dt at θ of a step of size h from `from`
@@ -1076,10 +1092,9 @@ impl ExactStepper for GraphModalIntegrator {
                     *pn = (0..4).map(|j| l[j] * d[j]).sum();
                 }
             }
-            self.modal_energy[0] = self.modal_energy[1];
-            let now = (&self.x[..], &self.v[..]);
-            self.modal_energy[1] =
-                self.work_and_dissipation(1.0, &self.sc.coef, &self.overlap_coef, now, &mut y);
+            self.work_sums_j[0] = self.work_sums_j[1];
+            self.work_sums_j[1] =
+                self.work_and_dissipation(1.0, &self.sc.coef, &self.overlap_coef, &self.x, &mut y);
         }
         self.y = y;
         for c in 0..self.force.len() {

@@ -227,8 +227,8 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
             "run.integrator",
             "exact-modes",
             "the exact modal method advances an impact, a blast or a force drive of a lattice \
-             with elastic contacts (its modes may be damped, under gravity and a preload); \
-             state run.peak_tolerance instead",
+             with elastic contacts, each mode damped on its own if at all (no resonator \
+             dashpots), under gravity and a preload; state run.peak_tolerance instead",
         ));
     }
     if settings.method.needs_second_order() && ode.second_order().is_none() {
