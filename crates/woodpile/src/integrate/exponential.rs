@@ -433,6 +433,19 @@ pub struct DampedKernel {
     pub c: [f64; 4],
 }
 
+impl DampedKernel {
+    /// The kernel with the free flow `free` ([`damped_free`]'s order) and no responses yet.
+    fn free_flow(free: [f64; 4]) -> Self {
+        DampedKernel {
+            pos_of_pos: free[0],
+            pos_of_rate: free[1],
+            rate_of_pos: free[2],
+            rate_of_rate: free[3],
+            ..DampedKernel::default()
+        }
+    }
+}
+
 /// The free flow of c'' + 2a c' + z² c = 0 over θ: (e^{−aθ}(C + aS), e^{−aθ}S, −z² e^{−aθ}S,
 /// e^{−aθ}(C − aS)). Near D = 0 (|D| θ² < 1/4) C and S are their series in D; for D < 0 the
 /// exponentials e^{−(a∓κ)θ} (κ = √−D, a − κ = z²/(a + κ) without cancellation) are combined so
@@ -491,13 +504,7 @@ pub fn damped_kernel(theta: f64, a: f64, z: f64) -> DampedKernel {
         return light_kernel(theta, a, z);
     }
     let free = damped_free(theta, a, z);
-    let mut k = DampedKernel {
-        pos_of_pos: free[0],
-        pos_of_rate: free[1],
-        rate_of_pos: free[2],
-        rate_of_rate: free[3],
-        ..DampedKernel::default()
-    };
+    let mut k = DampedKernel::free_flow(free);
     let d = (z - a) * (z + a);
     let r = if d >= 0.0 { z } else { a + (-d).sqrt() };
     if r * theta <= 1.0 {
@@ -607,13 +614,7 @@ fn light_kernel(theta: f64, a: f64, z: f64) -> DampedKernel {
         let (ec, es) = (phi[0].re, phi[0].im / w);
         [ec + a * es, es, -z * z * es, ec - a * es]
     };
-    let mut k = DampedKernel {
-        pos_of_pos: free[0],
-        pos_of_rate: free[1],
-        rate_of_pos: free[2],
-        rate_of_rate: free[3],
-        ..DampedKernel::default()
-    };
+    let mut k = DampedKernel::free_flow(free);
     let (s, c) = (&mut k.s, &mut k.c);
     let mut scale = theta; // n! θ^{n+1}
     for n in 0..4 {
