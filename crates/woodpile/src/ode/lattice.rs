@@ -363,9 +363,13 @@ impl LatticeOde {
             y[..q].copy_from_slice(&lab.q0);
         }
         if self.struck {
-            // The striker touches the top rod at zero overlap.
+            // The striker touches the top rod at zero overlap; rounding must not leave it pressed
+            // in by an ulp, where a damped contact law would push at once (c δ̇ at δ = 0⁺).
             let hit = self.below[0].expect("the striker's contact has a rod below");
             y[0] = self.deflection(hit, &y[..q]) / self.rows[0];
+            while self.overlap(0, &y[..q]) > 0.0 {
+                y[0] = y[0].next_down();
+            }
             y[q + 3] = self.striker_mass_kg.sqrt() * self.striker_velocity_m_s;
         }
         y

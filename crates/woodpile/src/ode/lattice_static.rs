@@ -36,6 +36,9 @@ use std::ops::Range;
 const STATIC_RESIDUAL: f64 = 1e-12;
 /// Most Newton steps of the static solve.
 const STATIC_ITERATIONS: usize = 500;
+/// The overlap at which the contacts' stiffness sets the regularisation's scale when nothing is
+/// stiff yet \[m\].
+const REFERENCE_OVERLAP_M: f64 = 1e-6;
 /// A mode is rigid (kept in the condensed system) if ω² ≤ this × the largest ω².
 const RIGID_OMEGA2: f64 = 1e-12;
 
@@ -308,7 +311,20 @@ impl<'a> Potential<'a> {
             }
         }
         diagonal[..self.first].iter_mut().for_each(|v| *v = 0.0);
-        let scale = diagonal.iter().fold(0.0_f64, |m, &v| m.max(v));
+        let mut scale = diagonal.iter().fold(0.0_f64, |m, &v| m.max(v));
+        if scale == 0.0 {
+            // Nothing stiff yet (every mode rigid, no contact touching: a chain of rigid cells at
+            // the start): the scale of the regularisation from the contacts' stiffness at an
+            // overlap of 1 µm, so that μ finds the step in its range.
+            for c in self.hertz.clone() {
+                let k = ContactLaw::stiffness_n_per_m(graph.beta[c], REFERENCE_OVERLAP_M);
+                for (s, _) in graph.sides(c) {
+                    for i in 0..s.len {
+                        scale = scale.max(k * graph.rows[s.row + i].powi(2));
+                    }
+                }
+            }
+        }
         Tangent {
             root_stiffness,
             slot,
