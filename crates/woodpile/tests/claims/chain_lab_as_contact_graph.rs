@@ -13,9 +13,10 @@
 //! static load) both steppers meet rtol 1e-9, so their peaks agree within 1e-8 of the largest;
 //! resonator dashpots couple a cell's modes, which the graph's exact stepper refuses, naming
 //! `run.integrator`. And the graph's static solve finds the chain's static contact forces (summed
-//! in closed form from the top down) within 1e-11 of the largest. Drawn chains (one to six Table
-//! 1 rods, each resonant or rigid, any contact law and damping, gravity and a preload, struck or
-//! blasted) meet the RK4 bounds too; they found two faults, both mended: the static solve did
+//! in closed form from the top down) within 1e-11 of the largest. Drawn chains (one to six
+//! elements of any kind, any contact law and damping, gravity and a preload, struck, blasted or
+//! driven) agree within 1e-10 (the static solve's tolerance under a preload sets it); they found
+//! two faults, both mended: the static solve did
 //! not start on a chain of rigid cells (nothing stiff: its regularisation had no scale), and
 //! rounding could leave the striker pressed in by an ulp at t = 0, where a damped law pushes at
 //! once.
@@ -301,43 +302,66 @@ fn drawn_damping(law: usize, zeta: f64, on_site: bool) -> Damping {
     }
 }
 
+/// A drawn element: `kind` 0 a Table 1 rod with resonators, 1 a rigid Table 1 rod, 2 a steel
+/// sphere, 3 a finite-element rod (4 elements per half rod) of the drawn length.
+fn drawn_element(length: usize, kind: usize) -> Element {
+    let length_mm = TABLE1_LENGTHS_MM[length];
+    match kind {
+        0 => Element::table1_rod(length_mm, CellModel::Resonant).unwrap(),
+        1 => Element::table1_rod(length_mm, CellModel::Rigid).unwrap(),
+        2 => Element::sphere(9.525e-3, Material::preset("steel").unwrap()).unwrap(),
+        _ => fe_rod_elements(&[f64::from(length_mm)], 4).remove(0),
+    }
+}
+
+/// A drawn excitation: `kind` 0 the striker at `speed_m_s`, 1 the paper's blast, 2 a 2 N
+/// harmonic force drive at 5 kHz.
+fn drawn_excitation(kind: usize, speed_m_s: f64) -> Excitation {
+    match kind {
+        0 => Excitation::Impact(Striker {
+            velocity_m_s: speed_m_s,
+            ..Striker::paper()
+        }),
+        1 => Excitation::Blast(BlastProfile::paper()),
+        _ => Excitation::Drive(Drive::force(Signal::Harmonic {
+            amplitude: 2.0,
+            frequency_hz: 5e3,
+        })),
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 12, failure_persistence: None, ..ProptestConfig::default() })]
-    /// Drawn chains — one to six Table 1 rods, each resonant or rigid, any contact law, resonator
-    /// dashpots, on-site damping, gravity and a preload — struck at a drawn speed or blasted:
-    /// the graph gives the chain's numbers within the claim's bounds (RK4 at 40 ns, 0.1 ms).
+    /// Drawn chains — one to six elements, each a Table 1 rod with or without resonators, a
+    /// sphere or a finite-element rod, any contact law, resonator dashpots, on-site damping,
+    /// gravity and a preload — struck at a drawn speed, blasted or driven: the graph gives the
+    /// chain's numbers (RK4 at 40 ns, 0.1 ms) within 1e-10, ten times the fixed cases' bound.
+    /// The static solve stops at |∇Π| ≤ 1e-12 |f|, and under a preload the static state's
+    /// energy sets the scale: on drawn chains of finite-element rods its difference from the
+    /// chain's reaches 6e-12 at t = 0 and 1.1e-11 over the run; over 4 000 draws the forces
+    /// reached 7.9e-12 of the peak.
     #[test]
     fn drawn_chains_with_lab_physics_are_the_chain(
-        rods in prop::collection::vec((0usize..7, any::<bool>()), 1..7),
+        elements in prop::collection::vec((0usize..7, 0usize..4), 1..7),
         law in 0usize..4,
         zeta in 0.0f64..0.1,
         on_site in any::<bool>(),
         preload_n in 0.0f64..10.0,
         gravity in any::<bool>(),
         speed_m_s in 0.2f64..3.0,
-        blast in any::<bool>(),
+        load in 0usize..3,
     ) {
-        let elements = rods
-            .iter()
-            .map(|&(i, rigid)| {
-                let model = if rigid { CellModel::Rigid } else { CellModel::Resonant };
-                Element::table1_rod(TABLE1_LENGTHS_MM[i], model).unwrap()
-            })
-            .collect();
+        let elements = elements.iter().map(|&(l, kind)| drawn_element(l, kind)).collect();
         let chain = ChainBuilder::new(elements)
             .damping(drawn_damping(law, zeta, on_site))
             .preload(Preload { force_n: preload_n, gravity_m_s2: if gravity { 9.81 } else { 0.0 } })
             .build()
             .unwrap();
-        let excitation = if blast {
-            Excitation::Blast(BlastProfile::paper())
-        } else {
-            Excitation::Impact(Striker { velocity_m_s: speed_m_s, ..Striker::paper() })
-        };
+        let excitation = drawn_excitation(load, speed_m_s);
         let settings = RunSettings { duration_s: 1e-4, ..rk4() };
         let (_, trajectory, run) = both_forms(&chain, &excitation, &settings);
         let (force, energy) = differences(&run, &trajectory);
-        prop_assert!(force < 1e-11, "forces differ by {:e} of the peak", force);
-        prop_assert!(energy < 1e-11, "energies differ by {:e}", energy);
+        prop_assert!(force < 1e-10, "forces differ by {:e} of the peak", force);
+        prop_assert!(energy < 1e-10, "energies differ by {:e}", energy);
     }
 }
