@@ -15,7 +15,8 @@
 //!    or its analytic Timoshenko bending modes ([`model::free_rod`]),
 //!    run by [`simulate::simulate_lattice`] over the contact graph [`ode::LatticeOde`], struck,
 //!    blasted or driven on load points, damped and preloaded ([`model::LatticeExcitation`],
-//!    [`model::LatticeLab`]).
+//!    [`model::LatticeLab`]); any chain runs there too, with its load and lab physics
+//!    ([`ode::LatticeOde::from_chain`]).
 //!    Lab physics (docs/physics.md §14): contact, resonator and on-site [`Damping`]; a static
 //!    [`Preload`] and gravity, from whose exact equilibrium a run starts.
 //! 2. **Excite it** — [`excitation`]: a [`Striker`] sphere, a [`BlastProfile`] force, or an
