@@ -314,6 +314,28 @@ fn drawn_element(length: usize, kind: usize) -> Element {
     }
 }
 
+/// A chain of drawn elements ((length, kind) as [`drawn_element`]) with `damping`, a preload of
+/// `preload_n` and gravity if `gravity`.
+fn drawn_chain(
+    elements: &[(usize, usize)],
+    damping: Damping,
+    preload_n: f64,
+    gravity: bool,
+) -> Chain {
+    let elements = elements
+        .iter()
+        .map(|&(l, kind)| drawn_element(l, kind))
+        .collect();
+    ChainBuilder::new(elements)
+        .damping(damping)
+        .preload(Preload {
+            force_n: preload_n,
+            gravity_m_s2: if gravity { 9.81 } else { 0.0 },
+        })
+        .build()
+        .unwrap()
+}
+
 /// A drawn excitation: `kind` 0 the striker at `speed_m_s`, 1 the paper's blast, 2 a 2 N
 /// harmonic force drive at 5 kHz.
 fn drawn_excitation(kind: usize, speed_m_s: f64) -> Excitation {
@@ -351,12 +373,7 @@ proptest! {
         speed_m_s in 0.2f64..3.0,
         load in 0usize..3,
     ) {
-        let elements = elements.iter().map(|&(l, kind)| drawn_element(l, kind)).collect();
-        let chain = ChainBuilder::new(elements)
-            .damping(drawn_damping(law, zeta, on_site))
-            .preload(Preload { force_n: preload_n, gravity_m_s2: if gravity { 9.81 } else { 0.0 } })
-            .build()
-            .unwrap();
+        let chain = drawn_chain(&elements, drawn_damping(law, zeta, on_site), preload_n, gravity);
         let excitation = drawn_excitation(load, speed_m_s);
         let settings = RunSettings { duration_s: 1e-4, ..rk4() };
         let (_, trajectory, run) = both_forms(&chain, &excitation, &settings);
@@ -385,12 +402,7 @@ proptest! {
         speed_m_s in 0.2f64..3.0,
         load in 0usize..3,
     ) {
-        let elements = elements.iter().map(|&(l, kind)| drawn_element(l, kind)).collect();
-        let chain = ChainBuilder::new(elements)
-            .damping(drawn_damping(0, 0.0, on_site))
-            .preload(Preload { force_n: preload_n, gravity_m_s2: if gravity { 9.81 } else { 0.0 } })
-            .build()
-            .unwrap();
+        let chain = drawn_chain(&elements, drawn_damping(0, 0.0, on_site), preload_n, gravity);
         let excitation = drawn_excitation(load, speed_m_s);
         let settings = RunSettings {
             duration_s: 2e-4,
