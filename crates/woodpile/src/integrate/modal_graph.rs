@@ -146,36 +146,9 @@ impl WeightGroup {
     }
 }
 
-/// One mode's flow at θ of a step of size h (from [`Flow`]): position
-/// from position and from velocity (h × the kernel's), velocity from position (the kernel's / h)
-/// and from velocity, and the responses S_n, C_n (the factors of h taken once per frequency,
-/// not per mode).
-#[derive(Debug, Clone, Copy)]
-struct FlowAt {
-    pp: f64,
-    pv: f64,
-    vp: f64,
-    vv: f64,
-    s: [f64; 4],
-    c: [f64; 4],
-}
-
-impl FlowAt {
-    fn new(theta: f64, h: f64, omega: f64, rate: f64) -> Self {
-        let k = Flow::new(theta, h, omega, rate);
-        FlowAt {
-            pp: k.pos_of_pos,
-            pv: h * k.pos_of_rate,
-            vp: k.rate_of_pos / h,
-            vv: k.rate_of_rate,
-            s: k.s,
-            c: k.c,
-        }
-    }
-}
-
-/// [`FlowAt`] of a group of four modes (a padding lane's all zero), the factors h², h in its
-/// responses.
+/// The flows at θ of a group of four modes (a padding lane's all zero), from their [`Flow`]s with
+/// the step's factors of h: position from velocity h × the kernel's, velocity from position the
+/// kernel's / h, the responses S_n, C_n times h², h.
 #[derive(Debug, Clone, Copy, Default)]
 struct FlowGroup {
     pp: V,
@@ -189,11 +162,12 @@ struct FlowGroup {
 impl FlowGroup {
     /// The group whose lanes are the frequencies `lanes` (indices into `kernels`; `usize::MAX`:
     /// padding) of a step h.
-    fn new(lanes: &[usize; 4], kernels: &[FlowAt], h: f64) -> Self {
+    fn new(lanes: &[usize; 4], kernels: &[Flow], h: f64) -> Self {
         let mut g = FlowGroup::default();
         for (l, &f) in lanes.iter().enumerate() {
             let Some(k) = kernels.get(f) else { continue };
-            (g.pp.0[l], g.pv.0[l], g.vp.0[l], g.vv.0[l]) = (k.pp, k.pv, k.vp, k.vv);
+            (g.pp.0[l], g.pv.0[l]) = (k.pos_of_pos, h * k.pos_of_rate);
+            (g.vp.0[l], g.vv.0[l]) = (k.rate_of_pos / h, k.rate_of_rate);
             for n in 0..4 {
                 g.s[n].0[l] = h * h * k.s[n];
                 g.c[n].0[l] = h * k.c[n];
@@ -305,7 +279,7 @@ pub(crate) struct GraphModalIntegrator {
 /// positions and velocities in groups, and the points' deflections.
 #[derive(Debug, Clone, Default)]
 struct Sample {
-    kernels: Vec<FlowAt>,
+    kernels: Vec<Flow>,
     flows: Vec<FlowGroup>,
     x: Vec<V>,
     v: Vec<V>,
@@ -849,7 +823,7 @@ impl GraphModalIntegrator {
         sample.kernels.clear();
         sample
             .kernels
-            .extend(kernels.map(|&(w, rate)| FlowAt::new(theta, h, w, rate)));
+            .extend(kernels.map(|&(w, rate)| Flow::new(theta, h, w, rate)));
         sample.flows.clear();
         let flows = self.kind_frequencies.iter();
         sample
