@@ -50,9 +50,6 @@ use woodpile::model::{
 use woodpile::simulate::LatticeRun;
 use woodpile::{Method, RunSettings, Striker};
 
-/// Run-directory format tag of a lattice run.
-pub const LATTICE_RUN_FORMAT: &str = "woodpile-lattice-run/1";
-
 /// Files a lattice run writes (its own, for the staging's overwrite policy).
 pub const LATTICE_RUN_FILES: &[&str] = &[
     "run.json",
@@ -1113,8 +1110,13 @@ fn incident_contacts_json(r: &ResolvedLattice) -> Vec<ContactJson> {
 pub struct LatticeRunJson {
     /// `woodpile`.
     pub tool: String,
-    /// [`LATTICE_RUN_FORMAT`].
+    /// [`RUN_FORMAT`](crate::rundir::RUN_FORMAT), as a chain's run (runs written before the
+    /// formats were one: [`LEGACY_LATTICE_RUN_FORMAT`](crate::rundir::LEGACY_LATTICE_RUN_FORMAT)).
     pub format: String,
+    /// `lattice` ([`Structure::Lattice`](crate::rundir::Structure); absent in runs written
+    /// before the formats were one).
+    #[serde(default = "lattice_structure")]
+    pub structure: crate::rundir::Structure,
     /// Version of woodpile that wrote it.
     pub version: String,
     /// Scenario name.
@@ -1133,68 +1135,85 @@ pub struct LatticeRunJson {
     pub striker_mass_kg: f64,
     /// Striker initial velocity \[m/s\].
     pub striker_velocity_m_s: f64,
-    /// Integrator steps taken.
+    /// Integrator steps taken (also in `integrator`).
     pub steps: u64,
+    /// The method and its work, as a chain's run.json (absent in runs written before).
+    #[serde(default)]
+    pub integrator: Option<crate::rundir::IntegratorJson>,
     /// Number of samples.
     pub n_samples: usize,
 }
 
-/// `summary.json` of a lattice run.
+/// The structure of a lattice run.json written before the key existed.
+fn lattice_structure() -> crate::rundir::Structure {
+    crate::rundir::Structure::Lattice
+}
+
+/// `summary.json` of a lattice run: a chain's keys (docs/reference/outputs.md) where they mean
+/// the same, `energy` and `integrator` nested as a chain's, and the lattice's own (`supports`,
+/// the dissipation per contact and in the rods' modes, the static solve's residual).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct LatticeSummaryJson {
-    /// Peak force per contact, in `run.json`'s order \[N\].
-    pub contact_peak_forces_n: Vec<f64>,
-    /// When each peak occurred \[s\].
-    pub contact_peak_times_s: Vec<f64>,
+    /// Scenario name.
+    pub scenario: String,
+    /// `lattice`.
+    pub structure: crate::rundir::Structure,
+    /// `impact`, `blast`, `drive` or `rest`.
+    pub excitation: String,
+    /// Number of contacts (`run.json`'s `contacts`).
+    pub n_contacts: usize,
+    /// Number of samples.
+    pub n_samples: usize,
     /// Peak of the striker's contact, or of the sum of the load points' forces \[N\].
     pub incident_peak_force_n: f64,
     /// Peak of the sum of the support forces \[N\].
     pub transmitted_peak_force_n: f64,
-    /// Whether the wave reached the supports (the transmitted peak's dynamic part at least
-    /// `woodpile::defaults::WAVE_ARRIVAL_FRACTION` of the incident one's); false: the run was too
-    /// short for the transmitted force to mean anything. (Files written before it: true.)
-    #[serde(default = "arrived")]
-    pub wave_arrived: bool,
-    /// Largest |E(t) + D(t) − E(0) − W(t)| over the samples, relative to the larger of E(0)
-    /// and the largest |W| (lossless impact: |E(t) − E(0)| / E(0)).
-    pub energy_max_relative_error: f64,
-    /// The method the run stepped with (a stated peak tolerance resolved for the lattice:
-    /// `exact-modes` for finite-element rods) and its work.
-    #[serde(default)]
-    pub integrator: Option<crate::rundir::IntegratorJson>,
-    /// With damping, a static load, a blast or a drive: the energy audit's terms and the
-    /// static state ([`LatticeLabSummary`]).
+    /// Under a static load: the incident peak less its static part \[N\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub lab: Option<LatticeLabSummary>,
-}
-
-/// `wave_arrived` of a `summary.json` written before the key existed.
-fn arrived() -> bool {
-    true
-}
-
-/// The lab part of a lattice run's `summary.json`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct LatticeLabSummary {
-    /// Energy E(0) at the start (the static state's strain and contact energy, the striker's
-    /// kinetic energy) \[J\].
-    pub energy_initial_j: f64,
-    /// Work W of the external forces (load, preload, gravity) over the run \[J\].
-    pub energy_input_work_j: f64,
-    /// Energy D dissipated over the run \[J\].
-    pub energy_dissipated_j: f64,
-    /// The part of D dissipated by the damping of the rods' modes \[J\].
-    pub modal_dissipated_j: f64,
-    /// Energy dissipated at each contact, in `run.json`'s order \[J\].
-    pub contact_dissipated_j: Vec<f64>,
-    /// Each contact's force in the static equilibrium the run started from \[N\].
-    pub contact_static_forces_n: Vec<f64>,
+    pub incident_dynamic_peak_force_n: Option<f64>,
+    /// Under a static load: the transmitted peak less the supports' static forces \[N\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transmitted_dynamic_peak_force_n: Option<f64>,
+    /// Transmitted / incident (of the dynamic parts under a static load); null when the incident
+    /// force is zero or the wave never reached the supports (`wave_arrived` false).
+    pub transmission_ratio: Option<f64>,
+    /// Each contact's force in the static equilibrium the run started from \[N\] (absent
+    /// without a static load).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub static_contact_forces_n: Vec<f64>,
     /// The static solve's relative residual |∇Π| / |f| (0 without a static load).
+    #[serde(default)]
     pub static_residual: f64,
     /// Under a displacement drive: its rigid actuator's static position u* \[m\], downward,
     /// every tip's overlap δ_i = u* + u(t) − w_i (docs/physics.md §16); absent without one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub actuator_rest_m: Option<f64>,
+    /// Whether the wave reached the supports (the transmitted peak's dynamic part at least
+    /// `woodpile::defaults::WAVE_ARRIVAL_FRACTION` of the incident one's); false: the run was too
+    /// short for the transmitted force to mean anything.
+    pub wave_arrived: bool,
+    /// Whether the energy balance closes to within `woodpile::defaults::ENERGY_ERROR_WARN`.
+    pub energy_balance_ok: bool,
+    /// Peak force per contact, in `run.json`'s order \[N\].
+    pub contact_peak_forces_n: Vec<f64>,
+    /// When each peak occurred \[s\].
+    pub contact_peak_times_s: Vec<f64>,
+    /// The supports' contacts, in `run.json`'s order.
+    pub supports: Vec<usize>,
+    /// Energy dissipated at each contact over the run, in `run.json`'s order \[J\] (absent
+    /// without damping, a static load, a blast or a drive).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub contact_dissipated_j: Vec<f64>,
+    /// The part of `energy.dissipated_j` dissipated by the damping of the rods' modes \[J\].
+    #[serde(default)]
+    pub modal_dissipated_j: f64,
+    /// Energy balance, as a chain's.
+    pub energy: crate::rundir::EnergyJson,
+    /// The method the run stepped with (a stated peak tolerance resolved for the lattice:
+    /// `exact-modes` for finite-element rods) and its work.
+    pub integrator: crate::rundir::IntegratorJson,
+    /// Wall-clock time of the run \[s\].
+    pub wall_time_s: f64,
 }
 
 /// Reads a lattice run's `summary.json`, whose `contact_peak_forces_n` must list `contacts`
@@ -1227,31 +1246,46 @@ pub fn read_lattice_summary(dir: &Path, contacts: usize) -> Result<LatticeSummar
 }
 
 impl LatticeSummaryJson {
-    /// The summary of a run.
-    pub fn of(run: &LatticeRun) -> Self {
+    /// The summary of a run of the scenario `name` under `excitation`.
+    pub fn of(name: &str, excitation: &LatticeExcitation, run: &LatticeRun) -> Self {
+        let statics = !run.contact_static_forces_n.iter().all(|&f| f == 0.0);
+        let e = &run.energy;
         LatticeSummaryJson {
-            contact_peak_forces_n: run.contact_peak_forces_n.clone(),
-            contact_peak_times_s: run.contact_peak_times_s.clone(),
+            scenario: name.to_string(),
+            structure: crate::rundir::Structure::Lattice,
+            excitation: excitation.as_chain_excitation().kind_name().to_string(),
+            n_contacts: run.contacts,
+            n_samples: run.times_s.len(),
             incident_peak_force_n: run.incident_peak_force_n,
             transmitted_peak_force_n: run.transmitted_peak_force_n,
+            incident_dynamic_peak_force_n: statics
+                .then(|| run.incident_peak_force_n - run.static_incident_force_n),
+            transmitted_dynamic_peak_force_n: statics
+                .then(|| run.transmitted_peak_force_n - run.static_transmitted_force_n),
+            transmission_ratio: run.transmission_ratio,
+            static_contact_forces_n: if statics {
+                run.contact_static_forces_n.clone()
+            } else {
+                Vec::new()
+            },
+            static_residual: run.static_residual,
+            actuator_rest_m: run.actuator_rest_m,
             wave_arrived: run.wave_arrived,
-            integrator: Some(crate::rundir::IntegratorJson {
-                method: crate::rundir::method_label(run.method).to_string(),
-                steps: run.stats.steps,
-                rhs_evaluations: run.stats.rhs_evaluations,
-                rejected_steps: run.stats.rejected_steps,
-            }),
-            energy_max_relative_error: run.energy.max_relative_error,
-            lab: (!run.work_j.is_empty()).then(|| LatticeLabSummary {
-                energy_initial_j: run.energy.initial_j,
-                energy_input_work_j: run.energy.input_work_j,
-                energy_dissipated_j: run.energy.dissipated_j,
-                modal_dissipated_j: run.modal_dissipated_j,
-                contact_dissipated_j: run.contact_dissipated_j.clone(),
-                contact_static_forces_n: run.contact_static_forces_n.clone(),
-                static_residual: run.static_residual,
-                actuator_rest_m: run.actuator_rest_m,
-            }),
+            energy_balance_ok: e.max_relative_error <= woodpile::defaults::ENERGY_ERROR_WARN,
+            contact_peak_forces_n: run.contact_peak_forces_n.clone(),
+            contact_peak_times_s: run.contact_peak_times_s.clone(),
+            supports: run.supports.clone(),
+            contact_dissipated_j: run.contact_dissipated_j.clone(),
+            modal_dissipated_j: run.modal_dissipated_j,
+            energy: crate::rundir::EnergyJson {
+                initial_j: e.initial_j,
+                final_j: e.final_j,
+                input_work_j: e.input_work_j,
+                dissipated_j: e.dissipated_j,
+                max_relative_error: e.max_relative_error,
+            },
+            integrator: crate::rundir::IntegratorJson::of(run.method, &run.stats),
+            wall_time_s: run.wall_time_s,
         }
     }
 }
@@ -1269,7 +1303,8 @@ pub fn write_lattice_run(
     let lattice = &resolved.lattice;
     let run_json = LatticeRunJson {
         tool: "woodpile".into(),
-        format: LATTICE_RUN_FORMAT.into(),
+        format: crate::rundir::RUN_FORMAT.into(),
+        structure: crate::rundir::Structure::Lattice,
         version: env!("CARGO_PKG_VERSION").into(),
         scenario_name: name.into(),
         scenario: scenario.complete(),
@@ -1281,10 +1316,11 @@ pub fn write_lattice_run(
         striker_velocity_m_s: resolved.striker.velocity_m_s,
         contact_betas_n_per_m1_5: betas.to_vec(),
         steps: run.stats.steps,
+        integrator: Some(crate::rundir::IntegratorJson::of(run.method, &run.stats)),
         n_samples: run.times_s.len(),
         contacts,
     };
-    let summary = LatticeSummaryJson::of(run);
+    let summary = LatticeSummaryJson::of(name, &resolved.excitation, run);
     let header = |names: Vec<String>| {
         std::iter::once("time_s".to_string())
             .chain(names)
@@ -1481,12 +1517,15 @@ impl LatticeRunRead {
     }
 }
 
-/// Whether `dir` holds a lattice run (its `run.json` has the format [`LATTICE_RUN_FORMAT`]).
+/// Whether `dir` holds a lattice run (its `run.json` says `"structure": "lattice"`, or has the
+/// lattice runs' earlier format tag).
 pub fn is_lattice_run(dir: &Path) -> bool {
     std::fs::read_to_string(dir.join(crate::atomic::RUN_MARKER))
         .ok()
         .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
-        .is_some_and(|v| v.get("format").and_then(|f| f.as_str()) == Some(LATTICE_RUN_FORMAT))
+        .is_some_and(|v| {
+            crate::rundir::Structure::of_run_json(&v) == Some(crate::rundir::Structure::Lattice)
+        })
 }
 
 /// Reads a lattice run directory written by [`write_lattice_run`]: `run.json`, `time_s.npy`
@@ -1505,12 +1544,22 @@ pub fn read_lattice_run(dir: &Path) -> Result<LatticeRunRead, Error> {
             format!("not a complete lattice run.json ({e}); re-run `woodpile simulate`"),
         )
     })?;
-    if run.tool != "woodpile" || run.format != LATTICE_RUN_FORMAT {
+    let known = [
+        crate::rundir::RUN_FORMAT,
+        crate::rundir::LEGACY_LATTICE_RUN_FORMAT,
+    ];
+    if run.tool != "woodpile"
+        || !known.contains(&run.format.as_str())
+        || run.structure != crate::rundir::Structure::Lattice
+    {
         return Err(read_error(
             &path,
             format!(
-                "tool `{}`, format `{}`: not a woodpile lattice run (`{LATTICE_RUN_FORMAT}`)",
-                run.tool, run.format
+                "tool `{}`, format `{}`, structure `{}`: not a woodpile lattice run (`{}`, `lattice`)",
+                run.tool,
+                run.format,
+                run.structure.name(),
+                crate::rundir::RUN_FORMAT
             ),
         ));
     }

@@ -139,34 +139,32 @@ pub fn check_generation(
     Ok(())
 }
 
-/// Checks the energy balance against docs/physics.md §8: above [`ENERGY_ERROR_FAIL`](woodpile::defaults::ENERGY_ERROR_FAIL) the run is
-/// refused (unless `allow`); above [`ENERGY_ERROR_WARN`](woodpile::defaults::ENERGY_ERROR_WARN) (or when allowed) the warning to print
-/// is returned.
+/// What a run's energy error is relative to: the larger of E(0) and the largest |W|, which is
+/// E(0) for an unloaded impact and |W| for a blast (`woodpile::EnergyBalance`).
+pub const ENERGY_REFERENCE: &str = "the larger of the initial energy and the largest work done";
+
+/// The one accuracy rule of every run, chain or lattice, in the CLI and in Python
+/// (docs/physics.md §8): above [`ENERGY_ERROR_FAIL`](woodpile::defaults::ENERGY_ERROR_FAIL) the
+/// run is refused (unless `allow`); above
+/// [`ENERGY_ERROR_WARN`](woodpile::defaults::ENERGY_ERROR_WARN) (or when allowed) the warning
+/// to print is returned. A NaN error is a failure.
 pub fn check_accuracy(
-    summary: &woodpile::RunSummary,
-    excitation: &woodpile::Excitation,
+    energy: &woodpile::EnergyBalance,
     allow: bool,
 ) -> Result<Option<String>, Error> {
-    let err = summary.energy.max_relative_error;
-    let reference = match excitation {
-        woodpile::Excitation::Impact(_) => "the initial energy",
-        woodpile::Excitation::Blast(_) => "the input work",
-        woodpile::Excitation::Drive(_) | woodpile::Excitation::Rest => {
-            "the larger of the initial energy and the input work"
-        }
-    };
+    let err = energy.max_relative_error;
     // A NaN error counts as a failure: `is_some_and(Le)` is false for it.
     let within = |limit: f64| err.partial_cmp(&limit).is_some_and(|o| o.is_le());
     if !within(woodpile::defaults::ENERGY_ERROR_FAIL) && !allow {
         return Err(Error::Inaccurate {
             relative_error: err,
-            reference,
+            reference: ENERGY_REFERENCE,
             limit: woodpile::defaults::ENERGY_ERROR_FAIL,
         });
     }
     Ok((!within(woodpile::defaults::ENERGY_ERROR_WARN)).then(|| {
         format!(
-            "the energy balance is off by {err:.2e} of {reference} (above {:.0e}): the results may be inaccurate; use a smaller run.time_step_s (rk4) or a tighter rtol/atol (dopri5)",
+            "the energy balance is off by {err:.2e} of {ENERGY_REFERENCE} (above {:.0e}): the results may be inaccurate; use a smaller run.time_step_s (rk4) or a tighter rtol/atol (dopri5)",
             woodpile::defaults::ENERGY_ERROR_WARN
         )
     }))

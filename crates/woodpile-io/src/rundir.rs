@@ -55,7 +55,7 @@ pub struct RunRecord<'a> {
 }
 
 /// Energy bookkeeping in `summary.json`.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct EnergyJson {
     /// Total energy at t = 0 \[J\].
     pub initial_j: f64,
@@ -85,11 +85,63 @@ pub struct IntegratorJson {
     pub rejected_steps: u64,
 }
 
+impl IntegratorJson {
+    /// The method a run stepped with and its counters.
+    pub fn of(method: Method, stats: &woodpile::IntegratorStats) -> Self {
+        IntegratorJson {
+            method: method_label(method).to_string(),
+            steps: stats.steps,
+            rhs_evaluations: stats.rhs_evaluations,
+            rejected_steps: stats.rejected_steps,
+        }
+    }
+}
+
+/// What a run directory holds: a chain's run or a lattice's (`structure` in `run.json` and
+/// `summary.json`; both are [`RUN_FORMAT`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Structure {
+    /// A column of elements on a wall (`[chain]`).
+    #[default]
+    Chain,
+    /// Layers of rods on supports (`[lattice]`, docs/physics.md §16).
+    Lattice,
+}
+
+impl Structure {
+    /// `chain` or `lattice`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Structure::Chain => "chain",
+            Structure::Lattice => "lattice",
+        }
+    }
+
+    /// The structure a `run.json` names: its `structure`, or a lattice by the earlier lattice
+    /// tag, or a chain for a woodpile run without the key; None for anything else.
+    pub fn of_run_json(run: &Value) -> Option<Structure> {
+        if run.get("tool").and_then(Value::as_str) != Some("woodpile") {
+            return None;
+        }
+        let format = run.get("format").and_then(Value::as_str);
+        if format == Some(LEGACY_LATTICE_RUN_FORMAT) {
+            return Some(Structure::Lattice);
+        }
+        match run.get("structure") {
+            None => Some(Structure::Chain),
+            Some(v) => serde_json::from_value(v.clone()).ok(),
+        }
+    }
+}
+
 /// The contents of `summary.json`: the figures of merit (docs/physics.md §8), units in the key names.
 #[derive(Debug, Clone, Serialize)]
 pub struct SummaryJson {
     /// Scenario name.
     pub scenario: String,
+    /// `chain`.
+    pub structure: Structure,
     /// `impact`, `blast`, `drive` or `rest`.
     pub excitation: &'static str,
     /// Element labels, top to bottom.
@@ -141,14 +193,14 @@ pub struct SummaryJson {
     pub wall_time_s: f64,
 }
 
-/// The name of the method the run stepped with (a stated peak tolerance resolved for its system).
-fn method_name(r: &Resolved) -> &'static str {
-    let settings = &r.settings;
-    method_label(
-        settings
-            .method_for(&r.chain, &r.excitation)
-            .unwrap_or(settings.method),
-    )
+/// The method a chain's run stepped with (a stated peak tolerance resolved for its system) and
+/// its counters.
+fn integrator_json(r: &RunRecord<'_>) -> IntegratorJson {
+    let settings = &r.resolved.settings;
+    let method = settings
+        .method_for(&r.resolved.chain, &r.resolved.excitation)
+        .unwrap_or(settings.method);
+    IntegratorJson::of(method, &r.summary.stats)
 }
 
 /// A method's name in `run.json` and `summary.json` ([`IntegratorJson::method`]).
@@ -179,6 +231,7 @@ impl SummaryJson {
         let dynamic = |c: usize, total: f64| statics.get(c).map(|f| total - f);
         SummaryJson {
             scenario: r.name.to_string(),
+            structure: Structure::Chain,
             excitation: r.resolved.excitation.kind_name(),
             chain_labels: r
                 .resolved
@@ -213,12 +266,7 @@ impl SummaryJson {
                 dissipated_j: s.energy.dissipated_j,
                 max_relative_error: s.energy.max_relative_error,
             },
-            integrator: IntegratorJson {
-                method: method_name(r.resolved).to_string(),
-                steps: s.stats.steps,
-                rhs_evaluations: s.stats.rhs_evaluations,
-                rejected_steps: s.stats.rejected_steps,
-            },
+            integrator: integrator_json(r),
             wall_time_s: s.wall_time_s,
         }
     }
@@ -259,6 +307,9 @@ pub struct RunJson {
     /// [`RUN_FORMAT`] (absent in runs written before the tag existed).
     #[serde(default)]
     pub format: Option<String>,
+    /// `chain` (absent in runs written before lattices shared the format).
+    #[serde(default)]
+    pub structure: Structure,
     /// Version of woodpile that wrote it.
     pub version: String,
     /// Scenario name (built-in name or file stem).
@@ -365,6 +416,7 @@ fn run_json(r: &RunRecord<'_>) -> RunJson {
     RunJson {
         tool: "woodpile".to_string(),
         format: Some(RUN_FORMAT.to_string()),
+        structure: Structure::Chain,
         version: crate::VERSION.to_string(),
         scenario_name: r.name.to_string(),
         scenario_file: r.file.map(|p| p.display().to_string()),
@@ -392,12 +444,7 @@ fn run_json(r: &RunRecord<'_>) -> RunJson {
                     .collect(),
             })
             .collect(),
-        integrator: IntegratorJson {
-            method: method_name(r.resolved).to_string(),
-            steps: s.stats.steps,
-            rhs_evaluations: s.stats.rhs_evaluations,
-            rejected_steps: s.stats.rejected_steps,
-        },
+        integrator: integrator_json(r),
         n_samples: s.n_samples,
         wall_time_s: s.wall_time_s,
     }
@@ -513,6 +560,9 @@ fn write_npys(dir: &Path, t: &Trajectory) -> Result<(), Error> {
 /// an explicit `format` key must name this one.
 pub const RUN_FORMAT: &str = "woodpile-run/1";
 
+/// The format tag lattice runs had before they shared [`RUN_FORMAT`] (read, never written).
+pub const LEGACY_LATTICE_RUN_FORMAT: &str = "woodpile-lattice-run/1";
+
 /// What `run.json` says about a run, as far as the figures need it.
 #[derive(Debug, Clone)]
 pub struct RunInfo {
@@ -625,13 +675,13 @@ fn check_format(path: &Path, run: &Value) -> Result<(), Error> {
             ),
         ));
     }
+    if Structure::of_run_json(run) == Some(Structure::Lattice) {
+        return Err(read_error(
+            path,
+            "a lattice run (docs/physics.md §16), not a chain run: its files are read by `woodpile_io::lattice::read_lattice_run` (forces_n.npy, supports.csv), its figures drawn by `woodpile plot`",
+        ));
+    }
     if let Some(format) = run.get("format").and_then(Value::as_str) {
-        if format == crate::lattice::LATTICE_RUN_FORMAT {
-            return Err(read_error(
-                path,
-                "a lattice run (docs/physics.md §16), not a chain run: its files are read by `woodpile_io::lattice::read_lattice_run` (forces_n.npy, supports.csv), its figures drawn by `woodpile plot`",
-            ));
-        }
         if format != RUN_FORMAT {
             return Err(read_error(
                 path,

@@ -44,8 +44,12 @@ struct LatticeRun {
 impl LatticeRun {
     /// `summary.json` of this run, as JSON text.
     fn summary_json(&self) -> PyResult<String> {
-        serde_json::to_string(&LatticeSummaryJson::of(&self.run))
-            .map_err(|e| Failure::new(Kind::Run, format!("summary.json: {e}")).into())
+        serde_json::to_string(&LatticeSummaryJson::of(
+            &self.name,
+            &self.resolved.excitation,
+            &self.run,
+        ))
+        .map_err(|e| Failure::new(Kind::Run, format!("summary.json: {e}")).into())
     }
 
     /// The scenario as complete TOML.
@@ -203,15 +207,7 @@ fn simulate_lattice(
         let mut ode = LatticeOde::build(&resolved.lattice, &resolved.excitation, &resolved.lab)
             .map_err(core_err)?;
         let run = run_lattice(&mut ode, &resolved.settings).map_err(core_err)?;
-        let error = run.energy.max_relative_error;
-        let limit = woodpile::defaults::ENERGY_ERROR_FAIL;
-        if !error.partial_cmp(&limit).is_some_and(|o| o.is_le()) && !allow_inaccurate {
-            return Err(py_err(woodpile_io::Error::Inaccurate {
-                relative_error: error,
-                reference: "the initial energy",
-                limit,
-            }));
-        }
+        woodpile_io::limits::check_accuracy(&run.energy, allow_inaccurate).map_err(py_err)?;
         let betas = ode.contact_betas().to_vec();
         Ok(LatticeRun {
             name,

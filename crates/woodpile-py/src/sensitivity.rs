@@ -103,10 +103,9 @@ fn sensitivity(
         let runs = pool
             .install(|| woodpile::simulate_many(&jobs, woodpile::LaneWidth::detect()))
             .into_iter()
-            .zip(&resolved)
-            .map(|(run, r)| {
+            .map(|run| {
                 let run = run.map_err(core_err)?;
-                woodpile_io::limits::check_accuracy(&run, &r.excitation, false).map_err(py_err)?;
+                woodpile_io::limits::check_accuracy(&run.energy, false).map_err(py_err)?;
                 Ok(run)
             })
             .collect::<PyResult<Vec<_>>>()?;

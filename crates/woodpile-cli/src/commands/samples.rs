@@ -60,15 +60,14 @@ pub fn run(args: &Args, k: usize, ctx: &Context) -> Result<(), CliError> {
         .collect();
     let started = std::time::Instant::now();
     let mut runs = Vec::with_capacity(k);
-    for (i, (run, r)) in simulate_many(&jobs, LaneWidth::detect())
+    for (i, run) in simulate_many(&jobs, LaneWidth::detect())
         .into_iter()
-        .zip(&resolved)
         .enumerate()
     {
         let run = run.inspect_err(|_| {
             crate::out::eprintln(format_args!("sample {} of {k} failed:", i + 1));
         })?;
-        woodpile_io::limits::check_accuracy(&run, &r.excitation, args.allow_inaccurate)?;
+        woodpile_io::limits::check_accuracy(&run.energy, args.allow_inaccurate)?;
         runs.push(run);
     }
     let elapsed = started.elapsed().as_secs_f64();

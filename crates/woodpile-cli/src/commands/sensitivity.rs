@@ -157,16 +157,15 @@ fn run_rows(
                 settings: &r.settings,
             })
             .collect();
-        for (i, (run, r)) in simulate_many(&jobs, LaneWidth::detect())
+        for (i, run) in simulate_many(&jobs, LaneWidth::detect())
             .into_iter()
-            .zip(chunk)
             .enumerate()
         {
             let row = c * CHUNK + i + 1;
             let run = run.inspect_err(|_| {
                 crate::out::eprintln(format_args!("run {row} of {rows} failed:"));
             })?;
-            woodpile_io::limits::check_accuracy(&run, &r.excitation, allow_inaccurate)?;
+            woodpile_io::limits::check_accuracy(&run.energy, allow_inaccurate)?;
             runs.push(run);
         }
         progress.inc(chunk.len() as u64);

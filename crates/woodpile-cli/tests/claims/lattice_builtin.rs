@@ -50,5 +50,5 @@ fn builtin_lattice_is_listed_printed_and_run_by_name() {
             "the printed file is the built-in"
         );
     }
-    assert!(by_name["energy_max_relative_error"].as_f64().unwrap() < 1e-4);
+    assert!(by_name["energy"]["max_relative_error"].as_f64().unwrap() < 1e-4);
 }

@@ -4,7 +4,7 @@
 //! A 3 × 2-rod lattice preloaded with 6 N through the actuator's tip (the chains' `excitation.tip`,
 //! a steel cap of 5 mm) on its six top-layer crossings, driven by a harmonic displacement with
 //! restitution contacts and modal damping: `run.json` lists the six tips first (layer 0, each on
-//! the top rod under it); in the static state (`lab.contact_static_forces_n`) they carry the
+//! the top rod under it); in the static state (`static_contact_forces_n`) they carry the
 //! rigid actuator's shares, summing to 6 N and equal at mirror images (to 1e-9), and each starts
 //! from its share at t = 0 (`forces.csv`, to 1e-9); the audit E + D − E(0) − W closes below 1e-6 (the run's own,
 //! `summary.json`) with W > 0; `rod_energies.csv` has the actuator's column `actuator_j`.
@@ -15,7 +15,7 @@
 //! each of its contacts' potential (`run.json` says which), is ≥ 0 (kinetic and strain energy;
 //! to 1e-12 of E's scale), and the modes' energies plus every contact's potential are
 //! `energy.csv`'s `total_j` within 1e-12 of its largest value (rounding of sums in another
-//! order; measured 2.3e-16); the last row of `contact_dissipated.csv` is `summary.json`'s `lab.contact_dissipated_j`
+//! order; measured 2.3e-16); the last row of `contact_dissipated.csv` is `summary.json`'s `contact_dissipated_j`
 //! (exact: both print the shortest round-trip decimal).
 //!
 //! Bad input — a free tip, a tip under a force drive, a negative ramp, a flat tip (a line contact
@@ -85,14 +85,13 @@ fn displacement_drive_runs_and_writes_contact_energies() {
         assert_eq!(c["x_mm"], contacts[6 + k]["x_mm"]);
     }
     let summary = common::json(&out.join("summary.json"));
-    let lab = &summary["lab"];
-    let statics = numbers(&lab["contact_static_forces_n"]);
+    let statics = numbers(&summary["static_contact_forces_n"]);
     let sum: f64 = statics[..6].iter().sum();
     assert!((sum - 6.0).abs() < 1e-9, "the tips carry {sum} N at rest");
     shares_are_mirror_symmetric(&contacts[..6], &statics[..6]);
-    let error = summary["energy_max_relative_error"].as_f64().unwrap();
+    let error = summary["energy"]["max_relative_error"].as_f64().unwrap();
     assert!(error < 1e-6, "{error}");
-    assert!(lab["energy_input_work_j"].as_f64().unwrap().abs() > 0.0);
+    assert!(summary["energy"]["input_work_j"].as_f64().unwrap().abs() > 0.0);
 
     let (forces_header, forces) = csv(&out.join("forces.csv"));
     assert_eq!(forces_header.len(), 15);
@@ -117,7 +116,7 @@ fn displacement_drive_runs_and_writes_contact_energies() {
     }
 
     bodies_and_contacts_add_up_to_the_total(&run, [&energy, &bodies, &potentials]);
-    let totals = numbers(&lab["contact_dissipated_j"]);
+    let totals = numbers(&summary["contact_dissipated_j"]);
     let sum: f64 = totals.iter().sum();
     assert!(sum > 0.0);
     for (a, b) in dissipated.last().unwrap()[1..].iter().zip(&totals) {

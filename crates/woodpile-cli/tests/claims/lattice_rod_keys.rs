@@ -78,7 +78,7 @@ fn analytic_modes_rod_runs() {
         .get("fe_elements")
         .is_none());
     let summary = common::json(&dir.path().join("out/summary.json"));
-    assert!(summary["energy_max_relative_error"].as_f64().unwrap() < 1e-4);
+    assert!(summary["energy"]["max_relative_error"].as_f64().unwrap() < 1e-4);
 }
 
 #[test]

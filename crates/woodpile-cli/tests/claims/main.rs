@@ -25,6 +25,7 @@ mod lattice_rod_keys;
 mod lattice_run;
 mod meaningless_inputs_refused;
 mod meaningless_results;
+mod one_run_layout;
 mod optimize_bad_input;
 mod optimize_best_reruns;
 #[cfg(unix)]

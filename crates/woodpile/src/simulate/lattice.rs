@@ -27,6 +27,18 @@ pub struct LatticeRun {
     /// incident one's (as a chain's `RunSummary::wave_arrived`). False: the run was too short
     /// for the transmitted force to mean anything, or nothing struck or loaded the lattice.
     pub wave_arrived: bool,
+    /// The static parts of the incident and transmitted forces \[N\] (the load points' and the
+    /// supports' sums of [`LatticeRun::contact_static_forces_n`]; 0 without a static load):
+    /// the peaks less these are the dynamic parts the ratio and the wave's arrival compare.
+    pub static_incident_force_n: f64,
+    /// See [`LatticeRun::static_incident_force_n`].
+    pub static_transmitted_force_n: f64,
+    /// Transmitted / incident of the dynamic parts, as a chain's
+    /// (`RunSummary::transmission_ratio`); None when the incident force is zero or the wave
+    /// never reached the supports.
+    pub transmission_ratio: Option<f64>,
+    /// Wall-clock time of the run \[s\].
+    pub wall_time_s: f64,
     /// Energy balance over the samples (lossless: E(t) = E(0); with lab physics
     /// E(t) + D(t) − E(0) − W(t) = 0).
     pub energy: EnergyBalance,
@@ -221,6 +233,7 @@ pub fn lattice_method(ode: &LatticeOde, method: Method) -> Method {
 /// exact modal method ([`LatticeOde::fits_exact_modes`]), or a peak tolerance
 /// ([`lattice_method`] chooses).
 pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<LatticeRun> {
+    let started = std::time::Instant::now();
     settings.validate()?;
     if matches!(settings.method, Method::ExactModes { .. }) && !ode.fits_exact_modes() {
         return Err(Error::invalid(
@@ -291,7 +304,7 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
     run.contact_peak_times_s.copy_from_slice(&peaks.time[..nc]);
     run.incident_peak_force_n = peaks.peak[nc];
     run.transmitted_peak_force_n = peaks.peak[nc + 1];
-    run.wave_arrived = wave_arrived(&run, ode);
+    arrival(&mut run, ode);
     run.energy = energy_balance(&run, e0);
     if ode.has_lab() {
         let y = stepper.y();
@@ -299,6 +312,7 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         run.modal_dissipated_j = y[2 * (q + 3) + 1];
     }
     run.stats = stepper.stats();
+    run.wall_time_s = started.elapsed().as_secs_f64();
     Ok(run)
 }
 
@@ -313,6 +327,10 @@ impl LatticeRun {
             incident_peak_force_n: 0.0,
             transmitted_peak_force_n: 0.0,
             wave_arrived: false,
+            static_incident_force_n: 0.0,
+            static_transmitted_force_n: 0.0,
+            transmission_ratio: None,
+            wall_time_s: 0.0,
             energy: EnergyBalance {
                 initial_j: 0.0,
                 final_j: 0.0,
@@ -375,18 +393,23 @@ fn watch_sums(ode: &LatticeOde, supports: &[usize], forces: &mut [f64], rates: &
     rates[nc + 1] = supports.iter().map(|&s| rates[s]).sum();
 }
 
-/// Whether the transmitted peak's dynamic part reached [`crate::defaults::WAVE_ARRIVAL_FRACTION`]
-/// of the incident peak's (the static forces of the run's start taken off both).
-fn wave_arrived(run: &LatticeRun, ode: &LatticeOde) -> bool {
+/// The wave's arrival and the transmission ratio, of the dynamic parts (the peaks less the
+/// static forces), as a chain's: the transmitted part at least
+/// [`crate::defaults::WAVE_ARRIVAL_FRACTION`] of the incident one's.
+fn arrival(run: &mut LatticeRun, ode: &LatticeOde) {
     let statics = &run.contact_static_forces_n;
     let at_rest = |contacts: &mut dyn Iterator<Item = usize>| -> f64 {
         contacts
             .map(|c| statics.get(c).copied().unwrap_or(0.0))
             .sum()
     };
-    let incident = run.incident_peak_force_n - at_rest(&mut ode.incident_contacts());
-    let transmitted = run.transmitted_peak_force_n - at_rest(&mut run.supports.iter().copied());
-    incident > 0.0 && transmitted >= crate::defaults::WAVE_ARRIVAL_FRACTION * incident
+    run.static_incident_force_n = at_rest(&mut ode.incident_contacts());
+    run.static_transmitted_force_n = at_rest(&mut run.supports.iter().copied());
+    let incident = run.incident_peak_force_n - run.static_incident_force_n;
+    let transmitted = run.transmitted_peak_force_n - run.static_transmitted_force_n;
+    run.wave_arrived =
+        incident > 0.0 && transmitted >= crate::defaults::WAVE_ARRIVAL_FRACTION * incident;
+    run.transmission_ratio = run.wave_arrived.then(|| transmitted / incident);
 }
 
 /// Sample k's time, if within the run.
