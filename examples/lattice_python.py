@@ -16,8 +16,8 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--out", type=Path, default=Path("runs/lattice-py"))
     args = parser.parse_args()
-    scenario = woodpile.LatticeScenario.load(Path(__file__).with_name("lattice.toml"))
-    run: woodpile.LatticeRun = woodpile.simulate(scenario)
+    scenario = woodpile.Scenario.load(Path(__file__).with_name("lattice.toml"))
+    run = woodpile.simulate(scenario)
     print(run)
     for s, peak in enumerate(run.support_forces_n.max(axis=0), start=1):
         print(f"support {s}: sampled peak {peak:.3f} N")

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import woodpile
-from woodpile.errors import OverwriteError, ScenarioError
+from woodpile.errors import InaccurateRunError, OverwriteError, ScenarioError, StateError
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -50,10 +50,11 @@ def _cli():
 
 
 def test_a_lattice_text_makes_a_lattice_scenario_with_every_default_written():
-    """Scenario() of a [lattice] text is a LatticeScenario; completion fills the lower layers
-    from the layer above and the defaults (8 elements unless given, 90° crossings)."""
+    """Scenario() of a [lattice] text is a lattice's scenario (one Scenario class, ``is_lattice``);
+    completion fills the lower layers from the layer above and the defaults (8 elements unless
+    given, 90° crossings)."""
     s = woodpile.Scenario(LATTICE)
-    assert isinstance(s, woodpile.LatticeScenario) and s.is_lattice
+    assert type(s) is woodpile.Scenario and s.is_lattice
     d = s.to_dict()
     assert [layer["length_mm"] for layer in d["lattice"]["layers"]] == [80.0, 80.0, 80.0]
     assert [layer.get("angle_deg") for layer in d["lattice"]["layers"]] == [None, 90.0, 90.0]
@@ -63,7 +64,7 @@ def test_a_lattice_text_makes_a_lattice_scenario_with_every_default_written():
 
 
 def test_the_python_run_directory_is_the_command_lines_byte_for_byte(tmp_path):
-    """LatticeRun.save writes what `woodpile simulate` writes for the same file: every file of
+    """A lattice's Run.save writes what `woodpile simulate` writes for the same file: every file of
     the run directory equal byte for byte (run.json, summary.json, CSV, NPY)."""
     path = tmp_path / "lat.toml"
     path.write_text(LATTICE)
@@ -73,16 +74,18 @@ def test_the_python_run_directory_is_the_command_lines_byte_for_byte(tmp_path):
         text=True,
     )
     assert done.returncode == 0, done.stderr
-    run = woodpile.simulate(woodpile.LatticeScenario.load(path))
+    run = woodpile.simulate(woodpile.Scenario.load(path))
     run.save(tmp_path / "py")
     files = sorted(p.name for p in (tmp_path / "cli").iterdir())
     assert files == sorted(p.name for p in (tmp_path / "py").iterdir())
     assert "supports.csv" in files and "forces_n.npy" in files
     match, mismatch, errors = filecmp.cmpfiles(tmp_path / "cli", tmp_path / "py", files, shallow=False)
     assert mismatch == [] and errors == [], (mismatch, errors)
-    back = woodpile.load_lattice_run(tmp_path / "cli")
+    back = woodpile.load_run(tmp_path / "cli")
+    assert type(back) is type(run) is woodpile.Run and back.structure == "lattice"
     np.testing.assert_array_equal(back.forces_n, run.forces_n)
     np.testing.assert_array_equal(back.energy_j, run.energy_j)
+    np.testing.assert_array_equal(back.wall_energy_j, run.wall_energy_j)
     assert back.supports == run.supports and back.rods_per_layer == [3, 3, 3]
     assert back.contacts.equals(run.contacts)
     with pytest.raises(OverwriteError):
@@ -113,6 +116,47 @@ def test_contacts_table_supports_and_transmitted_force_agree():
     assert run.energy_max_relative_error < 1e-4
     frame = run.to_pandas()
     np.testing.assert_array_equal(frame["transmitted_n"].to_numpy(), run.transmitted_n)
+
+
+def test_a_chain_and_a_lattice_give_one_run(tmp_path):
+    """A chain's and a lattice's runs are one ``Run`` with the same arrays: the chain's contacts
+    are a path (contact c joins layer c to c + 1, the wall layer N + 1), its one support the wall,
+    so ``transmitted_n`` is the wall's force column exactly; each body's energy and the supports'
+    halves sum to the lattice's total energy E(t) as the core audits it (``energy.csv``'s
+    ``total_j``, printed to round-trip precision) within 1e-12 of its largest value (rounding of
+    a sum of 10 terms); the arrays only one structure has raise ``StateError`` naming them."""
+    chain = woodpile.simulate(woodpile.Scenario("[chain]\nrods_mm = [80, 40, 20]\n[run]\nduration_s = 2e-4\n"))
+    lattice = woodpile.simulate(woodpile.Scenario(LATTICE))
+    assert type(chain) is type(lattice) is woodpile.Run
+    assert (chain.structure, lattice.structure) == ("chain", "lattice")
+    c = chain.contacts
+    assert list(c["layer_above"]) == [0, 1, 2, 3] and list(c["layer_below"]) == [1, 2, 3, 4]
+    assert chain.supports == [3]
+    np.testing.assert_array_equal(chain.transmitted_n, chain.forces_n[:, 3])
+    for run in (chain, lattice):
+        assert run.energy_j.shape[0] == run.time_s.shape[0] == run.wall_energy_j.shape[0]
+        assert run.summary["energy"]["max_relative_error"] == run.energy_max_relative_error
+    table = np.loadtxt(lattice.save(tmp_path / "lat") / "energy.csv", delimiter=",", skiprows=1, ndmin=2)
+    total = table[:, 1]
+    assert np.abs(lattice.total_energy_j - total).max() <= 1e-12 * np.abs(total).max()
+    with pytest.raises(StateError, match="displacements_m"):
+        lattice.displacements_m
+    with pytest.raises(StateError, match="contact_energy_j"):
+        chain.contact_energy_j
+
+
+def test_one_accuracy_rule_for_chains_in_python():
+    """As ``woodpile simulate``, Python refuses a chain's run whose energy balance is off by more
+    than 1e-2 (RK4 at Δt = 5 µs on five rods: 5e-2, measured by the command line's claim),
+    raising ``InaccurateRunError`` with the reference energy in its words, and keeps it with
+    ``allow_inaccurate=True`` (flagged in its summary)."""
+    coarse = woodpile.Scenario(
+        "[chain]\nrods_mm = [80, 40, 20, 30, 50]\n[run]\nduration_s = 2e-4\ntime_step_s = 5e-6\n"
+    )
+    with pytest.raises(InaccurateRunError, match="the larger of the initial energy and the largest work done"):
+        woodpile.simulate(coarse)
+    kept = woodpile.simulate(coarse, allow_inaccurate=True)
+    assert kept.summary["energy_balance_ok"] is False and kept.energy_max_relative_error > 1e-2
 
 
 def test_a_run_too_short_for_the_wave_says_so():
@@ -161,13 +205,10 @@ def test_bad_lattice_input_names_the_key():
     with pytest.raises(ScenarioError) as e:
         woodpile.Scenario(LATTICE).replace(**{"lattice.rod.fe_elements": "four"})
     assert e.value.field == "lattice.rod.fe_elements"
-    with pytest.raises(ScenarioError) as e:
-        woodpile.LatticeScenario(woodpile.Scenario.builtin("paper-impact-80mm").to_toml())
-    assert e.value.field == "lattice"
 
 
 def test_a_lattice_run_pickles_with_its_arrays():
-    """A LatticeRun pickles (to come back from an executor) with its arrays and contacts."""
+    """A lattice's Run pickles (to come back from an executor) with its arrays and contacts."""
     import pickle
 
     run = woodpile.simulate(woodpile.Scenario(LATTICE).replace(**{"run.duration_s": 2e-5}))
@@ -197,7 +238,7 @@ seed = 1
 
 def test_a_lattice_study_gives_the_command_lines_front(tmp_path):
     """woodpile.optimize of a lattice study and `woodpile optimize` give the same pareto.csv
-    (every value exactly) and history (but wall time); each front scenario is a LatticeScenario
+    (every value exactly) and history (but wall time); each front scenario is a lattice's Scenario
     whose run gives its row's transmitted force and mass exactly."""
     import pandas as pd
 
@@ -221,7 +262,7 @@ def test_a_lattice_study_gives_the_command_lines_front(tmp_path):
         "transmitted-force", "total-mass", "layer_1_length_mm", "layer_2_length_mm", "pitch_mm"
     ]
     scenario = result.scenarios[0]
-    assert isinstance(scenario, woodpile.LatticeScenario)
+    assert isinstance(scenario, woodpile.Scenario) and scenario.is_lattice
     run = woodpile.simulate(scenario)
     assert run.transmitted_peak_force_n == result.front["transmitted-force"].iloc[0]
     assert run.lattice_mass_kg == result.front["total-mass"].iloc[0]
@@ -257,13 +298,13 @@ def test_contact_energies_and_dissipation_over_time(tmp_path):
     assert (run.contacts["layer_above"] == 0).sum() == 9
     assert run.contact_energy_j.shape == (s, c)
     assert run.contact_dissipated_j is not None and run.contact_dissipated_j.shape == (s, c)
-    assert np.all(run.contact_energy_j.sum(axis=1) <= run.energy_j * (1 + 1e-12))
+    assert np.all(run.contact_energy_j.sum(axis=1) <= run.total_energy_j * (1 + 1e-12))
     assert run.contact_energy_j[:, :9].max() > 0.0, "the tips hold energy"
     assert np.all(np.diff(run.contact_dissipated_j, axis=0) >= -1e-18)
-    totals = np.asarray(run.summary["lab"]["contact_dissipated_j"])
+    totals = np.asarray(run.summary["contact_dissipated_j"])
     assert totals.sum() > 0.0
     assert np.abs(run.contact_dissipated_j[-1] - totals).max() <= 1e-12 * totals.sum()
-    back = woodpile.load_lattice_run(run.save(tmp_path / "out"))
+    back = woodpile.load_run(run.save(tmp_path / "out"))
     assert np.array_equal(back.contact_energy_j, run.contact_energy_j)
     assert back.contact_dissipated_j is not None
     assert np.array_equal(back.contact_dissipated_j, run.contact_dissipated_j)
@@ -279,7 +320,7 @@ def test_a_bad_actuator_tip_names_the_key():
 
 
 def test_the_actuator_rest_position_is_a_float_under_a_displacement_drive_only(tmp_path):
-    """``LatticeRun.actuator_rest_m`` (``summary.json``'s ``lab.actuator_rest_m``) is the rigid
+    """A lattice run's ``actuator_rest_m`` (``summary.json``'s ``actuator_rest_m``) is the rigid
     actuator's static position u* [m], downward: a float under the displacement drive of 9 N on the
     9 top crossings, the same read back from the run's directory, and above every tip's point —
     each tip's Hertz overlap (F_i/β_i)^{2/3} (static force and β from the directory) is less than
@@ -288,12 +329,12 @@ def test_the_actuator_rest_position_is_a_float_under_a_displacement_drive_only(t
     run = woodpile.simulate(woodpile.Scenario(DRIVEN, name="driven"))
     u = run.actuator_rest_m
     assert isinstance(u, float) and np.isfinite(u) and u > 0.0
-    assert run.summary["lab"]["actuator_rest_m"] == u
-    back = woodpile.load_lattice_run(run.save(tmp_path / "out"))
+    assert run.summary["actuator_rest_m"] == u
+    back = woodpile.load_run(run.save(tmp_path / "out"))
     assert back.actuator_rest_m == u
     assert back.run_info is not None
     betas = np.asarray(back.run_info["contact_betas_n_per_m1_5"])[:9]
-    forces = np.asarray(back.summary["lab"]["contact_static_forces_n"])[:9]
+    forces = np.asarray(back.summary["static_contact_forces_n"])[:9]
     assert forces.min() > 0.0
     overlaps = (forces / betas) ** (2.0 / 3.0)
     assert np.all(overlaps < u), f"tips' overlaps {overlaps} against u* = {u}"
@@ -301,5 +342,5 @@ def test_the_actuator_rest_position_is_a_float_under_a_displacement_drive_only(t
         'tip = { kind = "cap", material = "steel", cap_radius_mm = 5.0 }\n', ""
     )
     forced = woodpile.simulate(woodpile.Scenario(force))
-    assert "lab" in forced.summary and forced.actuator_rest_m is None
+    assert "static_contact_forces_n" in forced.summary and forced.actuator_rest_m is None
     assert woodpile.simulate(woodpile.Scenario(LATTICE)).actuator_rest_m is None

@@ -6,10 +6,9 @@ studies on any ``concurrent.futures`` executor or a ``dask.distributed.Client``.
 
 One module per domain, everything public re-exported here:
 
-- :mod:`woodpile.scenario`: :class:`Scenario`, :class:`LatticeScenario`, :func:`builtin_scenarios`,
+- :mod:`woodpile.scenario`: :class:`Scenario` (a chain's or a lattice's), :func:`builtin_scenarios`,
   :func:`scenario_keys`, :func:`lattice_keys`
-- :mod:`woodpile.run`: :class:`Run`, :func:`simulate`, :func:`load_run`
-- :mod:`woodpile.lattice`: :class:`LatticeRun` (a :class:`LatticeScenario`'s run), :func:`load_lattice_run`
+- :mod:`woodpile.run`: :class:`Run` (a chain's or a lattice's), :func:`simulate`, :func:`load_run`
 - :mod:`woodpile.study`: :func:`evaluate`, :func:`sweep`
 - :mod:`woodpile.analysis`: :func:`cells`, :func:`effective_mass`, :func:`band_gaps`,
   :func:`spectrum`, :func:`transmission`
@@ -44,8 +43,7 @@ from .errors import (
     WoodpileError,
 )
 from .optimize import BestDesign, BreederGA, GenerationStats, OptimizeResult, ParetoResult, optimize
-from .lattice import CONTACT_COLUMNS, LatticeRun, load_lattice_run
-from .run import Run, load_run, simulate
+from .run import CONTACT_COLUMNS, Run, load_run, simulate
 from .scenario import (
     LatticeScenario,
     Scenario,
@@ -103,3 +101,7 @@ __version__: str = _core.__version__
 
 #: Kept for code written before runs read back and runs computed were one type.
 LoadedRun = Run
+#: Kept for code written before chains' and lattices' runs were one type.
+LatticeRun = Run
+#: Kept for code written before chains' and lattices' run directories were read by one function.
+load_lattice_run = load_run

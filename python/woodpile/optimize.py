@@ -448,7 +448,7 @@ def optimize(
     an existing file exactly. For a seed the result is the command line's. A config with a
     ``[lattice]`` table is a lattice design study (rod length per layer and the pitch,
     docs/optimization.md): NSGA-II in this process, a :class:`ParetoResult` whose ``scenarios``
-    are lattice scenarios (:class:`~woodpile.LatticeScenario`; ``executor`` and
+    are lattice scenarios (:class:`~woodpile.Scenario` with ``is_lattice``; ``executor`` and
     ``algorithm="breeder"`` are refused). Bad keywords raise
     :class:`~woodpile.errors.ScenarioError` naming them (``objectives[1]``, ``algorithm``,
     ``executor``).

@@ -87,9 +87,10 @@ class Scenario:
     resolved against ``base_dir``. A value that is not valid raises
     :class:`~woodpile.errors.ScenarioError` naming its dotted key.
 
-    A text with a ``[lattice]`` table instead of ``[chain]`` (docs/physics.md §16) makes a
-    :class:`LatticeScenario`, whatever constructor read it; :func:`~woodpile.simulate` then
-    returns a :class:`~woodpile.LatticeRun`.
+    A lattice is a scenario with a ``[lattice]`` table instead of ``[chain]`` (docs/physics.md
+    §16; :attr:`is_lattice`): the same constructors read it, :meth:`replace` takes its dotted
+    keys (``excitation.at_mm``; a layer is changed as a whole list, ``lattice.layers``), and
+    :func:`~woodpile.simulate` runs it into the same :class:`~woodpile.Run`.
 
     Args:
         toml_text: The scenario as TOML (missing keys take their defaults).
@@ -98,12 +99,6 @@ class Scenario:
     """
 
     name: str
-
-    def __new__(cls, toml_text: str = "", *args: Any, **kwargs: Any) -> Scenario:
-        """A :class:`LatticeScenario` for a lattice's text, else a scenario of ``cls``."""
-        if cls is Scenario and toml_text and _core.is_lattice(toml_text):
-            return super().__new__(LatticeScenario)
-        return super().__new__(cls)
 
     def __init__(self, toml_text: str, *, name: str = "scenario", base_dir: str | os.PathLike[str] = "."):
         self._base_dir = Path(base_dir)
@@ -167,7 +162,7 @@ class Scenario:
     @property
     def is_lattice(self) -> bool:
         """Whether this is a lattice's scenario (a ``[lattice]`` table)."""
-        return False
+        return _core.is_lattice(self._toml)
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.name!r})"
@@ -184,59 +179,8 @@ class Scenario:
         self._base_dir = Path(state["base_dir"])
 
 
-class LatticeScenario(Scenario):
-    """A lattice's scenario (docs/physics.md §16): layers of parallel rods, every crossing a
-    Hertz contact, supports under the bottom layer. The same TOML structure as a ``[lattice]``
-    scenario file, with every default written out; ``woodpile simulate`` runs exactly the same
-    model.
-
-    :class:`Scenario`'s constructors give one for a lattice's text; constructing it directly
-    from a chain's text raises :class:`~woodpile.errors.ScenarioError` (no ``[lattice]`` table).
-    ``replace`` takes the lattice's dotted keys (``excitation.at_mm``, ``run.duration_s``); a
-    layer is changed as a whole list, ``lattice.layers``.
-    """
-
-    def __init__(self, toml_text: str, *, name: str = "scenario", base_dir: str | os.PathLike[str] = "."):
-        if not _core.is_lattice(toml_text):
-            raise ScenarioError(
-                "invalid lattice: the scenario has no [lattice] table",
-                "lattice",
-                "(missing)",
-                "a lattice scenario has a [lattice] table with its layers (docs/physics.md §16)",
-            )
-        super().__init__(toml_text, name=name, base_dir=base_dir)
-
-    @classmethod
-    def load(cls, path: str | os.PathLike[str]) -> LatticeScenario:
-        """A lattice scenario file."""
-        path = Path(path)
-        return cls(path.read_text(), name=path.stem, base_dir=path.parent)
-
-    @classmethod
-    def from_toml(
-        cls, text: str, *, name: str = "scenario", base_dir: str | os.PathLike[str] = "."
-    ) -> LatticeScenario:
-        """A lattice scenario from TOML text."""
-        return cls(text, name=name, base_dir=base_dir)
-
-    @classmethod
-    def from_dict(
-        cls, d: Mapping[str, Any], *, name: str = "scenario", base_dir: str | os.PathLike[str] = "."
-    ) -> LatticeScenario:
-        """A lattice scenario from a dictionary with the TOML file's structure."""
-        return cls(_core.json_to_toml(json.dumps(_plain(d, ""))), name=name, base_dir=base_dir)
-
-    def replace(self, **changes: Any) -> LatticeScenario:
-        """A new lattice scenario with dotted keys changed (see :meth:`Scenario.replace`)."""
-        d = self.to_dict()
-        for dotted, value in changes.items():
-            _set_dotted(d, dotted, value)
-        return LatticeScenario.from_dict(d, name=self.name, base_dir=self.base_dir)
-
-    @property
-    def is_lattice(self) -> bool:
-        """True."""
-        return True
+#: The name lattice scenarios had when they were a class of their own: :class:`Scenario` itself.
+LatticeScenario = Scenario
 
 
 def _plain(value: Any, key: str) -> Any:

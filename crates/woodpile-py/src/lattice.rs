@@ -136,8 +136,42 @@ impl LatticeRun {
 
     /// Total energy [J], shape (S,).
     #[getter]
-    fn energy_j<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+    fn total_energy_j<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.run.energy_j)
+    }
+
+    /// Each body's energy [J], shape (S, bodies): the striker or a displacement actuator first,
+    /// if any, then the rods (`energy_j.npy`).
+    #[getter]
+    fn body_energies_j<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let r = &self.run;
+        PyArray1::from_slice(py, &r.body_energies_j).reshape([r.times_s.len(), r.bodies])
+    }
+
+    /// The supports' halves of their contacts' potential [J], shape (S,).
+    #[getter]
+    fn support_energy_j<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.run.support_energy_j)
+    }
+
+    /// Work W of the external forces [J], shape (S,) (zeros without lab physics).
+    #[getter]
+    fn input_work_j<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let r = &self.run;
+        match r.work_j.is_empty() {
+            true => PyArray1::from_vec(py, vec![0.0; r.times_s.len()]),
+            false => PyArray1::from_slice(py, &r.work_j),
+        }
+    }
+
+    /// Energy D dissipated [J], shape (S,) (zeros without lab physics).
+    #[getter]
+    fn dissipated_j<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let r = &self.run;
+        match r.dissipated_j.is_empty() {
+            true => PyArray1::from_vec(py, vec![0.0; r.times_s.len()]),
+            false => PyArray1::from_slice(py, &r.dissipated_j),
+        }
     }
 
     /// Each contact's Hertz potential [J], shape (S, C), columns in output order

@@ -131,11 +131,12 @@ impl Run {
 }
 
 /// Resolves and runs a scenario (TOML text; relative files against `base_dir`), GIL released,
-/// Ctrl-C honoured. The command line's up-front limits apply (more than `limits::MAX_STEPS`
+/// Ctrl-C honoured. As `woodpile simulate`, a run whose energy balance is off by more than
+/// `defaults::ENERGY_ERROR_FAIL` is refused unless `allow_inaccurate`. The command line's up-front limits apply (more than `limits::MAX_STEPS`
 /// steps unless `allow_long`; samples beyond `limits::MAX_OUTPUT_BYTES` unless `allow_large`:
 /// the trajectory is held in memory).
 #[pyfunction]
-#[pyo3(signature = (text, base_dir, name, allow_long=false, allow_large=false))]
+#[pyo3(signature = (text, base_dir, name, allow_long=false, allow_large=false, allow_inaccurate=false))]
 fn simulate(
     py: Python<'_>,
     text: &str,
@@ -143,6 +144,7 @@ fn simulate(
     name: String,
     allow_long: bool,
     allow_large: bool,
+    allow_inaccurate: bool,
 ) -> PyResult<Run> {
     let scenario = Scenario::parse(text).map_err(py_err)?;
     let resolved = resolve(&scenario, &base_dir).map_err(py_err)?;
@@ -158,6 +160,7 @@ fn simulate(
             &mut trajectory,
         )
         .map_err(core_err)?;
+        woodpile_io::limits::check_accuracy(&summary.energy, allow_inaccurate).map_err(py_err)?;
         Ok(Run {
             name,
             scenario,

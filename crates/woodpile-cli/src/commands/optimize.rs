@@ -328,51 +328,9 @@ fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Resul
     if let Some(robust) = problem.robust_objective() {
         ga = ga.with_evaluator(Box::new(robust));
     }
-    if let Some(state) = &initial {
-        ga.check_state(state).map_err(optimize_error)?;
-    }
-    fs::create_dir_all(out).map_err(io_err(out))?;
-    crate::interrupt::cooperative(true);
-    let stop = crate::interrupt::stop_flag();
-    let bar = generations_progress(
-        problem.nsga2.generations,
-        initial.as_ref().map(|s| s.generation),
-        ctx.quiet,
-    );
-    let mut write_error: Option<CliError> = None;
-    let mut last = initial
-        .as_ref()
-        .map_or((0.0, 0), |s| (s.elapsed_s, s.evaluations));
-    let mut observer = |s: &Nsga2State| {
-        if let Err(e) = woodpile_io::pareto::write_generation(out, &problem.config, s) {
-            write_error = Some(e);
-            return ControlFlow::Break(());
-        }
-        let dt = s.elapsed_s - last.0;
-        let rate = if dt > 0.0 {
-            (s.evaluations - last.1) as f64 / dt
-        } else {
-            0.0
-        };
-        last = (s.elapsed_s, s.evaluations);
-        let h = s.history.last().expect("a generation's line");
-        generation_done(&bar, s.generation);
-        bar.detail(format!(
-            "generation {}: hypervolume {:.6e} | front {} | {rate:.0} sim/s | {} evaluations, {} cache hits",
-            s.generation, h.hypervolume, h.front_size, s.evaluations, s.cache_hits
-        ));
-        ControlFlow::Continue(())
-    };
-    let outcome = ga.run(initial, stop, &mut observer);
-    bar.finish();
-    woodpile::interrupt::clear();
-    if let Some(e) = write_error {
-        return Err(e);
-    }
-    let (state, reason) = match outcome {
-        Err(e) if e.is_interrupted() => return Err(interrupted_in_generation_zero()),
-        other => other.map_err(optimize_error)?,
-    };
+    let (state, reason) = drive_nsga2(&ga, initial, out, ctx.quiet, &mut |s| {
+        woodpile_io::pareto::write_generation(out, &problem.config, s).map_err(CliError::from)
+    })?;
     let summary = woodpile_io::pareto::write_final_outputs(problem, name, &state, reason, out)?;
     write_references(&ga, problem, out)?;
     if !ctx.quiet {
@@ -418,6 +376,59 @@ fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Resul
     Ok(())
 }
 
+/// Runs NSGA-II from `initial` (a resumed state, if any) to its end, writing every generation by
+/// `write` into `out` and showing its progress; Ctrl-C stops it after a complete generation.
+fn drive_nsga2<S: woodpile::optimize::GenomeSpace>(
+    ga: &Nsga2<S>,
+    initial: Option<Nsga2State>,
+    out: &Path,
+    quiet: bool,
+    write: &mut dyn FnMut(&Nsga2State) -> Result<(), CliError>,
+) -> Result<(Nsga2State, StopReason), CliError> {
+    if let Some(state) = &initial {
+        ga.check_state(state).map_err(optimize_error)?;
+    }
+    fs::create_dir_all(out).map_err(io_err(out))?;
+    crate::interrupt::cooperative(true);
+    let stop = crate::interrupt::stop_flag();
+    let resumed_at = initial.as_ref().map(|s| s.generation);
+    let bar = generations_progress(ga.settings().generations, resumed_at, quiet);
+    let mut write_error: Option<CliError> = None;
+    let mut last = initial
+        .as_ref()
+        .map_or((0.0, 0), |s| (s.elapsed_s, s.evaluations));
+    let mut observer = |s: &Nsga2State| {
+        if let Err(e) = write(s) {
+            write_error = Some(e);
+            return ControlFlow::Break(());
+        }
+        let dt = s.elapsed_s - last.0;
+        let rate = if dt > 0.0 {
+            (s.evaluations - last.1) as f64 / dt
+        } else {
+            0.0
+        };
+        last = (s.elapsed_s, s.evaluations);
+        let h = s.history.last().expect("a generation's line");
+        generation_done(&bar, s.generation);
+        bar.detail(format!(
+            "generation {}: hypervolume {:.6e} | front {} | {rate:.0} sim/s | {} evaluations, {} cache hits",
+            s.generation, h.hypervolume, h.front_size, s.evaluations, s.cache_hits
+        ));
+        ControlFlow::Continue(())
+    };
+    let outcome = ga.run(initial, stop, &mut observer);
+    bar.finish();
+    woodpile::interrupt::clear();
+    if let Some(e) = write_error {
+        return Err(e);
+    }
+    match outcome {
+        Err(e) if e.is_interrupted() => Err(interrupted_in_generation_zero()),
+        other => other.map_err(optimize_error),
+    }
+}
+
 /// Runs a lattice study (a config with a `[lattice]` table, docs/optimization.md): NSGA-II over
 /// rod lengths per layer and the pitch, a checkpoint and `history.csv` after every generation,
 /// then `pareto.csv`, `pareto/NNN.toml` and `summary.json`.
@@ -452,41 +463,9 @@ fn run_lattice(args: &Args, ctx: &Context, file: &Path, text: &str) -> Result<()
     let (name, _) = super::name_and_base(file, "optimize");
     let out = &args.out;
     let initial = prepare_output(out, args.resume, &study.config)?;
-    if let Some(state) = &initial {
-        study.ga.check_state(state).map_err(optimize_error)?;
-    }
-    fs::create_dir_all(out).map_err(io_err(out))?;
-    crate::interrupt::cooperative(true);
-    let stop = crate::interrupt::stop_flag();
-    let bar = generations_progress(
-        study.ga.settings().generations,
-        initial.as_ref().map(|s| s.generation),
-        ctx.quiet,
-    );
-    let mut write_error: Option<CliError> = None;
-    let mut observer = |s: &Nsga2State| {
-        if let Err(e) = write_generation(out, &study.config, s) {
-            write_error = Some(e);
-            return ControlFlow::Break(());
-        }
-        let h = s.history.last().expect("a generation's line");
-        generation_done(&bar, s.generation);
-        bar.detail(format!(
-            "generation {}: hypervolume {:.6e} | front {} | {} evaluations, {} cache hits",
-            s.generation, h.hypervolume, h.front_size, s.evaluations, s.cache_hits
-        ));
-        ControlFlow::Continue(())
-    };
-    let outcome = study.ga.run(initial, stop, &mut observer);
-    bar.finish();
-    woodpile::interrupt::clear();
-    if let Some(e) = write_error {
-        return Err(e);
-    }
-    let (state, reason) = match outcome {
-        Err(e) if e.is_interrupted() => return Err(interrupted_in_generation_zero()),
-        other => other.map_err(optimize_error)?,
-    };
+    let (state, reason) = drive_nsga2(&study.ga, initial, out, ctx.quiet, &mut |s| {
+        write_generation(out, &study.config, s).map_err(CliError::from)
+    })?;
     let summary = write_final_outputs(out, &study, &state, reason)?;
     if !ctx.quiet {
         crate::out::print(format_args!(
