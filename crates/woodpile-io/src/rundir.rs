@@ -915,7 +915,7 @@ pub fn detect_dir(dir: &Path) -> Result<DirKind, Error> {
     if let Some(found) = run_only {
         return Err(bad_dir(
             dir,
-            format!("looks like a `woodpile simulate` run (it holds {found}) but its {RUN_MARKER} is missing, and plotting a run needs it (its layout and settings): re-run `woodpile simulate` into this directory with --overwrite"),
+            format!("looks like a `woodpile simulate` run (it holds {found}) but its {RUN_MARKER} is missing, and plotting a run needs it (its layout and settings): re-run the simulation into this directory, replacing the earlier run"),
         ));
     }
     let history = dir.join("history.csv").is_file();
