@@ -15,7 +15,8 @@
 
 use crate::common;
 
-const LATTICE: &str = r#"
+/// A 3 × 3-rod, 2-layer quartz lattice struck off centre (shared with `one_run_layout`).
+pub(crate) const LATTICE: &str = r#"
 [lattice]
 layers = [
   { rods = 3, pitch_mm = 20.0, length_mm = 80.0, diameter_mm = 5.0, material = "fused-quartz" },
