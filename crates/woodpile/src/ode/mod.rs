@@ -21,6 +21,7 @@
 //! blast (no striker body) and 0 for an impact.
 
 mod damped_modes;
+mod element_modes;
 mod equations;
 mod lab;
 mod lattice;

@@ -1,7 +1,7 @@
 //! A chain as a contact graph (docs/physics.md §16, "A column"): every element — a Table 1
 //! cell, a beam-theory or finite-element rod's cell, a sphere, a user's cell — a body of one
 //! point, its primary, in the free–free modes of its primary and resonators
-//! ([`crate::ode::modal`]'s `ElementModes`, mass-normalised: q_k = √μ_k c_k, so the primary's
+//! ([`crate::ode::element_modes`]'s `ElementModes`, mass-normalised: q_k = √μ_k c_k, so the primary's
 //! row is 1/√μ_k); the striker a body of one coordinate, or a blast or drive a load contact on
 //! element 1; the chain's contacts, top to wall, in the chain's order, the wall a support under
 //! the last element. The chain's lab physics becomes the graph's lab terms: its contact laws as
@@ -14,8 +14,8 @@ use super::{LatticeOde, Side};
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::model::{Chain, LatticeExcitation, LatticeLab, LoadPoints};
+use crate::ode::element_modes::ElementModes;
 use crate::ode::lattice_lab::{DampingBlock, LabTerms};
-use crate::ode::modal::ElementModes;
 use crate::ode::ChainOde;
 
 impl LatticeOde {
