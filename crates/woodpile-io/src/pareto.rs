@@ -546,7 +546,7 @@ pub fn read_pareto_output(dir: &Path) -> Result<ParetoOutput, Error> {
     if !path.is_file() {
         return Err(crate::atomic::read_error(
             &path,
-            "missing: the NSGA-II run has not finished; its front is drawn once it stops (continue it with --resume)",
+            "missing: the NSGA-II run has not finished; its front is drawn once it stops (resume the study to finish it)",
         ));
     }
     let text = fs::read_to_string(&path).map_err(|e| Error::Read {
