@@ -339,7 +339,7 @@ pub struct GaSpec {
     /// Objective (default `transmitted-force`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub objective: Option<String>,
-    /// Objectives, one or more of the names of [`DesignFigure`] (instead of `objective`).
+    /// Objectives, one or more of the names of [`DesignFigure`](woodpile::optimize::DesignFigure) (instead of `objective`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub objectives: Option<Vec<String>>,
     /// `breeder` (one objective; the default for one) or `nsga2` (the default for several).
