@@ -248,3 +248,19 @@ pub fn write_atomic(dir: &Path, name: &str, bytes: &[u8]) -> Result<(), Error> {
     }
     result.map_err(io_err(&path))
 }
+
+/// Removes `NNN.EXT` files of `dir` (`pareto/NNN.toml`, `robust/NNN.csv`) beyond the new
+/// front's `count` (written by an earlier stop of the same run); other files are left alone.
+pub(crate) fn remove_stale(dir: &Path, count: usize, ext: &str) -> Result<(), Error> {
+    for entry in fs::read_dir(dir).map_err(io_err(dir))? {
+        let path = entry.map_err(io_err(dir))?.path();
+        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+        let ours = path.extension().is_some_and(|e| e == ext)
+            && stem.len() >= 3
+            && stem.bytes().all(|b| b.is_ascii_digit());
+        if ours && stem.parse::<usize>().is_ok_and(|k| k > count) {
+            fs::remove_file(&path).map_err(io_err(&path))?;
+        }
+    }
+    Ok(())
+}

@@ -62,6 +62,7 @@ pub mod lattice_study;
 pub mod limits;
 pub mod npy;
 pub mod optimize;
+mod optimize_config;
 pub mod pareto;
 pub mod robust;
 pub mod rundir;

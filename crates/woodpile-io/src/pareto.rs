@@ -5,7 +5,7 @@
 //! (row NNN of `pareto.csv` as a scenario `woodpile simulate` re-runs) and `summary.json` (the
 //! objectives, their units, the hypervolume's reference point, the front).
 
-use crate::atomic::{io_err, write_atomic};
+use crate::atomic::{io_err, remove_stale, write_atomic};
 use crate::error::Error;
 use crate::optimize::{require_empty, stop_text, OptimizeConfig, Problem, CHECKPOINT_FILE};
 use serde::{Deserialize, Serialize};
@@ -429,22 +429,6 @@ pub fn write_final_outputs(
     Ok(summary)
 }
 
-/// Removes `NNN.EXT` files of `dir` (`pareto/NNN.toml`, `robust/NNN.csv`) beyond the new
-/// front's `count` (written by an earlier stop of the same run); other files are left alone.
-pub(crate) fn remove_stale(dir: &Path, count: usize, ext: &str) -> Result<(), Error> {
-    for entry in fs::read_dir(dir).map_err(io_err(dir))? {
-        let path = entry.map_err(io_err(dir))?.path();
-        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
-        let ours = path.extension().is_some_and(|e| e == ext)
-            && stem.len() >= 3
-            && stem.bytes().all(|b| b.is_ascii_digit());
-        if ours && stem.parse::<usize>().is_ok_and(|k| k > count) {
-            fs::remove_file(&path).map_err(io_err(&path))?;
-        }
-    }
-    Ok(())
-}
-
 /// The designs a front is compared with in its figures: every homogeneous chain of the
 /// catalogue (`"20 × 40mm"`) and, when the problem is the paper's (the seven Table 1 rods on 20
 /// positions), the paper's blast-optimised chain ([`woodpile::PAPER_OPTIMIZED_CHAIN_MM`]).
@@ -562,7 +546,7 @@ pub fn read_pareto_output(dir: &Path) -> Result<ParetoOutput, Error> {
     if !path.is_file() {
         return Err(crate::atomic::read_error(
             &path,
-            "missing: the NSGA-II run has not finished; its front is drawn once it stops (continue it with --resume)",
+            "missing: the NSGA-II run has not finished; its front is drawn once it stops (resume the study to finish it)",
         ));
     }
     let text = fs::read_to_string(&path).map_err(|e| Error::Read {

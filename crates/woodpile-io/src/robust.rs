@@ -11,7 +11,7 @@
 //! stack-height, layers) are the nominal design's.
 
 use crate::error::Error;
-use crate::optimize::OptimizeConfig;
+use crate::optimize_config::{scenario_of, OptimizeConfig};
 use crate::scenario::{resolve, Scenario};
 use crate::uncertainty::{samples, Samples, Uncertainty};
 use std::path::PathBuf;
@@ -81,8 +81,7 @@ impl RobustObjective {
         &self,
         genome: &[u8],
     ) -> Result<(Samples, Vec<crate::scenario::Resolved>), Error> {
-        let scenario: Scenario =
-            crate::optimize::scenario_of(&self.config, &self.base_dir, genome, None);
+        let scenario: Scenario = scenario_of(&self.config, &self.base_dir, genome, None);
         let drawn = samples(&scenario, &self.uncertainty)?;
         let resolved = drawn
             .samples
@@ -292,7 +291,7 @@ pub fn write_robust_csvs(
 ) -> Result<(), Error> {
     let dir = out.join("robust");
     std::fs::create_dir_all(&dir).map_err(crate::atomic::io_err(&dir))?;
-    crate::pareto::remove_stale(&dir, genomes.len(), "csv")?;
+    crate::atomic::remove_stale(&dir, genomes.len(), "csv")?;
     let extra: Vec<DesignFigure> = extra
         .iter()
         .copied()

@@ -25,6 +25,7 @@ mod builtin;
 mod emit;
 mod keys;
 mod resolve;
+pub(crate) mod scatter;
 
 pub use builtin::{
     all as builtins, builtin, builtin_names, BuiltinScenario, DEFAULT_SCENARIO, OPTIMIZED_CHAIN_MM,
@@ -69,7 +70,7 @@ pub struct Scenario {
     pub run: RunSpec,
     /// Manufacturing scatter (`[uncertainty]`, default: none; used by `--samples` studies).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub uncertainty: Option<crate::uncertainty::UncertaintySpec>,
+    pub uncertainty: Option<scatter::UncertaintySpec>,
 }
 
 /// Resonant (Table 1 cell with its resonators) or rigid (one body of the total mass).

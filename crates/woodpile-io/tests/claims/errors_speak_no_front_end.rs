@@ -127,3 +127,13 @@ fn an_optimisation_output_says_what_it_holds() {
     );
     assert!(e.to_string().contains("corrupt"), "{e}");
 }
+
+#[test]
+fn an_unfinished_study_says_to_resume_it_without_naming_a_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    let e = neutral(
+        woodpile_io::pareto::read_pareto_output(dir.path()).unwrap_err(),
+        ErrorKind::Io,
+    );
+    assert!(e.to_string().contains("resume the study"), "{e}");
+}

@@ -339,7 +339,7 @@ impl GraphModalIntegrator {
         let mut ode = ode.clone();
         ode.contact_forces(&y[..q]);
         for c in 0..ode.load_contacts() {
-            ode.force_n[c] = ode.load_per_point_n(0.0);
+            ode.graph.force_n[c] = ode.load_per_point_n(0.0);
         }
         let static_force = ode
             .static_modal_forces()
@@ -391,9 +391,9 @@ impl GraphModalIntegrator {
             work_sums_j,
             kinks: ode.load_kinks_s(),
             static_groups,
-            force: ode.force_n.clone(),
-            largest_overlap: ode.overlap_m.iter().map(|d| d.max(0.0)).collect(),
-            overlap: ode.overlap_m.clone(),
+            force: ode.graph.force_n.clone(),
+            largest_overlap: ode.graph.overlap_m.iter().map(|d| d.max(0.0)).collect(),
+            overlap: ode.graph.overlap_m.clone(),
             control: StepControl::new(h0),
             max_step_s,
             ladder: Ladder::default(),
@@ -640,7 +640,7 @@ impl GraphModalIntegrator {
             }
             let (mut change, mut scale) = (0.0_f64, 0.0_f64);
             for c in 0..self.force.len() {
-                let beta = self.ode.beta[c];
+                let beta = self.ode.graph.beta[c];
                 let forced = self.layout.overlap3(c, &self.sc.point_forced);
                 for (j, (&free, forced)) in self.sc.free_overlap[c].iter().zip(forced).enumerate() {
                     let d = free + forced;
@@ -918,10 +918,10 @@ impl GraphModalIntegrator {
             } else {
                 let (above, below) = (at(layout.above[c]), at(layout.below[c]));
                 let (d, dv) = (above[0] - below[0], above[1] - below[1]);
-                let f = ContactLaw::elastic_force(self.ode.beta[c], d);
+                let f = ContactLaw::elastic_force(self.ode.graph.beta[c], d);
                 (f, d, ContactLaw::elastic_force_rate(f, d, dv))
             };
-            (ode.force_n[c], ode.overlap_m[c]) = (f, d);
+            (ode.graph.force_n[c], ode.graph.overlap_m[c]) = (f, d);
             if let Some(rate) = rate.as_deref_mut() {
                 rate[c] = r;
             }
@@ -986,7 +986,7 @@ impl GraphModalIntegrator {
     fn supports_flow(&self, theta: f64, h: f64, from: &[f64], out: &mut [f64]) {
         let q = self.ode.coordinates();
         let (mut dj, mut djint) = ([0.0; 3], [0.0; 3]);
-        for &(c, dx, dy) in &self.ode.supports {
+        for &(c, dx, dy) in &self.ode.graph.supports {
             let a = &self.coef[c];
             let (mut i1, mut i2) = (0.0, 0.0);
             let mut pw = theta;
@@ -1039,7 +1039,7 @@ impl ExactStepper for GraphModalIntegrator {
         let err = if err.is_finite() { err } else { f64::INFINITY };
         self.ladder = ladder;
         let missed = if err <= 1.0 {
-            first_crossing(&self.sc.node_overlap, &self.ode.beta).map(|theta| theta * h)
+            first_crossing(&self.sc.node_overlap, &self.ode.graph.beta).map(|theta| theta * h)
         } else {
             None
         };

@@ -16,7 +16,7 @@
 //! diagonal in the modes, is rebuilt from every resonator's own residues where it is read (at
 //! the samples: a step needs only the damping's part of the primary's acceleration).
 
-use super::modal::ElementModes;
+use super::element_modes::ElementModes;
 use crate::error::{Error, Result};
 use nalgebra::{Complex, DMatrix, DVector};
 

@@ -31,6 +31,7 @@
 //! ```
 
 mod chain;
+pub(super) mod graph;
 
 use super::lattice_lab::LabTerms;
 use crate::error::{require_positive, Result};
@@ -39,28 +40,7 @@ use crate::integrate::OdeSystem;
 use crate::model::{
     hertz_beta, ContactLaw, Lattice, LatticeExcitation, LatticeLab, LoadPoints, RodPoint, Surface,
 };
-
-/// One side of a contact: a body's first coordinate, its number of coordinates and where its
-/// row starts in [`LatticeOde::rows`] (a load's side above is empty: `len` 0).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Side {
-    pub offset: usize,
-    pub len: usize,
-    pub row: usize,
-}
-
-impl Side {
-    /// The deflection of this side's point for modal coordinates `q` (all of them) and the
-    /// rows `rows` (all of them) \[m\] (or its rate, given velocities).
-    #[inline(always)]
-    pub(crate) fn dot(self, rows: &[f64], q: &[f64]) -> f64 {
-        rows[self.row..self.row + self.len]
-            .iter()
-            .zip(&q[self.offset..self.offset + self.len])
-            .map(|(r, x)| r * x)
-            .sum()
-    }
-}
+use graph::{ContactGraph, Side};
 
 /// Contacts whose sums [`LatticeOde::contact_forces_and_rates_at`] runs side by side.
 const SIDE_BY_SIDE: usize = 2;
@@ -68,35 +48,17 @@ const SIDE_BY_SIDE: usize = 2;
 /// The compiled equations of a lattice under a striker, a load or nothing.
 #[derive(Debug, Clone)]
 pub struct LatticeOde {
-    /// ω_j² per coordinate [1/s²] (0 for the striker and the rigid modes).
-    pub(crate) omega2: Vec<f64>,
-    /// Per contact (the striker's or the loads first, then the lattice's contacts): above,
-    /// below, β (0 for a load).
-    pub(crate) above: Vec<Side>,
-    pub(crate) below: Vec<Option<Side>>,
-    pub(crate) beta: Vec<f64>,
-    pub(crate) rows: Vec<f64>,
-    /// (support's contact index, x − x₀, y − y₀ \[m\]).
-    pub(crate) supports: Vec<(usize, f64, f64)>,
+    /// The bodies' modes, the contacts and their forces at the last evaluation.
+    pub(crate) graph: ContactGraph,
     /// Per body (striker, rods): offset, count, centre − reference point \[m\], axis.
     bodies: Vec<(usize, usize, [f64; 2], [f64; 2])>,
-    /// ψ_tᵀMφ_j and ψ_rᵀMφ_j per coordinate.
-    pub(super) translation: Vec<f64>,
+    /// ψ_rᵀMφ_j per coordinate.
     rocking: Vec<f64>,
     /// Overlap limit per contact \[m\] (infinite for a load).
     pub(crate) overlap_limit_m: Vec<f64>,
     /// The striker's mass \[kg\] and initial velocity \[m/s\] (0 and 0 without a striker).
     pub(crate) striker_mass_kg: f64,
     pub(crate) striker_velocity_m_s: f64,
-    /// Number of leading contacts whose force is prescribed (a blast's or drive's points).
-    pub(super) loads: usize,
-    /// Whether contact 0 is the striker's.
-    pub(super) struck: bool,
-    /// Whether the load points are a displacement actuator's tip contacts (their β the tip's).
-    pub(super) actuator: bool,
-    /// Force and overlap per contact at the last evaluation.
-    pub(crate) force_n: Vec<f64>,
-    pub(crate) overlap_m: Vec<f64>,
     /// Damping, static load, blast or drive; None: the lossless impact (the first slice's path).
     pub(super) lab: Option<Box<LabTerms>>,
 }
@@ -145,13 +107,13 @@ impl LatticeOde {
             }
         };
         let mut preload_points = Vec::new();
-        if ode.struck && lab.preload.force_n != 0.0 {
+        if ode.graph.struck && lab.preload.force_n != 0.0 {
             for p in LoadPoints::TopCrossings.on(lattice)? {
                 let row = lattice.rods[p.rod].modes.modal_row(p.s_m);
                 preload_points.push((ode.rod_coordinates(p.rod).0, row));
             }
         }
-        let terms = LabTerms::compile(&ode, &preload_points, excitation, lab)?;
+        let terms = LabTerms::compile(&ode.graph, &preload_points, excitation, lab)?;
         ode.lab = Some(Box::new(terms));
         Ok(ode)
     }
@@ -237,23 +199,25 @@ impl LatticeOde {
         }
         let n = beta.len();
         Ok(LatticeOde {
-            omega2,
-            above,
-            below,
-            beta,
-            rows,
-            supports,
+            graph: ContactGraph {
+                omega2,
+                above,
+                below,
+                beta,
+                rows,
+                supports,
+                translation,
+                loads: load_points.len(),
+                struck: striker.is_some(),
+                actuator: false,
+                force_n: vec![0.0; n],
+                overlap_m: vec![0.0; n],
+            },
             bodies,
-            translation,
             rocking,
             overlap_limit_m,
             striker_mass_kg,
             striker_velocity_m_s,
-            loads: load_points.len(),
-            struck: striker.is_some(),
-            actuator: false,
-            force_n: vec![0.0; n],
-            overlap_m: vec![0.0; n],
             lab: None,
         })
     }
@@ -288,16 +252,16 @@ impl LatticeOde {
                     e => e,
                 })?
                 .expect("a free tip is refused by LatticeExcitation::validate");
-            self.beta[c] = beta;
+            self.graph.beta[c] = beta;
             self.overlap_limit_m[c] = 0.1 * (0.5 * rod.rod.outer_diameter_m).min(tip_radius);
         }
-        self.actuator = true;
+        self.graph.actuator = true;
         Ok(())
     }
 
     /// Whether the load points are a displacement actuator's tip contacts.
     pub fn has_actuator(&self) -> bool {
-        self.actuator
+        self.graph.actuator
     }
 
     /// A displacement actuator's static position u* \[m\] (downward; None without one): the
@@ -307,45 +271,49 @@ impl LatticeOde {
     pub fn actuator_rest_m(&self) -> Option<f64> {
         self.lab
             .as_ref()
-            .filter(|_| self.actuator)
+            .filter(|_| self.graph.actuator)
             .map(|l| l.actuator_rest_m)
     }
 
     /// (first coordinate, number of coordinates) of rod `rod` (its index in the lattice).
     pub(super) fn rod_coordinates(&self, rod: usize) -> (usize, usize) {
-        let (offset, len, _, _) = self.bodies[rod + usize::from(self.struck)];
+        let (offset, len, _, _) = self.bodies[rod + usize::from(self.graph.struck)];
         (offset, len)
     }
 
     /// Number of modal coordinates Q.
     pub fn coordinates(&self) -> usize {
-        self.omega2.len()
+        self.graph.coordinates()
     }
 
     /// β per contact, in output order [N/m^1.5] (0 for a load point of a prescribed force).
     pub fn contact_betas(&self) -> &[f64] {
-        &self.beta
+        &self.graph.beta
     }
 
     /// Whether contact c is a support (a rod on a fixed point).
     pub fn is_support(&self, c: usize) -> bool {
-        self.below[c].is_none()
+        self.graph.below[c].is_none()
     }
 
     /// Number of contacts (the striker's or the load points first).
     pub fn contacts(&self) -> usize {
-        self.beta.len()
+        self.graph.contacts()
     }
 
     /// The contacts that load the lattice from above, whose forces sum to the incident force:
     /// the striker's, or the load points (none at rest without a preload).
     pub fn has_striker(&self) -> bool {
-        self.struck
+        self.graph.struck
     }
 
     /// The contacts that carry the load: the striker's, or the load points.
     pub fn incident_contacts(&self) -> std::ops::Range<usize> {
-        0..if self.struck { 1 } else { self.loads }
+        0..if self.graph.struck {
+            1
+        } else {
+            self.graph.loads
+        }
     }
 
     /// Whether the run has lab physics (damping, a static load, a blast or a drive): its
@@ -362,12 +330,12 @@ impl LatticeOde {
         if let Some(lab) = &self.lab {
             y[..q].copy_from_slice(&lab.q0);
         }
-        if self.struck {
+        if self.graph.struck {
             // The striker touches the top rod at zero overlap; rounding must not leave it pressed
             // in by an ulp, where a damped contact law would push at once (c δ̇ at δ = 0⁺).
-            let hit = self.below[0].expect("the striker's contact has a rod below");
-            y[0] = self.deflection(hit, &y[..q]) / self.rows[0];
-            while self.overlap(0, &y[..q]) > 0.0 {
+            let hit = self.graph.below[0].expect("the striker's contact has a rod below");
+            y[0] = self.graph.deflection(hit, &y[..q]) / self.graph.rows[0];
+            while self.graph.overlap(0, &y[..q]) > 0.0 {
                 y[0] = y[0].next_down();
             }
             y[q + 3] = self.striker_mass_kg.sqrt() * self.striker_velocity_m_s;
@@ -375,15 +343,13 @@ impl LatticeOde {
         y
     }
 
-    /// The deflection at a contact's side (or its rate, given velocities).
-    #[inline(always)]
-    pub(super) fn deflection(&self, side: Side, q: &[f64]) -> f64 {
-        side.dot(&self.rows, q)
-    }
-
     /// The stiffest mode's angular frequency \[rad/s\] (what sets an explicit method's step).
     pub fn stiffest_mode_rad_s(&self) -> f64 {
-        self.omega2.iter().fold(0.0, |m: f64, &w2| m.max(w2)).sqrt()
+        self.graph
+            .omega2
+            .iter()
+            .fold(0.0, |m: f64, &w2| m.max(w2))
+            .sqrt()
     }
 
     /// The striker's Hertz contact time on a rigid half-space \[s\]
@@ -391,59 +357,13 @@ impl LatticeOde {
     /// infinite without a striker.
     pub fn striker_contact_time_s(&self) -> f64 {
         let (m, v) = (self.striker_mass_kg, self.striker_velocity_m_s);
-        if !self.struck || v <= 0.0 {
+        if !self.graph.struck || v <= 0.0 {
             return f64::INFINITY;
         }
-        ContactLaw::elastic_contact_time_s(self.beta[0], m, v)
+        ContactLaw::elastic_contact_time_s(self.graph.beta[0], m, v)
     }
 
-    /// Contact c's overlap at positions q (or its rate at velocities q̇).
-    #[inline(always)]
-    pub(super) fn overlap(&self, c: usize, q: &[f64]) -> f64 {
-        self.overlaps(c, [q])[0]
-    }
-
-    /// Contact c's overlap for each of `qs` (positions, velocities): the deflection above minus
-    /// the one below, each [`Side::dot`]'s sum in its order from its −0.0 (`Iterator::sum` of
-    /// f64), so bit for bit [`Side::dot`] of each. One pass over the rows: where both sides
-    /// have rows of one length (rods of one mesh), the 2N sums run side by side, independent
-    /// chains of additions that the processor overlaps.
-    #[inline(always)]
-    pub(super) fn overlaps<const N: usize>(&self, c: usize, qs: [&[f64]; N]) -> [f64; N] {
-        let above = self.above[c];
-        let rows_above = &self.rows[above.row..above.row + above.len];
-        let mut d = [-0.0; N];
-        let mut below_d = [-0.0; N];
-        match self.below[c] {
-            Some(below) if below.len == above.len => {
-                let rows_below = &self.rows[below.row..below.row + below.len];
-                let at = |side: Side| qs.map(|q| &q[side.offset..side.offset + side.len]);
-                let (qa, qb) = (at(above), at(below));
-                for (k, (&ra, &rb)) in rows_above.iter().zip(rows_below).enumerate() {
-                    for n in 0..N {
-                        d[n] += ra * qa[n][k];
-                        below_d[n] += rb * qb[n][k];
-                    }
-                }
-            }
-            below => {
-                for n in 0..N {
-                    d[n] = above.dot(&self.rows, qs[n]);
-                }
-                if let Some(b) = below {
-                    below_d = qs.map(|q| b.dot(&self.rows, q));
-                }
-            }
-        }
-        if self.below[c].is_some() {
-            for n in 0..N {
-                d[n] -= below_d[n];
-            }
-        }
-        d
-    }
-
-    /// The overlaps of K contacts for each of `qs`, bit for bit [`LatticeOde::overlaps`] of
+    /// The overlaps of K contacts for each of `qs`, bit for bit [`ContactGraph::overlaps`] of
     /// each (every sum in its order from −0.0), their 2KN sums side by side in one loop: None
     /// unless every side of them has rows of one length (rods of one mesh; no support).
     #[inline(always)]
@@ -452,15 +372,15 @@ impl LatticeOde {
         contacts: [usize; K],
         qs: [&[f64]; N],
     ) -> Option<[[f64; N]; K]> {
-        let len = self.above[contacts[0]].len;
-        let mut sides = [[self.above[contacts[0]]; 2]; K];
+        let len = self.graph.above[contacts[0]].len;
+        let mut sides = [[self.graph.above[contacts[0]]; 2]; K];
         for (pair, &c) in sides.iter_mut().zip(&contacts) {
-            *pair = [self.above[c], self.below[c]?];
+            *pair = [self.graph.above[c], self.graph.below[c]?];
             if pair.iter().any(|s| s.len != len) {
                 return None;
             }
         }
-        let rows = sides.map(|pair| pair.map(|s| &self.rows[s.row..s.row + len]));
+        let rows = sides.map(|pair| pair.map(|s| &self.graph.rows[s.row..s.row + len]));
         let values = sides.map(|pair| pair.map(|s| qs.map(|q| &q[s.offset..s.offset + len])));
         let mut sums = [[[-0.0; N]; 2]; K];
         for k in 0..len {
@@ -504,21 +424,21 @@ impl LatticeOde {
                         continue;
                     }
                 }
-                let [d, dv] = self.overlaps(c, [x, v]);
+                let [d, dv] = self.graph.overlaps(c, [x, v]);
                 rate[c] = self.set_elastic(c, d, dv);
                 c += 1;
             }
             return;
         };
-        lab.contact_forces(self, t, y);
+        lab.contact_forces(&mut self.graph, t, y);
         if elastic_rates {
             let load = lab.load_rate_per_point_n_s(t);
             let overlap_rates = lab.overlap_rates_m_s();
             for (c, r) in rate.iter_mut().enumerate() {
-                *r = if c < self.loads {
+                *r = if c < self.graph.loads {
                     load
                 } else {
-                    let (f, d) = (self.force_n[c], self.overlap_m[c]);
+                    let (f, d) = (self.graph.force_n[c], self.graph.overlap_m[c]);
                     ContactLaw::elastic_force_rate(f, d, overlap_rates[c])
                 };
             }
@@ -532,9 +452,9 @@ impl LatticeOde {
     /// force's rate at the overlap's rate `rate_m_s`.
     #[inline(always)]
     fn set_elastic(&mut self, c: usize, d: f64, rate_m_s: f64) -> f64 {
-        let f = ContactLaw::elastic_force(self.beta[c], d);
-        self.overlap_m[c] = d;
-        self.force_n[c] = f;
+        let f = ContactLaw::elastic_force(self.graph.beta[c], d);
+        self.graph.overlap_m[c] = d;
+        self.graph.force_n[c] = f;
         ContactLaw::elastic_force_rate(f, d, rate_m_s)
     }
 
@@ -544,7 +464,7 @@ impl LatticeOde {
         match self.lab.take() {
             None => self.contact_forces(&y[..self.coordinates()]),
             Some(mut lab) => {
-                lab.contact_forces(self, t, y);
+                lab.contact_forces(&mut self.graph, t, y);
                 self.lab = Some(lab);
             }
         }
@@ -553,10 +473,10 @@ impl LatticeOde {
     /// Every contact's overlap and elastic force at positions q into `overlap_m` and
     /// `force_n` (the lossless path).
     pub(crate) fn contact_forces(&mut self, q: &[f64]) {
-        for c in 0..self.beta.len() {
-            let d = self.overlap(c, q);
-            self.overlap_m[c] = d;
-            self.force_n[c] = ContactLaw::elastic_force(self.beta[c], d);
+        for c in 0..self.graph.beta.len() {
+            let d = self.graph.overlap(c, q);
+            self.graph.overlap_m[c] = d;
+            self.graph.force_n[c] = ContactLaw::elastic_force(self.graph.beta[c], d);
         }
     }
 
@@ -568,7 +488,7 @@ impl LatticeOde {
     /// Number of entries of [`LatticeOde::body_energies_j`]: layer 0 (the striker, or a
     /// displacement actuator) if any, then the rods.
     pub fn energy_bodies(&self) -> usize {
-        self.bodies.len() + usize::from(self.actuator)
+        self.bodies.len() + usize::from(self.graph.actuator)
     }
 
     /// Contact c's Hertz potential (2/5) β δ₊^{5/2} at the overlap of the last evaluation
@@ -576,10 +496,10 @@ impl LatticeOde {
     /// work is W).
     #[inline]
     fn contact_potential_j(&self, c: usize) -> f64 {
-        if c < self.loads && !self.actuator {
+        if c < self.graph.loads && !self.graph.actuator {
             return 0.0;
         }
-        ContactLaw::potential_j(self.beta[c], self.overlap_m[c])
+        ContactLaw::potential_j(self.graph.beta[c], self.graph.overlap_m[c])
     }
 
     /// Every contact's Hertz potential into `out` (one per contact, output order) \[J\], at the
@@ -602,11 +522,11 @@ impl LatticeOde {
     pub fn body_energies_j(&self, y: &[f64], contact_energies_j: &[f64], out: &mut [f64]) -> f64 {
         let q = self.coordinates();
         let (x, v) = (&y[..q], &y[q + 3..2 * q + 3]);
-        let first = usize::from(self.actuator);
+        let first = usize::from(self.graph.actuator);
         out[..first].fill(0.0);
         for (e, &(offset, len, _, _)) in out[first..].iter_mut().zip(&self.bodies) {
             *e = (offset..offset + len)
-                .map(|j| 0.5 * (v[j] * v[j] + self.omega2[j] * x[j] * x[j]))
+                .map(|j| 0.5 * (v[j] * v[j] + self.graph.omega2[j] * x[j] * x[j]))
                 .sum();
         }
         let body = |side: Side| first + self.bodies.partition_point(|b| b.0 <= side.offset) - 1;
@@ -617,12 +537,12 @@ impl LatticeOde {
                 continue;
             }
             // A load contact's side above is the actuator (layer 0).
-            out[if c < self.loads {
+            out[if c < self.graph.loads {
                 0
             } else {
-                body(self.above[c])
+                body(self.graph.above[c])
             }] += half;
-            match self.below[c] {
+            match self.graph.below[c] {
                 Some(b) => out[body(b)] += half,
                 None => supports += half,
             }
@@ -637,7 +557,7 @@ impl LatticeOde {
         let q = self.coordinates();
         let (x, v) = (&y[..q], &y[q + 3..2 * q + 3]);
         let motion: f64 = (0..q)
-            .map(|j| 0.5 * (v[j] * v[j] + self.omega2[j] * x[j] * x[j]))
+            .map(|j| 0.5 * (v[j] * v[j] + self.graph.omega2[j] * x[j] * x[j]))
             .sum();
         // (Load points of a prescribed force have no potential: their work is W.)
         let contacts: f64 = contact_energies_j.iter().sum();
@@ -683,7 +603,7 @@ impl LatticeOde {
             let vb = &v[offset..offset + len];
             let pb: f64 = vb
                 .iter()
-                .zip(&self.translation[offset..offset + len])
+                .zip(&self.graph.translation[offset..offset + len])
                 .map(|(a, b)| a * b)
                 .sum();
             let rb: f64 = vb
@@ -705,38 +625,6 @@ impl LatticeOde {
     /// energy integrals W and D (in J).
     pub fn tolerance_units(&self) -> Vec<f64> {
         vec![1.0; self.dimension()]
-    }
-
-    /// The supports' impulse rates (Σ F_s, Σ (x_s − x₀) F_s, Σ (y_s − y₀) F_s) from `force_n`.
-    pub(super) fn support_impulse_rates(&self) -> [f64; 3] {
-        let mut impulse = [0.0; 3];
-        for &(c, dx, dy) in &self.supports {
-            let f = self.force_n[c];
-            impulse[0] += f;
-            impulse[1] += dx * f;
-            impulse[2] += dy * f;
-        }
-        impulse
-    }
-
-    /// Adds every contact's force (in `force_n`) to the accelerations a through its rows.
-    #[inline(always)]
-    pub(super) fn apply_contact_forces(&self, a: &mut [f64]) {
-        for c in 0..self.beta.len() {
-            let f = self.force_n[c];
-            if f == 0.0 {
-                continue;
-            }
-            let s = self.above[c];
-            for (k, r) in self.rows[s.row..s.row + s.len].iter().enumerate() {
-                a[s.offset + k] -= r * f;
-            }
-            if let Some(s) = self.below[c] {
-                for (k, r) in self.rows[s.row..s.row + s.len].iter().enumerate() {
-                    a[s.offset + k] += r * f;
-                }
-            }
-        }
     }
 }
 
@@ -767,7 +655,7 @@ impl OdeSystem for LatticeOde {
         match self.lab.take() {
             None => self.rhs_accelerations(y, dydt),
             Some(mut lab) => {
-                lab.rhs(self, t, y, dydt);
+                lab.rhs(&mut self.graph, t, y, dydt);
                 self.lab = Some(lab);
             }
         }
@@ -786,10 +674,10 @@ impl LatticeOde {
         self.contact_forces(x);
         let a = &mut dydt[q + 3..];
         for j in 0..q {
-            a[j] = -self.omega2[j] * x[j];
+            a[j] = -self.graph.omega2[j] * x[j];
         }
-        self.apply_contact_forces(a);
-        let impulse = self.support_impulse_rates();
+        self.graph.apply_contact_forces(a);
+        let impulse = self.graph.support_impulse_rates();
         a[q..q + 3].copy_from_slice(&impulse);
     }
 }
@@ -801,8 +689,8 @@ impl LatticeOde {
     /// the lossless lattice, or with its modes damped (`damping.modal_ratio`,
     /// `damping.on_site_time_s`), gravity and a preload: every contact elastic.
     pub fn fits_exact_modes(&self) -> bool {
-        (self.struck || self.loads > 0)
-            && !self.actuator
+        (self.graph.struck || self.graph.loads > 0)
+            && !self.graph.actuator
             && self.lab.as_ref().is_none_or(|lab| lab.linear_modes_only())
     }
 
@@ -826,7 +714,7 @@ impl LatticeOde {
 
     /// Number of leading contacts whose force is prescribed (a blast's or a drive's points).
     pub(crate) fn load_contacts(&self) -> usize {
-        self.loads
+        self.graph.loads
     }
 
     /// The times where the load's force or its first two derivatives jump \[s\], ascending
@@ -855,24 +743,24 @@ impl LatticeOde {
     /// two bodies (their whole masses, reduced; a rod's alone on a support) meeting at
     /// `speed_m_s`.
     pub(crate) fn contact_time_s(&self, speed_m_s: f64) -> f64 {
-        if self.struck {
+        if self.graph.struck {
             return self.striker_contact_time_s();
         }
         let mass = |s: Side| -> f64 {
-            self.translation[s.offset..s.offset + s.len]
+            self.graph.translation[s.offset..s.offset + s.len]
                 .iter()
                 .map(|t| t * t)
                 .sum()
         };
-        (self.loads..self.contacts())
-            .filter(|&c| self.beta[c] > 0.0)
+        (self.graph.loads..self.contacts())
+            .filter(|&c| self.graph.beta[c] > 0.0)
             .map(|c| {
-                let above = mass(self.above[c]);
-                let m = self.below[c].map_or(above, |b| {
+                let above = mass(self.graph.above[c]);
+                let m = self.graph.below[c].map_or(above, |b| {
                     let below = mass(b);
                     above * below / (above + below)
                 });
-                ContactLaw::elastic_contact_time_s(self.beta[c], m, speed_m_s)
+                ContactLaw::elastic_contact_time_s(self.graph.beta[c], m, speed_m_s)
             })
             .fold(f64::INFINITY, f64::min)
     }

@@ -4,12 +4,12 @@
 //! run starts from (a damped Newton minimisation of the potential energy,
 //! `ode::lattice_static`), and the energy integrals W and D.
 
-use super::lattice::LatticeOde;
+use super::lattice::graph::{ContactGraph, Side};
 use super::lattice_static::StaticState;
 use crate::error::{Error, Result};
 use crate::model::{ContactDamping, ContactLaw, LatticeExcitation, LatticeLab};
 
-/// The compiled lab terms of a [`LatticeOde`].
+/// The compiled lab terms of a lattice, over its [`ContactGraph`].
 #[derive(Debug, Clone)]
 pub(crate) struct LabTerms {
     /// Law and coefficient per contact ([`ContactLaw::compile`]; loads: elastic, unused).
@@ -50,7 +50,7 @@ impl LabTerms {
     /// `preload_points`: where a preload beside a striker acts, each point's first coordinate
     /// and row (a lattice's top-layer crossings, a chain's top element).
     pub(super) fn compile(
-        ode: &LatticeOde,
+        ode: &ContactGraph,
         preload_points: &[(usize, Vec<f64>)],
         excitation: &LatticeExcitation,
         lab: &LatticeLab,
@@ -135,7 +135,7 @@ impl LabTerms {
 
     /// Every contact's overlap and force at state y and time t into the ODE's `overlap_m` and
     /// `force_n`, their rates and dissipated powers into `rate_m_s` and `dissipated_w`.
-    pub(super) fn contact_forces(&mut self, ode: &mut LatticeOde, t: f64, y: &[f64]) {
+    pub(super) fn contact_forces(&mut self, ode: &mut ContactGraph, t: f64, y: &[f64]) {
         let q = ode.coordinates();
         let (x, v) = (&y[..q], &y[q + 3..2 * q + 3]);
         let load_n = self.preload_per_point_n + self.share * self.excitation.total_force_n(t);
@@ -176,7 +176,7 @@ impl LabTerms {
 
     /// dy/dt's second half: accelerations, the supports' impulse rates, and the rates of W,
     /// D_modes and every contact's D.
-    pub(super) fn rhs(&mut self, ode: &mut LatticeOde, t: f64, y: &[f64], dydt: &mut [f64]) {
+    pub(super) fn rhs(&mut self, ode: &mut ContactGraph, t: f64, y: &[f64], dydt: &mut [f64]) {
         self.contact_forces(ode, t, y);
         let q = ode.coordinates();
         let (x, v) = (&y[..q], &y[q + 3..2 * q + 3]);
@@ -205,7 +205,7 @@ impl LabTerms {
     /// (`ode::lattice_static`): the static forces f, a force load's preload included, and the
     /// minimum of the potential for them; under a displacement drive with a preload, the
     /// actuator's position too (its tips carry the shares the equilibrium gives them).
-    fn static_equilibrium(&self, ode: &LatticeOde) -> Result<StaticState> {
+    fn static_equilibrium(&self, ode: &ContactGraph) -> Result<StaticState> {
         let first = usize::from(ode.struck);
         let mut f = self.static_force.clone();
         if !ode.actuator {
@@ -264,7 +264,7 @@ impl LabTerms {
 /// crossing; m_eff the reduced mass of the two bodies' whole masses (a rod's alone at a
 /// support).
 fn contact_laws(
-    ode: &LatticeOde,
+    ode: &ContactGraph,
     excitation: &LatticeExcitation,
     damping: &crate::model::Damping,
 ) -> Result<(Vec<ContactLaw>, Vec<f64>)> {
@@ -286,7 +286,7 @@ fn contact_laws(
         ));
     }
     // A body's mass: Σ_j (ψ_tᵀMφ_j)² over its coordinates = ψ_tᵀMψ_t.
-    let mass = |s: super::lattice::Side| -> f64 {
+    let mass = |s: Side| -> f64 {
         ode.translation[s.offset..s.offset + s.len]
             .iter()
             .map(|t| t * t)

@@ -25,7 +25,7 @@
 //! Σ_i (2/5) β_i δ_i₊^{5/2} − F_p u and each tip carries the share the equilibrium gives it.
 //! It enters the condensed step as one more rigid mode.
 
-use super::lattice::{LatticeOde, Side};
+use super::lattice::graph::{ContactGraph, Side};
 use crate::error::{Error, Result};
 use crate::model::ContactLaw;
 use nalgebra::{DMatrix, DVector};
@@ -59,7 +59,7 @@ pub(super) struct StaticState {
 /// until |∇Π| ≤ 1e-12 |f| (F_p included in f). An error naming `preload` with that ratio if no
 /// minimum is found (a rod that nothing holds).
 pub(super) fn static_equilibrium(
-    ode: &LatticeOde,
+    ode: &ContactGraph,
     f: &[f64],
     actuator_force_n: Option<f64>,
 ) -> Result<StaticState> {
@@ -133,7 +133,7 @@ struct Graph<'a> {
 
 impl<'a> Graph<'a> {
     /// `ode`'s graph, with the actuator as the side above every load contact if `actuator`.
-    fn new(ode: &'a LatticeOde, actuator: bool) -> Self {
+    fn new(ode: &'a ContactGraph, actuator: bool) -> Self {
         let mut graph = Graph {
             omega2: Cow::Borrowed(&ode.omega2),
             above: Cow::Borrowed(&ode.above),
@@ -200,7 +200,7 @@ struct Tangent {
 impl<'a> Potential<'a> {
     /// Π on `ode` under `f`, with an actuator loaded by F_p if `actuator_force_n` is Some(F_p)
     /// (the ODE has an actuator then).
-    fn new(ode: &'a LatticeOde, f: &[f64], actuator_force_n: Option<f64>) -> Self {
+    fn new(ode: &'a ContactGraph, f: &[f64], actuator_force_n: Option<f64>) -> Self {
         let graph = Graph::new(ode, actuator_force_n.is_some());
         let mut f = f.to_vec();
         f.extend(actuator_force_n);

@@ -21,6 +21,7 @@
 //! blast (no striker body) and 0 for an impact.
 
 mod damped_modes;
+mod element_modes;
 mod equations;
 mod lab;
 mod lattice;
@@ -29,8 +30,8 @@ mod lattice_static;
 mod modal;
 
 pub(crate) use equations::{Equations, LabEquations, LabShape, Load};
+pub(crate) use lattice::graph::Side;
 pub use lattice::LatticeOde;
-pub(crate) use lattice::Side;
 #[doc(hidden)]
 pub use modal::damped_cell_energies;
 pub(crate) use modal::ModalChain;

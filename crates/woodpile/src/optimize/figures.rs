@@ -7,7 +7,7 @@ use super::objective::{Objective, StandardObjective};
 use super::space::DesignSpace;
 use crate::error::{Error, Result};
 use crate::lanes::{simulate_many_watching, Job, LaneWidth};
-use crate::model::{hertz_contact, Body, Chain, Element, EllipseSolution, Surface, Wall};
+use crate::model::{hertz_contact, Chain, EllipseSolution, Surface, Wall};
 use crate::simulate::{PeakWatch, RunSettings, RunSummary};
 
 /// A figure of a design to minimise (`[ga] objectives`), by its name in config files.
@@ -87,13 +87,6 @@ impl DesignFigure {
             self,
             DesignFigure::Run(_) | DesignFigure::MaxContactPressure
         )
-    }
-}
-
-/// Height of one element along the chain axis \[m\]: its diameter.
-pub fn element_height_m(element: &Element) -> f64 {
-    match element.body {
-        Body::Rod { diameter_m, .. } | Body::Sphere { diameter_m } => diameter_m,
     }
 }
 

@@ -1,10 +1,10 @@
 //! The breeder GA: settings, the detachable state, one generation (`next_generation`) and the
 //! driver loop (`run`) that owns stopping, observers and checkpoints.
 
+use super::error::OptimizeError;
 use super::objective::{Objective, Valued};
 use super::operators::{breed, truncation_pool};
 use super::space::{DesignSpace, FeasibleSet, Genome};
-use super::OptimizeError;
 use crate::error::Error;
 use crate::integrate::Method;
 use crate::lanes::LaneWidth;
@@ -935,7 +935,7 @@ impl BreederGa {
     /// size, genome length, catalogue indices, constraints, history length.
     pub fn check_state(&self, state: &GaState) -> Result<(), OptimizeError> {
         let mismatch = |reason: String| Err(OptimizeError::StateMismatch { reason });
-        super::check_counts(
+        super::error::check_counts(
             state.population.len(),
             self.settings.population,
             state.history.len(),

@@ -17,11 +17,11 @@
 //! yet); each run is the scalar [`simulate_lattice`], so results do not depend on the thread
 //! count.
 
+use super::error::OptimizeError;
 use super::figures::DesignFigure;
 use super::nsga2::{thread_pool, GenomeSpace, MoIndividual};
 use super::objective::StandardObjective;
 use super::space::Genome;
-use super::OptimizeError;
 use crate::error::Error;
 use crate::model::{Lattice, LatticeBuilder, LatticeExcitation, LatticeLab};
 use crate::ode::LatticeOde;

@@ -13,11 +13,12 @@
 //! g, every draw on the calling thread, every tie broken by index or genome, so a run is
 //! bit-identical for any thread count, lane width, cache setting, and across a resume.
 
+use super::error::OptimizeError;
 use super::figures::{DesignFigure, FigureEvaluator, NominalFigures};
+use super::ga::StopReason;
 use super::operators::{mutate, recombine};
 use super::pareto::{crowded_order, crowding_distances, hypervolume, non_dominated_fronts};
 use super::space::{DesignSpace, FeasibleSet, Genome};
-use super::{OptimizeError, StopReason};
 use crate::error::Error;
 use crate::lanes::LaneWidth;
 use rand::{Rng, SeedableRng};
@@ -674,7 +675,7 @@ impl<S: GenomeSpace> Nsga2<S> {
     /// Checks that a saved state belongs to this problem.
     pub fn check_state(&self, state: &Nsga2State) -> Result<(), OptimizeError> {
         let mismatch = |reason: String| Err(OptimizeError::StateMismatch { reason });
-        super::check_counts(
+        super::error::check_counts(
             state.population.len(),
             self.settings.population,
             state.history.len(),

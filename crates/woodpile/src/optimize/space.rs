@@ -2,10 +2,10 @@
 //! discrete catalogue of elements, under the designer's constraints; and the set of genomes that
 //! meet them.
 
-use super::OptimizeError;
+use super::error::OptimizeError;
 use crate::error::{Error, Result};
 use crate::excitation::{BlastProfile, Excitation, Striker};
-use crate::model::{CellModel, Chain, ChainBuilder, Element, Wall, TABLE1_LENGTHS_MM};
+use crate::model::{Body, CellModel, Chain, ChainBuilder, Element, Wall, TABLE1_LENGTHS_MM};
 use crate::simulate::RunSettings;
 use rand::Rng;
 
@@ -145,7 +145,7 @@ impl DesignSpace {
     pub fn height_m(&self, genome: &[u8]) -> f64 {
         genome
             .iter()
-            .map(|&g| super::figures::element_height_m(&self.catalogue[usize::from(g)]))
+            .map(|&g| element_height_m(&self.catalogue[usize::from(g)]))
             .sum()
     }
 
@@ -381,11 +381,7 @@ impl LengthSet {
                 });
             }
         }
-        let heights_m: Vec<f64> = space
-            .catalogue
-            .iter()
-            .map(super::figures::element_height_m)
-            .collect();
+        let heights_m: Vec<f64> = space.catalogue.iter().map(element_height_m).collect();
         let max_height_m = Self::positive_limit(
             "design.constraints.max_stack_height_m",
             space.constraints.max_stack_height_m,
@@ -853,4 +849,11 @@ fn nearest_with_room(
         }
     }
     None
+}
+
+/// Height of one element along the chain axis \[m\]: its diameter.
+pub fn element_height_m(element: &Element) -> f64 {
+    match element.body {
+        Body::Rod { diameter_m, .. } | Body::Sphere { diameter_m } => diameter_m,
+    }
 }

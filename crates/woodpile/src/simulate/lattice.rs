@@ -385,7 +385,7 @@ fn energy_balance(run: &LatticeRun, e0: f64) -> EnergyBalance {
 /// the contacts' `rates`) into both.
 fn watch_sums(ode: &LatticeOde, supports: &[usize], forces: &mut [f64], rates: &mut [f64]) {
     let nc = ode.contacts();
-    forces[..nc].copy_from_slice(&ode.force_n);
+    forces[..nc].copy_from_slice(&ode.graph.force_n);
     let incident = ode.incident_contacts();
     forces[nc] = forces[incident.clone()].iter().sum();
     rates[nc] = rates[incident].iter().sum();
@@ -421,7 +421,7 @@ fn sample_time(k: usize, interval: f64, duration: f64) -> Option<f64> {
 /// Sample y at t into `run`, the contacts' forces and overlaps already in `ode`.
 fn record(ode: &LatticeOde, run: &mut LatticeRun, t: f64, y: &[f64]) {
     run.times_s.push(t);
-    run.contact_forces_n.extend_from_slice(&ode.force_n);
+    run.contact_forces_n.extend_from_slice(&ode.graph.force_n);
     // Each contact's potential once, from the overlaps just evaluated: the total and the
     // bodies' shares read it.
     let start = run.contact_energies_j.len();
@@ -448,7 +448,13 @@ fn record(ode: &LatticeOde, run: &mut LatticeRun, t: f64, y: &[f64]) {
 /// A non-finite state (`finite` false) or an overlap beyond the Hertz law's range ends the run
 /// with the contact named (its index in output order).
 fn check(ode: &LatticeOde, t: f64, finite: bool) -> Result<()> {
-    for (c, (&d, &limit)) in ode.overlap_m.iter().zip(&ode.overlap_limit_m).enumerate() {
+    for (c, (&d, &limit)) in ode
+        .graph
+        .overlap_m
+        .iter()
+        .zip(&ode.overlap_limit_m)
+        .enumerate()
+    {
         if !d.is_finite() {
             return Err(Error::NonFiniteState {
                 time_s: t,

@@ -97,7 +97,10 @@ impl Layout {
         let mut kinds: Vec<(Vec<(f64, f64)>, usize)> = Vec::new();
         for state in ode.body_ranges() {
             let modes = carried_modes(ode, state.clone(), start);
-            let key: Vec<(f64, f64)> = modes.iter().map(|&m| (ode.omega2[m], rates[m])).collect();
+            let key: Vec<(f64, f64)> = modes
+                .iter()
+                .map(|&m| (ode.graph.omega2[m], rates[m]))
+                .collect();
             let kind = match kinds.iter().find(|(k, _)| *k == key) {
                 Some(&(_, k)) => k,
                 None => {
@@ -127,9 +130,9 @@ impl Layout {
             me.groups += groups;
         }
         me.body_points = vec![Vec::new(); me.bodies.len()];
-        for c in 0..ode.beta.len() {
-            let above = me.point(ode, Some(ode.above[c]));
-            let below = me.point(ode, ode.below[c]);
+        for c in 0..ode.graph.beta.len() {
+            let above = me.point(ode, Some(ode.graph.above[c]));
+            let below = me.point(ode, ode.graph.below[c]);
             me.above.push(above);
             me.below.push(below);
         }
@@ -193,7 +196,7 @@ impl Layout {
         let row: Vec<f64> = body
             .modes
             .iter()
-            .map(|&m| ode.rows[side.row + m - side.offset])
+            .map(|&m| ode.graph.rows[side.row + m - side.offset])
             .collect();
         let largest = row.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
         let same = |&p: &usize| {
@@ -361,12 +364,13 @@ fn carried_modes(
         .map(|m| start.iter().any(|values| values[m] != 0.0))
         .collect();
     let sides = ode
+        .graph
         .above
         .iter()
         .copied()
-        .chain(ode.below.iter().flatten().copied());
+        .chain(ode.graph.below.iter().flatten().copied());
     for side in sides.filter(|s| s.len > 0 && s.offset == state.start) {
-        let row = &ode.rows[side.row..side.row + side.len];
+        let row = &ode.graph.rows[side.row..side.row + side.len];
         let largest = row.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
         for (keep, r) in carried.iter_mut().zip(row) {
             *keep |= r.abs() > ZERO_ROW_OF_LARGEST * largest;

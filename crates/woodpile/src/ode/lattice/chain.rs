@@ -1,7 +1,7 @@
 //! A chain as a contact graph (docs/physics.md §16, "A column"): every element — a Table 1
 //! cell, a beam-theory or finite-element rod's cell, a sphere, a user's cell — a body of one
 //! point, its primary, in the free–free modes of its primary and resonators
-//! ([`crate::ode::modal`]'s `ElementModes`, mass-normalised: q_k = √μ_k c_k, so the primary's
+//! ([`crate::ode::element_modes`]'s `ElementModes`, mass-normalised: q_k = √μ_k c_k, so the primary's
 //! row is 1/√μ_k); the striker a body of one coordinate, or a blast or drive a load contact on
 //! element 1; the chain's contacts, top to wall, in the chain's order, the wall a support under
 //! the last element. The chain's lab physics becomes the graph's lab terms: its contact laws as
@@ -10,12 +10,13 @@
 //! dashpots as a damping matrix over its modes. The graph then runs the chain by the lattice's
 //! path ([`crate::simulate::simulate_lattice`]) with the chain's numbers.
 
-use super::{LatticeOde, Side};
+use super::graph::{ContactGraph, Side};
+use super::LatticeOde;
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::model::{Chain, LatticeExcitation, LatticeLab, LoadPoints};
+use crate::ode::element_modes::ElementModes;
 use crate::ode::lattice_lab::{DampingBlock, LabTerms};
-use crate::ode::modal::ElementModes;
 use crate::ode::ChainOde;
 
 impl LatticeOde {
@@ -33,7 +34,7 @@ impl LatticeOde {
             ));
         }
         let (mut ode, modes) = Self::chain_graph(chain, &compiled, excitation)?;
-        if compiled.has_lab_physics() || !ode.struck {
+        if compiled.has_lab_physics() || !ode.graph.struck {
             let terms = chain_lab(&ode, chain, &compiled, excitation, &modes)?;
             ode.lab = Some(Box::new(terms));
         }
@@ -52,23 +53,25 @@ impl LatticeOde {
         };
         let m_s = striker.map_or(0.0, |s| s.mass_kg());
         let mut ode = LatticeOde {
-            omega2: Vec::new(),
-            above: Vec::new(),
-            below: Vec::new(),
-            beta: Vec::new(),
-            rows: Vec::new(),
-            supports: Vec::new(),
+            graph: ContactGraph {
+                omega2: Vec::new(),
+                above: Vec::new(),
+                below: Vec::new(),
+                beta: Vec::new(),
+                rows: Vec::new(),
+                supports: Vec::new(),
+                translation: Vec::new(),
+                loads: usize::from(striker.is_none()),
+                struck: striker.is_some(),
+                actuator: compiled.actuator_rest_m().is_some(),
+                force_n: Vec::new(),
+                overlap_m: Vec::new(),
+            },
             bodies: Vec::new(),
-            translation: Vec::new(),
             rocking: Vec::new(),
             overlap_limit_m: Vec::new(),
             striker_mass_kg: m_s,
             striker_velocity_m_s: striker.map_or(0.0, |s| s.velocity_m_s),
-            loads: usize::from(striker.is_none()),
-            struck: striker.is_some(),
-            actuator: compiled.actuator_rest_m().is_some(),
-            force_n: Vec::new(),
-            overlap_m: Vec::new(),
             lab: None,
         };
         // The top side: the striker's coordinate, or a load's empty side.
@@ -78,22 +81,28 @@ impl LatticeOde {
             row: 0,
         }];
         if striker.is_some() {
-            ode.omega2.push(0.0);
-            ode.rows.push(1.0 / m_s.sqrt());
+            ode.graph.omega2.push(0.0);
+            ode.graph.rows.push(1.0 / m_s.sqrt());
             ode.bodies.push((0, 1, [0.0, 0.0], [1.0, 0.0]));
-            ode.translation.push(m_s.sqrt());
+            ode.graph.translation.push(m_s.sqrt());
             ode.rocking.push(0.0);
         }
         let mut all_modes = Vec::with_capacity(chain.len());
         for element in chain.elements() {
             let modes = ElementModes::new(element.cell.primary_mass_kg, &resonators(element))?;
-            let (offset, len, row) = (ode.omega2.len(), modes.omega.len(), ode.rows.len());
+            let (offset, len, row) = (
+                ode.graph.omega2.len(),
+                modes.omega.len(),
+                ode.graph.rows.len(),
+            );
             for (k, (&omega, &mu)) in modes.omega.iter().zip(&modes.modal_mass).enumerate() {
-                ode.omega2.push(omega * omega);
-                ode.rows.push(1.0 / mu.sqrt());
+                ode.graph.omega2.push(omega * omega);
+                ode.graph.rows.push(1.0 / mu.sqrt());
                 // A flexible mode carries no momentum (M + Σ m_j u_jk = 0, its secular
                 // equation); the rigid mode all of it, μ_0 being the element's whole mass.
-                ode.translation.push(if k == 0 { mu.sqrt() } else { 0.0 });
+                ode.graph
+                    .translation
+                    .push(if k == 0 { mu.sqrt() } else { 0.0 });
                 ode.rocking.push(0.0);
             }
             ode.bodies.push((offset, len, [0.0, 0.0], [1.0, 0.0]));
@@ -105,20 +114,20 @@ impl LatticeOde {
         let n = chain.len();
         for c in 0..=n {
             let slot = c + 1 - compiled.shift;
-            ode.above.push(points[c]);
-            ode.below.push(points.get(c + 1).copied());
-            ode.beta.push(compiled.eq.beta[slot]);
+            ode.graph.above.push(points[c]);
+            ode.graph.below.push(points.get(c + 1).copied());
+            ode.graph.beta.push(compiled.eq.beta[slot]);
             ode.overlap_limit_m.push(compiled.overlap_limit_m[slot]);
         }
-        ode.supports.push((n, 0.0, 0.0));
-        ode.force_n = vec![0.0; n + 1];
-        ode.overlap_m = vec![0.0; n + 1];
+        ode.graph.supports.push((n, 0.0, 0.0));
+        ode.graph.force_n = vec![0.0; n + 1];
+        ode.graph.overlap_m = vec![0.0; n + 1];
         Ok((ode, all_modes))
     }
 
     /// Each element's body: its first coordinate and its number of modes.
     fn element_bodies(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
-        self.bodies[usize::from(self.struck)..]
+        self.bodies[usize::from(self.graph.struck)..]
             .iter()
             .map(|&(offset, len, ..)| (offset, len))
     }
@@ -166,12 +175,12 @@ fn chain_lab(
         modal_ratio: 0.0,
         preload: *chain.preload(),
     };
-    let first = ode.above[1];
+    let first = ode.graph.above[1];
     let preload_points = vec![(
         first.offset,
-        ode.rows[first.row..first.row + first.len].to_vec(),
+        ode.graph.rows[first.row..first.row + first.len].to_vec(),
     )];
-    let mut terms = LabTerms::compile(ode, &preload_points, &load, &lab)?;
+    let mut terms = LabTerms::compile(&ode.graph, &preload_points, &load, &lab)?;
     if let Some(eq) = &compiled.eq.lab {
         let slots = (0..ode.contacts()).map(|c| c + 1 - compiled.shift);
         let (laws, coef) = slots
