@@ -45,7 +45,10 @@ enum Command {
 
 fn dispatch(command: &Command, ctx: &Context) -> Result<(), CliError> {
     match command {
-        Command::Simulate(args) => commands::simulate::run(args, ctx),
+        Command::Simulate(args) => match args.samples {
+            Some(k) => commands::samples::run(args, k, ctx),
+            None => commands::simulate::run(args, ctx),
+        },
         Command::Scenarios(args) => commands::scenarios::list(args, ctx),
         Command::Scenario(args) => commands::scenarios::show(args, ctx),
         Command::Cells(args) => commands::cells::run(args, ctx),

@@ -1259,9 +1259,9 @@ impl LatticeSummaryJson {
             incident_peak_force_n: run.incident_peak_force_n,
             transmitted_peak_force_n: run.transmitted_peak_force_n,
             incident_dynamic_peak_force_n: statics
-                .then(|| run.incident_peak_force_n - run.static_incident_force_n),
+                .then_some(run.incident_peak_force_n - run.static_incident_force_n),
             transmitted_dynamic_peak_force_n: statics
-                .then(|| run.transmitted_peak_force_n - run.static_transmitted_force_n),
+                .then_some(run.transmitted_peak_force_n - run.static_transmitted_force_n),
             transmission_ratio: run.transmission_ratio,
             static_contact_forces_n: if statics {
                 run.contact_static_forces_n.clone()

@@ -329,7 +329,7 @@ fn run_nsga2(args: &Args, ctx: &Context, problem: &Problem, name: &str) -> Resul
         ga = ga.with_evaluator(Box::new(robust));
     }
     let (state, reason) = drive_nsga2(&ga, initial, out, ctx.quiet, &mut |s| {
-        woodpile_io::pareto::write_generation(out, &problem.config, s).map_err(CliError::from)
+        woodpile_io::pareto::write_generation(out, &problem.config, s)
     })?;
     let summary = woodpile_io::pareto::write_final_outputs(problem, name, &state, reason, out)?;
     write_references(&ga, problem, out)?;
@@ -464,7 +464,7 @@ fn run_lattice(args: &Args, ctx: &Context, file: &Path, text: &str) -> Result<()
     let out = &args.out;
     let initial = prepare_output(out, args.resume, &study.config)?;
     let (state, reason) = drive_nsga2(&study.ga, initial, out, ctx.quiet, &mut |s| {
-        write_generation(out, &study.config, s).map_err(CliError::from)
+        write_generation(out, &study.config, s)
     })?;
     let summary = write_final_outputs(out, &study, &state, reason)?;
     if !ctx.quiet {

@@ -100,11 +100,8 @@ pub fn load(source: &Source) -> Result<Loaded, CliError> {
     })
 }
 
-/// Runs `woodpile simulate`.
+/// Runs `woodpile simulate` of one scenario (`--samples` runs `samples::run`).
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
-    if let Some(k) = args.samples {
-        return super::samples::run(args, k, ctx);
-    }
     if let Some(file) = &args.source.file {
         let text = std::fs::read_to_string(file).map_err(|e| woodpile_io::Error::Read {
             path: file.clone(),
