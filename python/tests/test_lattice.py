@@ -100,7 +100,7 @@ def test_the_python_run_directory_is_the_command_lines_byte_for_byte(tmp_path):
 
 def test_contacts_table_supports_and_transmitted_force_agree():
     """The contacts table lists the striker's contact, the 9 + 9 crossings and 3 supports in
-    output order with the issue's columns; the supports are layer L + 1 = 4; the transmitted
+    output order with the documented columns; the supports are layer L + 1 = 4; the transmitted
     force is the sum of the supports' columns; the peaks of summary.json (tracked at every step's
     end) and the 1 µs samples' maxima (dense output) agree to 1e-3 of the largest force: measured,
     the peaks exceed the samples by up to 6e-4 of it (the grid misses a peak's instant) and a

@@ -1,4 +1,4 @@
-//! Claim: the built-in scenarios are the list (the paper's homogeneous 20/40/80 mm chains
+//! Claim: the built-in scenarios are the documented list (the paper's homogeneous 20/40/80 mm chains
 //! and docs/physics.md §9's optimised chain, under impact and blast, each resonant and rigid) and
 //! the two lab-physics ones (`lab-impact-40mm`: the 40 mm impact with gravity and damping;
 //! `transmission-80mm`: the preloaded 80 mm chain under a force chirp, docs/physics.md §14-15),

@@ -1,4 +1,4 @@
-//! Claim: `woodpile sensitivity SCENARIO --out DIR --base-samples N` writes the study the issue
+//! Claim: `woodpile sensitivity SCENARIO --out DIR --base-samples N` writes the study the documentation
 //! names: `samples.csv` (the Saltelli matrix, N·(G + 2) rows in SALib's order: within each base
 //! point, row AB_g equals row A except in parameter g's columns, which equal row B's),
 //! `outputs.csv` (one column per figure, same rows), `indices.csv` (`parameter, figure, S1,

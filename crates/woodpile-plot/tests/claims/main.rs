@@ -307,7 +307,7 @@ fn png_pixels(path: &Path) -> (usize, usize, Vec<u8>) {
 }
 
 /// Claim: the maps of a 10,001-contact chain over 2,000 samples (20 M values) stay small: SVG
-/// under 5 MB (the target; 85 KB and 113 KB measured for the force and energy maps, as
+/// under 5 MB (the stated target; 85 KB and 113 KB measured for the force and energy maps, as
 /// the cells travel as one PNG image of at most 300 × 600 cells, each a block of whole pixels;
 /// drawn as rectangles they take 15.5 MB), PNG at the fixed 1100 × 620 px of the layout and under 1 MB (122 KB
 /// and 144 KB measured). And the y axis

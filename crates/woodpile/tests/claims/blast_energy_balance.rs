@@ -2,7 +2,7 @@
 //! E(t) − E(0) = ∫ F(t) u̇_1 dt, closing to 1e-6 of the input work at every sample (docs/physics.md §7).
 //!
 //! Tolerance: the work is integrated as an extra state by the same RK4 (Δt = 0.1 µs), so the
-//! balance holds to the integrator's accuracy (~1e-8 measured); 1e-6 is the bound. The
+//! balance holds to the integrator's accuracy (~1e-8 measured); 1e-6 is the stated bound. The
 //! Friedlander load has a kink at Td, which limits RK4's local order there but not below 1e-6.
 
 use woodpile::{

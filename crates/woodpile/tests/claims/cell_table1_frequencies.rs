@@ -3,7 +3,7 @@
 //! and M_eff is negative exactly on the bands f_j < f < F_j.
 //!
 //! Tolerance: the table rounds frequencies to 0.01 kHz, so |ours − table| ≤ 0.005 kHz plus
-//! rounding; we allow 0.01 kHz as the issue asks. M_eff(0) = Σ masses is exact up to rounding
+//! rounding; we allow 0.01 kHz, the table's last digit. M_eff(0) = Σ masses is exact up to rounding
 //! (1e-12 relative).
 
 use woodpile::UnitCell;

@@ -2,7 +2,7 @@
 //! resonators and contacts, docs/physics.md §7) stays within 1e-6 of its initial value over 2 ms with
 //! RK4 at Δt = 0.1 µs (the paper's settings).
 //!
-//! Tolerance: 1e-6 is the bound; RK4's energy error at this step is ~5e-8 (measured), so a
+//! Tolerance: 1e-6 is the stated bound; RK4's energy error at this step is ~5e-8 (measured), so a
 //! broken force–potential pair (e.g. a wrong factor in the Hertz potential or a missing half of a
 //! contact) shows up as an O(1) drift and fails.
 

@@ -4,7 +4,7 @@
 //! Setup: 80 rigid 40 mm rods (a = 5 mm, the rod diameter), free end (no reflected compression),
 //! the paper's striker. The speed is measured from the (Hermite-refined) times of the peak force
 //! at contacts 30 and 60, far from the striker (where the wave has formed) and from the end;
-//! F_m is the mean peak force over those contacts. Tolerance: 3 % is the bound; the
+//! F_m is the mean peak force over those contacts. Tolerance: 3 % is the stated bound; the
 //! long-wave continuum theory neglects discreteness corrections of ~1 % for a 5-particle pulse.
 
 use woodpile::{simulate, CellModel, ChainBuilder, Excitation, RunSettings, Striker, Wall};

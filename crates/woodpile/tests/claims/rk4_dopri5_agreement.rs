@@ -2,7 +2,7 @@
 //! (rtol = 1e-10) agree on the peak force of every contact of the 20-rod resonant impact to
 //! 1e-5 relative, and both conserve energy.
 //!
-//! Tolerance: 1e-5 is the bound. Both methods' peak errors are ~1e-7 against a converged
+//! Tolerance: 1e-5 is the stated bound. Both methods' peak errors are ~1e-7 against a converged
 //! reference (measured with `examples/accuracy_speed.rs`); the peaks between steps are refined by
 //! Hermite interpolation, whose error is O(h⁴) of the pulse's time scale.
 
