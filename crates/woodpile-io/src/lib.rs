@@ -69,6 +69,7 @@ pub mod rundir;
 pub mod scenario;
 pub mod sensitivity;
 pub mod table;
+pub mod text;
 pub mod transmission;
 pub mod uncertainty;
 

@@ -8,7 +8,7 @@ use std::path::Path;
 use woodpile::{simulate_many, Job, LaneWidth};
 use woodpile_io::atomic::Staging;
 use woodpile_io::scenario::resolve;
-use woodpile_io::uncertainty::{samples, write_samples, FIGURES};
+use woodpile_io::uncertainty::{samples, write_samples};
 
 /// The files a samples directory is made of; summary.json, written last, marks it complete.
 const SAMPLES_FILES: &[&str] = &["samples.csv", "summary.json"];
@@ -74,35 +74,9 @@ pub fn run(args: &Args, k: usize, ctx: &Context) -> Result<(), CliError> {
     write_samples(staging.path(), &u, &drawn, &runs)?;
     let dir = staging.commit(SAMPLES_FILES, SAMPLES_MARKER)?;
     if !ctx.quiet {
-        crate::out::print(summary_lines(&dir, k, elapsed, &runs))?;
+        crate::out::print(woodpile_io::text::samples_summary(&dir, k, elapsed, &runs))?;
     }
     Ok(())
-}
-
-/// What the terminal shows: per figure its mean, sd, 0.95 quantile and CVaR.
-fn summary_lines(dir: &Path, k: usize, elapsed: f64, runs: &[woodpile::RunSummary]) -> String {
-    let mut text = format!(
-        "{k} samples in {elapsed:.2} s ({:.0} runs/s) -> {}\n",
-        k as f64 / elapsed.max(1e-9),
-        dir.display()
-    );
-    for (j, name) in FIGURES.iter().enumerate() {
-        let values: Option<Vec<f64>> = runs
-            .iter()
-            .map(|r| woodpile_io::uncertainty::figures(r)[j])
-            .collect();
-        text += &match values {
-            Some(v) => {
-                let s = woodpile::uncertainty::statistics(&v);
-                format!(
-                    "  {name:<26} mean {:.6e}  sd {:.3e}  q0.95 {:.6e}  cvar_0.95 {:.6e}\n",
-                    s.mean, s.sd, s.quantiles[4].1, s.cvar_95
-                )
-            }
-            None => format!("  {name:<26} not every sample has one (see summary.json)\n"),
-        };
-    }
-    text
 }
 
 /// The run-size check of a study's runs (the first stands for all: one chain, one run setting)

@@ -10,7 +10,7 @@ use woodpile::sensitivity::Bootstrap;
 use woodpile::{simulate_many, Job, LaneWidth};
 use woodpile_io::scenario::resolve;
 use woodpile_io::sensitivity::{
-    accuracy_targeted, base_samples_refusal, design, figure_indices, FigureIndices, FILES, MARKER,
+    accuracy_targeted, base_samples_refusal, design, figure_indices, FILES, MARKER,
 };
 
 /// Arguments of `woodpile sensitivity`.
@@ -116,7 +116,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let figure_dir = dir.join("plots");
     let plotted = woodpile_plot::dirs::sensitivity(&dir, &figure_dir);
     if !ctx.quiet {
-        crate::out::print(summary_lines(
+        crate::out::print(woodpile_io::text::sensitivity_summary(
             &d.parameters,
             &per_figure,
             rows,
@@ -172,47 +172,4 @@ fn run_rows(
     }
     progress.finish();
     Ok(runs)
-}
-
-/// What the terminal shows: per figure, each parameter's S1 and ST with their intervals.
-fn summary_lines(
-    parameters: &[String],
-    per_figure: &[(&'static str, FigureIndices)],
-    rows: usize,
-    elapsed: f64,
-    dir: &Path,
-) -> String {
-    let mut text = format!(
-        "{rows} runs in {elapsed:.2} s ({:.0} runs/s) -> {}\n",
-        rows as f64 / elapsed.max(1e-9),
-        dir.display()
-    );
-    for (figure, result) in per_figure {
-        text += &format!("{figure}\n");
-        match result {
-            FigureIndices::Indices(s) => {
-                for (p, i) in parameters.iter().zip(s) {
-                    text += &format!(
-                        "  {p:<22} S1 {:>9} ± {:<9}  ST {:>9} ± {}\n",
-                        index(i.first_order),
-                        index(i.first_order_conf),
-                        index(i.total),
-                        index(i.total_conf)
-                    );
-                }
-            }
-            FigureIndices::Meaningless(reason) => text += &format!("  no indices: {reason}\n"),
-        }
-    }
-    text
-}
-
-/// An index as text: three decimals, or two significant digits below 1e-3 (so that a small
-/// index is not shown as 0.000).
-fn index(v: f64) -> String {
-    if v != 0.0 && v.abs() < 1e-3 {
-        format!("{v:.1e}")
-    } else {
-        format!("{v:.3}")
-    }
 }

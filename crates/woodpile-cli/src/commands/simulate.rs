@@ -8,7 +8,7 @@ use woodpile::record::{Layout, Recorder, Sample};
 use woodpile::{simulate, Trajectory};
 use woodpile_io::atomic::{Staging, RUN_MARKER};
 use woodpile_io::limits::RunSize;
-use woodpile_io::rundir::{RunRecord, SummaryJson, RUN_FILES};
+use woodpile_io::rundir::{RunRecord, RUN_FILES};
 use woodpile_io::scenario::{resolve, Resolved, Scenario, DEFAULT_SCENARIO};
 
 /// Which scenario a command runs: a file or a built-in (shared by `simulate` and
@@ -166,25 +166,11 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     if let Some(warning) = accuracy {
         crate::out::eprintln(format_args!("warning: {warning}"));
     }
-    if let Some(ramp) = resolved
-        .excitation
-        .ramp_longer_than(resolved.settings.duration_s)
-    {
-        crate::out::eprintln(format_args!(
-            "warning: excitation.ramp_s = {ramp:e} s is longer than run.duration_s = {:e} s: the drive never reaches its amplitude, so its peaks and ratio describe the ramp (a harmonic drive's default ramp is three periods); shorten excitation.ramp_s or lengthen the run",
-            resolved.settings.duration_s
-        ));
-    }
-    if !summary.wave_arrived {
-        crate::out::eprintln(format_args!(
-            "warning: the wave did not reach the wall within run.duration_s = {:e} s (transmitted peak {:.3e} N, incident {:.3e} N): the transmitted force and the ratio mean nothing; increase run.duration_s",
-            resolved.settings.duration_s,
-            summary.transmitted_peak_force_n,
-            summary.incident_peak_force_n
-        ));
+    for warning in woodpile_io::text::run_warnings(&record) {
+        crate::out::eprintln(format_args!("warning: {warning}"));
     }
     if !ctx.quiet {
-        crate::out::print(terminal_summary(&record, &dir))?;
+        crate::out::print(woodpile_io::text::run_summary(&record, &dir))?;
     }
     Ok(())
 }
@@ -224,99 +210,13 @@ fn run_lattice(args: &Args, file: &Path, text: &str, ctx: &Context) -> Result<()
     if let Some(warning) = accuracy {
         crate::out::eprintln(format_args!("warning: {warning}"));
     }
-    if !run.wave_arrived && !left_at_rest(&resolved) {
-        crate::out::eprintln(format_args!(
-            "warning: the wave did not reach the supports within run.duration_s = {:e} s (transmitted peak {:.3e} N, incident {:.3e} N): the transmitted force means nothing; increase run.duration_s",
-            resolved.settings.duration_s,
-            run.transmitted_peak_force_n,
-            run.incident_peak_force_n
-        ));
+    for warning in woodpile_io::text::lattice_warnings(&resolved, &run) {
+        crate::out::eprintln(format_args!("warning: {warning}"));
     }
     if !ctx.quiet {
-        print_lattice_run(&name, &resolved, &ode, &run, &dir)?;
+        let text = woodpile_io::text::lattice_run_summary(&name, &resolved, &ode, &run, &dir);
+        crate::out::print(text)?;
     }
-    Ok(())
-}
-
-/// Whether the lattice is left at rest: it has no wave to wait for (its supports' peak is its
-/// static load).
-fn left_at_rest(resolved: &woodpile_io::lattice::ResolvedLattice) -> bool {
-    matches!(
-        resolved.excitation,
-        woodpile::model::LatticeExcitation::Rest { .. }
-    )
-}
-
-/// The terminal summary of a lattice run.
-fn print_lattice_run(
-    name: &str,
-    resolved: &woodpile_io::lattice::ResolvedLattice,
-    ode: &woodpile::ode::LatticeOde,
-    run: &woodpile::simulate::LatticeRun,
-    dir: &Path,
-) -> Result<(), CliError> {
-    use woodpile::model::LatticeExcitation;
-    let rods: usize = resolved.lattice.rods.len();
-    let incident = match &resolved.excitation {
-        LatticeExcitation::Impact { .. } => "peak of the striker's contact".to_string(),
-        _ => format!(
-            "peak of the sum of the {} load points",
-            ode.incident_contacts().len()
-        ),
-    };
-    let transmitted = if run.wave_arrived || left_at_rest(resolved) {
-        format!(
-            "{:.4} N   (peak of the sum of the supports)",
-            run.transmitted_peak_force_n
-        )
-    } else {
-        "none: the wave did not reach the supports within run.duration_s; increase it".to_string()
-    };
-    let mut text = format!(
-        "scenario     {name}\nlattice      {} layers, {rods} rods, {} contacts ({} supports)\nexcitation   {}\nincident     {:.4} N   ({incident})\ntransmitted  {transmitted}\n",
-        resolved.lattice.layers,
-        run.contacts,
-        run.supports.len(),
-        match &resolved.excitation {
-            LatticeExcitation::Rest { .. } =>
-                "rest: the lattice is left alone (a check of its static equilibrium)".to_string(),
-            x => x.as_chain_excitation().to_string(),
-        },
-        run.incident_peak_force_n + 0.0, // (no -0.0 where no load point is)
-    );
-    let e = &run.energy;
-    if ode.has_lab() {
-        if run.static_residual > 0.0 {
-            let supports: f64 = run
-                .supports
-                .iter()
-                .map(|&s| run.contact_static_forces_n[s])
-                .sum();
-            text += &format!(
-                "static       supports carry {supports:.6} N (relative residual {:.1e})\n",
-                run.static_residual
-            );
-        }
-        if let Some(u) = run.actuator_rest_m {
-            text += &format!("actuator     tips at rest at u* = {u:.6e} m (downward)\n");
-        }
-        text += &format!(
-            "energy       E(0) {:.4e} J, work {:.4e} J, dissipated {:.4e} J; balance error {:.2e}\n",
-            e.initial_j, e.input_work_j, e.dissipated_j, e.max_relative_error
-        );
-    } else {
-        text += &format!(
-            "energy       max relative error {:.2e}\n",
-            e.max_relative_error
-        );
-    }
-    text += &format!(
-        "integrator   {} steps; {} samples\noutput       {}\n",
-        run.stats.steps,
-        run.times_s.len(),
-        dir.display()
-    );
-    crate::out::print(text)?;
     Ok(())
 }
 
@@ -395,114 +295,4 @@ fn simulated(time_s: f64, duration_s: f64) -> String {
         time_s * 1e3,
         duration_s * 1e3
     )
-}
-
-/// Most labels, or runs of equal labels, a `chain` line lists before it abbreviates.
-const CHAIN_RUNS_SHOWN: usize = 24;
-
-/// Element labels top to bottom; for a chain longer than [`CHAIN_RUNS_SHOWN`], runs of equal ones
-/// as `80mm×40`, and when still too many the first and last runs around `… (N more runs) …`: one
-/// line, however long the chain.
-fn abbreviated_labels(labels: &[String]) -> String {
-    if labels.len() <= CHAIN_RUNS_SHOWN {
-        return labels.join(" ");
-    }
-    let mut runs: Vec<(&str, usize)> = Vec::new();
-    for l in labels {
-        match runs.last_mut() {
-            Some((last, n)) if *last == l.as_str() => *n += 1,
-            _ => runs.push((l.as_str(), 1)),
-        }
-    }
-    let text = |r: &[(&str, usize)]| {
-        r.iter()
-            .map(|&(l, n)| {
-                if n == 1 {
-                    l.to_string()
-                } else {
-                    format!("{l}×{n}")
-                }
-            })
-            .collect::<Vec<_>>()
-            .join(" ")
-    };
-    if runs.len() <= CHAIN_RUNS_SHOWN {
-        return text(&runs);
-    }
-    let (head, tail) = (CHAIN_RUNS_SHOWN * 2 / 3, CHAIN_RUNS_SHOWN / 3);
-    format!(
-        "{} … ({} more runs) … {}",
-        text(&runs[..head]),
-        runs.len() - head - tail,
-        text(&runs[runs.len() - tail..])
-    )
-}
-
-/// The short human-readable report printed after a run.
-pub fn terminal_summary(r: &RunRecord<'_>, dir: &Path) -> String {
-    let s = SummaryJson::new(r);
-    let chain = &r.resolved.chain;
-    let mut o = String::new();
-    let labels = abbreviated_labels(&s.chain_labels);
-    o.push_str(&format!("scenario     {}\n", r.name));
-    o.push_str(&format!(
-        "chain        {} elements: {labels}\n",
-        chain.len()
-    ));
-    o.push_str(&format!("excitation   {}\n", r.resolved.excitation));
-    // Under a static load: totals, and the dynamic parts (total − static) beside them.
-    let statics = &r.summary.static_contact_forces_n;
-    let dynamic = |c: usize, total: f64| match statics.get(c) {
-        Some(f) => format!(", dynamic {:.4} N (static {f:.4} N)", total - f),
-        None => String::new(),
-    };
-    o.push_str(&format!(
-        "incident     {:.4} N   (peak of contact 1{})\n",
-        s.incident_peak_force_n,
-        dynamic(1, s.incident_peak_force_n)
-    ));
-    o.push_str(&format!(
-        "transmitted  {:.4} N   (peak of contact {}, the wall{})\n",
-        s.transmitted_peak_force_n,
-        s.n_elements,
-        dynamic(s.n_elements, s.transmitted_peak_force_n)
-    ));
-    if let Some(u) = s.actuator_rest_m {
-        o.push_str(&format!(
-            "actuator     tip at rest at u* = {u:.6e} m (downward)\n"
-        ));
-    }
-    match s.transmission_ratio {
-        Some(r) => o.push_str(&format!("ratio        {r:.4}\n")),
-        None if !s.wave_arrived => o.push_str(
-            "ratio        none: the wave did not reach the wall within run.duration_s; increase it\n",
-        ),
-        None => o.push_str("ratio        none: the incident force is zero\n"),
-    }
-    match (s.restitution_coefficient, s.striker_separated) {
-        (Some(e), _) => o.push_str(&format!("restitution  {e:.4}\n")),
-        (None, Some(false)) => o.push_str(
-            "restitution  none: the striker is still in contact or moving with the chain at the end; increase run.duration_s\n",
-        ),
-        _ => {}
-    }
-    o.push_str(&format!(
-        "energy       initial {:.4e} J, final {:.4e} J, input work {:.4e} J, dissipated {:.4e} J, max relative error {:.2e}\n",
-        s.energy.initial_j,
-        s.energy.final_j,
-        s.energy.input_work_j,
-        r.summary.energy.dissipated_j,
-        s.energy.max_relative_error
-    ));
-    o.push_str(&format!(
-        "integrator   {}: {} steps, {} rhs evaluations, {} rejected; {} samples; {:.3} s wall time\n",
-        s.integrator.method,
-        s.integrator.steps,
-        s.integrator.rhs_evaluations,
-        s.integrator.rejected_steps,
-        s.n_samples,
-        s.wall_time_s
-    ));
-    o.push_str(&format!("output       {}\n", dir.display()));
-    o
 }
