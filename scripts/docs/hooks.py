@@ -5,6 +5,9 @@
 - Executed tutorials: the `woodpile` command (reference.woodpile_binary) is put first on PATH and
   the build runs in a fresh scratch directory, so the tutorials' shell and Python blocks write
   their runs there and never into the checkout.
+- The playground (docs/playground/): its WebAssembly module, woodpile's library built for
+  `wasm32-unknown-unknown` from crates/woodpile-wasm, is built before the pages and copied next to
+  the page after them (`playground/woodpile.wasm`).
 - Math: `$...$` and `$$...$$` (pymdownx.arithmatex, generic) are converted to MathML at build
   time (latex2mathml), which browsers render natively: no script, no fonts, no network.
 """
@@ -14,6 +17,8 @@ from __future__ import annotations
 import html
 import os
 import re
+import shutil
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -37,7 +42,23 @@ def on_config(config: Any) -> Any:
     return config
 
 
+def _playground_module() -> Path:
+    """Builds the playground's module (release, wasm32-unknown-unknown) and returns its path."""
+    target = "wasm32-unknown-unknown"
+    command = ["cargo", "build", "--release", "--quiet", "--target", target, "-p", "woodpile-wasm"]
+    try:
+        subprocess.run(command, cwd=reference.ROOT, check=True)
+    except (OSError, subprocess.CalledProcessError) as e:
+        raise RuntimeError(
+            f"building the playground's WebAssembly module failed ({e}); it needs the Rust target "
+            f"{target}: rustup target add {target}"
+        ) from e
+    target_dir = Path(os.environ.get("CARGO_TARGET_DIR", reference.ROOT / "target"))
+    return target_dir / target / "release" / "woodpile_wasm.wasm"
+
+
 def on_pre_build(config: Any) -> None:
+    _STATE["playground"] = _playground_module()
     if _HERE not in sys.path:  # mkdocs restores sys.path after loading the hooks
         sys.path.append(_HERE)  # the tutorials' `from figure import show`
     _STATE["cwd"] = os.getcwd()
@@ -54,6 +75,9 @@ def _restore() -> None:
 
 def on_post_build(config: Any) -> None:
     _restore()
+    playground = Path(config["site_dir"]) / "playground"
+    playground.mkdir(parents=True, exist_ok=True)
+    shutil.copyfile(_STATE.pop("playground"), playground / "woodpile.wasm")
 
 
 def on_build_error(error: Exception) -> None:

@@ -3,6 +3,7 @@
 
 use crate::defaults;
 use crate::error::{require_non_negative, require_positive, Error, Result};
+use crate::math::Libm;
 use crate::model::{hertz_beta, Chain, Material, Surface};
 
 /// Standard gravity g [m/s²] used to turn a drop height into a velocity (docs/physics.md §2).
@@ -124,7 +125,7 @@ impl BlastProfile {
             } => {
                 if (0.0..=*duration_s).contains(&t) {
                     let x = t / duration_s;
-                    peak_force_n * (1.0 - x) * (-decay * x).exp()
+                    peak_force_n * (1.0 - x) * (-decay * x).libm_exp()
                 } else {
                     0.0
                 }
@@ -379,7 +380,7 @@ impl Signal {
                 frequency_hz,
             } => {
                 let w = TAU * frequency_hz;
-                let (s, c) = (w * t).sin_cos();
+                let (s, c) = (w * t).libm_sin_cos();
                 (amplitude * s, amplitude * w * c)
             }
             Signal::Chirp {
@@ -398,12 +399,12 @@ impl Signal {
                         (TAU * (start_hz * t + 0.5 * k * t * t), start_hz + k * t)
                     }
                     Sweep::Logarithmic => {
-                        let r = (end_hz / start_hz).ln();
-                        let g = (r * t / duration_s).exp();
+                        let r = (end_hz / start_hz).libm_ln();
+                        let g = (r * t / duration_s).libm_exp();
                         (TAU * start_hz * duration_s / r * (g - 1.0), start_hz * g)
                     }
                 };
-                let (s, c) = phase.sin_cos();
+                let (s, c) = phase.libm_sin_cos();
                 (amplitude * s, amplitude * TAU * f * c)
             }
             Signal::Table { times_s, values } => {
@@ -557,7 +558,7 @@ impl Drive {
             return (s, ds);
         }
         let a = std::f64::consts::FRAC_PI_2 * tau / tr;
-        let (sa, ca) = a.sin_cos();
+        let (sa, ca) = a.libm_sin_cos();
         let r = sa * sa;
         let dr = sign * 2.0 * sa * ca * std::f64::consts::FRAC_PI_2 / tr;
         (s * r, ds * r + s * dr)

@@ -52,7 +52,11 @@
 //!    what the data cannot determine.
 //!
 //! Every long loop polls one process-wide stop request ([`interrupt`]), which front ends set on
-//! Ctrl-C, SIGTERM or Python's `KeyboardInterrupt`.
+//! Ctrl-C, SIGTERM or Python's `KeyboardInterrupt`; times are read from one [`clock`], which a
+//! front end without an operating system (a browser page) supplies. Nothing else touches the
+//! platform: no files, no threads but rayon's in the design studies, and no transcendental
+//! function of the platform's C library (they come from `libm`, so that a run gives the same
+//! numbers bit for bit everywhere, in a browser too: `crates/woodpile-wasm`).
 //!
 //! ```
 //! use woodpile::{simulate, CellModel, ChainBuilder, Excitation, RunSettings, Striker, Trajectory};
@@ -75,6 +79,7 @@
 //! (or the load), contact i is element i – element i+1, contact N is element N – wall.
 
 pub mod analysis;
+pub mod clock;
 pub mod defaults;
 pub mod error;
 pub mod excitation;
@@ -82,6 +87,7 @@ pub mod fit;
 pub mod integrate;
 pub mod interrupt;
 pub mod lanes;
+mod math;
 pub mod model;
 pub mod ode;
 pub mod optimize;

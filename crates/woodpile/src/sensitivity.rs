@@ -28,6 +28,7 @@
 //! ```
 
 use crate::error::{Error, Result};
+use crate::math::Libm;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -267,7 +268,7 @@ pub fn indices(
 /// The Ishigami function sin x₁ + a·sin² x₂ + b·x₃⁴·sin x₁ (Ishigami & Homma 1990), the
 /// standard test of sensitivity estimators, on x ∈ [−π, π]³.
 pub fn ishigami(x: [f64; 3], a: f64, b: f64) -> f64 {
-    x[0].sin() + a * x[1].sin().powi(2) + b * x[2].powi(4) * x[0].sin()
+    x[0].libm_sin() + a * x[1].libm_sin().powi(2) + b * x[2].powi(4) * x[0].libm_sin()
 }
 
 /// The Ishigami function's exact first-order and total indices (Sobol' & Levitan 1999) for

@@ -5,6 +5,7 @@ use crate::defaults;
 use crate::error::{require_positive, Error, Result};
 use crate::excitation::{BlastProfile, Excitation};
 use crate::integrate::{Integrator, IntegratorStats, Method, OdeSystem};
+use crate::math::Libm;
 use crate::model::Chain;
 use crate::ode::ChainOde;
 use crate::record::{Layout, Recorder, Sample};
@@ -478,7 +479,7 @@ pub(crate) struct Watch<'a> {
     /// at a breakpoint inside it, which the step grid may miss.
     load_table: Option<(&'a [f64], &'a [f64])>,
     next_breakpoint: usize,
-    started: std::time::Instant,
+    started: crate::clock::Stopwatch,
     /// The run stops at the end of the first step whose transmitted peak exceeds this \[N\]
     /// (infinite: never).
     stop_above_n: f64,
@@ -493,7 +494,7 @@ impl<'a> Watch<'a> {
         settings: &RunSettings,
         y0: &[f64],
         recorder: &mut dyn Recorder,
-        started: std::time::Instant,
+        started: crate::clock::Stopwatch,
         peak_watch: PeakWatch,
     ) -> Self {
         let n_contacts = ode.n_layers();
@@ -688,7 +689,7 @@ impl<'a> Watch<'a> {
             },
             stats,
             n_samples: self.next_sample,
-            wall_time_s: self.started.elapsed().as_secs_f64(),
+            wall_time_s: self.started.elapsed_s(),
             stopped_at_s: None,
         }
     }
@@ -726,7 +727,7 @@ pub(crate) fn simulate_watching(
     stop_above_n: f64,
 ) -> Result<RunSummary> {
     settings.check_run_of(excitation)?;
-    let started = std::time::Instant::now();
+    let started = crate::clock::Stopwatch::start();
     let mut ode = ChainOde::new(chain, excitation)?;
     check_method_fits(&ode, settings.method)?;
     let method = resolve_method(&ode, settings.method);
@@ -879,7 +880,7 @@ fn diagnose_blow_up(
     }) = fine_failure
     {
         let beta = ode.contact_betas()[contact];
-        let reachable_m = (2.5 * energy_j / beta).powf(0.4);
+        let reachable_m = (2.5 * energy_j / beta).libm_powf(0.4);
         if energy_j.is_finite() && reachable_m >= limit_m {
             return Error::LoadBeyondContact {
                 time_s,
@@ -950,7 +951,7 @@ fn load_beyond_reach(
             let m_1 = chain.elements().first()?.cell.primary_mass_kg;
             let (mu, v) = (m_s * m_1 / (m_s + m_1), striker.velocity_m_s);
             let energy_j = 0.5 * mu * v * v;
-            let need = (2.5 * energy_j / betas[0]).powf(0.4);
+            let need = (2.5 * energy_j / betas[0]).libm_powf(0.4);
             let energy = if energy_j.is_finite() {
                 format!("{energy_j:.3e} J")
             } else {
@@ -968,7 +969,7 @@ fn load_beyond_reach(
             let peak_n = blast.peak_force_n();
             let statics = chain.static_contact_forces_n();
             (1..betas.len()).find_map(|c| {
-                let need = ((peak_n + statics[c - 1]) / betas[c]).powf(2.0 / 3.0);
+                let need = ((peak_n + statics[c - 1]) / betas[c]).libm_powf(2.0 / 3.0);
                 exceeds(need, limits[c]).then(|| Error::LoadExceedsContact {
                     time_s,
                     contact: c,

@@ -17,6 +17,7 @@
 //! ```
 
 use crate::error::{Error, Result};
+use crate::math::Libm;
 
 /// The most dimensions (drawn parameters) one sample may have: those of [`sobol_burley`].
 pub const MAX_DIMENSIONS: usize = sobol_burley::NUM_DIMENSIONS as usize;
@@ -100,7 +101,7 @@ pub fn standard_normal_quantile(p: f64) -> f64 {
         return f64::INFINITY;
     }
     let tail = |q: f64| {
-        let q = (-2.0 * q.ln()).sqrt();
+        let q = (-2.0 * q.libm_ln()).sqrt();
         (((((C[0] * q + C[1]) * q + C[2]) * q + C[3]) * q + C[4]) * q + C[5])
             / ((((D[0] * q + D[1]) * q + D[2]) * q + D[3]) * q + 1.0)
     };

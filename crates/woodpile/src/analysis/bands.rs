@@ -24,6 +24,7 @@
 //! s(ω) = 1, found by bisection in ω² on a bracket where s − 1 changes sign exactly once.
 
 use crate::error::{require_positive, Error, Result};
+use crate::math::Libm;
 use crate::model::UnitCell;
 use std::f64::consts::PI;
 
@@ -92,7 +93,7 @@ pub fn linspace(start: f64, end: f64, n: usize) -> Vec<f64> {
 pub fn contact_stiffness_n_per_m(beta: f64, precompression_n: f64) -> Result<f64> {
     require_positive("beta", beta)?;
     require_positive("precompression_n", precompression_n)?;
-    Ok(1.5 * beta.powf(2.0 / 3.0) * precompression_n.cbrt())
+    Ok(1.5 * beta.libm_powf(2.0 / 3.0) * precompression_n.libm_cbrt())
 }
 
 /// Pass bands and band gaps of an infinite homogeneous chain of one cell.
@@ -170,7 +171,7 @@ impl BandStructure {
     /// Reduced Bloch wavenumber qa ∈ [0, π] at f \[Hz\], or None inside a gap.
     pub fn wavenumber(&self, frequency_hz: f64) -> Option<f64> {
         let s = self.dispersion_ratio(frequency_hz);
-        (0.0..=1.0).contains(&s).then(|| 2.0 * s.sqrt().asin())
+        (0.0..=1.0).contains(&s).then(|| 2.0 * s.sqrt().libm_asin())
     }
 
     /// Whether f \[Hz\] lies inside a gap (open intervals; edges are in the pass bands).

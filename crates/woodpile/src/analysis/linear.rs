@@ -17,6 +17,7 @@
 //! F̂_wall/F̂ is what `transmission` measures when the chirp is small and the record long enough.
 
 use crate::error::{Error, Result};
+use crate::math::Libm;
 use crate::model::{Chain, ContactLaw};
 use rustfft::num_complex::Complex64;
 use std::f64::consts::PI;
@@ -92,7 +93,7 @@ impl LinearChain {
                     "the Hunt–Crossley law needs the impact speed v_in of its contacts: give it",
                 ));
             }
-            let overlap_m = (forces[c] / beta).powf(2.0 / 3.0);
+            let overlap_m = (forces[c] / beta).libm_powf(2.0 / 3.0);
             stiffness.push(ContactLaw::stiffness_n_per_m(beta, overlap_m));
             dampers.push(law.linear_damping_n_s_per_m(coef, beta, overlap_m));
         }

@@ -20,6 +20,7 @@
 
 use super::map::{Axis, Map2};
 use crate::error::{require_positive, Error, Result};
+use crate::math::Libm;
 use crate::record::{sample_interval_s, Trajectory};
 use rustfft::num_complex::Complex64;
 use rustfft::{Fft, FftPlanner};
@@ -104,7 +105,7 @@ impl Window {
                     .enumerate()
                     .map(|(m, a)| {
                         let sign = if m % 2 == 0 { 1.0 } else { -1.0 };
-                        sign * a * (m as f64 * x).cos()
+                        sign * a * (m as f64 * x).libm_cos()
                     })
                     .sum()
             })

@@ -21,6 +21,7 @@ use crate::defaults;
 use crate::error::{require_positive, Error, Result};
 use crate::excitation::{Drive, DriveQuantity, Excitation, Signal, Sweep};
 use crate::integrate::Method;
+use crate::math::Libm;
 use crate::model::{Chain, Damping};
 use crate::record::EndForces;
 use crate::simulate::{simulate, RunSettings, RunSummary};
@@ -407,11 +408,11 @@ pub fn transmission(
         .zip(&drive_amplitude_n)
         .map(|(w, d)| w / d)
         .collect();
-    let transmission_db = transmission.iter().map(|t| 20.0 * t.log10()).collect();
+    let transmission_db = transmission.iter().map(|t| 20.0 * t.libm_log10()).collect();
     let linear_transmission = LinearChain::new(chain)?.transmission(&frequencies_hz);
     let linear_transmission_db = linear_transmission
         .iter()
-        .map(|t| 20.0 * t.log10())
+        .map(|t| 20.0 * t.libm_log10())
         .collect();
     Ok(TransmissionSpectrum {
         frequencies_hz,

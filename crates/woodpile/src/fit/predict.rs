@@ -4,6 +4,7 @@
 use super::{Built, Measurement, Output, Problem};
 use crate::defaults;
 use crate::error::{Error, Result};
+use crate::math::Libm;
 use crate::record::{Layout, Recorder, Sample};
 use crate::simulate::{simulate, RunSettings};
 
@@ -184,7 +185,7 @@ pub fn low_pass(times_s: &[f64], x: &[f64], cutoff_hz: f64) -> Vec<f64> {
             None => xi,
             Some(&prev) => {
                 let dt = times_s[i] - times_s[i - 1];
-                let alpha = 1.0 - (-2.0 * std::f64::consts::PI * cutoff_hz * dt).exp();
+                let alpha = 1.0 - (-2.0 * std::f64::consts::PI * cutoff_hz * dt).libm_exp();
                 prev + alpha * (xi - prev)
             }
         };

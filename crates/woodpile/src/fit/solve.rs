@@ -5,6 +5,7 @@ use super::predict::{run_model, Grid, Prediction};
 use super::uncertainty::Uncertainty;
 use super::{FitProgress, FitResult, FitSettings, Parameter, Problem, StartResult};
 use crate::error::{Error, Result};
+use crate::math::Libm;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra::{DMatrix, DVector, Dyn, Owned};
 use rayon::prelude::*;
@@ -34,7 +35,7 @@ struct Coordinate {
 
 impl Coordinate {
     fn new(p: &Parameter) -> Self {
-        let u = |v: f64| if p.log_scale { v.ln() } else { v };
+        let u = |v: f64| if p.log_scale { v.libm_ln() } else { v };
         match p.bounds {
             Some((lo, hi)) => Coordinate {
                 origin: u(lo),
@@ -62,20 +63,20 @@ impl Coordinate {
     fn value(&self, x: f64) -> f64 {
         let u = self.origin + self.width * x;
         if self.log {
-            u.exp()
+            u.libm_exp()
         } else {
             u
         }
     }
 
     fn x_of(&self, value: f64) -> f64 {
-        let u = if self.log { value.ln() } else { value };
+        let u = if self.log { value.libm_ln() } else { value };
         (u - self.origin) / self.width
     }
 
     fn x_of_z(&self, z: f64) -> f64 {
         if self.bounded {
-            0.5 * (1.0 + z.sin())
+            0.5 * (1.0 + z.libm_sin())
         } else {
             z - Z_OFFSET
         }
@@ -83,7 +84,7 @@ impl Coordinate {
 
     fn z_of_x(&self, x: f64) -> f64 {
         if self.bounded {
-            (2.0 * x - 1.0).clamp(-1.0, 1.0).asin() + Z_OFFSET
+            (2.0 * x - 1.0).clamp(-1.0, 1.0).libm_asin() + Z_OFFSET
         } else {
             x + Z_OFFSET
         }
@@ -91,7 +92,7 @@ impl Coordinate {
 
     fn dx_dz(&self, z: f64) -> f64 {
         if self.bounded {
-            0.5 * z.cos()
+            0.5 * z.libm_cos()
         } else {
             1.0
         }

@@ -2,6 +2,7 @@
 
 use crate::defaults;
 use crate::error::{Error, Result};
+use crate::math::Libm;
 use nalgebra::DMatrix;
 
 /// Two-sided 95 % quantile of the normal distribution (the residuals number hundreds, so
@@ -106,7 +107,10 @@ impl Uncertainty {
             } else if logs[j] {
                 let p = estimates[j];
                 std_errors.push(Some(p * su));
-                ci95.push(Some([p * (-Z95 * su).exp(), p * (Z95 * su).exp()]));
+                ci95.push(Some([
+                    p * (-Z95 * su).libm_exp(),
+                    p * (Z95 * su).libm_exp(),
+                ]));
             } else {
                 let p = estimates[j];
                 std_errors.push(Some(su));

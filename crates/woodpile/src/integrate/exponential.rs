@@ -27,6 +27,7 @@
 //! - M. Hochbruck, A. Ostermann, "Exponential integrators", Acta Numerica 19 (2010) 209–286
 //!   (φ-functions, exponential collocation).
 
+use crate::math::Libm;
 use crate::real::{Lane, Real};
 
 /// The Lobatto nodes of the force interpolant, σ = 0, (5 − √5)/10, (5 + √5)/10, 1.
@@ -118,7 +119,7 @@ pub fn kernel(theta: f64, z: f64) -> Kernel {
             imx[k] = re[k + 1];
         }
     } else {
-        let (s, c) = x.sin_cos();
+        let (s, c) = x.libm_sin_cos();
         let inv_x = 1.0 / x;
         let (mut r, mut i) = (c, s);
         re[0] = r;
@@ -453,7 +454,7 @@ impl DampedKernel {
 fn damped_free(theta: f64, a: f64, z: f64) -> [f64; 4] {
     let d = (z - a) * (z + a);
     let x2 = d.abs() * theta * theta;
-    let decay = (-a * theta).exp();
+    let decay = (-a * theta).libm_exp();
     let (ec, es) = if x2 < 0.25 {
         // C = Σ (−Dθ²)^m/(2m)!, S = θ Σ (−Dθ²)^m/(2m+1)!: 12 terms reach 1e-19 at |Dθ²| = 1/4.
         let y = -d * theta * theta;
@@ -469,12 +470,12 @@ fn damped_free(theta: f64, a: f64, z: f64) -> [f64; 4] {
         (decay * c, decay * theta * s)
     } else if d > 0.0 {
         let w = d.sqrt();
-        let (s, c) = (w * theta).sin_cos();
+        let (s, c) = (w * theta).libm_sin_cos();
         (decay * c, decay * s / w)
     } else {
         let kappa = (-d).sqrt();
-        let slow = (-z * z / (a + kappa) * theta).exp();
-        let fast = (-(a + kappa) * theta).exp();
+        let slow = (-z * z / (a + kappa) * theta).libm_exp();
+        let fast = (-(a + kappa) * theta).libm_exp();
         let pos = 0.5 * (slow * (kappa + a) - fast * z * z / (a + kappa)) / kappa;
         let rate = 0.5 * (fast * (kappa + a) - slow * z * z / (a + kappa)) / kappa;
         let es = 0.5 * (slow - fast) / kappa;
@@ -605,8 +606,8 @@ fn light_kernel(theta: f64, a: f64, z: f64) -> DampedKernel {
         }
         damped_free(theta, a, z)
     } else {
-        let (sin, cos) = (w * theta).sin_cos();
-        let decay = (-a * theta).exp();
+        let (sin, cos) = (w * theta).libm_sin_cos();
+        let decay = (-a * theta).libm_exp();
         phi[0] = Complex64::new(decay * cos, decay * sin);
         for k in 0..4 {
             phi[k + 1] = (phi[k] - INV_FACT[k]) / x;

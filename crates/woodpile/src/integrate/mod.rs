@@ -12,6 +12,7 @@
 //! - J. R. Dormand, M. E. A. El-Mikkawy, P. J. Prince, "Families of Runge–Kutta–Nyström
 //!   formulae", IMA J. Numer. Anal. 7 (1987) 235–250 (RKN6(4)6FM, [`Tableau::rkn64`]).
 
+use crate::math::Libm;
 mod control;
 pub mod exponential;
 mod kernels;
@@ -423,7 +424,7 @@ impl Method {
         // error test on the overlaps did not change that, bench/README.md). rtol is chosen so
         // that this envelope is PEAK_SAFETY_FACTOR times below the tolerance.
         let rtol = (peak_tolerance / (PEAK_SAFETY_FACTOR * prefactor))
-            .powf(1.0 / PEAK_ERROR_EXPONENT)
+            .libm_powf(1.0 / PEAK_ERROR_EXPONENT)
             .max(1e-13);
         let atol = rtol * 1e-6;
         if second_order {
@@ -476,7 +477,7 @@ impl Method {
     /// error has no calibrated bound (docs/physics.md §8).
     pub fn peak_tolerance(&self) -> Option<f64> {
         let envelope = |prefactor: f64, rtol: f64| {
-            PEAK_SAFETY_FACTOR * prefactor * rtol.powf(PEAK_ERROR_EXPONENT)
+            PEAK_SAFETY_FACTOR * prefactor * rtol.libm_powf(PEAK_ERROR_EXPONENT)
         };
         match *self {
             Method::PeakTolerance { peak_tolerance } => Some(peak_tolerance),
@@ -1087,7 +1088,8 @@ pub(crate) fn next_step_after_accept(
     order: f64,
     rejected_before: bool,
 ) -> f64 {
-    let mut factor = 0.9 * err.powf(-(1.0 / order - 0.75 * PI_BETA)) * err_prev.powf(PI_BETA);
+    let mut factor =
+        0.9 * err.libm_powf(-(1.0 / order - 0.75 * PI_BETA)) * err_prev.libm_powf(PI_BETA);
     if !factor.is_finite() {
         factor = 5.0;
     }
@@ -1191,7 +1193,7 @@ fn illinois(q: impl Fn(f64) -> f64, b: f64, qa: f64, qb: f64, tol: f64) -> f64 {
 
 /// The step to retry with after `h_try` was rejected with error norm `err` (> 1).
 pub(crate) fn next_step_after_reject(h_try: f64, err: f64, order: f64) -> f64 {
-    let mut factor = 0.9 * err.powf(-1.0 / order);
+    let mut factor = 0.9 * err.libm_powf(-1.0 / order);
     if !factor.is_finite() {
         factor = 0.2;
     }
@@ -1254,7 +1256,7 @@ fn initial_step<S: OdeSystem>(
     let h1 = if d1.max(d2) <= 1e-15 {
         (h0 * 1e-3).max(1e-12)
     } else {
-        (0.01 / d1.max(d2)).powf(1.0 / f64::from(order + 1))
+        (0.01 / d1.max(d2)).libm_powf(1.0 / f64::from(order + 1))
     };
     (100.0 * h0).min(h1).min(max_step_s)
 }

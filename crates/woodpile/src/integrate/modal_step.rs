@@ -20,6 +20,7 @@
 use super::exponential::{lagrange, nodes, work_of_cubics, StepWeights};
 use super::{IntegratorStats, StepControl, Verdict, EVENT_LANDING_FRACTION, NYSTROM_LANDING_END};
 use crate::error::{Error, Result};
+use crate::math::Libm;
 use crate::model::ContactLaw;
 use crate::ode::{load_slot, ChainOde, ModalChain};
 
@@ -910,7 +911,7 @@ fn groups(modes: &[f64]) -> &[[f64; 4]] {
 
 /// The rung of the step ladder at or below h, and its index.
 pub(super) fn ladder_floor(h: f64) -> (f64, Option<i64>) {
-    let k = (LADDER_PER_OCTAVE * (h / LADDER_BASE_S).log2()).floor();
+    let k = (LADDER_PER_OCTAVE * (h / LADDER_BASE_S).libm_log2()).floor();
     (
         LADDER_BASE_S * (k / LADDER_PER_OCTAVE).exp2(),
         Some(k as i64),

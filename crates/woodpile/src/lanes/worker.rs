@@ -194,7 +194,7 @@ impl<'a, const L: usize> Lanes<'a, L> {
             settings,
             ..
         } = jobs[job];
-        let started = std::time::Instant::now();
+        let started = crate::clock::Stopwatch::start();
         let (integrator, units) = start_integrator(&mut ode, settings);
         let watch = Watch::start(
             &mut ode,

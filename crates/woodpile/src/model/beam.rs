@@ -24,6 +24,7 @@
 use super::cell::{Resonator, UnitCell};
 use super::material::Material;
 use crate::error::{require_non_negative, require_positive, Error, Result};
+use crate::math::Libm;
 use std::f64::consts::PI;
 
 /// Which beam theory gives the rod's bending frequencies.
@@ -190,8 +191,8 @@ impl Rod {
     pub(super) fn free_free(&self, theory: BeamTheory, omega: f64) -> f64 {
         let w = self.wave(theory, omega);
         let half = 0.5 * self.length_m;
-        let (s, c) = (w.beta * half).sin_cos();
-        let th = (w.alpha * half).tanh();
+        let (s, c) = (w.beta * half).libm_sin_cos();
+        let th = (w.alpha * half).libm_tanh();
         // moment row [aα, bβ cos βl / cosh αl], shear row [tanh αl / α, sin βl / (β cosh αl)]:
         // multiplied through by cosh αl, the determinant is
         (w.a * w.alpha / w.beta) * s - (w.b * w.beta / w.alpha) * th * c
@@ -202,9 +203,9 @@ impl Rod {
     fn centre_blocked(&self, theory: BeamTheory, omega: f64) -> f64 {
         let w = self.wave(theory, omega);
         let half = 0.5 * self.length_m;
-        let (s, c) = (w.beta * half).sin_cos();
-        let th = (w.alpha * half).tanh();
-        let sech = 1.0 / (w.alpha * half).cosh();
+        let (s, c) = (w.beta * half).libm_sin_cos();
+        let th = (w.alpha * half).libm_tanh();
+        let sech = 1.0 / (w.alpha * half).libm_cosh();
         let (a, b, al, be) = (w.a, w.b, w.alpha, w.beta);
         // Unknowns C₁ (cosh − cos) and D (b sinh + a sin), from W(0) = Ψ(0) = 0.
         let m1 = a * al - b * be * c * sech;
@@ -380,8 +381,8 @@ impl Rod {
             .map(|&omega| {
                 let w = self.wave(theory, omega);
                 let (a, b, al, be) = (w.a, w.b, w.alpha, w.beta);
-                let (s, c) = (be * half).sin_cos();
-                let (sh, ch) = ((al * half).sinh(), (al * half).cosh());
+                let (s, c) = (be * half).libm_sin_cos();
+                let (sh, ch) = ((al * half).libm_sinh(), (al * half).libm_cosh());
                 // The null vector of the moment row (the shear row is then satisfied).
                 let (mut c1, mut d) = (a * b * (al * sh + be * s), -(a * al * ch - b * be * c));
                 if c1.abs() + d.abs() == 0.0 {
@@ -393,8 +394,8 @@ impl Rod {
                 let (mut first, mut second) = (0.0, 0.0);
                 for i in 0..=n {
                     let x = i as f64 * h;
-                    let (sx, cx) = (be * x).sin_cos();
-                    let (shx, chx) = ((al * x).sinh(), (al * x).cosh());
+                    let (sx, cx) = (be * x).libm_sin_cos();
+                    let (shx, chx) = ((al * x).libm_sinh(), (al * x).libm_cosh());
                     let deflection = c1 * (chx - cx) + d * (b * shx + a * sx);
                     let rotation = a * c1 * shx + a * b * d * chx - b * c1 * sx - a * b * d * cx;
                     let weight = if i == 0 || i == n {

@@ -20,6 +20,7 @@
 
 use super::material::Material;
 use crate::error::{Error, Result};
+use crate::math::Libm;
 
 /// The local shape of a body at its contact point.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -161,7 +162,7 @@ impl HertzContact {
             .max(0.0)
             .sqrt();
         let (k, s) = agm_k_sigma(complement);
-        let approach_m = (force_n / self.beta).powf(2.0 / 3.0);
+        let approach_m = (force_n / self.beta).libm_powf(2.0 / 3.0);
         let semi_major_m = (approach_m * s / self.a_per_m).sqrt();
         self.effective_modulus_pa * approach_m / (complement * semi_major_m * k)
     }
@@ -208,7 +209,7 @@ pub fn hertz_contact(
     let d2 = k2a - k2b;
     let phi = th1 - th2;
     let sum = 0.5 * (k1a + k1b + k2a + k2b);
-    let diff_sq = d1 * d1 + d2 * d2 + 2.0 * d1 * d2 * (2.0 * phi).cos();
+    let diff_sq = d1 * d1 + d2 * d2 + 2.0 * d1 * d2 * (2.0 * phi).libm_cos();
     let diff = 0.5 * diff_sq.max(0.0).sqrt();
     let a = 0.5 * (sum - diff);
     let b = 0.5 * (sum + diff);
@@ -222,7 +223,7 @@ pub fn hertz_contact(
     let ratio = b / a;
     let complement = match solution {
         EllipseSolution::Exact => solve_axis_ratio(ratio),
-        EllipseSolution::Greenwood => ratio.powf(-2.0 / 3.0),
+        EllipseSolution::Greenwood => ratio.libm_powf(-2.0 / 3.0),
     };
     let (k, s) = agm_k_sigma(complement);
     let beta = 2.0 * std::f64::consts::PI * e_star / 3.0 * (s / a).sqrt() / k;
@@ -242,10 +243,10 @@ fn solve_axis_ratio(gap_ratio: f64) -> f64 {
         return 1.0;
     }
     let g = |ln_s: f64| {
-        let s = ln_s.exp();
+        let s = ln_s.libm_exp();
         let (_, sig) = agm_k_sigma(s);
         (1.0 - sig) / (s * s * sig)
     };
     // b/a from 4e-18 to 1; g decreases in ln(b/a).
-    crate::root::bisect(-40.0, 0.0, |ln_s| g(ln_s) > gap_ratio).exp()
+    crate::root::bisect(-40.0, 0.0, |ln_s| g(ln_s) > gap_ratio).libm_exp()
 }

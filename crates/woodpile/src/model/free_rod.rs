@@ -16,6 +16,7 @@
 
 use super::beam::{BeamTheory, Rod};
 use crate::error::{Error, Result};
+use crate::math::Libm;
 
 /// One free–free bending mode of a Timoshenko rod, mass-normalised.
 #[derive(Debug, Clone, PartialEq)]
@@ -38,9 +39,9 @@ impl TimoshenkoMode {
     /// Deflection W(s) at axial coordinate s ∈ [−L/2, L/2] \[kg^-½\].
     pub fn deflection(&self, s_m: f64) -> f64 {
         let (hyp, trig) = if self.symmetric {
-            (self.cosh_ratio(s_m), (self.beta * s_m).cos())
+            (self.cosh_ratio(s_m), (self.beta * s_m).libm_cos())
         } else {
-            (self.sinh_ratio(s_m), (self.beta * s_m).sin())
+            (self.sinh_ratio(s_m), (self.beta * s_m).libm_sin())
         };
         self.p * hyp + self.q * trig
     }
@@ -48,22 +49,22 @@ impl TimoshenkoMode {
     /// Rotation Ψ(s) of the section \[kg^-½ m^-1\].
     pub fn rotation(&self, s_m: f64) -> f64 {
         if self.symmetric {
-            self.p * self.a * self.sinh_ratio(s_m) + self.q * self.b * (self.beta * s_m).sin()
+            self.p * self.a * self.sinh_ratio(s_m) + self.q * self.b * (self.beta * s_m).libm_sin()
         } else {
-            self.p * self.a * self.cosh_ratio(s_m) - self.q * self.b * (self.beta * s_m).cos()
+            self.p * self.a * self.cosh_ratio(s_m) - self.q * self.b * (self.beta * s_m).libm_cos()
         }
     }
 
     /// cosh αs / cosh αL/2 without overflow.
     fn cosh_ratio(&self, s: f64) -> f64 {
         let (x, l) = (self.alpha * s.abs(), self.alpha * self.half_m);
-        ((x - l).exp() + (-x - l).exp()) / (1.0 + (-2.0 * l).exp())
+        ((x - l).libm_exp() + (-x - l).libm_exp()) / (1.0 + (-2.0 * l).libm_exp())
     }
 
     /// sinh αs / cosh αL/2 without overflow.
     fn sinh_ratio(&self, s: f64) -> f64 {
         let (x, l) = (self.alpha * s.abs(), self.alpha * self.half_m);
-        s.signum() * ((x - l).exp() - (-x - l).exp()) / (1.0 + (-2.0 * l).exp())
+        s.signum() * ((x - l).libm_exp() - (-x - l).libm_exp()) / (1.0 + (-2.0 * l).libm_exp())
     }
 }
 
@@ -73,8 +74,8 @@ impl TimoshenkoMode {
 fn antisymmetric_equation(rod: &Rod, theory: BeamTheory, omega: f64) -> f64 {
     let w = rod.wave(theory, omega);
     let half = 0.5 * rod.length_m;
-    let (s, c) = (w.beta * half).sin_cos();
-    let th = (w.alpha * half).tanh();
+    let (s, c) = (w.beta * half).libm_sin_cos();
+    let th = (w.alpha * half).libm_tanh();
     -(w.a * w.alpha / w.beta) * th * c - (w.b * w.beta / w.alpha) * s
 }
 
@@ -113,14 +114,14 @@ impl Rod {
     fn free_free_mode(&self, omega: f64, symmetric: bool) -> TimoshenkoMode {
         let w = self.wave(BeamTheory::Timoshenko, omega);
         let half_m = 0.5 * self.length_m;
-        let (sb, cb) = (w.beta * half_m).sin_cos();
+        let (sb, cb) = (w.beta * half_m).libm_sin_cos();
         // The null vector of the moment row at x = L/2.
         let (p, q) = if symmetric {
             (w.b * w.beta * cb, -w.a * w.alpha)
         } else {
             (
                 w.b * w.beta * sb,
-                -w.a * w.alpha * (w.alpha * half_m).tanh(),
+                -w.a * w.alpha * (w.alpha * half_m).libm_tanh(),
             )
         };
         let mut mode = TimoshenkoMode {

@@ -21,6 +21,7 @@
 //! whether it may.
 
 use crate::error::{require_non_negative, require_positive, Error, Result};
+use crate::math::Libm;
 
 /// How a contact dissipates energy.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -87,7 +88,7 @@ impl ContactDamping {
     /// Restitution-law prefactor 2 √(5/6) (−ln e)/√(π² + ln² e) · √(3/2): multiplied by
     /// √(β m_eff) δ^{1/4} it gives η.
     pub(crate) fn restitution_prefactor(e: f64) -> f64 {
-        let l = e.ln();
+        let l = e.libm_ln();
         2.0 * (5.0_f64 / 6.0).sqrt() * (-l) / (std::f64::consts::PI.powi(2) + l * l).sqrt()
             * 1.5_f64.sqrt()
     }

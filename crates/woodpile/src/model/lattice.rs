@@ -20,6 +20,7 @@ use super::fe_beam::FreeRodModes;
 use super::material::Material;
 use super::{Rod, Wall};
 use crate::error::{Error, Result};
+use crate::math::Libm;
 
 /// One layer of parallel rods, as the user gives it.
 #[derive(Debug, Clone, PartialEq)]
@@ -98,7 +99,7 @@ impl LatticeRod {
     pub fn surface(&self) -> Surface {
         Surface::Cylinder {
             radius_m: 0.5 * self.rod.outer_diameter_m,
-            axis_angle_rad: self.axis[1].atan2(self.axis[0]),
+            axis_angle_rad: self.axis[1].libm_atan2(self.axis[0]),
         }
     }
 
@@ -257,7 +258,7 @@ impl LatticeBuilder {
                 }
                 angle_rad += a.to_radians();
             }
-            let axis = [angle_rad.cos(), angle_rad.sin()];
+            let axis = [angle_rad.libm_cos(), angle_rad.libm_sin()];
             // The transverse direction, toward +x (toward +y for rods along x).
             let mut normal = [-axis[1], axis[0]];
             if normal[0] < -1e-12 || (normal[0].abs() <= 1e-12 && normal[1] < 0.0) {

@@ -9,6 +9,7 @@
 //! its force in `ContactLaw::force`, its compilation from [`ContactDamping`] in
 //! [`ContactLaw::compile`] (docs/extending.md).
 
+use crate::math::Libm;
 use crate::model::ContactDamping;
 use crate::real::Real;
 
@@ -138,7 +139,7 @@ impl ContactLaw {
     /// `speed_m_s`: 2.94 δ_max / v with δ_max = (5 m v² / (4 β))^{2/5} (Johnson, *Contact
     /// Mechanics*, §11.4).
     pub fn elastic_contact_time_s(beta: f64, mass_kg: f64, speed_m_s: f64) -> f64 {
-        let delta_max = (1.25 * mass_kg * speed_m_s * speed_m_s / beta).powf(0.4);
+        let delta_max = (1.25 * mass_kg * speed_m_s * speed_m_s / beta).libm_powf(0.4);
         2.94 * delta_max / speed_m_s
     }
 

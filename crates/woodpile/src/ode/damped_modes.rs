@@ -89,7 +89,7 @@ impl DampedCell {
         for (k, &lambda) in roots.iter().enumerate() {
             let residue = residue(primary_mass, resonators, on_site_rate, lambda);
             let (b, a) = oscillator_weights(residue, lambda);
-            let (omega, gamma) = (lambda.norm(), -lambda.re);
+            let (omega, gamma) = (crate::math::modulus(lambda), -lambda.re);
             cell.omega.push(omega);
             cell.rate.push(2.0 * gamma);
             cell.b.push(b);
@@ -391,7 +391,7 @@ fn follow_roots(
                 let (value, slope) = deflated(primary_mass, &scaled, rho * t, s, poles);
                 let delta = value / slope;
                 s -= delta;
-                last = delta.norm() / s.norm();
+                last = crate::math::modulus(delta) / crate::math::modulus(s);
                 if last <= 4.0 * f64::EPSILON {
                     break;
                 }

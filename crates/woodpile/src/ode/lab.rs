@@ -4,6 +4,7 @@
 use super::{ChainOde, LabEquations, LabLoad, LabShape};
 use crate::error::{Error, Result};
 use crate::excitation::{DriveQuantity, Excitation};
+use crate::math::Libm;
 use crate::model::{Chain, ContactDamping, ContactLaw, Damping};
 
 impl ChainOde {
@@ -190,7 +191,7 @@ impl ChainOde {
         let (p, nd) = (self.eq.p, self.eq.nd);
         let overlap_of = |f: f64, b: f64| {
             if f > 0.0 {
-                (f / b).powf(2.0 / 3.0)
+                (f / b).libm_powf(2.0 / 3.0)
             } else {
                 0.0
             }

@@ -346,7 +346,12 @@ impl<'a> Potential<'a> {
         let p = p.cholesky()?;
         let y = p.solve(&coupling.transpose());
         let z = p.solve(&h);
-        let mut s = &coupling * &y;
+        // (A product by hand: nalgebra hands matrix products to `matrixmultiply`, whose kernels
+        // fuse multiply-adds where the CPU has FMA, so the equilibrium's last bits would
+        // depend on the machine; `math`'s module notes.)
+        let mut s = DMatrix::from_fn(coupling.nrows(), y.ncols(), |i, j| {
+            (0..y.nrows()).map(|l| coupling[(i, l)] * y[(l, j)]).sum()
+        });
         for (i, &j) in self.rigid_coordinates.iter().enumerate() {
             s[(i, i)] += d[j];
         }

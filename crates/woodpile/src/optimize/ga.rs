@@ -5,6 +5,7 @@ use super::error::OptimizeError;
 use super::objective::{Objective, Valued};
 use super::operators::{breed, truncation_pool};
 use super::space::{DesignSpace, FeasibleSet, Genome};
+use crate::clock::Stopwatch;
 use crate::error::Error;
 use crate::integrate::Method;
 use crate::lanes::LaneWidth;
@@ -16,7 +17,6 @@ use rayon::prelude::*;
 use std::collections::HashMap;
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Instant;
 
 /// Parameters of the breeder GA.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -912,22 +912,22 @@ impl BreederGa {
 
     /// Generation 0: a random feasible population, evaluated and sorted.
     pub fn initialize(&self) -> Result<GaState, OptimizeError> {
-        let started = Instant::now();
+        let started = Stopwatch::start();
         let genomes = self.initial_designs();
         let mut ledger = Ledger::default();
         let individuals = self.evaluate_generation(&[], &genomes, &mut ledger, f64::INFINITY)?;
-        Ok(self.start(individuals, ledger, started.elapsed().as_secs_f64()))
+        Ok(self.start(individuals, ledger, started.elapsed_s()))
     }
 
     /// Breeds, evaluates and sorts the next generation. On error `state` is unchanged.
     pub fn next_generation(&self, state: &mut GaState) -> Result<(), OptimizeError> {
-        let started = Instant::now();
+        let started = Stopwatch::start();
         let children = self.offspring(state);
         let mut ledger = state.ledger.clone();
         let cutoff = self.stop_cutoff(state);
         let individuals =
             self.evaluate_generation(self.elites(state), &children, &mut ledger, cutoff)?;
-        self.advance(state, individuals, ledger, started.elapsed().as_secs_f64());
+        self.advance(state, individuals, ledger, started.elapsed_s());
         Ok(())
     }
 

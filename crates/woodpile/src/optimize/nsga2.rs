@@ -19,6 +19,7 @@ use super::ga::StopReason;
 use super::operators::{mutate, recombine};
 use super::pareto::{crowded_order, crowding_distances, hypervolume, non_dominated_fronts};
 use super::space::{DesignSpace, FeasibleSet, Genome};
+use crate::clock::Stopwatch;
 use crate::error::Error;
 use crate::lanes::LaneWidth;
 use rand::{Rng, SeedableRng};
@@ -26,7 +27,6 @@ use rand_chacha::ChaCha8Rng;
 use std::collections::HashMap;
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Instant;
 
 /// Parameters of NSGA-II.
 #[derive(Debug, Clone, PartialEq)]
@@ -491,7 +491,7 @@ impl<S: GenomeSpace> Nsga2<S> {
 
     /// Generation 0: a random feasible population (stream 0), evaluated and sorted.
     pub fn initialize(&self) -> Result<Nsga2State, OptimizeError> {
-        let started = Instant::now();
+        let started = Stopwatch::start();
         let mut rng = self.rng(0);
         let genomes: Vec<Genome> = (0..self.settings.population)
             .map(|_| self.designs.random(&mut rng))
@@ -515,7 +515,7 @@ impl<S: GenomeSpace> Nsga2<S> {
             evaluations,
             cache_hits,
             stalled: 0,
-            elapsed_s: started.elapsed().as_secs_f64(),
+            elapsed_s: started.elapsed_s(),
         };
         state.history.push(self.stats(&state));
         Ok(state)
@@ -621,7 +621,7 @@ impl<S: GenomeSpace> Nsga2<S> {
 
     /// Breeds, evaluates and selects the next generation. On error `state` is unchanged.
     pub fn next_generation(&self, state: &mut Nsga2State) -> Result<(), OptimizeError> {
-        let started = Instant::now();
+        let started = Stopwatch::start();
         let children = self.offspring(state);
         let mut cache = std::mem::take(&mut state.cache);
         let (mut evaluations, mut cache_hits) = (state.evaluations, state.cache_hits);
@@ -646,7 +646,7 @@ impl<S: GenomeSpace> Nsga2<S> {
         state.generation += 1;
         state.evaluations = evaluations;
         state.cache_hits = cache_hits;
-        state.elapsed_s += started.elapsed().as_secs_f64();
+        state.elapsed_s += started.elapsed_s();
         let stats = self.stats(state);
         state.stalled = if stats.hypervolume > previous {
             0

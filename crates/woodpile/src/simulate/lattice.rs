@@ -233,7 +233,7 @@ pub fn lattice_method(ode: &LatticeOde, method: Method) -> Method {
 /// exact modal method ([`LatticeOde::fits_exact_modes`]), or a peak tolerance
 /// ([`lattice_method`] chooses).
 pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<LatticeRun> {
-    let started = std::time::Instant::now();
+    let started = crate::clock::Stopwatch::start();
     settings.validate()?;
     if matches!(settings.method, Method::ExactModes { .. }) && !ode.fits_exact_modes() {
         return Err(Error::invalid(
@@ -312,7 +312,7 @@ pub fn simulate_lattice(ode: &mut LatticeOde, settings: &RunSettings) -> Result<
         run.modal_dissipated_j = y[2 * (q + 3) + 1];
     }
     run.stats = stepper.stats();
-    run.wall_time_s = started.elapsed().as_secs_f64();
+    run.wall_time_s = started.elapsed_s();
     Ok(run)
 }
 

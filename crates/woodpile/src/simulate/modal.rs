@@ -38,7 +38,7 @@ pub(super) fn simulate_modal(
     excitation: &Excitation,
     settings: &RunSettings,
     recorder: &mut dyn Recorder,
-    (peak_watch, stop_above_n, started): (PeakWatch, f64, std::time::Instant),
+    (peak_watch, stop_above_n, started): (PeakWatch, f64, crate::clock::Stopwatch),
 ) -> Result<RunSummary> {
     let dim = ode.dimension();
     let mut y = ode.initial_state();
