@@ -4,13 +4,16 @@
 // optimised 20-rod chain (1 ms, peak_tolerance 1e-5) in Debian's headless Chromium driven over
 // the DevTools protocol (real time: the numbers' check, scripts/playground_check.py, runs on
 // virtual time, where the page's clock stands still), and prints the page's compute_ms of the
-// first run (the module just compiled) and the median of RUNS more, clicked one after another.
+// first run (the module just compiled) and the median of RUNS more, clicked one after another;
+// with `--woodpile BIN`, the native `BIN simulate` of the same TOML run between the page's runs
+// (its summary's wall_time_s, the library's own time, beside the page's), and their ratio.
 // `--screenshot PNG` saves the page after the first run, and beside it PNG with `-refused`
 // before its extension: the page's answer to a scenario the library refuses.
 //
 // Usage: node --experimental-websocket bench/playground.mjs SITE_DIR [RUNS] [--screenshot PNG]
+//        [--woodpile target/release/woodpile]
 
-import { spawn } from "node:child_process";
+import { spawn, execFileSync } from "node:child_process";
 import { createServer } from "node:http";
 import { mkdtempSync, readFileSync, writeFileSync, existsSync } from "node:fs";
 import { tmpdir } from "node:os";
@@ -19,6 +22,8 @@ import { join, extname, resolve } from "node:path";
 const args = process.argv.slice(2);
 const shotAt = args.indexOf("--screenshot");
 const screenshot = shotAt >= 0 ? args.splice(shotAt, 2)[1] : null;
+const binAt = args.indexOf("--woodpile");
+const woodpile = binAt >= 0 ? args.splice(binAt, 2)[1] : null;
 const [site, runsArg] = args;
 const runs = Number(runsArg ?? 9);
 const TYPES = { ".html": "text/html", ".js": "text/javascript", ".css": "text/css", ".wasm": "application/wasm", ".png": "image/png" };
@@ -91,13 +96,23 @@ if (screenshot) {
   const { data } = await send("Page.captureScreenshot", { format: "png", captureBeyondViewport: true });
   writeFileSync(screenshot, Buffer.from(data, "base64"));
 }
+const scratch = mkdtempSync(join(tmpdir(), "woodpile-native-"));
+writeFileSync(join(scratch, "paper.toml"), PAPER_CHAIN);
+const nativeMs = () => {
+  execFileSync(woodpile, ["simulate", join(scratch, "paper.toml"), "--out", join(scratch, "run"), "--quiet", "--overwrite"]);
+  return 1e3 * JSON.parse(readFileSync(join(scratch, "run", "summary.json"), "utf8")).wall_time_s;
+};
+const median = (values) => [...values].sort((a, b) => a - b)[Math.floor(values.length / 2)];
 const warm = [];
+const library = [];
+const native = [];
 for (let i = 0; i < runs; i++) {
   await evaluate(`document.getElementById("results").dataset.state = "running"; document.getElementById("run").click()`);
   await waitFor(`document.getElementById("results").dataset.state === "done"`);
   warm.push(Number(await computeMs()));
+  library.push(1e3 * Number(await evaluate(`document.getElementById("wall_time_s").dataset.value`)));
+  if (woodpile) native.push(nativeMs());
 }
-warm.sort((a, b) => a - b);
 const transmitted = await evaluate(`document.getElementById("transmitted_peak_force_n").dataset.value ?? null`);
 if (screenshot) {
   const bad = JSON.stringify("[chain]\nrods_mm = [80, 45]\n");
@@ -116,7 +131,13 @@ if (screenshot) {
   writeFileSync(screenshot.replace(/\.png$/, "-refused.png"), Buffer.from(data, "base64"));
 }
 console.log(`paper chain, 1 ms at peak_tolerance 1e-5, in headless Chromium: first run ${first.toFixed(1)} ms, ` +
-  `median of ${runs} more ${warm[Math.floor(runs / 2)].toFixed(1)} ms (transmitted peak ${transmitted} N)`);
+  `median of ${runs} more ${median(warm).toFixed(1)} ms, the library's own time in them ${median(library).toFixed(1)} ms ` +
+  `(transmitted peak ${transmitted} N)`);
+if (woodpile) {
+  console.log(`native (${woodpile}), the same TOML between the page's runs: ${median(native).toFixed(2)} ms; ` +
+    `page / native: first run ${(first / median(native)).toFixed(1)}, later runs ${(median(warm) / median(native)).toFixed(1)} ` +
+    `(library time ${(median(library) / median(native)).toFixed(1)})`);
+}
 if (screenshot) console.log(`screenshot: ${screenshot}`);
 socket.close();
 chromium.kill();

@@ -9,9 +9,9 @@
 //! and the samples themselves as numbers (the times, then every sample's contact forces), which
 //! the page reads as one `Float64Array`, not as text. A chain's or a lattice's scenario alike.
 //!
-//! The page talks to the module through three exports over its linear memory ([`page`]): it
-//! writes the TOML's bytes into a buffer the module lends, calls the run, and reads the JSON
-//! back. The module imports one function, the page's clock (`performance.now()`), which becomes
+//! The page talks to the module through five exports over its linear memory ([`page`]): it
+//! writes the TOML's bytes into a buffer the module lends, calls the run, and reads the JSON and
+//! the samples back. The module imports one function, the page's clock (`performance.now()`), which becomes
 //! the library's ([`woodpile::clock`]) so that `wall_time_s` is measured in the page too.
 
 use serde::Serialize;
@@ -22,11 +22,14 @@ use woodpile_io::lattice::{LatticeScenario, LatticeSummaryJson};
 use woodpile_io::rundir::{RunRecord, SummaryJson};
 use woodpile_io::scenario::{resolve, Scenario};
 
+pub mod page;
+
 /// The scenario's name in `summary.json` (the command line names a run after its file).
 pub const SCENARIO_NAME: &str = "playground";
 
 /// The most steps a page runs (a fixed-step run's estimate): a page cannot be interrupted while
-/// it runs, and 10⁷ RK4 steps of the paper's 20-rod chain take about a minute there.
+/// it runs, and 10⁷ RK4 steps of the paper's 20-rod chain take about a minute there (2 × 10⁵
+/// took 1.4 s in Node.js on the benchmark machine).
 pub const PAGE_MAX_STEPS: u64 = 10_000_000;
 
 /// Refuses a run the page should not start: the command line's limits, then [`PAGE_MAX_STEPS`].
@@ -49,8 +52,8 @@ pub struct Series {
     pub n_samples: usize,
     /// Contacts per sample.
     pub n_contacts: usize,
-    /// Each contact's name: `striker` (or `load`), `1-2` …, `N-wall` for a chain; `c0` … for a
-    /// lattice (its contacts are listed by the command line's `run.json`).
+    /// Each contact's name: `striker-1` (or `load-1`), `1-2` …, `N-wall` for a chain; `c0` …
+    /// for a lattice (the command line's `run.json` lists what each joins).
     pub contact_names: Vec<String>,
 }
 
@@ -169,5 +172,3 @@ fn run_lattice(toml: &str) -> Result<(Value, Vec<f64>), String> {
 fn done(summary: &impl Serialize, series: &Series, warnings: &[String]) -> Value {
     json!({ "ok": true, "summary": summary, "series": series, "warnings": warnings })
 }
-
-pub mod page;
