@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal, Mapping, Sequence, TypedDict, Union, overload
 
 from . import _core
-from .errors import ScenarioError, StateError
+from .errors import ScenarioError, StateError, _check_count
 from .scenario import Scenario
 from .study import Executor, _chunks, _workers
 
@@ -81,13 +81,6 @@ def _is_lattice_study(problem: Problem, kind: str, text: str) -> bool:
     if kind == "json":
         return isinstance(problem, Mapping) and "lattice" in problem
     return kind == "toml" and _core.is_lattice(text)
-
-
-def _check_count(name: str, value: int | None, valid: str) -> None:
-    """Refuses a keyword argument that must be a non-negative integer below 2**64 (or None)."""
-    ok = value is None or (isinstance(value, int) and not isinstance(value, bool) and 0 <= value < 2**64)
-    if not ok:
-        raise ScenarioError(f"invalid {name} = {value!r}: must be {valid}", name, repr(value), valid)
 
 
 def _evaluate_designs(config_json: str, base_dir: str, designs: Sequence[Sequence[int]], threads: int) -> list[float]:

@@ -7,6 +7,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Optional, Sequence
 
 from . import _core
+from .errors import _check_count
 from .scenario import Scenario
 
 if TYPE_CHECKING:
@@ -40,7 +41,9 @@ def sensitivity(
     are) or the scenario states a ``run.peak_tolerance``, every contact peak is computed within
     1e-5 (a :class:`Scenario` always carries the completed RK4 settings, so they do not count as
     stated here). A study of more than 1e6 elements in all (runs × chain elements) raises
-    :class:`woodpile.LimitError` unless ``allow_large``.
+    :class:`woodpile.LimitError` unless ``allow_large``. ``scenario`` other than a
+    :class:`Scenario` raises :class:`TypeError`; a negative ``base_samples``, ``seed`` or
+    ``threads`` a :class:`woodpile.ScenarioError` naming it.
 
     The DataFrame's ``attrs`` hold the design: ``attrs["samples"]`` (the Saltelli matrix, SALib's
     row order, one column per drawn value), ``attrs["outputs"]`` (one column per figure, same
@@ -50,6 +53,14 @@ def sensitivity(
     """
     import pandas as pd
 
+    if not isinstance(scenario, Scenario):
+        raise TypeError(
+            f"invalid scenario = {scenario!r}: must be a woodpile.Scenario "
+            "(a file: Scenario.load(path); a built-in: Scenario.builtin(name))"
+        )
+    _check_count("base_samples", base_samples, "a power of two of at least 8, e.g. 64")
+    _check_count("seed", seed, "the Sobol' points' seed: an integer 0 ≤ seed < 2**32", 2**32)
+    _check_count("threads", threads, "worker threads: 0 (one per core) or more")
     columns, matrix, figures, outputs, rows, meaningless, accuracy = _core.sensitivity(
         scenario.to_toml(),
         str(scenario.base_dir),

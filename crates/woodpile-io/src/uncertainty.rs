@@ -73,6 +73,13 @@ pub fn samples_at(
     points: impl FnOnce(usize) -> Result<Vec<Vec<f64>>, Error>,
 ) -> Result<Samples, Error> {
     use crate::scenario::{ElementSpec, ExcitationKind};
+    if u.parameters.is_empty() {
+        return Err(Error::invalid(
+            "uncertainty",
+            "{}",
+            "at least one scattered parameter (e.g. rod_length_mm = { sd = 0.2 }): with none, every sample is the nominal scenario, drawn again and again",
+        ));
+    }
     let mut base = scenario.complete();
     base.uncertainty = None;
     if let Some(rods) = base.chain.rods_mm.take() {
@@ -159,6 +166,31 @@ pub fn samples_at(
         })
         .collect::<Result<Vec<_>, Error>>()?;
     Ok(Samples { columns, samples })
+}
+
+/// The elements of `scenario`'s chain (its rods or elements; 1 when it names none).
+pub fn chain_elements(scenario: &crate::scenario::Scenario) -> usize {
+    let chain = scenario.complete().chain;
+    chain
+        .rods_mm
+        .as_ref()
+        .map(Vec::len)
+        .or(chain.elements.as_ref().map(Vec::len))
+        .unwrap_or(1)
+        .max(1)
+}
+
+/// Refuses `samples` runs of `scenario` above the study limit unless `allow`
+/// ([`crate::limits::check_study`]: every sample's scenario is built before the runs); `field`
+/// names the number of samples as the front end spells it.
+pub fn check_size(
+    scenario: &crate::scenario::Scenario,
+    samples: usize,
+    field: &str,
+    allow: bool,
+) -> Result<(), Error> {
+    let elements = chain_elements(scenario);
+    crate::limits::check_study(field, &samples.to_string(), samples, elements, allow)
 }
 
 impl Samples {

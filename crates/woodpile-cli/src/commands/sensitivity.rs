@@ -10,7 +10,7 @@ use woodpile::sensitivity::Bootstrap;
 use woodpile::{simulate_many, Job, LaneWidth};
 use woodpile_io::scenario::resolve;
 use woodpile_io::sensitivity::{
-    accuracy_targeted, base_samples_refusal, design, figure_indices, FILES, MARKER,
+    accuracy_targeted, design, figure_indices, FILES, MARKER,
 };
 
 /// Arguments of `woodpile sensitivity`.
@@ -49,7 +49,7 @@ const CHUNK: usize = 256;
 
 /// Runs `woodpile sensitivity`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
-    let mut loaded = load(&args.source)?;
+    let mut loaded = load(&args.source, "sensitivity")?;
     let Some(spec) = &loaded.scenario.uncertainty else {
         return Err(CliError::invalid(
             "uncertainty",
@@ -57,13 +57,6 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
             "woodpile sensitivity needs the scenario's [uncertainty] table: the parameters to scatter and their distributions (docs/sensitivity.md)",
         ));
     };
-    if let Some(reason) = base_samples_refusal(args.base_samples) {
-        return Err(CliError::invalid(
-            "--base-samples",
-            args.base_samples,
-            reason,
-        ));
-    }
     let mut u = spec.check()?;
     if let Some(seed) = args.seed {
         u.seed = seed;
@@ -72,7 +65,8 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     if fast {
         accuracy.push_str(" (--paper-settings: the scenario's own run settings)");
     }
-    let d = design(&loaded.scenario, &u, args.base_samples, args.allow_large)?;
+    let samples = ("--base-samples", args.base_samples);
+    let d = design(&loaded.scenario, &u, samples, args.allow_large)?;
     let resolved = d
         .samples
         .samples
@@ -85,7 +79,6 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         args.out.clone(),
         Path::new("runs").join(format!("{}-sensitivity", loaded.name)),
         MARKER,
-        "holds an earlier sensitivity study: choose another --out, or remove it first",
     )?;
     let rows = resolved.len();
     if !ctx.quiet {
@@ -112,7 +105,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         &per_figure,
         &accuracy,
     )?;
-    let dir = staging.commit(FILES, MARKER)?;
+    let dir = staging.commit_study(FILES, MARKER)?;
     let figure_dir = dir.join("plots");
     let plotted = woodpile_plot::dirs::sensitivity(&dir, &figure_dir);
     if !ctx.quiet {

@@ -79,10 +79,11 @@ impl Loaded {
     }
 }
 
-/// Loads a scenario file, or a built-in scenario by name (default: the default job).
-pub fn load(source: &Source) -> Result<Loaded, CliError> {
+/// Loads a scenario file, or a built-in scenario by name (default: the default job), for
+/// `command`, which runs chains only.
+pub fn load(source: &Source, command: &'static str) -> Result<Loaded, CliError> {
     if let Some(file) = &source.file {
-        let scenario = Scenario::load(file)?;
+        let scenario = Scenario::load(file).map_err(super::chains_only(command))?;
         let (name, base_dir) = super::name_and_base(file, "scenario");
         return Ok(Loaded {
             name,
@@ -116,7 +117,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
             return run_lattice(args, Path::new(name), text, ctx);
         }
     }
-    let loaded = load(&args.source)?;
+    let loaded = load(&args.source, "simulate")?;
     let resolved = loaded.resolve()?;
     RunSize::estimate(&resolved.settings, resolved.chain.len()).check(
         args.allow_long,

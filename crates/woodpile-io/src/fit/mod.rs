@@ -200,6 +200,17 @@ pub fn setup(config: &FitConfig, path: &Path, base: &Path) -> Result<FitSetup, E
     if starts == 0 {
         return Err(Error::invalid("fit.starts", 0, "must be at least 1"));
     }
+    let max_evaluations = config
+        .fit
+        .max_evaluations
+        .unwrap_or(woodpile::defaults::FIT_MAX_EVALUATIONS);
+    if max_evaluations == 0 {
+        return Err(Error::invalid(
+            "fit.max_evaluations",
+            0,
+            "at least 1 model run per start (default 200): with none, no start would move from its initial values",
+        ));
+    }
     Ok(FitSetup {
         path: path.to_path_buf(),
         scenario,
@@ -211,11 +222,7 @@ pub fn setup(config: &FitConfig, path: &Path, base: &Path) -> Result<FitSetup, E
         sources,
         window_s,
         starts,
-        max_evaluations: config
-            .fit
-            .max_evaluations
-            .unwrap_or(woodpile::defaults::FIT_MAX_EVALUATIONS)
-            .max(1),
+        max_evaluations,
         seed: config.fit.seed.unwrap_or(0),
     })
 }
