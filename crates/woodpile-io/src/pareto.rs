@@ -539,6 +539,26 @@ pub fn is_pareto_dir(dir: &Path) -> bool {
     })
 }
 
+/// The hypervolume of each generation in an NSGA-II output's `history.csv` (a chain's or a
+/// lattice's study).
+pub fn read_hypervolume(dir: &Path) -> Result<Vec<(usize, f64)>, Error> {
+    let history = dir.join("history.csv");
+    let bad = |reason: String| crate::atomic::read_error(&history, reason);
+    let text = fs::read_to_string(&history).map_err(|e| bad(e.to_string()))?;
+    let mut r = crate::table::csv_reader(text.as_bytes());
+    let mut hypervolume = Vec::new();
+    for rec in r.records() {
+        let rec = rec.map_err(|e| bad(e.to_string()))?;
+        let g = rec.get(0).and_then(|s| s.trim().parse::<usize>().ok());
+        let h = rec.get(1).and_then(|s| s.trim().parse::<f64>().ok());
+        match (g, h) {
+            (Some(g), Some(h)) => hypervolume.push((g, h)),
+            _ => return Err(bad(format!("not a generation and a hypervolume: {rec:?}"))),
+        }
+    }
+    Ok(hypervolume)
+}
+
 /// Reads an NSGA-II output directory; one that has not finished (no `summary.json`) is refused
 /// with what to do.
 pub fn read_pareto_output(dir: &Path) -> Result<ParetoOutput, Error> {
@@ -557,20 +577,7 @@ pub fn read_pareto_output(dir: &Path) -> Result<ParetoOutput, Error> {
         source_name: path.display().to_string(),
         message: e.to_string(),
     })?;
-    let history = dir.join("history.csv");
-    let bad = |reason: String| crate::atomic::read_error(&history, reason);
-    let text = fs::read_to_string(&history).map_err(|e| bad(e.to_string()))?;
-    let mut r = crate::table::csv_reader(text.as_bytes());
-    let mut hypervolume = Vec::new();
-    for rec in r.records() {
-        let rec = rec.map_err(|e| bad(e.to_string()))?;
-        let g = rec.get(0).and_then(|s| s.trim().parse::<usize>().ok());
-        let h = rec.get(1).and_then(|s| s.trim().parse::<f64>().ok());
-        match (g, h) {
-            (Some(g), Some(h)) => hypervolume.push((g, h)),
-            _ => return Err(bad(format!("not a generation and a hypervolume: {rec:?}"))),
-        }
-    }
+    let hypervolume = read_hypervolume(dir)?;
     Ok(ParetoOutput {
         summary,
         hypervolume,

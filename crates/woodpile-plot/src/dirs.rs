@@ -613,6 +613,9 @@ pub fn plot_pareto(
 }
 
 fn draw_pareto(dir: &Path, out: &Path) -> Result<(Vec<PathBuf>, Option<String>), Error> {
+    if let Some(study) = woodpile_io::lattice_study::read_study_output(dir)? {
+        return draw_lattice_study(&study, out);
+    }
     let read = woodpile_io::pareto::read_pareto_output(dir)?;
     let s = &read.summary;
     let config = &s.config;
@@ -710,6 +713,37 @@ fn draw_pareto(dir: &Path, out: &Path) -> Result<(Vec<PathBuf>, Option<String>),
         &designs,
         &format!("Pareto front ({model}, {excitation}): {shown}, top to bottom, to scale"),
         &out.join("pareto_designs"),
+    )?);
+    Ok((files, None))
+}
+
+/// The figures of a lattice study (`woodpile optimize` of a `[lattice]` config): `hypervolume`
+/// (per generation) and `pareto_front` (the rows of `pareto.csv`).
+fn draw_lattice_study(
+    study: &woodpile_io::lattice_study::LatticeStudyOutput,
+    out: &Path,
+) -> Result<(Vec<PathBuf>, Option<String>), Error> {
+    let s = &study.summary;
+    create_dir(out)?;
+    let title = format!("NSGA-II, lattice study (seed {})", s.seed);
+    let mut files = crate::hypervolume_history(
+        &study.hypervolume,
+        &format!("{title}: hypervolume"),
+        &out.join("hypervolume"),
+    )?;
+    if study.front.is_empty() {
+        let note = "no feasible design on the front: the front is not drawn";
+        return Ok((files, Some(note.into())));
+    }
+    let axes: Vec<crate::ObjectiveAxis> = (s.objectives.iter().zip(&s.units))
+        .map(|(name, unit)| crate::ObjectiveAxis::new(name, unit))
+        .collect();
+    files.extend(crate::pareto_front(
+        &axes,
+        &study.front,
+        &[],
+        &format!("{title}: front of {} designs", study.front.len()),
+        &out.join("pareto_front"),
     )?);
     Ok((files, None))
 }

@@ -26,6 +26,7 @@ fn fit_file(
         let setup = load(&path).map_err(py_err)?;
         woodpile_io::limits::check_fit(setup.starts, setup.max_evaluations, allow_large)
             .map_err(py_err)?;
+        setup.check_signals().map_err(py_err)?;
         if let Some(dir) = &out {
             woodpile_io::fit::check_output(dir, overwrite).map_err(py_err)?;
         }

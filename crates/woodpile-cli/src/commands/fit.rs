@@ -40,6 +40,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         .clone()
         .unwrap_or_else(|| PathBuf::from("runs").join(format!("{name}-fit")));
     check_output(&dir, args.overwrite)?;
+    setup.check_signals()?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()

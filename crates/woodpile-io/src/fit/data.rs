@@ -159,6 +159,47 @@ pub(super) fn measurements(
     Ok(out)
 }
 
+/// The smallest peak of a measured signal, relative to the model's peak of the same output:
+/// a signal a billionth of the model's is rounding noise (a double's is 1e-16 of the values it
+/// was computed from) or in another unit; a real measurement in kN against a model in N is 1e-3.
+pub const SIGNAL_FLOOR: f64 = 1e-9;
+
+/// Records the peak |value| of each output over a run.
+struct Peaks {
+    outputs: Vec<Output>,
+    peaks: Vec<f64>,
+}
+
+impl woodpile::Recorder for Peaks {
+    fn start(&mut self, _: &woodpile::Layout) {}
+
+    fn record(&mut self, s: &woodpile::Sample<'_>) {
+        for (o, peak) in self.outputs.iter().zip(&mut self.peaks) {
+            let v = match *o {
+                Output::ContactForce { contact } => s.contact_forces_n.get(contact),
+                Output::ElementVelocity { element } => s.velocities_m_s.get(element - 1),
+                Output::ElementDisplacement { element } => s.displacements_m.get(element - 1),
+                Output::StrikerVelocity => s.striker.as_ref().map(|(_, v)| v),
+            };
+            // NaN (no value) never raises the peak.
+            *peak = peak.max(v.map_or(0.0, |v| v.abs()));
+        }
+    }
+}
+
+/// The peak |value| of each of `outputs` over one run of `built` (sampled at least 4000 times),
+/// or None when the run fails.
+pub(super) fn model_peaks(built: &woodpile::fit::Built, outputs: &[Output]) -> Option<Vec<f64>> {
+    let mut settings = built.settings;
+    settings.sample_interval_s = settings.sample_interval_s.min(settings.duration_s / 4000.0);
+    let mut peaks = Peaks {
+        outputs: outputs.to_vec(),
+        peaks: vec![0.0; outputs.len()],
+    };
+    woodpile::simulate(&built.chain, &built.excitation, &settings, &mut peaks).ok()?;
+    Some(peaks.peaks)
+}
+
 fn check_weights(
     weights: &BTreeMap<String, f64>,
     signals: &BTreeMap<String, String>,

@@ -129,6 +129,8 @@ pub struct FitSetup {
     pub measurements: Vec<Measurement>,
     /// Per measurement: its file (as written in the fit file) and column.
     pub sources: Vec<(String, String)>,
+    /// Per measurement: the index of its `[[data]]` entry.
+    pub data_of: Vec<usize>,
     /// The window.
     pub window_s: Option<(f64, f64)>,
     /// Number of starts.
@@ -167,10 +169,12 @@ pub fn setup(config: &FitConfig, path: &Path, base: &Path) -> Result<FitSetup, E
     let window_s = window(config.fit.window_s)?;
     let mut measurements = Vec::new();
     let mut sources = Vec::new();
+    let mut data_of = Vec::new();
     for (i, spec) in config.data.iter().enumerate() {
         let signals = data::measurements(spec, i, base, window_s, &resolved)?;
         for m in signals {
             sources.push((spec.file.clone(), m.label.clone()));
+            data_of.push(i);
             measurements.push(m);
         }
     }
@@ -220,6 +224,7 @@ pub fn setup(config: &FitConfig, path: &Path, base: &Path) -> Result<FitSetup, E
         time_shift_s,
         measurements,
         sources,
+        data_of,
         window_s,
         starts,
         max_evaluations,
@@ -380,6 +385,37 @@ impl FitSetup {
             window_s: self.window_s,
             model,
         }
+    }
+
+    /// Refuses a measured signal whose peak is below [`data::SIGNAL_FLOOR`] of the model's
+    /// peak of the same output at the initial values (one run of the scenario): rounding noise,
+    /// or a signal in another unit, which carries nothing to fit, as an all-zero signal. A model
+    /// that does not run at the initial values is left to the fit, which reports it.
+    pub fn check_signals(&self) -> Result<(), Error> {
+        let initial: Vec<f64> = self.parameters.iter().map(|p| p.initial).collect();
+        let Ok(built) = self.build(&initial) else {
+            return Ok(());
+        };
+        let Some(peaks) = data::model_peaks(&built, &self.outputs()) else {
+            return Ok(());
+        };
+        for (k, (m, model)) in self.measurements.iter().zip(peaks).enumerate() {
+            if model > 0.0 && m.scale < data::SIGNAL_FLOOR * model {
+                let (file, column) = &self.sources[k];
+                return Err(Error::invalid(
+                    format!("data[{}].signals.{column}", self.data_of[k]),
+                    format!("{file} (peak {:.3e} {})", m.scale, m.output.unit()),
+                    format!(
+                        "below {:e} of the model's peak of {} at the initial values ({model:.3e} {}): rounding noise, or a signal in another unit, which carries no information to fit; give the signal in {}",
+                        data::SIGNAL_FLOOR,
+                        m.output.name(),
+                        m.output.unit(),
+                        m.output.unit()
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The model outputs the measurements map to.
