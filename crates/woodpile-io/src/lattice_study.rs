@@ -545,6 +545,8 @@ pub fn write_final_outputs(
     stop: StopReason,
 ) -> Result<LatticeStudySummary, Error> {
     let front = state.front();
+    // Also after a resume with nothing left to run, which writes no generation.
+    write_atomic(out, "history.csv", history_csv(&state.history).as_bytes())?;
     write_atomic(out, "pareto.csv", study.pareto_csv(&front).as_bytes())?;
     let dir = out.join("pareto");
     std::fs::create_dir_all(&dir).map_err(io_err(&dir))?;

@@ -222,6 +222,20 @@ pub fn history_csv(history: &[Nsga2Stats]) -> String {
     s
 }
 
+/// Why a study's hypervolume means nothing, or None: it is 0 at the last generation while the
+/// front holds designs, so no design is below the reference point in every objective (a
+/// reference point such as [-1, -1] for positive objectives), and the hypervolume can neither
+/// show progress nor stop the study on convergence.
+pub fn hypervolume_warning(state: &Nsga2State) -> Option<String> {
+    let h = state.history.last()?;
+    (h.hypervolume == 0.0 && !state.front().is_empty()).then(|| {
+        format!(
+            "the hypervolume is 0: no design of the front is below the reference point {:?} in every objective, so the hypervolume measures nothing; set ga.reference_point above the front's values (pareto.csv), or leave it out to take it from generation 0",
+            state.reference_point
+        )
+    })
+}
+
 /// Writes what changes after every generation, atomically: the checkpoint and `history.csv`.
 pub fn write_generation(
     out: &Path,
@@ -342,6 +356,8 @@ pub fn write_final_outputs(
     out: &Path,
 ) -> Result<ParetoSummary, Error> {
     let front = state.front();
+    // Also after a resume with nothing left to run, which writes no generation.
+    write_atomic(out, "history.csv", history_csv(&state.history).as_bytes())?;
     write_atomic(out, "pareto.csv", pareto_csv(problem, &front).as_bytes())?;
     let dir = out.join("pareto");
     fs::create_dir_all(&dir).map_err(io_err(&dir))?;
