@@ -153,6 +153,10 @@ pub fn samples_at(
     let samples = points
         .iter()
         .map(|row| {
+            // Many rows take seconds to build: a stop request ends the drawing.
+            if woodpile::interrupt::requested() {
+                return Err(Error::Model(woodpile::Error::Interrupted { time_s: 0.0 }));
+            }
             let mut s = base.clone();
             let values = targets
                 .iter()

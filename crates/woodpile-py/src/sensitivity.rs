@@ -71,8 +71,14 @@ fn sensitivity(
             .samples
             .samples
             .iter()
-            .map(|s| resolve(&s.scenario, &base_dir))
-            .collect::<Result<Vec<_>, _>>()
+            .map(|s| {
+                // Resolving thousands of rows takes seconds: Ctrl-C ends it.
+                if woodpile::interrupt::requested() {
+                    return Err(woodpile::Error::Interrupted { time_s: 0.0 }.into());
+                }
+                resolve(&s.scenario, &base_dir)
+            })
+            .collect::<Result<Vec<_>, woodpile_io::Error>>()
             .map_err(py_err)?;
         woodpile_io::limits::RunSize::estimate(&resolved[0].settings, resolved[0].chain.len())
             .check(false, false, false)
