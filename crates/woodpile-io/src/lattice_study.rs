@@ -456,8 +456,18 @@ pub fn read_study_output(dir: &Path) -> Result<Option<LatticeStudyOutput>, Error
     let mut r = crate::table::csv_reader(file);
     let header = r.headers().map_err(|e| table(1, e.to_string()))?.clone();
     let m = summary.objectives.len();
-    if header.iter().take(m).ne(summary.objectives.iter().map(String::as_str)) {
-        return Err(table(1, format!("its first columns are not the objectives of summary.json ({})", summary.objectives.join(", "))));
+    if header
+        .iter()
+        .take(m)
+        .ne(summary.objectives.iter().map(String::as_str))
+    {
+        return Err(table(
+            1,
+            format!(
+                "its first columns are not the objectives of summary.json ({})",
+                summary.objectives.join(", ")
+            ),
+        ));
     }
     let mut front = Vec::new();
     for rec in r.records() {

@@ -9,9 +9,7 @@ use std::path::{Path, PathBuf};
 use woodpile::sensitivity::Bootstrap;
 use woodpile::{simulate_many, Job, LaneWidth};
 use woodpile_io::scenario::resolve;
-use woodpile_io::sensitivity::{
-    accuracy_targeted, design, figure_indices, FILES, MARKER,
-};
+use woodpile_io::sensitivity::{accuracy_targeted, design, figure_indices, FILES, MARKER};
 
 /// Arguments of `woodpile sensitivity`.
 #[derive(Debug, Clone, clap::Args)]

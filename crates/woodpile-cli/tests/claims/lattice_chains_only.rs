@@ -26,7 +26,10 @@ fn refused(command: &str, args: &[&str], extra: &[(&str, &str)]) {
         "[lattice]".into(),
         "lattice.toml".into(),
     ] {
-        assert!(stderr.contains(&n), "{command}: expected `{n}` in: {stderr}");
+        assert!(
+            stderr.contains(&n),
+            "{command}: expected `{n}` in: {stderr}"
+        );
     }
     assert!(!stderr.contains("unknown field"), "{command}: {stderr}");
     assert!(!dir.path().join("o").exists(), "{command}: output written");

@@ -66,7 +66,11 @@ fn fit_file(extra: &str) -> String {
 fn a_fit_to_rounding_noise_is_refused_naming_the_signal() {
     let noise = "time_s,sensor_n\n0,1e-12\n1e-6,-2e-12\n";
     refused(
-        &[("model.toml", MODEL), ("m.csv", noise), ("f.toml", &fit_file(""))],
+        &[
+            ("model.toml", MODEL),
+            ("m.csv", noise),
+            ("f.toml", &fit_file("")),
+        ],
         &["fit", "f.toml", "--out", "o"],
         &["data[0].signals.sensor_n", "m.csv", "rounding noise"],
     );
@@ -119,7 +123,11 @@ fn plot_draws_a_lattice_study_and_refuses_a_nan_objective() {
     );
     assert_eq!(code, Some(0), "{stderr}");
     let out = common::run_in(dir.path(), &["plot", "lo", "--quiet"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(dir.path().join("lo/plots/pareto_front.png").is_file());
     assert!(dir.path().join("lo/plots/hypervolume.png").is_file());
     let csv = dir.path().join("lo/pareto.csv");

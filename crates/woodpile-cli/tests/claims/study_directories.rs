@@ -36,7 +36,15 @@ fn plot_tells_a_sensitivity_study_and_a_samples_study_apart() {
     common::write(dir.path(), "s.toml", SCATTERED);
     ok(
         dir.path(),
-        &["sensitivity", "s.toml", "--base-samples", "8", "--out", "sens", "--quiet"],
+        &[
+            "sensitivity",
+            "s.toml",
+            "--base-samples",
+            "8",
+            "--out",
+            "sens",
+            "--quiet",
+        ],
     );
     std::fs::remove_dir_all(dir.path().join("sens/plots")).unwrap();
     ok(dir.path(), &["plot", "sens", "--quiet"]);
@@ -46,7 +54,15 @@ fn plot_tells_a_sensitivity_study_and_a_samples_study_apart() {
         .is_file());
     ok(
         dir.path(),
-        &["simulate", "s.toml", "--samples", "4", "--out", "k", "--quiet"],
+        &[
+            "simulate",
+            "s.toml",
+            "--samples",
+            "4",
+            "--out",
+            "k",
+            "--quiet",
+        ],
     );
     let stderr = refused(dir.path(), &["plot", "k"]);
     assert!(stderr.contains("samples study"), "{stderr}");
@@ -63,13 +79,23 @@ fn a_users_summary_json_is_neither_overwritten_nor_advised_away() {
     common::write(&mine, "notes.txt", "lab book");
     for args in [
         &["simulate", "s.toml", "--samples", "4", "--out", "mine"][..],
-        &["sensitivity", "s.toml", "--base-samples", "8", "--out", "mine"][..],
+        &[
+            "sensitivity",
+            "s.toml",
+            "--base-samples",
+            "8",
+            "--out",
+            "mine",
+        ][..],
     ] {
         let stderr = refused(dir.path(), args);
         assert!(stderr.contains("--out = mine"), "{stderr}");
         assert!(stderr.contains("choose another --out"), "{stderr}");
         for advice in ["remove", "delete", "--overwrite"] {
-            assert!(!stderr.contains(advice), "{args:?} says `{advice}`: {stderr}");
+            assert!(
+                !stderr.contains(advice),
+                "{args:?} says `{advice}`: {stderr}"
+            );
         }
     }
     let summary = std::fs::read_to_string(mine.join("summary.json")).unwrap();
@@ -82,7 +108,13 @@ fn the_loser_of_two_concurrent_studies_is_not_told_to_overwrite() {
     let dir = tempfile::tempdir().unwrap();
     common::write(dir.path(), "s.toml", SCATTERED);
     let args = [
-        "sensitivity", "s.toml", "--base-samples", "128", "--out", "same", "--quiet",
+        "sensitivity",
+        "s.toml",
+        "--base-samples",
+        "128",
+        "--out",
+        "same",
+        "--quiet",
     ];
     let runs: Vec<_> = (0..2)
         .map(|_| {
@@ -114,7 +146,10 @@ fn resuming_a_finished_nsga2_run_restores_its_history() {
     let dir = tempfile::tempdir().unwrap();
     let config = "[design]\npositions = 4\ncatalogue_mm = [20, 40, 60]\n[run]\nduration_s = 3e-4\npeak_tolerance = 1e-4\n[ga]\nobjectives = [\"transmitted-force\", \"total-mass\"]\npopulation = 8\ngenerations = 2\n";
     common::write(dir.path(), "mo.toml", config);
-    ok(dir.path(), &["optimize", "mo.toml", "--out", "o", "--quiet"]);
+    ok(
+        dir.path(),
+        &["optimize", "mo.toml", "--out", "o", "--quiet"],
+    );
     let history = dir.path().join("o/history.csv");
     let written = std::fs::read_to_string(&history).unwrap();
     std::fs::remove_file(&history).unwrap();

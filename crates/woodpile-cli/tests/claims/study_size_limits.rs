@@ -16,7 +16,10 @@ fn refused(files: &[(&str, &str)], args: &[&str], needles: &[&str]) {
     }
     let started = Instant::now();
     let out = common::run_in(dir.path(), args);
-    assert!(started.elapsed() < Duration::from_secs(10), "refused at once");
+    assert!(
+        started.elapsed() < Duration::from_secs(10),
+        "refused at once"
+    );
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
     for n in needles {
@@ -29,8 +32,19 @@ fn refused(files: &[(&str, &str)], args: &[&str], needles: &[&str]) {
 fn a_billion_samples_are_refused_naming_the_flag_and_its_override() {
     refused(
         &[("s.toml", SCATTERED)],
-        &["simulate", "s.toml", "--samples", "1000000000", "--out", "o"],
-        &["--samples = 1000000000", "3000000000 elements", "--allow-large"],
+        &[
+            "simulate",
+            "s.toml",
+            "--samples",
+            "1000000000",
+            "--out",
+            "o",
+        ],
+        &[
+            "--samples = 1000000000",
+            "3000000000 elements",
+            "--allow-large",
+        ],
     );
 }
 
@@ -38,7 +52,14 @@ fn a_billion_samples_are_refused_naming_the_flag_and_its_override() {
 fn a_sensitivity_design_of_millions_of_runs_is_refused_naming_base_samples() {
     refused(
         &[("s.toml", SCATTERED)],
-        &["sensitivity", "s.toml", "--base-samples", "4194304", "--out", "o"],
+        &[
+            "sensitivity",
+            "s.toml",
+            "--base-samples",
+            "4194304",
+            "--out",
+            "o",
+        ],
         &["--base-samples = 4194304", "--allow-large"],
     );
 }
@@ -51,6 +72,10 @@ fn a_fit_of_a_billion_starts_is_refused_naming_the_keys_and_the_override() {
     refused(
         &[("model.toml", model), ("m.csv", csv), ("f.toml", fit)],
         &["fit", "f.toml", "--out", "o"],
-        &["fit.starts × fit.max_evaluations", "1000000000 × 200", "--allow-large"],
+        &[
+            "fit.starts × fit.max_evaluations",
+            "1000000000 × 200",
+            "--allow-large",
+        ],
     );
 }

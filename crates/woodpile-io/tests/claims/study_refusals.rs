@@ -47,13 +47,31 @@ fn a_studys_directory_holding_a_summary_is_refused_without_advice_to_delete() {
 fn sizes_beyond_the_study_limit_name_the_callers_field() {
     let e = woodpile_io::limits::check_fit(1_000_000_000, 200, false).unwrap_err();
     neutral(&e);
-    assert!(matches!(e, Error::OverLimit { limit: Limit::Study, .. }), "{e:?}");
+    assert!(
+        matches!(
+            e,
+            Error::OverLimit {
+                limit: Limit::Study,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
     assert!(woodpile_io::limits::check_fit(8, 200, false).is_ok());
     assert!(woodpile_io::limits::check_fit(1_000_000_000, 200, true).is_ok());
     let s = Scenario::parse("[chain]\nrods_mm = [40, 30, 20]\n").unwrap();
     let e = woodpile_io::uncertainty::check_size(&s, 1_000_000_000, "samples", false).unwrap_err();
     assert_eq!(e.field(), Some("samples"));
-    assert!(matches!(e, Error::OverLimit { limit: Limit::Study, .. }), "{e:?}");
+    assert!(
+        matches!(
+            e,
+            Error::OverLimit {
+                limit: Limit::Study,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
     assert!(woodpile_io::uncertainty::check_size(&s, 64, "samples", false).is_ok());
 }
 
