@@ -95,5 +95,5 @@ pub(crate) fn stage_study(
         true,
     )?;
     let out = out.unwrap_or(default);
-    Ok(Staging::prepare_study(&out, marker)?)
+    Staging::prepare_study(&out, marker)
 }
