@@ -93,6 +93,12 @@ pub fn load(source: &Source, command: &'static str) -> Result<Loaded, CliError> 
         });
     }
     let name = source.scenario.as_deref().unwrap_or(DEFAULT_SCENARIO);
+    if woodpile_io::lattice::builtin_lattice(name).is_some() {
+        let source_name = format!("built-in scenario {name}");
+        return Err(super::chains_only(command)(CliError::ChainsOnly {
+            source_name,
+        }));
+    }
     Ok(Loaded {
         name: name.to_string(),
         file: None,

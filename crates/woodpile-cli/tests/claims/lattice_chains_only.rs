@@ -2,7 +2,8 @@
 //! `examples/lattice.toml`), says so — `woodpile COMMAND supports chains only`, naming the
 //! `[lattice]` table and the file — and exits 2 without writing, instead of a TOML parser's
 //! "unknown field `lattice`" that reads as if the file were wrong. Checked for `transmission`,
-//! `sensitivity`, `simulate --samples` and `fit` (whose fit file names the lattice as its model).
+//! `sensitivity`, `simulate --samples` and `fit` (whose fit file names the lattice as its model),
+//! and for the built-in lattice (`--scenario lattice`), which is not an "unknown scenario".
 
 use crate::common;
 use std::path::PathBuf;
@@ -24,14 +25,16 @@ fn refused(command: &str, args: &[&str], extra: &[(&str, &str)]) {
     for n in [
         format!("woodpile {command} supports chains only"),
         "[lattice]".into(),
-        "lattice.toml".into(),
+        "lattice".into(),
     ] {
         assert!(
             stderr.contains(&n),
             "{command}: expected `{n}` in: {stderr}"
         );
     }
-    assert!(!stderr.contains("unknown field"), "{command}: {stderr}");
+    for wrong in ["unknown field", "unknown scenario"] {
+        assert!(!stderr.contains(wrong), "{command}: {stderr}");
+    }
     assert!(!dir.path().join("o").exists(), "{command}: output written");
 }
 
@@ -50,6 +53,11 @@ fn chain_only_commands_name_the_lattice_table() {
     refused(
         "simulate --samples",
         &["simulate", "lattice.toml", "--samples", "4", "--out", "o"],
+        &[],
+    );
+    refused(
+        "transmission",
+        &["transmission", "--scenario", "lattice", "--out", "o"],
         &[],
     );
     let fit = "scenario = \"lattice.toml\"\n[[data]]\nfile = \"m.csv\"\nsignals = { sensor_n = \"contact_2_n\" }\n[fit]\nparameters = [{ key = \"excitation.velocity_m_s\", bounds = [1.5, 2.5] }]\n";
