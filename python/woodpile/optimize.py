@@ -8,6 +8,7 @@ import dataclasses
 import json
 import os
 import time
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal, Mapping, Sequence, TypedDict, Union, overload
@@ -287,7 +288,8 @@ class ParetoResult:
             ``feasible``, ``evaluations``, ``cache_hits``, ``elapsed_s``.
         objectives: The objectives, in column order; ``units`` their SI units.
         reference_point: The hypervolume's reference point (one value per objective).
-        hypervolume: The final front's hypervolume.
+        hypervolume: The final front's hypervolume (0 with designs on the front: a reference point
+            below the front, which measures nothing, and a ``RuntimeWarning`` says so).
         stop_reason: ``"generation-limit"``, ``"stalled"`` or ``"interrupted"``.
         seed: The seed.
     """
@@ -324,6 +326,15 @@ class ParetoResult:
         self.hypervolume = float(self.history["hypervolume"].iloc[-1])
         self.stop_reason = session.stop_reason()
         self.seed = session.seed()
+        if self.hypervolume == 0.0 and len(self.front) > 0:
+            # As woodpile optimize warns: a reference point below the front in some objective.
+            warnings.warn(
+                f"the hypervolume is 0: no design of the front is below the reference point {self.reference_point} "
+                "in every objective, so the hypervolume measures nothing; set ga.reference_point above the "
+                "front's values, or leave it out to take it from generation 0",
+                RuntimeWarning,
+                stacklevel=3,
+            )
 
     def __repr__(self) -> str:
         return (
