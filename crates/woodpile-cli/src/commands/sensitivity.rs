@@ -21,11 +21,11 @@ pub struct Args {
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Base samples N, a power of two: N·(G + 2) runs for G scattered parameters.
-    #[arg(long, value_name = "N", default_value_t = woodpile::defaults::SENSITIVITY_BASE_SAMPLES)]
+    #[arg(long, allow_negative_numbers = true, value_name = "N", default_value_t = woodpile::defaults::SENSITIVITY_BASE_SAMPLES)]
     pub base_samples: usize,
     /// Seed of the Sobol' points (default: the scenario's `[uncertainty] seed`); also seeds the
     /// bootstrap.
-    #[arg(long, value_name = "S")]
+    #[arg(long, allow_negative_numbers = true, value_name = "S")]
     pub seed: Option<u32>,
     /// Run with the scenario's own run settings (the paper's RK4 at 0.1 µs when it states none)
     /// instead of the design studies' default, every contact peak within 1e-5.

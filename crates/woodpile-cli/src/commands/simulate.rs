@@ -50,7 +50,7 @@ pub struct Args {
     /// Run K samples of the scenario's `[uncertainty]` (overriding its `samples`) in SIMD lanes and
     /// write DIR/samples.csv, DIR/samples/NNN.toml and DIR/summary.json (default DIR:
     /// ./runs/NAME-samples).
-    #[arg(long, value_name = "K")]
+    #[arg(long, allow_negative_numbers = true, value_name = "K")]
     pub samples: Option<usize>,
 }
 

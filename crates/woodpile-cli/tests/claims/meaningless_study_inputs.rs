@@ -1,6 +1,7 @@
 //! Claim: inputs that would make a study or a fit print numbers that mean nothing are refused
 //! (exit 2) or warned about, naming the option or key as written:
 //!
+//! - negative `--samples`, `--base-samples`, `--seed`: refused naming the flag.
 //! - `sensitivity --base-samples 1`: a bootstrap over one point gives intervals of ±1e-15; the
 //!   fewest is 8, and the refusal says why.
 //! - an empty `[uncertainty]` given to `simulate --samples`: every sample would be the nominal
@@ -34,6 +35,29 @@ fn refused(files: &[(&str, &str)], args: &[&str], needles: &[&str]) {
 }
 
 const SCATTERED: &str = "[chain]\nrods_mm = [40, 30, 20]\n[run]\nduration_s = 2e-4\n[uncertainty]\nimpact_velocity_m_s = { uniform = [1.8, 2.2] }\n";
+
+#[test]
+fn negative_counts_name_their_flag() {
+    // clap's own refusal, naming the flag, rather than "unexpected argument '-3'" and a tip to
+    // pass it after `--`.
+    for args in [
+        &["simulate", "s.toml", "--samples", "-3", "--out", "o"][..],
+        &[
+            "sensitivity",
+            "s.toml",
+            "--base-samples",
+            "-4",
+            "--out",
+            "o",
+        ][..],
+        &["sensitivity", "s.toml", "--seed", "-1", "--out", "o"][..],
+    ] {
+        let flag = args[2];
+        refused(&[("s.toml", SCATTERED)], args, &[flag]);
+        let (_, stderr, _dir) = run(&[("s.toml", SCATTERED)], args);
+        assert!(!stderr.contains("unexpected argument"), "{stderr}");
+    }
+}
 
 #[test]
 fn one_base_sample_is_refused_with_the_minimum_and_why() {

@@ -9,9 +9,10 @@ use std::path::Path;
 use woodpile::fit::{Measurement, Output};
 
 /// Reads the columns `columns` of a measured CSV file: (times, one vector per column). Errors
-/// name the file and the line: a header without `time_s` first, a named column that is missing,
-/// a row that is short, a value that is not a number, a NaN or an empty field (a gap), times
-/// that do not increase strictly, fewer than two rows.
+/// name the file and the line: a header without `time_s` first or naming a column twice, a named
+/// column that is missing, a row with more or fewer fields than the header, a value that is not
+/// a number, a NaN or an empty field (a gap), times that do not increase strictly, fewer than
+/// two rows.
 pub fn read_signals(path: &Path, columns: &[&str]) -> Result<(Vec<f64>, Vec<Vec<f64>>), Error> {
     let file = std::fs::File::open(path).map_err(|e| Error::Read {
         path: path.to_path_buf(),
@@ -37,6 +38,16 @@ pub fn read_signals(path: &Path, columns: &[&str]) -> Result<(Vec<f64>, Vec<Vec<
             ),
         ));
     }
+    // A column named twice would be read from its first copy, the other silently ignored.
+    if let Some((j, dup)) = (1..names.len()).find_map(|j| {
+        let first = names[..j].iter().position(|n| *n == names[j])?;
+        Some((first, names[j]))
+    }) {
+        return Err(err(
+            1,
+            format!("names column `{dup}` twice (the {} and a later column): which one is measured is ambiguous; rename one", ordinal(j + 1)),
+        ));
+    }
     let mut index = Vec::new();
     for c in columns {
         match names.iter().position(|n| n == c) {
@@ -57,6 +68,16 @@ pub fn read_signals(path: &Path, columns: &[&str]) -> Result<(Vec<f64>, Vec<Vec<
             err(line, format!("cannot read the row: {e}"))
         })?;
         let line = record.position().map_or(0, |p| p.line());
+        if record.len() != names.len() {
+            return Err(err(
+                line,
+                format!(
+                    "has {} fields and the header {}: a row of another length means a field was lost or added; every row needs one value per column",
+                    record.len(),
+                    names.len()
+                ),
+            ));
+        }
         let value = |k: usize, name: &str| -> Result<f64, Error> {
             let text = record.get(k).unwrap_or("");
             if text.is_empty() {
@@ -89,6 +110,17 @@ pub fn read_signals(path: &Path, columns: &[&str]) -> Result<(Vec<f64>, Vec<Vec<
         ));
     }
     Ok((times, values))
+}
+
+/// `1st`, `2nd`, `3rd`, `4th`, ….
+fn ordinal(n: usize) -> String {
+    let suffix = match (n % 10, n % 100) {
+        (1, x) if x != 11 => "st",
+        (2, x) if x != 12 => "nd",
+        (3, x) if x != 13 => "rd",
+        _ => "th",
+    };
+    format!("{n}{suffix}")
 }
 
 /// The measurements of one `[[data]]` entry (`i`-th), each signal checked against the run.

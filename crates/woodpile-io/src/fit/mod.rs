@@ -185,10 +185,27 @@ pub fn setup(config: &FitConfig, path: &Path, base: &Path) -> Result<FitSetup, E
             "give at least one [[data]] entry with signals = { column = \"contact_N_n\" }",
         ));
     }
+    if config.fit.parameters.is_empty() && config.fit.time_shift_s.is_none() {
+        return Err(Error::invalid(
+            "fit.parameters",
+            "[]",
+            "at least one parameter to fit (or fit.time_shift_s), e.g. { key = \"excitation.velocity_m_s\", bounds = [1.5, 2.5] }",
+        ));
+    }
     let mut parameters = Vec::new();
     let mut targets = Vec::new();
     for (i, spec) in config.fit.parameters.iter().enumerate() {
         let field = format!("fit.parameters[{i}]");
+        if let Some(j) = config.fit.parameters[..i]
+            .iter()
+            .position(|p| p.key == spec.key)
+        {
+            return Err(Error::invalid(
+                format!("{field}.key"),
+                &spec.key,
+                format!("fit.parameters[{j}] fits this key already: a key fitted twice has no one value"),
+            ));
+        }
         let target = keys::Target::parse(&spec.key, &format!("{field}.key"))?;
         let current = target.current(&scenario);
         parameters.push(parameter(spec, &field, current)?);
