@@ -41,6 +41,10 @@ pub struct Samples {
     pub columns: Vec<String>,
     /// Sample k is row k of the Sobol' points.
     pub samples: Vec<Sample>,
+    /// The scenario key each column's value is written into (`chain.elements[0].length_mm`,
+    /// `excitation.velocity_m_s`, `damping.restitution`; `.material` for the modulus, written
+    /// into every element's material).
+    pub writes: Vec<String>,
 }
 
 /// Where a drawn value goes in the scenario.
@@ -169,7 +173,46 @@ pub fn samples_at(
             })
         })
         .collect::<Result<Vec<_>, Error>>()?;
-    Ok(Samples { columns, samples })
+    let writes = targets.iter().map(|(t, _, _)| t.writes()).collect();
+    Ok(Samples {
+        columns,
+        samples,
+        writes,
+    })
+}
+
+impl Target {
+    /// The scenario key a drawn value is written into (see [`Samples::writes`]).
+    fn writes(&self) -> String {
+        match self {
+            Target::Length(i) => format!("chain.elements[{i}].length_mm"),
+            Target::Angle(i) => format!("chain.elements[{i}].crossing_angle_deg"),
+            Target::Modulus => ".material".into(),
+            Target::Velocity => "excitation.velocity_m_s".into(),
+            Target::Damping(p) => format!("damping.{}", p.key()),
+        }
+    }
+}
+
+/// Resolves every sample's scenario (relative paths from `base_dir`), stopping at a stop
+/// request. A sample refused for a key a drawn value was written into is named by the
+/// `[uncertainty]` key that drew it, its column and row of `samples.csv`, and the value: the
+/// distribution, not the scenario, is what to change (`rod_length_mm = { sd = 1e6 }` draws rods
+/// of negative length).
+pub fn resolve_samples(
+    s: &Samples,
+    base_dir: &std::path::Path,
+) -> Result<Vec<crate::scenario::Resolved>, Error> {
+    s.samples
+        .iter()
+        .enumerate()
+        .map(|(k, sample)| {
+            if woodpile::interrupt::requested() {
+                return Err(Error::Model(woodpile::Error::Interrupted { time_s: 0.0 }));
+            }
+            crate::scenario::resolve(&sample.scenario, base_dir).map_err(|e| s.blame(k, e))
+        })
+        .collect()
 }
 
 /// The elements of `scenario`'s chain (its rods or elements; 1 when it names none).
@@ -198,6 +241,36 @@ pub fn check_size(
 }
 
 impl Samples {
+    /// Sample `k`'s refusal `e` as the drawn value's, where `e` names a key a drawn value was
+    /// written into; else `e` as it is.
+    fn blame(&self, k: usize, e: Error) -> Error {
+        let Some(field) = e.field().map(String::from) else {
+            return e;
+        };
+        let hit = |w: &String| match w.strip_prefix('.') {
+            Some(tail) => field.contains(&format!(".{tail}")),
+            None => field == *w || field.starts_with(&format!("{w}.")),
+        };
+        let Some(j) = self.writes.iter().position(hit) else {
+            return e;
+        };
+        let key = self.column_keys()[j];
+        Error::invalid(
+            format!("uncertainty.{key}"),
+            format!(
+                "{} = {} (row {} of samples.csv)",
+                self.columns[j],
+                self.samples[k].values[j],
+                k + 1
+            ),
+            format!(
+                "draws {field} = {}, which {}: the distribution reaches values the scenario refuses; narrow it",
+                e.value().unwrap_or_default(),
+                e.reason()
+            ),
+        )
+    }
+
     /// The `[uncertainty]` key each column draws (`rod_length_mm` for `rod_length_mm[3]`).
     pub fn column_keys(&self) -> Vec<&str> {
         self.columns

@@ -5,7 +5,7 @@ use crate::errors::{core_err, py_err, Failure};
 use pyo3::prelude::*;
 use std::path::PathBuf;
 use woodpile::sensitivity::Bootstrap;
-use woodpile_io::scenario::{resolve, Scenario};
+use woodpile_io::scenario::Scenario;
 use woodpile_io::sensitivity::{accuracy_targeted, design, figure_indices, FigureIndices};
 use woodpile_io::uncertainty::{figures, FIGURES};
 
@@ -67,19 +67,9 @@ fn sensitivity(
         }
         let d = design(&scenario, &u, ("base_samples", base_samples), allow_large)
             .map_err(py_err)?;
-        let resolved = d
-            .samples
-            .samples
-            .iter()
-            .map(|s| {
-                // Resolving thousands of rows takes seconds: Ctrl-C ends it.
-                if woodpile::interrupt::requested() {
-                    return Err(woodpile::Error::Interrupted { time_s: 0.0 }.into());
-                }
-                resolve(&s.scenario, &base_dir)
-            })
-            .collect::<Result<Vec<_>, woodpile_io::Error>>()
-            .map_err(py_err)?;
+        // Resolving thousands of rows takes seconds: Ctrl-C ends it.
+        let resolved =
+            woodpile_io::uncertainty::resolve_samples(&d.samples, &base_dir).map_err(py_err)?;
         woodpile_io::limits::RunSize::estimate(&resolved[0].settings, resolved[0].chain.len())
             .check(false, false, false)
             .map_err(py_err)?;

@@ -7,8 +7,7 @@ use crate::CliError;
 use std::path::Path;
 use woodpile::{simulate_many, Job, LaneWidth};
 use woodpile_io::atomic::Staging;
-use woodpile_io::scenario::resolve;
-use woodpile_io::uncertainty::{samples, write_samples};
+use woodpile_io::uncertainty::{resolve_samples, samples, write_samples};
 
 /// The files a samples directory is made of; summary.json, written last, marks it complete.
 const SAMPLES_FILES: &[&str] = &["samples.csv", "summary.json"];
@@ -38,11 +37,7 @@ pub fn run(args: &Args, k: usize, ctx: &Context) -> Result<(), CliError> {
     u.samples = k;
     woodpile_io::uncertainty::check_size(&loaded.scenario, k, "--samples", args.allow_large)?;
     let drawn = samples(&loaded.scenario, &u)?;
-    let resolved = drawn
-        .samples
-        .iter()
-        .map(|s| resolve(&s.scenario, &loaded.base_dir))
-        .collect::<Result<Vec<_>, _>>()?;
+    let resolved = resolve_samples(&drawn, &loaded.base_dir)?;
     let staging = stage_study(
         &resolved,
         (args.allow_long, args.allow_large),

@@ -8,7 +8,6 @@ use crate::CliError;
 use std::path::{Path, PathBuf};
 use woodpile::sensitivity::Bootstrap;
 use woodpile::{simulate_many, Job, LaneWidth};
-use woodpile_io::scenario::resolve;
 use woodpile_io::sensitivity::{accuracy_targeted, design, figure_indices, FILES, MARKER};
 
 /// Arguments of `woodpile sensitivity`.
@@ -65,12 +64,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     }
     let samples = ("--base-samples", args.base_samples);
     let d = design(&loaded.scenario, &u, samples, args.allow_large)?;
-    let resolved = d
-        .samples
-        .samples
-        .iter()
-        .map(|s| resolve(&s.scenario, &loaded.base_dir))
-        .collect::<Result<Vec<_>, _>>()?;
+    let resolved = woodpile_io::uncertainty::resolve_samples(&d.samples, &loaded.base_dir)?;
     let staging = super::samples::stage_study(
         &resolved,
         (args.allow_long, false),

@@ -1,6 +1,9 @@
 //! Claim: inputs that would make a study or a fit print numbers that mean nothing are refused
 //! (exit 2) or warned about, naming the option or key as written:
 //!
+//! - a distribution that draws values the scenario refuses (`rod_length_mm = { sd = 1e6 }`: rods
+//!   of negative length; a negative speed range) names the `[uncertainty]` key, the column and row
+//!   of `samples.csv` and the value, not the scenario key the value was written into.
 //! - negative `--samples`, `--base-samples`, `--seed`: refused naming the flag.
 //! - `sensitivity --base-samples 1`: a bootstrap over one point gives intervals of ±1e-15; the
 //!   fewest is 8, and the refusal says why.
@@ -35,6 +38,29 @@ fn refused(files: &[(&str, &str)], args: &[&str], needles: &[&str]) {
 }
 
 const SCATTERED: &str = "[chain]\nrods_mm = [40, 30, 20]\n[run]\nduration_s = 2e-4\n[uncertainty]\nimpact_velocity_m_s = { uniform = [1.8, 2.2] }\n";
+
+#[test]
+fn a_draw_the_scenario_refuses_names_the_uncertainty_key() {
+    let chain = "[chain]\nelements = [{ kind = \"rod\", length_mm = 40 }, { kind = \"rod\", length_mm = 30 }]\n[run]\nduration_s = 2e-4\n[uncertainty]\n";
+    for (scatter, key, column) in [
+        (
+            "rod_length_mm = { sd = 1e6 }",
+            "uncertainty.rod_length_mm",
+            "rod_length_mm[1] = -",
+        ),
+        (
+            "impact_velocity_m_s = { uniform = [-2.0, -1.0] }",
+            "uncertainty.impact_velocity_m_s",
+            "impact_velocity_m_s = -",
+        ),
+    ] {
+        refused(
+            &[("s.toml", &format!("{chain}{scatter}\n"))],
+            &["simulate", "s.toml", "--samples", "16", "--out", "o"],
+            &[key, column, "row 1 of samples.csv", "narrow it"],
+        );
+    }
+}
 
 #[test]
 fn negative_counts_name_their_flag() {
