@@ -3,7 +3,9 @@
 //! contact the chain does not have, bounds with lower ≥ upper, a parameter key that is not a
 //! number or not a key at all, a CSV header naming a column twice or a row of another length
 //! than the header (either would be read silently as something else), no parameter at all or
-//! one key fitted twice — exits with code 2, one message that starts with `error:` and
+//! one key fitted twice, an element's key of a chain given as `rods_mm`, a record or time-shift bounds so long that every model run would exceed
+//! the 1e9-step limit (rather than "the model failed to run at every start point") — exits with
+//! code 2, one message that starts with `error:` and
 //! names the file and row, or the key as written in the fit file; no output is written.
 
 use crate::common;
@@ -157,5 +159,33 @@ fn ambiguous_files_and_parameter_lists_are_refused() {
             "fit.parameters[1].key",
             "fit.parameters[0] fits this key already",
         ],
+    ); // The chain is `rods_mm`: there is no `elements` list to index (not "0 entries").
+    case(
+        "an element of a rods_mm chain",
+        CSV,
+        &fit_file(
+            GOOD_SIGNALS,
+            "{ key = \"chain.elements[99].diameter_mm\", bounds = [1.0, 2.0] }",
+        ),
+        &["chain.elements[99].diameter_mm", "given as rods_mm"],
+    );
+}
+
+#[test]
+fn records_too_long_to_model_name_the_data_or_the_shift() {
+    let params = GOOD_PARAMETER;
+    case(
+        "a record of 1e6 s",
+        "time_s,sensor_n\n0,0\n1e6,1\n",
+        &fit_file(GOOD_SIGNALS, params),
+        &["invalid data = measured.csv", "1.000e13 steps"],
+    );
+    let shifted =
+        fit_file(GOOD_SIGNALS, params) + "time_shift_s = { bounds = [-1000.0, 1000.0] }\n";
+    case(
+        "shifts of 1000 s",
+        CSV,
+        &shifted,
+        &["fit.time_shift_s.bounds = [-1000, 1000]", "steps"],
     );
 }

@@ -217,6 +217,12 @@ pub fn setup(config: &FitConfig, path: &Path, base: &Path) -> Result<FitSetup, E
         .as_ref()
         .map(shift_parameter)
         .transpose()?;
+    check_duration(
+        &resolved.settings,
+        &measurements,
+        time_shift_s.as_ref(),
+        &config.data,
+    )?;
     let starts = config.fit.starts.unwrap_or(woodpile::defaults::FIT_STARTS);
     if starts == 0 {
         return Err(Error::invalid("fit.starts", 0, "must be at least 1"));
@@ -247,6 +253,54 @@ pub fn setup(config: &FitConfig, path: &Path, base: &Path) -> Result<FitSetup, E
         max_evaluations,
         seed: config.fit.seed.unwrap_or(0),
     })
+}
+
+/// Refuses a fit whose model runs would exceed [`crate::limits::MAX_STEPS`] steps: each run
+/// lasts from the earliest allowed shift to the last measured time (seconds of record at a
+/// 0.1 µs step are 1e7 steps per run, and a fit makes hundreds of runs). Names the time shift's
+/// bounds when they make most of it, else the data.
+fn check_duration(
+    settings: &woodpile::RunSettings,
+    measurements: &[Measurement],
+    shift: Option<&Parameter>,
+    data: &[DataSpec],
+) -> Result<(), Error> {
+    let last = measurements
+        .iter()
+        .filter_map(|m| m.times_s.last().copied())
+        .fold(0.0_f64, f64::max);
+    let earliest = shift.map_or(0.0, |p| p.bounds.map_or(p.initial, |b| b.0).min(0.0));
+    let mut run = *settings;
+    run.duration_s = last - earliest;
+    let Some(steps) = run.estimated_steps() else {
+        return Ok(());
+    };
+    if steps <= crate::limits::MAX_STEPS {
+        return Ok(());
+    }
+    let (field, value) = match shift.and_then(|p| p.bounds) {
+        Some((lo, hi)) if -earliest > last => (
+            "fit.time_shift_s.bounds".to_string(),
+            format!("[{lo}, {hi}]"),
+        ),
+        _ => {
+            let files: Vec<&str> = data.iter().map(|d| d.file.as_str()).collect();
+            (
+                "data".to_string(),
+                format!("{} (time_s up to {last:e} s)", files.join(", ")),
+            )
+        }
+    };
+    Err(Error::invalid(
+        field,
+        value,
+        format!(
+            "each model run would last {:.4e} s (from the earliest shift to the last measured time): {steps:.3e} steps, more than {:.0e}, at the scenario's step; fit a record of at most {:.3e} s, with shifts as small",
+            run.duration_s,
+            crate::limits::MAX_STEPS as f64,
+            crate::limits::MAX_STEPS as f64 * run.duration_s / steps as f64
+        ),
+    ))
 }
 
 /// The scenario named by the fit file: a file relative to `base`, else a built-in name.
