@@ -3,10 +3,11 @@
 //! contact the chain does not have, bounds with lower ≥ upper, a parameter key that is not a
 //! number or not a key at all, a CSV header naming a column twice or a row of another length
 //! than the header (either would be read silently as something else), no parameter at all or
-//! one key fitted twice, an element's key of a chain given as `rods_mm`, a record or time-shift bounds so long that every model run would exceed
-//! the 1e9-step limit (rather than "the model failed to run at every start point") — exits with
-//! code 2, one message that starts with `error:` and
-//! names the file and row, or the key as written in the fit file; no output is written.
+//! one key fitted twice, an element's key of a chain given as `rods_mm`, a record or time-shift
+//! bounds so long that every model run would exceed the 1e9-step limit (rather than "the model
+//! failed to run at every start point") — exits with code 2, one message that starts with
+//! `error:` and names the file and row, or the key as written in the fit file; no output is
+//! written.
 
 use crate::common;
 
