@@ -113,6 +113,8 @@ CLI_CASES = [
          files={"s.toml": "[chain]\nrods_mm = [40, 30, 20]\n[wall]\ncap_radius_mm = 1e300\n[run]\nduration_s = 2e-4\n"}),
     Case("max_total_mass_g = 1", ["optimize", "c.toml", "--out", "o"], (2,), ("max_total_mass_g", " g"), absent=("_kg",),
          files={"c.toml": "[design.constraints]\nmax_total_mass_g = 1.0\n"}),
+    Case("max_total_mass_g = nan", ["optimize", "c.toml", "--out", "o"], (2,), ("max_total_mass_g",), absent=("_kg",),
+         files={"c.toml": "[design.constraints]\nmax_total_mass_g = nan\n"}),
     Case("positions = { min = 9, max = 4 }", ["optimize", "c.toml", "--out", "o"], (2,), ("design.positions.max", "min = 9"),
          files={"c.toml": "[design]\npositions = { min = 9, max = 4 }\n"}),
     Case("positions range: mass no design of min layers meets", ["optimize", "c.toml", "--out", "o"], (2,), ("max_total_mass_g", "8 layers"),
