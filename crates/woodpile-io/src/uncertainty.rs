@@ -154,10 +154,25 @@ pub fn samples_at(
             ),
         ));
     }
-    let samples = points
+    let samples = draw(&base, &targets, &points)?;
+    let writes = targets.iter().map(|(t, _, _)| t.writes()).collect();
+    Ok(Samples {
+        columns,
+        samples,
+        writes,
+    })
+}
+
+/// Each row of `points` written into a copy of `base` at `targets`; a stop request ends the
+/// drawing (many rows take seconds to build).
+fn draw(
+    base: &crate::scenario::Scenario,
+    targets: &[(Target, Distribution, String)],
+    points: &[Vec<f64>],
+) -> Result<Vec<Sample>, Error> {
+    points
         .iter()
         .map(|row| {
-            // Many rows take seconds to build: a stop request ends the drawing.
             if woodpile::interrupt::requested() {
                 return Err(Error::Model(woodpile::Error::Interrupted { time_s: 0.0 }));
             }
@@ -172,13 +187,7 @@ pub fn samples_at(
                 scenario: s,
             })
         })
-        .collect::<Result<Vec<_>, Error>>()?;
-    let writes = targets.iter().map(|(t, _, _)| t.writes()).collect();
-    Ok(Samples {
-        columns,
-        samples,
-        writes,
-    })
+        .collect()
 }
 
 impl Target {

@@ -602,20 +602,25 @@ fn thinned(n: usize, most: usize) -> Vec<usize> {
 /// the designs of `references.csv` marked: the catalogue's homogeneous chains and, for the
 /// paper's catalogue, the paper's blast-optimised chain), `pareto_designs` (the front's designs as
 /// rods to scale, at most [`MOST_FRONT_DESIGNS_DRAWN`]) and `hypervolume` (per generation).
-/// Returns the files written and a note when the front is empty.
+/// A lattice study's directory (`woodpile optimize` of a `[lattice]` config) is drawn as its
+/// `hypervolume` and `pareto_front` ([`draw_lattice_study`]). Returns the files written and a
+/// note when the front is empty.
 pub fn plot_pareto(
     dir: &Path,
     out: &Path,
     output: &Output,
 ) -> Result<(Vec<PathBuf>, Option<String>), Error> {
     output.check()?;
-    with_output(output, || draw_pareto(dir, out))
+    with_output(
+        output,
+        || match woodpile_io::lattice_study::read_study_output(dir)? {
+            Some(study) => draw_lattice_study(&study, out),
+            None => draw_pareto(dir, out),
+        },
+    )
 }
 
 fn draw_pareto(dir: &Path, out: &Path) -> Result<(Vec<PathBuf>, Option<String>), Error> {
-    if let Some(study) = woodpile_io::lattice_study::read_study_output(dir)? {
-        return draw_lattice_study(&study, out);
-    }
     let read = woodpile_io::pareto::read_pareto_output(dir)?;
     let s = &read.summary;
     let config = &s.config;
