@@ -603,7 +603,7 @@ fn thinned(n: usize, most: usize) -> Vec<usize> {
 /// paper's catalogue, the paper's blast-optimised chain), `pareto_designs` (the front's designs as
 /// rods to scale, at most [`MOST_FRONT_DESIGNS_DRAWN`]) and `hypervolume` (per generation).
 /// A lattice study's directory (`woodpile optimize` of a `[lattice]` config) is drawn as its
-/// `hypervolume` and `pareto_front` ([`draw_lattice_study`]). Returns the files written and a
+/// `hypervolume` and `pareto_front`. Returns the files written and a
 /// note when the front is empty.
 pub fn plot_pareto(
     dir: &Path,

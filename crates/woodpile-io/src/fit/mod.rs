@@ -26,7 +26,7 @@ mod data;
 mod keys;
 mod output;
 
-pub use data::read_signals;
+pub use data::{read_signals, SIGNAL_FLOOR};
 pub use keys::{Scale, Target, MODULUS_PREFIX, SCALE_PREFIX};
 pub use output::{check_output, fit_json, residuals_csv, write_outputs, FIT_MARKER};
 
@@ -458,7 +458,7 @@ impl FitSetup {
         }
     }
 
-    /// Refuses a measured signal whose peak is below [`data::SIGNAL_FLOOR`] of the model's
+    /// Refuses a measured signal whose peak is below [`SIGNAL_FLOOR`] of the model's
     /// peak of the same output at the initial values (one run of the scenario): rounding noise,
     /// or a signal in another unit, which carries nothing to fit, as an all-zero signal. A model
     /// that does not run at the initial values is left to the fit, which reports it.
