@@ -273,7 +273,7 @@ impl Samples {
                 k + 1
             ),
             format!(
-                "draws {field} = {}, which {}: the distribution reaches values the scenario refuses; narrow it",
+                "written into {field} = {}, which the scenario refuses: {} (a distribution that reaches such values must be narrowed)",
                 e.value().unwrap_or_default(),
                 e.reason()
             ),

@@ -57,7 +57,7 @@ fn a_draw_the_scenario_refuses_names_the_uncertainty_key() {
         refused(
             &[("s.toml", &format!("{chain}{scatter}\n"))],
             &["simulate", "s.toml", "--samples", "16", "--out", "o"],
-            &[key, column, "row 1 of samples.csv", "narrow it"],
+            &[key, column, "row 1 of samples.csv", "must be narrowed"],
         );
     }
 }
