@@ -4,16 +4,19 @@ argument or the scenario key, as a ``TypeError`` (not a value of the expected ki
 ``OverflowError`` from the conversion to Rust's unsigned integers, nor an ``AttributeError`` from
 deep inside the package. And the size limits of the command line hold here too: a fit of a
 billion starts raises ``LimitError`` naming ``allow_large=True`` before any run, and a lattice
-scenario given to ``sensitivity`` is refused naming the ``lattice`` table.
+scenario given to ``sensitivity`` is refused naming the ``lattice`` table. The estimators alone
+(``saltelli_unit_cube``, ``sobol_indices``) name a negative count the same way.
 """
 
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 import pytest
 
 import woodpile
 from woodpile import LimitError, Scenario, ScenarioError
+from woodpile.sobol import saltelli_unit_cube, sobol_indices
 
 CHAIN = """[chain]
 rods_mm = [40, 30, 20]
@@ -109,3 +112,18 @@ def test_fit_of_a_billion_starts_is_refused_before_any_run(tmp_path: Path) -> No
         woodpile.fit(write_fit(tmp_path))
     assert "allow_large=True" in str(e.value)
     assert e.value.field == "fit.starts × fit.max_evaluations"
+
+
+@pytest.mark.parametrize(
+    "call, field",
+    [
+        (lambda: saltelli_unit_cube(-1, [0]), "base_samples"),
+        (lambda: saltelli_unit_cube(8, [0], seed=-1), "seed"),
+        (lambda: sobol_indices([1.0] * 24, -8, 1), "base_samples"),
+        (lambda: sobol_indices([1.0] * 24, 8, 1, resamples=-1), "resamples"),
+    ],
+)
+def test_the_estimators_name_a_negative_count(call: Callable[[], object], field: str) -> None:
+    with pytest.raises(ScenarioError) as e:
+        call()
+    assert e.value.field == field

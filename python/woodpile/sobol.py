@@ -93,11 +93,18 @@ def sobol_indices(
     parameter with ``S1, S1_conf, ST, ST_conf``."""
     import pandas as pd
 
+    _check_count("base_samples", base_samples, "the design's base samples N ≥ 1")
+    _check_count("groups", groups, "the number of parameters (groups) ≥ 1")
+    _check_count("resamples", resamples, "bootstrap resamples ≥ 0")
+    _check_count("seed", seed, "the bootstrap's seed: an integer 0 ≤ seed < 2**64")
     rows = _core.sobol_indices([float(y) for y in outputs], base_samples, groups, resamples, level, seed)
     return pd.DataFrame(rows, columns=["S1", "S1_conf", "ST", "ST_conf"])
 
 
 def saltelli_unit_cube(base_samples: int, group_of: Sequence[int], seed: int = 0) -> list[list[float]]:
     """The Saltelli design in the unit cube (scrambled Sobol' points, SALib's row order):
-    ``group_of[j]`` is parameter j's group."""
+    ``group_of[j]`` is parameter j's group. A negative ``base_samples`` or ``seed`` raises
+    :class:`woodpile.ScenarioError` naming it."""
+    _check_count("base_samples", base_samples, "the base samples N, a power of two")
+    _check_count("seed", seed, "the Sobol' points' seed: an integer 0 ≤ seed < 2**32", 2**32)
     return _core.saltelli_unit_cube(base_samples, list(group_of), seed)
