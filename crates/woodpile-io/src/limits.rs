@@ -155,7 +155,11 @@ pub fn check_study(
         return Err(Error::OverLimit {
             limit: Limit::Study,
             field: field.to_string(),
-            value: format!("{runs_text} runs × {} elements = {total} elements", elements.max(1)),
+            value: format!(
+                "{runs_text} runs × {} elements = {} elements",
+                elements.max(1),
+                count(total)
+            ),
             reason: format!(
                 "more than {MAX_GENERATION_ELEMENTS} elements simulated in one study (its runs would not end in reasonable time, \
                  and their scenarios would fill memory); reduce {field}"
@@ -163,6 +167,16 @@ pub fn check_study(
         });
     }
     Ok(())
+}
+
+/// `n` in words, where a product that overflowed (saturated at `usize::MAX`) is "more than
+/// 1.8e19" rather than a wrong exact number.
+pub(crate) fn count(n: usize) -> String {
+    if n == usize::MAX {
+        format!("more than {:.1e}", usize::MAX as f64)
+    } else {
+        n.to_string()
+    }
 }
 
 /// Most model runs a fit may plan (starts × most runs per start) without an override: each
@@ -178,7 +192,10 @@ pub fn check_fit(starts: usize, max_evaluations: usize, allow: bool) -> Result<(
         return Err(Error::OverLimit {
             limit: Limit::Study,
             field: "fit.starts × fit.max_evaluations".into(),
-            value: format!("{starts} × {max_evaluations} = {runs} model runs"),
+            value: format!(
+                "{starts} × {max_evaluations} = {} model runs",
+                count(runs)
+            ),
             reason: format!(
                 "more than {MAX_FIT_RUNS} model runs planned (the fit would not end in reasonable time, and its \
                  starts would fill memory); reduce fit.starts or fit.max_evaluations"

@@ -135,8 +135,10 @@ pub fn design(
     crate::limits::check_study(
         field,
         &format!(
-            "{base_samples} × ({} parameters + 2) = {runs}",
-            parameters.len()
+            "{base_samples} × ({} parameter{} + 2) = {}",
+            parameters.len(),
+            if parameters.len() == 1 { "" } else { "s" },
+            crate::limits::count(runs)
         ),
         runs,
         elements,
