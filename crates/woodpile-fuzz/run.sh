@@ -13,7 +13,7 @@ out="$(realpath -m "${2:-$(dirname "$0")/findings}")"
 cd "$(dirname "$0")"
 shift $(( $# > 2 ? 2 : $# )) || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scenario lattice optimize_config npy table checkpoint)
+[ ${#targets[@]} -gt 0 ] || targets=(scenario lattice optimize_config npy table checkpoint fit uncertainty)
 mkdir -p "$out"
 export AFL_SKIP_CPUFREQ=1 AFL_NO_UI=1 AFL_I_DONT_CARE_ABOUT_MISSING_CRASHES=1 AFL_NO_AFFINITY=1
 cargo afl build --release --quiet

@@ -1,7 +1,8 @@
 """Claims of the Pareto studies in Python: ``woodpile.optimize`` with several objectives runs the
 command line's NSGA-II (same front, history and reference point for a seed), and
 ``woodpile.pymoo.Problem`` lets pymoo's own NSGA-II run on woodpile with objective values equal
-to woodpile's simulation of the same designs.
+to woodpile's simulation of the same designs; a reference point below the front (a hypervolume of 0
+that measures nothing) warns.
 
 Problems are kept small (5 positions × 4 rods, 0.4 ms of the impact) so the suite takes seconds.
 """
@@ -164,3 +165,12 @@ def test_pymoo_nsga2_runs_on_woodpile_and_its_values_are_woodpiles():
         mass = sum(c["primary_mass_kg"] + float(np.sum(c["resonator_masses_kg"])) for c in cells)
         assert abs(f[1] - mass) <= 1e-12 * mass, (design, f[1], mass)
         assert abs(g[0] - (mass * 1e3 / 10.0 - 1.0)) <= 1e-12
+
+
+def test_a_reference_point_below_the_front_warns() -> None:
+    # [-1, -1] lies below every force and mass: the hypervolume is 0 at every generation and
+    # measures nothing, so the result warns as `woodpile optimize` does.
+    config = {**MO, "ga": {**MO["ga"], "reference_point": [-1.0, -1.0]}}
+    with pytest.warns(RuntimeWarning, match="hypervolume is 0"):
+        result = woodpile.optimize(config, algorithm="nsga2")
+    assert result.hypervolume == 0.0 and len(result.front) > 0

@@ -275,5 +275,9 @@ def sobol_indices(
 # fit.rs -----------------------------------------------------------------------------------
 
 def fit_file(
-    path: str, out: Optional[str] = None, overwrite: bool = False, threads: Optional[int] = None
+    path: str,
+    out: Optional[str] = None,
+    overwrite: bool = False,
+    threads: Optional[int] = None,
+    allow_large: bool = False,
 ) -> tuple[str, str]: ...

@@ -13,6 +13,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _core
+from .errors import ScenarioError
 from .scenario import Scenario
 
 if TYPE_CHECKING:
@@ -105,8 +106,18 @@ def spectrum(
     blast) it does not depend on the record length or the sample interval, so spectra of two
     runs compare directly; the figures use it. ``scaling="amplitude"`` gives the sine amplitude
     (N), right for steady signals only: the same pulse in a record twice as long reads half.
-    Another name raises :class:`~woodpile.errors.ScenarioError` with ``field == "scaling"``."""
-    return _core.spectrum([float(v) for v in signal], float(sample_interval_s), scaling)
+    Another name raises :class:`~woodpile.errors.ScenarioError` with ``field == "scaling"``; a
+    signal that is not one-dimensional, one with ``field == "signal"``."""
+    values = np.asarray(signal, dtype=np.float64)
+    if values.ndim != 1:
+        raise ScenarioError(
+            f"invalid signal of shape {values.shape}: must be one-dimensional, one value per sample "
+            "(for a run's forces, one column: forces[:, k])",
+            "signal",
+            f"an array of shape {values.shape}",
+            "a one-dimensional sequence of samples",
+        )
+    return _core.spectrum(values.tolist(), float(sample_interval_s), scaling)
 
 
 def transmission(

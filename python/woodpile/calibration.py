@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Optional, Union
 
 from . import _core
+from .errors import _check_count
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -45,18 +46,23 @@ def fit(
     *,
     overwrite: bool = False,
     threads: Optional[int] = None,
+    allow_large: bool = False,
 ) -> FitResult:
     """Fits the fit file at ``path`` (docs/fit.md) and returns a :class:`FitResult`.
 
     ``out``: also write ``fit.json``, ``fitted.toml`` and ``residuals.csv`` there (an earlier
     fit's files are replaced only with ``overwrite=True``). ``threads``: worker threads for a
-    Jacobian's runs (default: one per core). Bad input raises :class:`woodpile.ScenarioError`
+    Jacobian's runs (default: one per core); a negative count raises
+    :class:`woodpile.ScenarioError` naming ``threads``. A fit planning more than 1e6 model runs
+    (``fit.starts`` × ``fit.max_evaluations``) raises :class:`woodpile.LimitError` unless
+    ``allow_large``. Bad input raises :class:`woodpile.ScenarioError`
     (or :class:`woodpile.FileError`) naming the file and line or the key.
     """
     import pandas as pd
 
+    _check_count("threads", threads, "worker threads: 0 (one per core) or more")
     text, csv = _core.fit_file(
-        str(path), None if out is None else str(out), overwrite, threads
+        str(path), None if out is None else str(out), overwrite, threads, allow_large
     )
     raw: dict[str, Any] = json.loads(text)
     rows = []

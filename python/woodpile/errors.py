@@ -106,3 +106,12 @@ class InterruptedRunError(WoodpileError):
 class StateError(WoodpileError, RuntimeError):
     """A call the object's state does not allow yet, e.g. ``BreederGA.tell()`` without a pending
     ``ask()``, or ``best`` before the first generation."""
+
+
+def _check_count(name: str, value: object, valid: str, bound: int = 2**64) -> None:
+    """Refuses a keyword argument that must be a non-negative integer below ``bound`` (or None)
+    with a :class:`ScenarioError` naming it, rather than the extension's bare ``OverflowError``
+    or ``TypeError``."""
+    ok = value is None or (isinstance(value, int) and not isinstance(value, bool) and 0 <= value < bound)
+    if not ok:
+        raise ScenarioError(f"invalid {name} = {value!r}: must be {valid}", name, repr(value), valid)

@@ -8,12 +8,13 @@ import dataclasses
 import json
 import os
 import time
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal, Mapping, Sequence, TypedDict, Union, overload
 
 from . import _core
-from .errors import ScenarioError, StateError
+from .errors import ScenarioError, StateError, _check_count
 from .scenario import Scenario
 from .study import Executor, _chunks, _workers
 
@@ -81,13 +82,6 @@ def _is_lattice_study(problem: Problem, kind: str, text: str) -> bool:
     if kind == "json":
         return isinstance(problem, Mapping) and "lattice" in problem
     return kind == "toml" and _core.is_lattice(text)
-
-
-def _check_count(name: str, value: int | None, valid: str) -> None:
-    """Refuses a keyword argument that must be a non-negative integer below 2**64 (or None)."""
-    ok = value is None or (isinstance(value, int) and not isinstance(value, bool) and 0 <= value < 2**64)
-    if not ok:
-        raise ScenarioError(f"invalid {name} = {value!r}: must be {valid}", name, repr(value), valid)
 
 
 def _evaluate_designs(config_json: str, base_dir: str, designs: Sequence[Sequence[int]], threads: int) -> list[float]:
@@ -294,7 +288,8 @@ class ParetoResult:
             ``feasible``, ``evaluations``, ``cache_hits``, ``elapsed_s``.
         objectives: The objectives, in column order; ``units`` their SI units.
         reference_point: The hypervolume's reference point (one value per objective).
-        hypervolume: The final front's hypervolume.
+        hypervolume: The final front's hypervolume (0 with designs on the front: a reference point
+            below the front, which measures nothing, and a ``RuntimeWarning`` says so).
         stop_reason: ``"generation-limit"``, ``"stalled"`` or ``"interrupted"``.
         seed: The seed.
     """
@@ -331,6 +326,15 @@ class ParetoResult:
         self.hypervolume = float(self.history["hypervolume"].iloc[-1])
         self.stop_reason = session.stop_reason()
         self.seed = session.seed()
+        if self.hypervolume == 0.0 and len(self.front) > 0:
+            # As woodpile optimize warns: a reference point below the front in some objective.
+            warnings.warn(
+                f"the hypervolume is 0: no design of the front is below the reference point {self.reference_point} "
+                "in every objective, so the hypervolume measures nothing; set ga.reference_point above the "
+                "front's values, or leave it out to take it from generation 0",
+                RuntimeWarning,
+                stacklevel=3,
+            )
 
     def __repr__(self) -> str:
         return (

@@ -190,6 +190,13 @@ def _plain(value: Any, key: str) -> Any:
         return {k: _plain(v, f"{key}.{k}" if key else str(k)) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
         return [_plain(v, f"{key}[{i}]") for i, v in enumerate(value)]
+    if isinstance(value, float) and value != value:
+        raise ScenarioError(
+            f"invalid {key} = nan: a scenario value must be a number, not NaN",
+            key,
+            "nan",
+            "a finite number",
+        )
     if value is None or isinstance(value, (bool, int, float, str)):
         return value
     item = getattr(value, "tolist", None)  # NumPy scalars and arrays

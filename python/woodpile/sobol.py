@@ -7,6 +7,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Optional, Sequence
 
 from . import _core
+from .errors import _check_count
 from .scenario import Scenario
 
 if TYPE_CHECKING:
@@ -40,7 +41,9 @@ def sensitivity(
     are) or the scenario states a ``run.peak_tolerance``, every contact peak is computed within
     1e-5 (a :class:`Scenario` always carries the completed RK4 settings, so they do not count as
     stated here). A study of more than 1e6 elements in all (runs × chain elements) raises
-    :class:`woodpile.LimitError` unless ``allow_large``.
+    :class:`woodpile.LimitError` unless ``allow_large``. ``scenario`` other than a
+    :class:`Scenario` raises :class:`TypeError`; a negative ``base_samples``, ``seed`` or
+    ``threads`` a :class:`woodpile.ScenarioError` naming it.
 
     The DataFrame's ``attrs`` hold the design: ``attrs["samples"]`` (the Saltelli matrix, SALib's
     row order, one column per drawn value), ``attrs["outputs"]`` (one column per figure, same
@@ -50,6 +53,14 @@ def sensitivity(
     """
     import pandas as pd
 
+    if not isinstance(scenario, Scenario):
+        raise TypeError(
+            f"invalid scenario = {scenario!r}: must be a woodpile.Scenario "
+            "(a file: Scenario.load(path); a built-in: Scenario.builtin(name))"
+        )
+    _check_count("base_samples", base_samples, "a power of two of at least 8, e.g. 64")
+    _check_count("seed", seed, "the Sobol' points' seed: an integer 0 ≤ seed < 2**32", 2**32)
+    _check_count("threads", threads, "worker threads: 0 (one per core) or more")
     columns, matrix, figures, outputs, rows, meaningless, accuracy = _core.sensitivity(
         scenario.to_toml(),
         str(scenario.base_dir),
@@ -82,11 +93,18 @@ def sobol_indices(
     parameter with ``S1, S1_conf, ST, ST_conf``."""
     import pandas as pd
 
+    _check_count("base_samples", base_samples, "the design's base samples N ≥ 1")
+    _check_count("groups", groups, "the number of parameters (groups) ≥ 1")
+    _check_count("resamples", resamples, "bootstrap resamples ≥ 0")
+    _check_count("seed", seed, "the bootstrap's seed: an integer 0 ≤ seed < 2**64")
     rows = _core.sobol_indices([float(y) for y in outputs], base_samples, groups, resamples, level, seed)
     return pd.DataFrame(rows, columns=["S1", "S1_conf", "ST", "ST_conf"])
 
 
 def saltelli_unit_cube(base_samples: int, group_of: Sequence[int], seed: int = 0) -> list[list[float]]:
     """The Saltelli design in the unit cube (scrambled Sobol' points, SALib's row order):
-    ``group_of[j]`` is parameter j's group."""
+    ``group_of[j]`` is parameter j's group. A negative ``base_samples`` or ``seed`` raises
+    :class:`woodpile.ScenarioError` naming it."""
+    _check_count("base_samples", base_samples, "the base samples N, a power of two")
+    _check_count("seed", seed, "the Sobol' points' seed: an integer 0 ≤ seed < 2**32", 2**32)
     return _core.saltelli_unit_cube(base_samples, list(group_of), seed)

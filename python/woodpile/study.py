@@ -108,11 +108,15 @@ def evaluate(
     on one worker. A scenario that fails gives a row whose ``error`` column says why.
 
     Raises :class:`~woodpile.errors.ScenarioError` when the scenarios have different
-    ``base_dir``\\ s.
+    ``base_dir``\\ s, and :class:`TypeError` naming ``scenarios[i]`` for one that is not a
+    :class:`Scenario`.
     """
     import pandas as pd
 
     scenarios = list(scenarios)
+    for i, s in enumerate(scenarios):
+        if not isinstance(s, Scenario):
+            raise TypeError(f"invalid scenarios[{i}] = {s!r}: must be a woodpile.Scenario")
     if not scenarios:
         return pd.DataFrame(columns=SUMMARY_COLUMNS)
     base_dirs = {str(s.base_dir) for s in scenarios}
@@ -142,6 +146,13 @@ def sweep(scenario: Scenario, grid: Mapping[str, Sequence[Any]], executor: Execu
     key); the other rows are computed as usual."""
     import pandas as pd
 
+    if not isinstance(scenario, Scenario):
+        raise TypeError(f"invalid scenario = {scenario!r}: must be a woodpile.Scenario")
+    if not isinstance(grid, Mapping):
+        raise TypeError(
+            f"invalid grid = {grid!r}: must be a dict of dotted keys to the values to sweep, "
+            'e.g. {"excitation.velocity_m_s": [1.0, 2.0]}'
+        )
     keys = list(grid)
     for k in keys:
         if isinstance(grid[k], (str, bytes)) or not isinstance(grid[k], Iterable):

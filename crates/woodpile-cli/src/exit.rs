@@ -20,7 +20,7 @@ fn override_flag(limit: Limit) -> &'static str {
     match limit {
         Limit::Threads => "--allow-many-threads",
         Limit::Steps => "--allow-long",
-        Limit::OutputSize | Limit::Generation => "--allow-large",
+        Limit::OutputSize | Limit::Generation | Limit::Study => "--allow-large",
         _ => "the matching --allow-* flag",
     }
 }
@@ -39,6 +39,10 @@ pub fn message(e: &CliError) -> String {
         ),
         CliError::OutputNotEmpty { path, marker } => format!(
             "invalid --out = {}: exists and is not empty and holds no earlier run (no {marker}): refusing to write into it; choose another --out",
+            path.display()
+        ),
+        CliError::StudyExists { path, marker } => format!(
+            "invalid --out = {}: holds a {marker} (an earlier study's, or a file of yours): a study writes only into a new or empty directory and changes nothing in this one; choose another --out",
             path.display()
         ),
         CliError::NothingToResume { path, file } => format!(

@@ -5,13 +5,15 @@
 pub type Target = (&'static str, fn(&[u8]));
 
 /// The readers under test; the corpus of each lives in `crates/woodpile-fuzz/corpus/<name>/`.
-pub const TARGETS: [Target; 6] = [
+pub const TARGETS: [Target; 8] = [
     ("scenario", fuzz_scenario),
     ("lattice", fuzz_lattice),
     ("optimize_config", fuzz_optimize_config),
     ("npy", fuzz_npy),
     ("table", fuzz_table),
     ("checkpoint", fuzz_checkpoint),
+    ("fit", fuzz_fit),
+    ("uncertainty", fuzz_uncertainty),
 ];
 
 /// A scratch directory of this process for the readers that take files.
@@ -119,4 +121,61 @@ pub fn fuzz_checkpoint(data: &[u8]) {
     if let Ok(ga) = ga {
         let _ = ga.check_state(&state);
     }
+}
+
+/// The line that splits a `fit` input into its fit file (before) and its measured CSV (after).
+pub const FIT_CSV_SEPARATOR: &str = "\n%% measured.csv\n";
+
+/// A fit file and its measured CSV (split at [`FIT_CSV_SEPARATOR`]; without it, the whole input
+/// is the fit file and the CSV a fixed one), over a fixed two-rod model: the file read and every
+/// key, column and row checked (`fit::load`), then the fit's size limit. No model is run (a
+/// fitted `run.duration_s` could make one run take minutes).
+pub fn fuzz_fit(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let (fit, csv) = text
+        .split_once(FIT_CSV_SEPARATOR)
+        .unwrap_or((text, "time_s,sensor_n\n0,0\n1e-6,0.5\n2e-6,1.0\n"));
+    // One folder per thread: the replay claim runs its tests in parallel threads.
+    let dir = scratch().join(format!("fit-{:?}", std::thread::current().id()));
+    let written = std::fs::create_dir_all(&dir)
+        .and_then(|()| {
+            std::fs::write(
+                dir.join("model.toml"),
+                "[chain]\nrods_mm = [80, 40]\n[run]\nduration_s = 1e-4\n",
+            )
+        })
+        .and_then(|()| std::fs::write(dir.join("measured.csv"), csv))
+        .and_then(|()| std::fs::write(dir.join("fit.toml"), fit));
+    if written.is_err() {
+        return;
+    }
+    let Ok(setup) = woodpile_io::fit::load(&dir.join("fit.toml")) else {
+        return;
+    };
+    let _ = woodpile_io::limits::check_fit(setup.starts, setup.max_evaluations, false);
+}
+
+/// A scenario with an `[uncertainty]` table: checked, then (within the study limit) up to 16
+/// samples drawn and resolved, and a sensitivity design of 8 base samples built — the paths of
+/// `simulate --samples` and `sensitivity` up to the runs.
+pub fn fuzz_uncertainty(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let Ok(scenario) = woodpile_io::scenario::Scenario::parse(text) else {
+        return;
+    };
+    let Some(Ok(mut u)) = scenario.uncertainty.as_ref().map(|spec| spec.check()) else {
+        return;
+    };
+    u.samples = u.samples.min(16);
+    if woodpile_io::uncertainty::check_size(&scenario, u.samples, "samples", false).is_err() {
+        return;
+    }
+    if let Ok(drawn) = woodpile_io::uncertainty::samples(&scenario, &u) {
+        let _ = woodpile_io::uncertainty::resolve_samples(&drawn, scratch());
+    }
+    let _ = woodpile_io::sensitivity::design(&scenario, &u, ("base_samples", 8), false);
 }

@@ -118,6 +118,14 @@ fn check_target(target: &Path, overwrite: bool, marker: &'static str) -> Result<
     }
 }
 
+/// An earlier run's refusal as a study's: nothing to overwrite, the directory is left as it is.
+fn study_exists(marker: &'static str) -> impl Fn(Error) -> Error {
+    move |e| match e {
+        Error::OutputExists { path } => Error::StudyExists { path, marker },
+        other => other,
+    }
+}
+
 /// A staging directory `.NAME.partial-PID` next to the output directory NAME; removed on drop
 /// (and by [`remove_active_staging`] on an interrupt) unless committed.
 ///
@@ -190,6 +198,20 @@ impl Staging {
     /// The final output directory.
     pub fn target(&self) -> &Path {
         &self.target
+    }
+
+    /// [`Staging::prepare_marked`] for a study's directory (samples, a sensitivity design),
+    /// which is never overwritten nor resumed: a target holding `marker` is
+    /// [`Error::StudyExists`], whoever wrote it.
+    pub fn prepare_study(target: &Path, marker: &'static str) -> Result<Self, Error> {
+        Self::prepare_marked(target, false, marker).map_err(study_exists(marker))
+    }
+
+    /// [`Staging::commit`] of a study's directory: a target that another run completed
+    /// meanwhile (`marker` found) is [`Error::StudyExists`], and this run's files are dropped.
+    pub fn commit_study(self, own_files: &[&str], marker: &str) -> Result<PathBuf, Error> {
+        let found = self.marker;
+        self.commit(own_files, marker).map_err(study_exists(found))
     }
 
     /// Moves the staged files into place. A new target is one rename; into an empty directory

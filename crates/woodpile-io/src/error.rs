@@ -85,6 +85,22 @@ pub enum Error {
         /// The file that marks an earlier run (`run.json`, `checkpoint.json`).
         marker: &'static str,
     },
+    /// The output directory holds the file that marks a study's directory (`summary.json`):
+    /// an earlier study, or a file of the user's. A study neither overwrites nor resumes, so it
+    /// never writes into it (and nothing in it is removed).
+    #[error("output directory {} holds a {marker} (an earlier study's, or a file of yours): a study writes only into a new or empty directory, and changes nothing in this one; choose another output directory", path.display())]
+    StudyExists {
+        /// The directory.
+        path: PathBuf,
+        /// The file found (`summary.json`).
+        marker: &'static str,
+    },
+    /// A lattice scenario (a `[lattice]` table) given where only a chain is read.
+    #[error("{source_name} is a lattice scenario (its [lattice] table), and this reads chains only (a [chain] table)")]
+    ChainsOnly {
+        /// The file (or "scenario" for text).
+        source_name: String,
+    },
     /// The output location cannot be written.
     #[error("cannot write output {}: {source}", path.display())]
     Output {
@@ -173,6 +189,10 @@ pub enum Limit {
     OutputSize,
     /// A design study's generation above `limits::MAX_GENERATION_ELEMENTS` elements.
     Generation,
+    /// A study's runs (samples of a scenario, a sensitivity design) above
+    /// `limits::MAX_GENERATION_ELEMENTS` elements in all, or a fit's model runs above
+    /// `limits::MAX_FIT_RUNS`.
+    Study,
 }
 
 /// What kind of failure an [`Error`] is: what a front end maps to an exit code or an
@@ -260,9 +280,10 @@ impl Error {
             Error::Model(e) | Error::Evaluation { source: e, .. } if is_numerical(e) => {
                 ErrorKind::Run
             }
-            Error::Read { .. } | Error::Output { .. } | Error::OutputNotEmpty { .. } => {
-                ErrorKind::Io
-            }
+            Error::Read { .. }
+            | Error::Output { .. }
+            | Error::OutputNotEmpty { .. }
+            | Error::StudyExists { .. } => ErrorKind::Io,
             Error::OutputExists { .. } | Error::CheckpointExists { .. } => ErrorKind::Overwrite,
             Error::OverLimit { .. } => ErrorKind::Limit,
             Error::Inaccurate { .. } => ErrorKind::Inaccurate,
@@ -283,6 +304,7 @@ impl Error {
             Error::Invalid { field, .. }
             | Error::Field { field, .. }
             | Error::OverLimit { field, .. } => Some(field),
+            Error::ChainsOnly { .. } => Some("lattice"),
             Error::Model(e) | Error::Evaluation { source: e, .. } => model_parts(e).0,
             _ => None,
         }
@@ -304,8 +326,10 @@ impl Error {
             | Error::OutputExists { path }
             | Error::CheckpointExists { path }
             | Error::OutputNotEmpty { path, .. }
+            | Error::StudyExists { path, .. }
             | Error::NothingToResume { path, .. }
             | Error::ResumeRefused { path, .. } => Some(path.display().to_string()),
+            Error::ChainsOnly { source_name } => Some(source_name.clone()),
             Error::Parse { .. } | Error::Interrupted { .. } => None,
         }
     }
@@ -320,6 +344,10 @@ impl Error {
             Error::Field { source: e, .. } | Error::Model(e) => model_parts(e).2,
             Error::UnknownScenario { valid, .. } => {
                 format!("not a built-in scenario (valid: {valid})")
+            }
+            Error::ChainsOnly { .. } => {
+                "a lattice scenario (its [lattice] table): this reads chains only (a [chain] table)"
+                    .into()
             }
             other => other.to_string(),
         }

@@ -157,7 +157,11 @@ pub struct LatticeExcitationSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kind: Option<String>,
     /// (x, y) of the impact \[mm\] (default: the centre).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "xy_mm"
+    )]
     pub at_mm: Option<[f64; 2]>,
     /// Drop height \[m\] (default 0.20).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -172,7 +176,11 @@ pub struct LatticeExcitationSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub points: Option<String>,
     /// The load points (x, y) \[mm\], each on a top rod (instead of `points`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "xy_list_mm"
+    )]
     pub points_mm: Option<Vec<[f64; 2]>>,
     /// Blast profile, as a chain's `excitation.profile`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -577,16 +585,74 @@ fn layer_specs(completed: &[LayerToml], given: &[LayerToml]) -> Result<Vec<Layer
             (Some(v), None) => v.first().copied().unwrap_or(f64::NAN),
             _ => required("length_mm", l.length_mm)?,
         };
+        let diameter_mm = required("diameter_mm", l.diameter_mm)?;
+        check_slenderness(&given[k], k, diameter_mm)?;
         layers.push(LayerSpec {
             rods,
             pitch_m: pitch * 1e-3,
             length_m: length_mm * 1e-3,
-            diameter_m: required("diameter_mm", l.diameter_mm)? * 1e-3,
+            diameter_m: diameter_mm * 1e-3,
             material: material_of(&key("material"), l.material.as_ref().expect("completed"))?,
             angle_deg: l.angle_deg.unwrap_or(0.0),
         });
     }
     Ok(layers)
+}
+
+/// Refuses a rod length layer `k` gives (`length_mm` or an entry of `lengths_mm`) longer than
+/// [`woodpile::defaults::ROD_MAX_SLENDERNESS`] diameters, as a chain's rods are: such a rod's
+/// bending modes lie below a hertz (a 5 mm rod of 50 m: 6.4 mHz) and its set-up grows with it.
+fn check_slenderness(given: &LayerToml, k: usize, diameter_mm: f64) -> Result<(), Error> {
+    let most = woodpile::defaults::ROD_MAX_SLENDERNESS * diameter_mm;
+    if !(most.is_finite() && most > 0.0) {
+        return Ok(()); // the diameter's own check names it
+    }
+    let mut lengths: Vec<(String, f64)> = given
+        .lengths_mm
+        .iter()
+        .flatten()
+        .enumerate()
+        .map(|(i, &v)| (format!("lattice.layers[{k}].lengths_mm[{i}]"), v))
+        .collect();
+    lengths.extend(
+        given
+            .length_mm
+            .map(|v| (format!("lattice.layers[{k}].length_mm"), v)),
+    );
+    match lengths.into_iter().find(|(_, v)| *v > most) {
+        Some((field, v)) => Err(Error::invalid(
+            field,
+            v,
+            format!(
+                "at most {:.0e} diameters ({most} mm for rods of {diameter_mm} mm): a longer rod's bending modes lie below a hertz",
+                woodpile::defaults::ROD_MAX_SLENDERNESS
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// A point `[x, y]` in mm: exactly two numbers (a third, such as a z, would be dropped
+/// silently: points lie on a layer, whose height the lattice gives).
+fn xy_mm<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<[f64; 2]>, D::Error> {
+    Option::<Vec<f64>>::deserialize(d)?.map(xy).transpose()
+}
+
+/// A list of points `[[x, y], …]` in mm, each as [`xy_mm`].
+fn xy_list_mm<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<Vec<[f64; 2]>>, D::Error> {
+    Option::<Vec<Vec<f64>>>::deserialize(d)?
+        .map(|points| points.into_iter().map(xy).collect())
+        .transpose()
+}
+
+fn xy<E: serde::de::Error>(v: Vec<f64>) -> Result<[f64; 2], E> {
+    match v[..] {
+        [x, y] => Ok([x, y]),
+        _ => Err(E::invalid_length(
+            v.len(),
+            &"a point [x, y] in mm: two numbers (a point lies on a layer, whose height the lattice gives)",
+        )),
+    }
 }
 
 /// `wall.supports` as the library's [`Supports`].
@@ -610,6 +676,17 @@ fn supports_of(supports: &SupportsToml) -> Result<Supports, Error> {
             ))
         }
         SupportsToml::Points(p) => {
+            // Two supports at one point would each carry, and report, the same contact.
+            for (j, b) in p.iter().enumerate() {
+                let same = |a: &&PointToml| (a.x_mm - b.x_mm).hypot(a.y_mm - b.y_mm) < 1e-6;
+                if let Some(i) = p[..j].iter().position(|a| same(&a)) {
+                    return Err(Error::invalid(
+                        format!("wall.supports[{j}]"),
+                        format!("{{ x_mm = {}, y_mm = {} }}", b.x_mm, b.y_mm),
+                        format!("wall.supports[{i}] is at this point already (within 1e-6 mm): one support per point"),
+                    ));
+                }
+            }
             Supports::Points(p.iter().map(|p| [p.x_mm * 1e-3, p.y_mm * 1e-3]).collect())
         }
     })

@@ -422,6 +422,74 @@ pub struct LatticeStudySummary {
     pub front: Vec<String>,
 }
 
+/// A finished lattice study read back (`woodpile plot` draws it).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LatticeStudyOutput {
+    /// `summary.json`.
+    pub summary: LatticeStudySummary,
+    /// The hypervolume of each generation (`history.csv`).
+    pub hypervolume: Vec<(usize, f64)>,
+    /// The objectives of each row of `pareto.csv`, SI units.
+    pub front: Vec<Vec<f64>>,
+}
+
+/// Reads a lattice study's output directory; None when its `summary.json` is not a lattice
+/// study's (a chain's NSGA-II, or none). A `pareto.csv` objective that is not a finite number is
+/// refused naming the line and the column: a front drawn through it would mean nothing.
+pub fn read_study_output(dir: &Path) -> Result<Option<LatticeStudyOutput>, Error> {
+    let Ok(text) = std::fs::read_to_string(dir.join("summary.json")) else {
+        return Ok(None);
+    };
+    let Ok(summary) = serde_json::from_str::<LatticeStudySummary>(&text) else {
+        return Ok(None);
+    };
+    let path = dir.join("pareto.csv");
+    let table = |line: u64, message: String| Error::Table {
+        path: path.clone(),
+        line,
+        message,
+    };
+    let file = std::fs::File::open(&path).map_err(|e| Error::Read {
+        path: path.clone(),
+        source: e,
+    })?;
+    let mut r = crate::table::csv_reader(file);
+    let header = r.headers().map_err(|e| table(1, e.to_string()))?.clone();
+    let m = summary.objectives.len();
+    if header
+        .iter()
+        .take(m)
+        .ne(summary.objectives.iter().map(String::as_str))
+    {
+        return Err(table(
+            1,
+            format!(
+                "its first columns are not the objectives of summary.json ({})",
+                summary.objectives.join(", ")
+            ),
+        ));
+    }
+    let mut front = Vec::new();
+    for rec in r.records() {
+        let rec = rec.map_err(|e| table(e.position().map_or(0, |p| p.line()), e.to_string()))?;
+        let line = rec.position().map_or(0, |p| p.line());
+        let mut row = Vec::with_capacity(m);
+        for (j, name) in summary.objectives.iter().enumerate() {
+            let cell = rec.get(j).unwrap_or("");
+            match cell.trim().parse::<f64>() {
+                Ok(v) if v.is_finite() => row.push(v),
+                _ => return Err(table(line, format!("column `{name}` is `{cell}`, not a finite number: every design of a front has a value of each objective"))),
+            }
+        }
+        front.push(row);
+    }
+    Ok(Some(LatticeStudyOutput {
+        hypervolume: crate::pareto::read_hypervolume(dir)?,
+        summary,
+        front,
+    }))
+}
+
 /// The output directory policy: with `resume`, the checkpoint in `out` of the same completed
 /// config; without, `out` absent or empty. Nothing is written.
 pub fn prepare_output(
@@ -487,6 +555,8 @@ pub fn write_final_outputs(
     stop: StopReason,
 ) -> Result<LatticeStudySummary, Error> {
     let front = state.front();
+    // Also after a resume with nothing left to run, which writes no generation.
+    write_atomic(out, "history.csv", history_csv(&state.history).as_bytes())?;
     write_atomic(out, "pareto.csv", study.pareto_csv(&front).as_bytes())?;
     let dir = out.join("pareto");
     std::fs::create_dir_all(&dir).map_err(io_err(&dir))?;

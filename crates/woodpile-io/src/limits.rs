@@ -139,6 +139,72 @@ pub fn check_generation(
     Ok(())
 }
 
+/// Refuses a study of `runs` runs of `elements` elements each (the samples of a scenario, a
+/// sensitivity design: every run's scenario is built before the runs) above
+/// [`MAX_GENERATION_ELEMENTS`] elements in all unless `allow`; `field` names the number of runs
+/// as the user gave it, `runs_text` how many runs follow from it (`512`, or `64 × (2 + 2) = 256`).
+pub fn check_study(
+    field: &str,
+    runs_text: &str,
+    runs: usize,
+    elements: usize,
+    allow: bool,
+) -> Result<(), Error> {
+    let total = runs.saturating_mul(elements.max(1));
+    if total > MAX_GENERATION_ELEMENTS && !allow {
+        return Err(Error::OverLimit {
+            limit: Limit::Study,
+            field: field.to_string(),
+            value: format!(
+                "{runs_text} runs × {} elements = {} elements",
+                elements.max(1),
+                count(total)
+            ),
+            reason: format!(
+                "more than {MAX_GENERATION_ELEMENTS} elements simulated in one study (its runs would not end in reasonable time, \
+                 and their scenarios would fill memory); reduce {field}"
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// `n` in words, where a product that overflowed (saturated at `usize::MAX`) is "more than
+/// 1.8e19" rather than a wrong exact number.
+pub(crate) fn count(n: usize) -> String {
+    if n == usize::MAX {
+        format!("more than {:.1e}", usize::MAX as f64)
+    } else {
+        n.to_string()
+    }
+}
+
+/// Most model runs a fit may plan (starts × most runs per start) without an override: each
+/// start's points and results are kept, and a fit of more would not end in reasonable time
+/// (the default fit plans 8 × 200 = 1600).
+pub const MAX_FIT_RUNS: usize = 1_000_000;
+
+/// Refuses a fit of `starts` starts of at most `max_evaluations` model runs each above
+/// [`MAX_FIT_RUNS`] unless `allow` (keys as the fit file writes them).
+pub fn check_fit(starts: usize, max_evaluations: usize, allow: bool) -> Result<(), Error> {
+    let runs = starts.saturating_mul(max_evaluations);
+    if runs > MAX_FIT_RUNS && !allow {
+        return Err(Error::OverLimit {
+            limit: Limit::Study,
+            field: "fit.starts × fit.max_evaluations".into(),
+            value: format!(
+                "{starts} × {max_evaluations} = {} model runs",
+                count(runs)
+            ),
+            reason: format!(
+                "more than {MAX_FIT_RUNS} model runs planned (the fit would not end in reasonable time, and its \
+                 starts would fill memory); reduce fit.starts or fit.max_evaluations"
+            ),
+        });
+    }
+    Ok(())
+}
+
 /// What a run's energy error is relative to: the larger of E(0) and the largest |W|, which is
 /// E(0) for an unloaded impact and |W| for a blast (`woodpile::EnergyBalance`).
 pub const ENERGY_REFERENCE: &str = "the larger of the initial energy and the largest work done";

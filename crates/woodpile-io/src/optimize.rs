@@ -191,6 +191,7 @@ fn constraints(cfg: &OptimizeConfig, positions: PositionsSpec) -> Result<Constra
         ..Constraints::default()
     };
     for (key, value) in [
+        ("max_total_mass_g", c.max_total_mass_g),
         ("max_stack_height_mm", c.max_stack_height_mm),
         ("max_contact_pressure_pa", c.max_contact_pressure_pa),
     ] {

@@ -222,6 +222,20 @@ pub fn history_csv(history: &[Nsga2Stats]) -> String {
     s
 }
 
+/// Why a study's hypervolume means nothing, or None: it is 0 at the last generation while the
+/// front holds designs, so no design is below the reference point in every objective (a
+/// reference point such as [-1, -1] for positive objectives), and the hypervolume can neither
+/// show progress nor stop the study on convergence.
+pub fn hypervolume_warning(state: &Nsga2State) -> Option<String> {
+    let h = state.history.last()?;
+    (h.hypervolume == 0.0 && !state.front().is_empty()).then(|| {
+        format!(
+            "the hypervolume is 0: no design of the front is below the reference point {:?} in every objective, so the hypervolume measures nothing; set ga.reference_point above the front's values (pareto.csv), or leave it out to take it from generation 0",
+            state.reference_point
+        )
+    })
+}
+
 /// Writes what changes after every generation, atomically: the checkpoint and `history.csv`.
 pub fn write_generation(
     out: &Path,
@@ -342,6 +356,8 @@ pub fn write_final_outputs(
     out: &Path,
 ) -> Result<ParetoSummary, Error> {
     let front = state.front();
+    // Also after a resume with nothing left to run, which writes no generation.
+    write_atomic(out, "history.csv", history_csv(&state.history).as_bytes())?;
     write_atomic(out, "pareto.csv", pareto_csv(problem, &front).as_bytes())?;
     let dir = out.join("pareto");
     fs::create_dir_all(&dir).map_err(io_err(&dir))?;
@@ -539,6 +555,26 @@ pub fn is_pareto_dir(dir: &Path) -> bool {
     })
 }
 
+/// The hypervolume of each generation in an NSGA-II output's `history.csv` (a chain's or a
+/// lattice's study).
+pub fn read_hypervolume(dir: &Path) -> Result<Vec<(usize, f64)>, Error> {
+    let history = dir.join("history.csv");
+    let bad = |reason: String| crate::atomic::read_error(&history, reason);
+    let text = fs::read_to_string(&history).map_err(|e| bad(e.to_string()))?;
+    let mut r = crate::table::csv_reader(text.as_bytes());
+    let mut hypervolume = Vec::new();
+    for rec in r.records() {
+        let rec = rec.map_err(|e| bad(e.to_string()))?;
+        let g = rec.get(0).and_then(|s| s.trim().parse::<usize>().ok());
+        let h = rec.get(1).and_then(|s| s.trim().parse::<f64>().ok());
+        match (g, h) {
+            (Some(g), Some(h)) => hypervolume.push((g, h)),
+            _ => return Err(bad(format!("not a generation and a hypervolume: {rec:?}"))),
+        }
+    }
+    Ok(hypervolume)
+}
+
 /// Reads an NSGA-II output directory; one that has not finished (no `summary.json`) is refused
 /// with what to do.
 pub fn read_pareto_output(dir: &Path) -> Result<ParetoOutput, Error> {
@@ -557,20 +593,7 @@ pub fn read_pareto_output(dir: &Path) -> Result<ParetoOutput, Error> {
         source_name: path.display().to_string(),
         message: e.to_string(),
     })?;
-    let history = dir.join("history.csv");
-    let bad = |reason: String| crate::atomic::read_error(&history, reason);
-    let text = fs::read_to_string(&history).map_err(|e| bad(e.to_string()))?;
-    let mut r = crate::table::csv_reader(text.as_bytes());
-    let mut hypervolume = Vec::new();
-    for rec in r.records() {
-        let rec = rec.map_err(|e| bad(e.to_string()))?;
-        let g = rec.get(0).and_then(|s| s.trim().parse::<usize>().ok());
-        let h = rec.get(1).and_then(|s| s.trim().parse::<f64>().ok());
-        match (g, h) {
-            (Some(g), Some(h)) => hypervolume.push((g, h)),
-            _ => return Err(bad(format!("not a generation and a hypervolume: {rec:?}"))),
-        }
-    }
+    let hypervolume = read_hypervolume(dir)?;
     Ok(ParetoOutput {
         summary,
         hypervolume,

@@ -886,6 +886,8 @@ pub enum DirKind {
     /// A `woodpile optimize` output: it holds `history.csv` and one of `summary.json`,
     /// `best.toml`, `checkpoint.json`.
     Optimization,
+    /// A `woodpile sensitivity` study: it holds the files of [`crate::sensitivity::FILES`].
+    Sensitivity,
 }
 
 /// Files that mark an optimisation output (besides `history.csv`).
@@ -894,6 +896,26 @@ const OPT_MARKERS: [&str; 3] = [
     "best.toml",
     crate::optimize::CHECKPOINT_FILE,
 ];
+
+/// A study's directory, told by its files: a sensitivity study (drawn as its bar charts) or a
+/// samples study (refused: its figures are columns of `samples.csv`, nothing to draw). None for
+/// anything else.
+fn study_dir(dir: &Path) -> Result<Option<DirKind>, Error> {
+    let has = |f: &str| dir.join(f).is_file();
+    if has("indices.csv") && has("outputs.csv") {
+        return match has(crate::sensitivity::MARKER) {
+            true => Ok(Some(DirKind::Sensitivity)),
+            false => Err(bad_dir(dir, "looks like a `woodpile sensitivity` study (it holds indices.csv) but its summary.json is missing: the study did not finish; run it again into a new directory")),
+        };
+    }
+    if has("samples.csv") && dir.join("samples").is_dir() {
+        return Err(bad_dir(
+            dir,
+            "is a samples study of a scenario's [uncertainty] (samples.csv, samples/), which has no figures to draw: each sample's figures of merit are columns of samples.csv; to draw one sample, simulate its scenario (samples/NNN.toml) and plot that run",
+        ));
+    }
+    Ok(None)
+}
 
 /// Tells a simulate run from an optimisation output; anything else is a usage error that says
 /// what was expected.
@@ -917,6 +939,9 @@ pub fn detect_dir(dir: &Path) -> Result<DirKind, Error> {
             dir,
             format!("looks like a `woodpile simulate` run (it holds {found}) but its {RUN_MARKER} is missing, and plotting a run needs it (its layout and settings): re-run the simulation into this directory, replacing the earlier run"),
         ));
+    }
+    if let Some(kind) = study_dir(dir)? {
+        return Ok(kind);
     }
     let history = dir.join("history.csv").is_file();
     let marker = OPT_MARKERS.iter().any(|m| dir.join(m).is_file());

@@ -18,10 +18,20 @@ pub const FILES: &[&str] = &["samples.csv", "outputs.csv", "indices.csv", "summa
 /// The file that marks a complete sensitivity directory.
 pub const MARKER: &str = "summary.json";
 
-/// Why `base_samples` cannot be a study's N, or None when it can: at least 1, and a power of two
-/// (the balance of the Sobol' points, hence the estimators' convergence, holds for powers of two;
-/// SALib only warns).
+/// The fewest base samples of a study: below, the bootstrap resamples so few distinct points
+/// that its intervals mean nothing (at N = 1 every resample is the one point, and an index of
+/// 1.4 comes out as ± 1e-15), and an index is an estimate from a handful of runs.
+pub const MIN_BASE_SAMPLES: usize = 8;
+
+/// Why `base_samples` cannot be a study's N, or None when it can: at least
+/// [`MIN_BASE_SAMPLES`], and a power of two (the balance of the Sobol' points, hence the
+/// estimators' convergence, holds for powers of two; SALib only warns).
 pub fn base_samples_refusal(base_samples: usize) -> Option<String> {
+    if base_samples < MIN_BASE_SAMPLES {
+        return Some(format!(
+            "at least {MIN_BASE_SAMPLES}, a power of two (e.g. {MIN_BASE_SAMPLES}, 64): with fewer the bootstrap resamples so few distinct points that the indices' intervals mean nothing"
+        ));
+    }
     (!base_samples.is_power_of_two()).then(|| {
         let below = if base_samples < 2 {
             1
@@ -84,17 +94,18 @@ pub struct Design {
 }
 
 /// The Saltelli design of `scenario` under its checked `[uncertainty]` `u` with `base_samples`
-/// base points (refused as [`base_samples_refusal`] says, naming `base_samples`). A design of
-/// more than [`crate::limits::MAX_GENERATION_ELEMENTS`] elements in all (rows × chain elements:
-/// every row's scenario is built before the runs) is refused unless `allow_large`.
+/// base points, named `field` as the front end spells it (refused as [`base_samples_refusal`]
+/// says). A design of more than [`crate::limits::MAX_GENERATION_ELEMENTS`] elements in all
+/// (rows × chain elements: every row's scenario is built before the runs) is refused unless
+/// `allow_large`.
 pub fn design(
     scenario: &crate::scenario::Scenario,
     u: &Uncertainty,
-    base_samples: usize,
+    (field, base_samples): (&str, usize),
     allow_large: bool,
 ) -> Result<Design, Error> {
     if let Some(reason) = base_samples_refusal(base_samples) {
-        return Err(Error::invalid("base_samples", base_samples, reason));
+        return Err(Error::invalid(field, base_samples, reason));
     }
     if u.parameters.is_empty() {
         return Err(Error::invalid(
@@ -119,30 +130,20 @@ pub fn design(
             "draws no value in this scenario (e.g. crossing angles of a one-element chain): remove it",
         ));
     }
-    let chain = scenario.complete().chain;
-    let elements = chain
-        .rods_mm
-        .as_ref()
-        .map(Vec::len)
-        .or(chain.elements.as_ref().map(Vec::len))
-        .unwrap_or(1);
-    let runs = woodpile::sensitivity::saltelli_rows(base_samples, parameters.len());
-    let total = runs.saturating_mul(elements.max(1));
-    if total > crate::limits::MAX_GENERATION_ELEMENTS && !allow_large {
-        return Err(Error::OverLimit {
-            limit: crate::error::Limit::Generation,
-            field: "base_samples × (parameters + 2) × elements".into(),
-            value: format!(
-                "{base_samples} × {} × {} = {total} elements",
-                parameters.len() + 2,
-                elements.max(1)
-            ),
-            reason: format!(
-                "more than {} elements in one study (its runs would not end in reasonable time, and their scenarios would fill memory); reduce base_samples",
-                crate::limits::MAX_GENERATION_ELEMENTS
-            ),
-        });
-    }
+    let elements = crate::uncertainty::chain_elements(scenario);
+    let runs = base_samples.saturating_mul(parameters.len() + 2);
+    crate::limits::check_study(
+        field,
+        &format!(
+            "{base_samples} × ({} parameter{} + 2) = {}",
+            parameters.len(),
+            if parameters.len() == 1 { "" } else { "s" },
+            crate::limits::count(runs)
+        ),
+        runs,
+        elements,
+        allow_large,
+    )?;
     let rows = saltelli_unit_cube(base_samples, &group_of, u.seed)
         .map_err(|e| Error::invalid("uncertainty", group_of.len(), e.to_string()))?;
     let samples = samples_at(scenario, u, move |_| Ok(rows))?;

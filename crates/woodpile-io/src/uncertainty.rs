@@ -41,6 +41,10 @@ pub struct Samples {
     pub columns: Vec<String>,
     /// Sample k is row k of the Sobol' points.
     pub samples: Vec<Sample>,
+    /// The scenario key each column's value is written into (`chain.elements[0].length_mm`,
+    /// `excitation.velocity_m_s`, `damping.restitution`; `.material` for the modulus, written
+    /// into every element's material).
+    pub writes: Vec<String>,
 }
 
 /// Where a drawn value goes in the scenario.
@@ -73,6 +77,13 @@ pub fn samples_at(
     points: impl FnOnce(usize) -> Result<Vec<Vec<f64>>, Error>,
 ) -> Result<Samples, Error> {
     use crate::scenario::{ElementSpec, ExcitationKind};
+    if u.parameters.is_empty() {
+        return Err(Error::invalid(
+            "uncertainty",
+            "{}",
+            "at least one scattered parameter (e.g. rod_length_mm = { sd = 0.2 }): with none, every sample is the nominal scenario, drawn again and again",
+        ));
+    }
     let mut base = scenario.complete();
     base.uncertainty = None;
     if let Some(rods) = base.chain.rods_mm.take() {
@@ -143,9 +154,28 @@ pub fn samples_at(
             ),
         ));
     }
-    let samples = points
+    let samples = draw(&base, &targets, &points)?;
+    let writes = targets.iter().map(|(t, _, _)| t.writes()).collect();
+    Ok(Samples {
+        columns,
+        samples,
+        writes,
+    })
+}
+
+/// Each row of `points` written into a copy of `base` at `targets`; a stop request ends the
+/// drawing (many rows take seconds to build).
+fn draw(
+    base: &crate::scenario::Scenario,
+    targets: &[(Target, Distribution, String)],
+    points: &[Vec<f64>],
+) -> Result<Vec<Sample>, Error> {
+    points
         .iter()
         .map(|row| {
+            if woodpile::interrupt::requested() {
+                return Err(Error::Model(woodpile::Error::Interrupted { time_s: 0.0 }));
+            }
             let mut s = base.clone();
             let values = targets
                 .iter()
@@ -157,11 +187,99 @@ pub fn samples_at(
                 scenario: s,
             })
         })
-        .collect::<Result<Vec<_>, Error>>()?;
-    Ok(Samples { columns, samples })
+        .collect()
+}
+
+impl Target {
+    /// The scenario key a drawn value is written into (see [`Samples::writes`]).
+    fn writes(&self) -> String {
+        match self {
+            Target::Length(i) => format!("chain.elements[{i}].length_mm"),
+            Target::Angle(i) => format!("chain.elements[{i}].crossing_angle_deg"),
+            Target::Modulus => ".material".into(),
+            Target::Velocity => "excitation.velocity_m_s".into(),
+            Target::Damping(p) => format!("damping.{}", p.key()),
+        }
+    }
+}
+
+/// Resolves every sample's scenario (relative paths from `base_dir`), stopping at a stop
+/// request. A sample refused for a key a drawn value was written into is named by the
+/// `[uncertainty]` key that drew it, its column and row of `samples.csv`, and the value: the
+/// distribution, not the scenario, is what to change (`rod_length_mm = { sd = 1e6 }` draws rods
+/// of negative length).
+pub fn resolve_samples(
+    s: &Samples,
+    base_dir: &std::path::Path,
+) -> Result<Vec<crate::scenario::Resolved>, Error> {
+    s.samples
+        .iter()
+        .enumerate()
+        .map(|(k, sample)| {
+            if woodpile::interrupt::requested() {
+                return Err(Error::Model(woodpile::Error::Interrupted { time_s: 0.0 }));
+            }
+            crate::scenario::resolve(&sample.scenario, base_dir).map_err(|e| s.blame(k, e))
+        })
+        .collect()
+}
+
+/// The elements of `scenario`'s chain (its rods or elements; 1 when it names none).
+pub fn chain_elements(scenario: &crate::scenario::Scenario) -> usize {
+    let chain = scenario.complete().chain;
+    chain
+        .rods_mm
+        .as_ref()
+        .map(Vec::len)
+        .or(chain.elements.as_ref().map(Vec::len))
+        .unwrap_or(1)
+        .max(1)
+}
+
+/// Refuses `samples` runs of `scenario` above the study limit unless `allow`
+/// ([`crate::limits::check_study`]: every sample's scenario is built before the runs); `field`
+/// names the number of samples as the front end spells it.
+pub fn check_size(
+    scenario: &crate::scenario::Scenario,
+    samples: usize,
+    field: &str,
+    allow: bool,
+) -> Result<(), Error> {
+    let elements = chain_elements(scenario);
+    crate::limits::check_study(field, &samples.to_string(), samples, elements, allow)
 }
 
 impl Samples {
+    /// Sample `k`'s refusal `e` as the drawn value's, where `e` names a key a drawn value was
+    /// written into; else `e` as it is.
+    fn blame(&self, k: usize, e: Error) -> Error {
+        let Some(field) = e.field().map(String::from) else {
+            return e;
+        };
+        let hit = |w: &String| match w.strip_prefix('.') {
+            Some(tail) => field.contains(&format!(".{tail}")),
+            None => field == *w || field.starts_with(&format!("{w}.")),
+        };
+        let Some(j) = self.writes.iter().position(hit) else {
+            return e;
+        };
+        let key = self.column_keys()[j];
+        Error::invalid(
+            format!("uncertainty.{key}"),
+            format!(
+                "{} = {} (row {} of samples.csv)",
+                self.columns[j],
+                self.samples[k].values[j],
+                k + 1
+            ),
+            format!(
+                "written into {field} = {}, which the scenario refuses: {} (a distribution that reaches such values must be narrowed)",
+                e.value().unwrap_or_default(),
+                e.reason()
+            ),
+        )
+    }
+
     /// The `[uncertainty]` key each column draws (`rod_length_mm` for `rod_length_mm[3]`).
     pub fn column_keys(&self) -> Vec<&str> {
         self.columns

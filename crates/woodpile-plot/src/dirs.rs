@@ -602,14 +602,22 @@ fn thinned(n: usize, most: usize) -> Vec<usize> {
 /// the designs of `references.csv` marked: the catalogue's homogeneous chains and, for the
 /// paper's catalogue, the paper's blast-optimised chain), `pareto_designs` (the front's designs as
 /// rods to scale, at most [`MOST_FRONT_DESIGNS_DRAWN`]) and `hypervolume` (per generation).
-/// Returns the files written and a note when the front is empty.
+/// A lattice study's directory (`woodpile optimize` of a `[lattice]` config) is drawn as its
+/// `hypervolume` and `pareto_front`. Returns the files written and a
+/// note when the front is empty.
 pub fn plot_pareto(
     dir: &Path,
     out: &Path,
     output: &Output,
 ) -> Result<(Vec<PathBuf>, Option<String>), Error> {
     output.check()?;
-    with_output(output, || draw_pareto(dir, out))
+    with_output(
+        output,
+        || match woodpile_io::lattice_study::read_study_output(dir)? {
+            Some(study) => draw_lattice_study(&study, out),
+            None => draw_pareto(dir, out),
+        },
+    )
 }
 
 fn draw_pareto(dir: &Path, out: &Path) -> Result<(Vec<PathBuf>, Option<String>), Error> {
@@ -710,6 +718,37 @@ fn draw_pareto(dir: &Path, out: &Path) -> Result<(Vec<PathBuf>, Option<String>),
         &designs,
         &format!("Pareto front ({model}, {excitation}): {shown}, top to bottom, to scale"),
         &out.join("pareto_designs"),
+    )?);
+    Ok((files, None))
+}
+
+/// The figures of a lattice study (`woodpile optimize` of a `[lattice]` config): `hypervolume`
+/// (per generation) and `pareto_front` (the rows of `pareto.csv`).
+fn draw_lattice_study(
+    study: &woodpile_io::lattice_study::LatticeStudyOutput,
+    out: &Path,
+) -> Result<(Vec<PathBuf>, Option<String>), Error> {
+    let s = &study.summary;
+    create_dir(out)?;
+    let title = format!("NSGA-II, lattice study (seed {})", s.seed);
+    let mut files = crate::hypervolume_history(
+        &study.hypervolume,
+        &format!("{title}: hypervolume"),
+        &out.join("hypervolume"),
+    )?;
+    if study.front.is_empty() {
+        let note = "no feasible design on the front: the front is not drawn";
+        return Ok((files, Some(note.into())));
+    }
+    let axes: Vec<crate::ObjectiveAxis> = (s.objectives.iter().zip(&s.units))
+        .map(|(name, unit)| crate::ObjectiveAxis::new(name, unit))
+        .collect();
+    files.extend(crate::pareto_front(
+        &axes,
+        &study.front,
+        &[],
+        &format!("{title}: front of {} designs", study.front.len()),
+        &out.join("pareto_front"),
     )?);
     Ok((files, None))
 }

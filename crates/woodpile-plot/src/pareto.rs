@@ -222,6 +222,17 @@ pub fn pareto_front(
             v.len()
         )));
     }
+    // A value that is not finite would be drawn nowhere, or stretch the axes to nothing.
+    for (k, v) in front.iter().enumerate() {
+        if let Some(j) = v.iter().position(|x| !x.is_finite()) {
+            return Err(bad(format!(
+                "design {} of the front has {} = {}: every value must be a finite number",
+                k + 1,
+                axes[j].label,
+                v[j]
+            )));
+        }
+    }
     let pairs = (0..m)
         .flat_map(|i| (i + 1..m).map(move |j| (i, j)))
         .collect();

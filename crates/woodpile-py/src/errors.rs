@@ -158,7 +158,7 @@ fn override_argument(limit: woodpile_io::error::Limit) -> &'static str {
     match limit {
         Limit::Threads => "fewer threads",
         Limit::Steps => "allow_long=True",
-        Limit::OutputSize => "allow_large=True",
+        Limit::OutputSize | Limit::Study => "allow_large=True",
         Limit::Generation => "ga.allow_large = true in the config",
         _ => "the matching allow_* argument",
     }

@@ -10,18 +10,23 @@ use woodpile_io::fit::{fit_json, load, residuals_csv, write_outputs};
 /// Fits the fit file at `path` on `threads` threads (default: one per core), GIL released,
 /// Ctrl-C raising `KeyboardInterrupt` within a run.
 /// Returns (`fit.json` as text, `residuals.csv` as text); with `out`, also writes the three
-/// files there (`overwrite`: replace an earlier fit's).
+/// files there (`overwrite`: replace an earlier fit's). A fit planning more than
+/// `woodpile_io::limits::MAX_FIT_RUNS` model runs is refused unless `allow_large`.
 #[pyfunction]
-#[pyo3(signature = (path, out=None, overwrite=false, threads=None))]
+#[pyo3(signature = (path, out=None, overwrite=false, threads=None, allow_large=false))]
 fn fit_file(
     py: Python<'_>,
     path: PathBuf,
     out: Option<PathBuf>,
     overwrite: bool,
     threads: Option<usize>,
+    allow_large: bool,
 ) -> PyResult<(String, String)> {
     crate::interrupt::detach_interruptibly(py, || {
         let setup = load(&path).map_err(py_err)?;
+        woodpile_io::limits::check_fit(setup.starts, setup.max_evaluations, allow_large)
+            .map_err(py_err)?;
+        setup.check_signals().map_err(py_err)?;
         if let Some(dir) = &out {
             woodpile_io::fit::check_output(dir, overwrite).map_err(py_err)?;
         }

@@ -1,14 +1,12 @@
 //! Sensitivity studies (`woodpile.sensitivity`): Sobol' indices over a scenario's
 //! `[uncertainty]`, and the estimators alone on any outputs.
 
-use crate::errors::{core_err, py_err, Failure, Kind};
+use crate::errors::{core_err, py_err, Failure};
 use pyo3::prelude::*;
 use std::path::PathBuf;
 use woodpile::sensitivity::Bootstrap;
-use woodpile_io::scenario::{resolve, Scenario};
-use woodpile_io::sensitivity::{
-    accuracy_targeted, base_samples_refusal, design, figure_indices, FigureIndices,
-};
+use woodpile_io::scenario::Scenario;
+use woodpile_io::sensitivity::{accuracy_targeted, design, figure_indices, FigureIndices};
 use woodpile_io::uncertainty::{figures, FIGURES};
 
 /// One index row: parameter, figure, S1, S1_conf, ST, ST_conf.
@@ -53,9 +51,6 @@ fn sensitivity(
             )
             .into());
         };
-        if let Some(reason) = base_samples_refusal(base_samples) {
-            return Err(Failure::invalid("base_samples", base_samples, reason).into());
-        }
         let mut u = spec.check().map_err(py_err)?;
         if let Some(seed) = seed {
             u.seed = seed;
@@ -70,21 +65,11 @@ fn sensitivity(
         if fast {
             accuracy.push_str(" (paper_settings=True: the scenario's own run settings)");
         }
-        let d = design(&scenario, &u, base_samples, allow_large).map_err(|e| match e {
-            woodpile_io::Error::OverLimit { .. } => Failure::new(
-                Kind::Limit,
-                format!("{e}; pass allow_large=True to go ahead anyway"),
-            )
-            .into(),
-            other => py_err(other),
-        })?;
-        let resolved = d
-            .samples
-            .samples
-            .iter()
-            .map(|s| resolve(&s.scenario, &base_dir))
-            .collect::<Result<Vec<_>, _>>()
+        let d = design(&scenario, &u, ("base_samples", base_samples), allow_large)
             .map_err(py_err)?;
+        // Resolving thousands of rows takes seconds: Ctrl-C ends it.
+        let resolved =
+            woodpile_io::uncertainty::resolve_samples(&d.samples, &base_dir).map_err(py_err)?;
         woodpile_io::limits::RunSize::estimate(&resolved[0].settings, resolved[0].chain.len())
             .check(false, false, false)
             .map_err(py_err)?;

@@ -21,6 +21,9 @@ pub struct Args {
     /// Replace the files of an earlier fit in --out.
     #[arg(long)]
     pub overwrite: bool,
+    /// Allow a fit of more than 1e6 model runs planned (fit.starts × fit.max_evaluations).
+    #[arg(long)]
+    pub allow_large: bool,
     /// Worker threads (`--threads`, `--allow-many-threads`): a Jacobian's runs go in parallel.
     #[command(flatten)]
     pub workers: super::Workers,
@@ -29,13 +32,15 @@ pub struct Args {
 /// Runs `woodpile fit`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     let threads = args.workers.checked()?;
-    let setup = load(&args.file)?;
+    let setup = load(&args.file).map_err(super::chains_only("fit"))?;
+    woodpile_io::limits::check_fit(setup.starts, setup.max_evaluations, args.allow_large)?;
     let (name, _) = super::name_and_base(&args.file, "fit");
     let dir = args
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from("runs").join(format!("{name}-fit")));
     check_output(&dir, args.overwrite)?;
+    setup.check_signals()?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()

@@ -41,6 +41,19 @@ impl Workers {
     }
 }
 
+/// A lattice scenario given to `command`, which runs chains only: the refusal in its words.
+pub fn chains_only(command: &'static str) -> impl Fn(CliError) -> CliError {
+    move |e| match e {
+        CliError::ChainsOnly { source_name } => {
+            let reason = format!(
+                "woodpile {command} supports chains only (a [chain] table), and this scenario is a lattice (its [lattice] table); a lattice runs with woodpile simulate and woodpile optimize"
+            );
+            CliError::invalid("lattice", source_name, reason)
+        }
+        other => other,
+    }
+}
+
 /// Options shared by every subcommand.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Context {

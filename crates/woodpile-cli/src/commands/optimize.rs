@@ -425,7 +425,11 @@ fn drive_nsga2<S: woodpile::optimize::GenomeSpace>(
     }
     match outcome {
         Err(e) if e.is_interrupted() => Err(interrupted_in_generation_zero()),
-        other => other.map_err(optimize_error),
+        other => other.map_err(optimize_error).inspect(|(s, _)| {
+            if let Some(w) = woodpile_io::pareto::hypervolume_warning(s) {
+                crate::out::eprintln(format_args!("warning: {w}"));
+            }
+        }),
     }
 }
 

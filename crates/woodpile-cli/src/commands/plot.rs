@@ -194,6 +194,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
             }
             files
         }
+        DirKind::Sensitivity => woodpile_plot::dirs::sensitivity(&args.dir, &out)?,
     };
     if !ctx.quiet {
         // One line per figure: its PNG, or its first file when no PNG is written.

@@ -7,8 +7,7 @@ use crate::CliError;
 use std::path::Path;
 use woodpile::{simulate_many, Job, LaneWidth};
 use woodpile_io::atomic::Staging;
-use woodpile_io::scenario::resolve;
-use woodpile_io::uncertainty::{samples, write_samples};
+use woodpile_io::uncertainty::{resolve_samples, samples, write_samples};
 
 /// The files a samples directory is made of; summary.json, written last, marks it complete.
 const SAMPLES_FILES: &[&str] = &["samples.csv", "summary.json"];
@@ -16,7 +15,7 @@ const SAMPLES_MARKER: &str = "summary.json";
 
 /// Runs `woodpile simulate --samples K`.
 pub fn run(args: &Args, k: usize, ctx: &Context) -> Result<(), CliError> {
-    let loaded = load(&args.source)?;
+    let loaded = load(&args.source, "simulate --samples")?;
     let Some(spec) = &loaded.scenario.uncertainty else {
         return Err(CliError::invalid(
             "--samples",
@@ -31,24 +30,20 @@ pub fn run(args: &Args, k: usize, ctx: &Context) -> Result<(), CliError> {
         return Err(CliError::invalid(
             "--overwrite",
             "true",
-            "not with --samples: remove the earlier samples directory first",
+            "not with --samples: a samples study is never overwritten; choose another --out",
         ));
     }
     let mut u = spec.check()?;
     u.samples = k;
+    woodpile_io::uncertainty::check_size(&loaded.scenario, k, "--samples", args.allow_large)?;
     let drawn = samples(&loaded.scenario, &u)?;
-    let resolved = drawn
-        .samples
-        .iter()
-        .map(|s| resolve(&s.scenario, &loaded.base_dir))
-        .collect::<Result<Vec<_>, _>>()?;
+    let resolved = resolve_samples(&drawn, &loaded.base_dir)?;
     let staging = stage_study(
         &resolved,
         (args.allow_long, args.allow_large),
         args.out.clone(),
         Path::new("runs").join(format!("{}-samples", loaded.name)),
         SAMPLES_MARKER,
-        "holds earlier samples: choose another --out, or remove it first (--overwrite does not apply to --samples)",
     )?;
     let jobs: Vec<Job<'_>> = resolved
         .iter()
@@ -72,7 +67,7 @@ pub fn run(args: &Args, k: usize, ctx: &Context) -> Result<(), CliError> {
     }
     let elapsed = started.elapsed().as_secs_f64();
     write_samples(staging.path(), &u, &drawn, &runs)?;
-    let dir = staging.commit(SAMPLES_FILES, SAMPLES_MARKER)?;
+    let dir = staging.commit_study(SAMPLES_FILES, SAMPLES_MARKER)?;
     if !ctx.quiet {
         crate::out::print(woodpile_io::text::samples_summary(&dir, k, elapsed, &runs))?;
     }
@@ -81,14 +76,13 @@ pub fn run(args: &Args, k: usize, ctx: &Context) -> Result<(), CliError> {
 
 /// The run-size check of a study's runs (the first stands for all: one chain, one run setting)
 /// and its staged output directory: `out`, or `default`. `--overwrite` does not apply: a
-/// directory holding an earlier study (`marker`) is refused with `earlier` as the reason.
+/// directory holding `marker` is refused (`Staging::prepare_study`).
 pub(crate) fn stage_study(
     resolved: &[woodpile_io::scenario::Resolved],
     (allow_long, allow_large): (bool, bool),
     out: Option<std::path::PathBuf>,
     default: std::path::PathBuf,
     marker: &'static str,
-    earlier: &str,
 ) -> Result<Staging, CliError> {
     woodpile_io::limits::RunSize::estimate(&resolved[0].settings, resolved[0].chain.len()).check(
         allow_long,
@@ -96,8 +90,5 @@ pub(crate) fn stage_study(
         true,
     )?;
     let out = out.unwrap_or(default);
-    Staging::prepare_marked(&out, false, marker).map_err(|e| match e {
-        CliError::OutputExists { path } => CliError::invalid("--out", path.display(), earlier),
-        other => other,
-    })
+    Staging::prepare_study(&out, marker)
 }

@@ -8,10 +8,7 @@ use crate::CliError;
 use std::path::{Path, PathBuf};
 use woodpile::sensitivity::Bootstrap;
 use woodpile::{simulate_many, Job, LaneWidth};
-use woodpile_io::scenario::resolve;
-use woodpile_io::sensitivity::{
-    accuracy_targeted, base_samples_refusal, design, figure_indices, FILES, MARKER,
-};
+use woodpile_io::sensitivity::{accuracy_targeted, design, figure_indices, FILES, MARKER};
 
 /// Arguments of `woodpile sensitivity`.
 #[derive(Debug, Clone, clap::Args)]
@@ -23,11 +20,11 @@ pub struct Args {
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Base samples N, a power of two: N·(G + 2) runs for G scattered parameters.
-    #[arg(long, value_name = "N", default_value_t = woodpile::defaults::SENSITIVITY_BASE_SAMPLES)]
+    #[arg(long, allow_negative_numbers = true, value_name = "N", default_value_t = woodpile::defaults::SENSITIVITY_BASE_SAMPLES)]
     pub base_samples: usize,
     /// Seed of the Sobol' points (default: the scenario's `[uncertainty] seed`); also seeds the
     /// bootstrap.
-    #[arg(long, value_name = "S")]
+    #[arg(long, allow_negative_numbers = true, value_name = "S")]
     pub seed: Option<u32>,
     /// Run with the scenario's own run settings (the paper's RK4 at 0.1 µs when it states none)
     /// instead of the design studies' default, every contact peak within 1e-5.
@@ -49,7 +46,7 @@ const CHUNK: usize = 256;
 
 /// Runs `woodpile sensitivity`.
 pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
-    let mut loaded = load(&args.source)?;
+    let mut loaded = load(&args.source, "sensitivity")?;
     let Some(spec) = &loaded.scenario.uncertainty else {
         return Err(CliError::invalid(
             "uncertainty",
@@ -57,13 +54,6 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
             "woodpile sensitivity needs the scenario's [uncertainty] table: the parameters to scatter and their distributions (docs/sensitivity.md)",
         ));
     };
-    if let Some(reason) = base_samples_refusal(args.base_samples) {
-        return Err(CliError::invalid(
-            "--base-samples",
-            args.base_samples,
-            reason,
-        ));
-    }
     let mut u = spec.check()?;
     if let Some(seed) = args.seed {
         u.seed = seed;
@@ -72,20 +62,15 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
     if fast {
         accuracy.push_str(" (--paper-settings: the scenario's own run settings)");
     }
-    let d = design(&loaded.scenario, &u, args.base_samples, args.allow_large)?;
-    let resolved = d
-        .samples
-        .samples
-        .iter()
-        .map(|s| resolve(&s.scenario, &loaded.base_dir))
-        .collect::<Result<Vec<_>, _>>()?;
+    let samples = ("--base-samples", args.base_samples);
+    let d = design(&loaded.scenario, &u, samples, args.allow_large)?;
+    let resolved = woodpile_io::uncertainty::resolve_samples(&d.samples, &loaded.base_dir)?;
     let staging = super::samples::stage_study(
         &resolved,
         (args.allow_long, false),
         args.out.clone(),
         Path::new("runs").join(format!("{}-sensitivity", loaded.name)),
         MARKER,
-        "holds an earlier sensitivity study: choose another --out, or remove it first",
     )?;
     let rows = resolved.len();
     if !ctx.quiet {
@@ -112,7 +97,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
         &per_figure,
         &accuracy,
     )?;
-    let dir = staging.commit(FILES, MARKER)?;
+    let dir = staging.commit_study(FILES, MARKER)?;
     let figure_dir = dir.join("plots");
     let plotted = woodpile_plot::dirs::sensitivity(&dir, &figure_dir);
     if !ctx.quiet {

@@ -50,7 +50,7 @@ pub struct Args {
     /// Run K samples of the scenario's `[uncertainty]` (overriding its `samples`) in SIMD lanes and
     /// write DIR/samples.csv, DIR/samples/NNN.toml and DIR/summary.json (default DIR:
     /// ./runs/NAME-samples).
-    #[arg(long, value_name = "K")]
+    #[arg(long, allow_negative_numbers = true, value_name = "K")]
     pub samples: Option<usize>,
 }
 
@@ -79,10 +79,11 @@ impl Loaded {
     }
 }
 
-/// Loads a scenario file, or a built-in scenario by name (default: the default job).
-pub fn load(source: &Source) -> Result<Loaded, CliError> {
+/// Loads a scenario file, or a built-in scenario by name (default: the default job), for
+/// `command`, which runs chains only.
+pub fn load(source: &Source, command: &'static str) -> Result<Loaded, CliError> {
     if let Some(file) = &source.file {
-        let scenario = Scenario::load(file)?;
+        let scenario = Scenario::load(file).map_err(super::chains_only(command))?;
         let (name, base_dir) = super::name_and_base(file, "scenario");
         return Ok(Loaded {
             name,
@@ -92,6 +93,12 @@ pub fn load(source: &Source) -> Result<Loaded, CliError> {
         });
     }
     let name = source.scenario.as_deref().unwrap_or(DEFAULT_SCENARIO);
+    if woodpile_io::lattice::builtin_lattice(name).is_some() {
+        let source_name = format!("built-in scenario {name}");
+        return Err(super::chains_only(command)(CliError::ChainsOnly {
+            source_name,
+        }));
+    }
     Ok(Loaded {
         name: name.to_string(),
         file: None,
@@ -116,7 +123,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
             return run_lattice(args, Path::new(name), text, ctx);
         }
     }
-    let loaded = load(&args.source)?;
+    let loaded = load(&args.source, "simulate")?;
     let resolved = loaded.resolve()?;
     RunSize::estimate(&resolved.settings, resolved.chain.len()).check(
         args.allow_long,

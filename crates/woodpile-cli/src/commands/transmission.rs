@@ -58,7 +58,7 @@ pub fn run(args: &Args, ctx: &Context) -> Result<(), CliError> {
             "must be a negative level in dB (e.g. -20): a stop band is where the transmitted amplitude falls below the driven one",
         ));
     }
-    let loaded = load(&args.source)?;
+    let loaded = load(&args.source, "transmission")?;
     let resolved = loaded.resolve()?;
     let lossless = resolved.chain.damping().is_lossless();
     let measurement_damping_time_s =

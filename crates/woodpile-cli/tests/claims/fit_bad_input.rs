@@ -1,8 +1,13 @@
 //! Claim: bad input to `woodpile fit` — a measured CSV whose time does not increase, a NaN or an
 //! empty field (a gap), a column mapped to no model output, a column missing from the file, a
 //! contact the chain does not have, bounds with lower ≥ upper, a parameter key that is not a
-//! number or not a key at all — exits with code 2, one message that starts with `error:` and
-//! names the file and row, or the key as written in the fit file; no output is written.
+//! number or not a key at all, a CSV header naming a column twice or a row of another length
+//! than the header (either would be read silently as something else), no parameter at all or
+//! one key fitted twice, an element's key of a chain given as `rods_mm`, a record or time-shift
+//! bounds so long that every model run would exceed the 1e9-step limit (rather than "the model
+//! failed to run at every start point") — exits with code 2, one message that starts with
+//! `error:` and names the file and row, or the key as written in the fit file; no output is
+//! written.
 
 use crate::common;
 
@@ -121,5 +126,67 @@ fn parameters_must_be_numeric_keys_with_ordered_bounds() {
         CSV,
         &fit("{ key = \"contact_beta_scale.floor\", bounds = [0.5, 2] }"),
         &["fit.parameters[0].key", "striker, inner or wall"],
+    );
+}
+
+#[test]
+fn ambiguous_files_and_parameter_lists_are_refused() {
+    let fit = fit_file(GOOD_SIGNALS, GOOD_PARAMETER);
+    let twice = "time_s,sensor_n,sensor_n\n0,0,1\n1e-6,0.5,1\n2e-6,1.0,1\n";
+    case(
+        "duplicate column",
+        twice,
+        &fit,
+        &["measured.csv, line 1", "`sensor_n` twice"],
+    );
+    let ragged = "time_s,sensor_n\n0,0\n1e-6,0.5,7\n2e-6,1.0\n";
+    case(
+        "ragged row",
+        ragged,
+        &fit,
+        &["measured.csv, line 3", "has 3 fields and the header 2"],
+    );
+    case(
+        "no parameter",
+        CSV,
+        &fit_file(GOOD_SIGNALS, ""),
+        &["fit.parameters = []", "at least one parameter"],
+    );
+    case(
+        "a key twice",
+        CSV,
+        &fit_file(GOOD_SIGNALS, &format!("{GOOD_PARAMETER}, {GOOD_PARAMETER}")),
+        &[
+            "fit.parameters[1].key",
+            "fit.parameters[0] fits this key already",
+        ],
+    ); // The chain is `rods_mm`: there is no `elements` list to index (not "0 entries").
+    case(
+        "an element of a rods_mm chain",
+        CSV,
+        &fit_file(
+            GOOD_SIGNALS,
+            "{ key = \"chain.elements[99].diameter_mm\", bounds = [1.0, 2.0] }",
+        ),
+        &["chain.elements[99].diameter_mm", "given as rods_mm"],
+    );
+}
+
+#[test]
+fn records_too_long_to_model_name_the_data_or_the_shift() {
+    let params = GOOD_PARAMETER;
+    case(
+        "a record of 1e6 s",
+        "time_s,sensor_n\n0,0\n1e6,1\n",
+        &fit_file(GOOD_SIGNALS, params),
+        &["invalid data = measured.csv", "1.000e13 steps"],
+    );
+    let shifted =
+        fit_file(GOOD_SIGNALS, params) + "time_shift_s = { bounds = [-1000.0, 1000.0] }\n";
+    case(
+        "shifts of 1000 s",
+        CSV,
+        &shifted,
+        &["fit.time_shift_s.bounds = [-1000, 1000]", "steps"],
     );
 }

@@ -9,7 +9,8 @@
 //! windows and once) and refuses the run once its `summary.json` lists too few peaks or its
 //! `forces_n.npy` is cut short, naming the file (exit 2). Bad lattices —
 //! layers that do not touch, a support under no bottom rod, an impact point on no top rod, a
-//! negative drop height, more rods or crossings than the limits, an output of hundreds of GB —
+//! negative drop height, more rods or crossings than the limits, an output of hundreds of GB,
+//! an impact point of three coordinates, two supports at one point, rods over 1e4 diameters —
 //! exit with code 2 naming the key, and leave no output directory (each refused at once: the
 //! oversized lattices before their rods' modes or crossings are computed).
 
@@ -193,6 +194,29 @@ fn bad_lattices_exit_2_naming_the_key() {
         "negative length",
         &LATTICE.replace("length_mm = 80.0", "length_mm = -80.0"),
         &["lattice.layers[0].length_mm", "= -80:", "mm > 0"],
+    );
+    // Each of these was accepted silently: a z dropped, one contact reported twice, a rod whose
+    // bending modes lie below a hertz (chains refuse rods over 1e4 diameters).
+    common::refused_scenario(
+        "a third coordinate",
+        &LATTICE.replace("at_mm = [10.0, 0.0]", "at_mm = [10.0, 0.0, 5.0]"),
+        &["at_mm", "invalid length 3", "[x, y]"],
+    );
+    common::refused_scenario(
+        "two supports at one point",
+        &LATTICE.replace(
+            "supports = \"centres\"",
+            "supports = [{ x_mm = 0.0, y_mm = 0.0 }, { x_mm = 0.0, y_mm = 0.0 }]",
+        ),
+        &[
+            "wall.supports[1]",
+            "wall.supports[0] is at this point already",
+        ],
+    );
+    common::refused_scenario(
+        "rods 1e9 mm long",
+        &LATTICE.replace("length_mm = 80.0", "length_mm = 1e9"),
+        &["lattice.layers[0].length_mm", "1e4 diameters"],
     );
     common::refused_scenario(
         "unknown key",

@@ -87,6 +87,15 @@ fn bad_catalogue_and_infeasible_constraints() {
         ],
     );
     bad_config(
+        "nan mass",
+        &BASE.replace(
+            "[run]",
+            "[design.constraints]\nmax_total_mass_g = nan\n[run]",
+        ),
+        // As written, in grams: not the core's max_total_mass_kg.
+        &["design.constraints.max_total_mass_g = NaN", "finite"],
+    );
+    bad_config(
         "counts",
         &BASE.replace(
             "[run]",

@@ -140,7 +140,7 @@ fn bad_input_exits_2_naming_the_key() {
     refused(CHAIN, "131072", "x", "--allow-large");
     std::fs::create_dir(dir.path().join("full")).unwrap();
     common::write(&dir.path().join("full"), "mine.txt", "not woodpile's");
-    refused(CHAIN, "2", "full", "--out");
+    refused(CHAIN, "8", "full", "--out");
     assert!(dir.path().join("full/mine.txt").is_file());
 }
 

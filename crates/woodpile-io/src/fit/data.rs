@@ -9,9 +9,10 @@ use std::path::Path;
 use woodpile::fit::{Measurement, Output};
 
 /// Reads the columns `columns` of a measured CSV file: (times, one vector per column). Errors
-/// name the file and the line: a header without `time_s` first, a named column that is missing,
-/// a row that is short, a value that is not a number, a NaN or an empty field (a gap), times
-/// that do not increase strictly, fewer than two rows.
+/// name the file and the line: a header without `time_s` first or naming a column twice, a named
+/// column that is missing, a row with more or fewer fields than the header, a value that is not
+/// a number, a NaN or an empty field (a gap), times that do not increase strictly, fewer than
+/// two rows.
 pub fn read_signals(path: &Path, columns: &[&str]) -> Result<(Vec<f64>, Vec<Vec<f64>>), Error> {
     let file = std::fs::File::open(path).map_err(|e| Error::Read {
         path: path.to_path_buf(),
@@ -37,6 +38,16 @@ pub fn read_signals(path: &Path, columns: &[&str]) -> Result<(Vec<f64>, Vec<Vec<
             ),
         ));
     }
+    // A column named twice would be read from its first copy, the other silently ignored.
+    if let Some((j, dup)) = (1..names.len()).find_map(|j| {
+        let first = names[..j].iter().position(|n| *n == names[j])?;
+        Some((first, names[j]))
+    }) {
+        return Err(err(
+            1,
+            format!("names column `{dup}` twice (the {} and a later column): which one is measured is ambiguous; rename one", ordinal(j + 1)),
+        ));
+    }
     let mut index = Vec::new();
     for c in columns {
         match names.iter().position(|n| n == c) {
@@ -57,6 +68,16 @@ pub fn read_signals(path: &Path, columns: &[&str]) -> Result<(Vec<f64>, Vec<Vec<
             err(line, format!("cannot read the row: {e}"))
         })?;
         let line = record.position().map_or(0, |p| p.line());
+        if record.len() != names.len() {
+            return Err(err(
+                line,
+                format!(
+                    "has {} fields and the header {}: a row of another length means a field was lost or added; every row needs one value per column",
+                    record.len(),
+                    names.len()
+                ),
+            ));
+        }
         let value = |k: usize, name: &str| -> Result<f64, Error> {
             let text = record.get(k).unwrap_or("");
             if text.is_empty() {
@@ -89,6 +110,17 @@ pub fn read_signals(path: &Path, columns: &[&str]) -> Result<(Vec<f64>, Vec<Vec<
         ));
     }
     Ok((times, values))
+}
+
+/// `1st`, `2nd`, `3rd`, `4th`, ….
+fn ordinal(n: usize) -> String {
+    let suffix = match (n % 10, n % 100) {
+        (1, x) if x != 11 => "st",
+        (2, x) if x != 12 => "nd",
+        (3, x) if x != 13 => "rd",
+        _ => "th",
+    };
+    format!("{n}{suffix}")
 }
 
 /// The measurements of one `[[data]]` entry (`i`-th), each signal checked against the run.
@@ -157,6 +189,47 @@ pub(super) fn measurements(
         out.push(m);
     }
     Ok(out)
+}
+
+/// The smallest peak of a measured signal, relative to the model's peak of the same output:
+/// a signal a billionth of the model's is rounding noise (a double's is 1e-16 of the values it
+/// was computed from) or in another unit; a real measurement in kN against a model in N is 1e-3.
+pub const SIGNAL_FLOOR: f64 = 1e-9;
+
+/// Records the peak |value| of each output over a run.
+struct Peaks {
+    outputs: Vec<Output>,
+    peaks: Vec<f64>,
+}
+
+impl woodpile::Recorder for Peaks {
+    fn start(&mut self, _: &woodpile::Layout) {}
+
+    fn record(&mut self, s: &woodpile::Sample<'_>) {
+        for (o, peak) in self.outputs.iter().zip(&mut self.peaks) {
+            let v = match *o {
+                Output::ContactForce { contact } => s.contact_forces_n.get(contact),
+                Output::ElementVelocity { element } => s.velocities_m_s.get(element - 1),
+                Output::ElementDisplacement { element } => s.displacements_m.get(element - 1),
+                Output::StrikerVelocity => s.striker.as_ref().map(|(_, v)| v),
+            };
+            // NaN (no value) never raises the peak.
+            *peak = peak.max(v.map_or(0.0, |v| v.abs()));
+        }
+    }
+}
+
+/// The peak |value| of each of `outputs` over one run of `built` (sampled at least 4000 times),
+/// or None when the run fails.
+pub(super) fn model_peaks(built: &woodpile::fit::Built, outputs: &[Output]) -> Option<Vec<f64>> {
+    let mut settings = built.settings;
+    settings.sample_interval_s = settings.sample_interval_s.min(settings.duration_s / 4000.0);
+    let mut peaks = Peaks {
+        outputs: outputs.to_vec(),
+        peaks: vec![0.0; outputs.len()],
+    };
+    woodpile::simulate(&built.chain, &built.excitation, &settings, &mut peaks).ok()?;
+    Some(peaks.peaks)
 }
 
 fn check_weights(

@@ -232,6 +232,15 @@ fn set(doc: &mut Value, path: &[(String, Option<usize>)], v: f64, name: &str) ->
             table.insert(k.clone(), Value::Float(v));
             return Ok(());
         }
+        if i.is_some() && !table.contains_key(k) {
+            // No list to index: say so (and, for a chain of rods, which list there is).
+            let rods = table.get("rods_mm").and_then(Value::as_array).map(Vec::len);
+            let reason = match (k.as_str(), rods) {
+                ("elements", Some(n)) => format!("the chain is given as rods_mm ({n} Table 1 rods), which has no `elements` to index: to fit an element's keys, write the chain as `elements` of kind = \"rod\""),
+                _ => format!("the scenario has no `{k}` list to index"),
+            };
+            return Err(Error::invalid(name, v, reason));
+        }
         at = table
             .entry(k.clone())
             .or_insert_with(|| Value::Table(Default::default()));

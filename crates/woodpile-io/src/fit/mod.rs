@@ -26,7 +26,7 @@ mod data;
 mod keys;
 mod output;
 
-pub use data::read_signals;
+pub use data::{read_signals, SIGNAL_FLOOR};
 pub use keys::{Scale, Target, MODULUS_PREFIX, SCALE_PREFIX};
 pub use output::{check_output, fit_json, residuals_csv, write_outputs, FIT_MARKER};
 
@@ -129,6 +129,8 @@ pub struct FitSetup {
     pub measurements: Vec<Measurement>,
     /// Per measurement: its file (as written in the fit file) and column.
     pub sources: Vec<(String, String)>,
+    /// Per measurement: the index of its `[[data]]` entry.
+    pub data_of: Vec<usize>,
     /// The window.
     pub window_s: Option<(f64, f64)>,
     /// Number of starts.
@@ -167,10 +169,12 @@ pub fn setup(config: &FitConfig, path: &Path, base: &Path) -> Result<FitSetup, E
     let window_s = window(config.fit.window_s)?;
     let mut measurements = Vec::new();
     let mut sources = Vec::new();
+    let mut data_of = Vec::new();
     for (i, spec) in config.data.iter().enumerate() {
         let signals = data::measurements(spec, i, base, window_s, &resolved)?;
         for m in signals {
             sources.push((spec.file.clone(), m.label.clone()));
+            data_of.push(i);
             measurements.push(m);
         }
     }
@@ -181,10 +185,27 @@ pub fn setup(config: &FitConfig, path: &Path, base: &Path) -> Result<FitSetup, E
             "give at least one [[data]] entry with signals = { column = \"contact_N_n\" }",
         ));
     }
+    if config.fit.parameters.is_empty() && config.fit.time_shift_s.is_none() {
+        return Err(Error::invalid(
+            "fit.parameters",
+            "[]",
+            "at least one parameter to fit (or fit.time_shift_s), e.g. { key = \"excitation.velocity_m_s\", bounds = [1.5, 2.5] }",
+        ));
+    }
     let mut parameters = Vec::new();
     let mut targets = Vec::new();
     for (i, spec) in config.fit.parameters.iter().enumerate() {
         let field = format!("fit.parameters[{i}]");
+        if let Some(j) = config.fit.parameters[..i]
+            .iter()
+            .position(|p| p.key == spec.key)
+        {
+            return Err(Error::invalid(
+                format!("{field}.key"),
+                &spec.key,
+                format!("fit.parameters[{j}] fits this key already: a key fitted twice has no one value"),
+            ));
+        }
         let target = keys::Target::parse(&spec.key, &format!("{field}.key"))?;
         let current = target.current(&scenario);
         parameters.push(parameter(spec, &field, current)?);
@@ -196,9 +217,26 @@ pub fn setup(config: &FitConfig, path: &Path, base: &Path) -> Result<FitSetup, E
         .as_ref()
         .map(shift_parameter)
         .transpose()?;
+    check_duration(
+        &resolved.settings,
+        &measurements,
+        time_shift_s.as_ref(),
+        &config.data,
+    )?;
     let starts = config.fit.starts.unwrap_or(woodpile::defaults::FIT_STARTS);
     if starts == 0 {
         return Err(Error::invalid("fit.starts", 0, "must be at least 1"));
+    }
+    let max_evaluations = config
+        .fit
+        .max_evaluations
+        .unwrap_or(woodpile::defaults::FIT_MAX_EVALUATIONS);
+    if max_evaluations == 0 {
+        return Err(Error::invalid(
+            "fit.max_evaluations",
+            0,
+            "at least 1 model run per start (default 200): with none, no start would move from its initial values",
+        ));
     }
     Ok(FitSetup {
         path: path.to_path_buf(),
@@ -209,15 +247,60 @@ pub fn setup(config: &FitConfig, path: &Path, base: &Path) -> Result<FitSetup, E
         time_shift_s,
         measurements,
         sources,
+        data_of,
         window_s,
         starts,
-        max_evaluations: config
-            .fit
-            .max_evaluations
-            .unwrap_or(woodpile::defaults::FIT_MAX_EVALUATIONS)
-            .max(1),
+        max_evaluations,
         seed: config.fit.seed.unwrap_or(0),
     })
+}
+
+/// Refuses a fit whose model runs would exceed [`crate::limits::MAX_STEPS`] steps: each run
+/// lasts from the earliest allowed shift to the last measured time (seconds of record at a
+/// 0.1 µs step are 1e7 steps per run, and a fit makes hundreds of runs). Names the time shift's
+/// bounds when they make most of it, else the data.
+fn check_duration(
+    settings: &woodpile::RunSettings,
+    measurements: &[Measurement],
+    shift: Option<&Parameter>,
+    data: &[DataSpec],
+) -> Result<(), Error> {
+    let last = measurements
+        .iter()
+        .filter_map(|m| m.times_s.last().copied())
+        .fold(0.0_f64, f64::max);
+    let earliest = shift.map_or(0.0, |p| p.bounds.map_or(p.initial, |b| b.0).min(0.0));
+    let mut run = *settings;
+    run.duration_s = last - earliest;
+    let Some(steps) = run.estimated_steps() else {
+        return Ok(());
+    };
+    if steps <= crate::limits::MAX_STEPS {
+        return Ok(());
+    }
+    let (field, value) = match shift.and_then(|p| p.bounds) {
+        Some((lo, hi)) if -earliest > last => (
+            "fit.time_shift_s.bounds".to_string(),
+            format!("[{lo}, {hi}]"),
+        ),
+        _ => {
+            let files: Vec<&str> = data.iter().map(|d| d.file.as_str()).collect();
+            (
+                "data".to_string(),
+                format!("{} (time_s up to {last:e} s)", files.join(", ")),
+            )
+        }
+    };
+    Err(Error::invalid(
+        field,
+        value,
+        format!(
+            "each model run would last {:.4e} s (from the earliest shift to the last measured time): {steps:.3e} steps, more than {:.0e}, at the scenario's step; fit a record of at most {:.3e} s, with shifts as small",
+            run.duration_s,
+            crate::limits::MAX_STEPS as f64,
+            crate::limits::MAX_STEPS as f64 * run.duration_s / steps as f64
+        ),
+    ))
 }
 
 /// The scenario named by the fit file: a file relative to `base`, else a built-in name.
@@ -373,6 +456,37 @@ impl FitSetup {
             window_s: self.window_s,
             model,
         }
+    }
+
+    /// Refuses a measured signal whose peak is below [`SIGNAL_FLOOR`] of the model's
+    /// peak of the same output at the initial values (one run of the scenario): rounding noise,
+    /// or a signal in another unit, which carries nothing to fit, as an all-zero signal. A model
+    /// that does not run at the initial values is left to the fit, which reports it.
+    pub fn check_signals(&self) -> Result<(), Error> {
+        let initial: Vec<f64> = self.parameters.iter().map(|p| p.initial).collect();
+        let Ok(built) = self.build(&initial) else {
+            return Ok(());
+        };
+        let Some(peaks) = data::model_peaks(&built, &self.outputs()) else {
+            return Ok(());
+        };
+        for (k, (m, model)) in self.measurements.iter().zip(peaks).enumerate() {
+            if model > 0.0 && m.scale < data::SIGNAL_FLOOR * model {
+                let (file, column) = &self.sources[k];
+                return Err(Error::invalid(
+                    format!("data[{}].signals.{column}", self.data_of[k]),
+                    format!("{file} (peak {:.3e} {})", m.scale, m.output.unit()),
+                    format!(
+                        "below {:e} of the model's peak of {} at the initial values ({model:.3e} {}): rounding noise, or a signal in another unit, which carries no information to fit; give the signal in {}",
+                        data::SIGNAL_FLOOR,
+                        m.output.name(),
+                        m.output.unit(),
+                        m.output.unit()
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The model outputs the measurements map to.

@@ -782,9 +782,25 @@ pub mod defaults {
 impl Scenario {
     /// Parses a scenario from TOML text. Syntax errors and unknown keys give the line and column.
     pub fn parse(text: &str) -> Result<Self, Error> {
-        toml::from_str(text).map_err(|e| Error::Parse {
-            source_name: "scenario".into(),
-            message: e.to_string(),
+        Self::parse_named(text, "scenario")
+    }
+
+    /// [`Scenario::parse`] naming the text `source_name` in errors. A lattice scenario (a
+    /// top-level `lattice` table) is [`Error::ChainsOnly`] rather than an unknown key.
+    fn parse_named(text: &str, source_name: &str) -> Result<Self, Error> {
+        toml::from_str(text).map_err(|e| {
+            let lattice = text
+                .parse::<toml::Table>()
+                .is_ok_and(|t| t.contains_key("lattice"));
+            if lattice {
+                return Error::ChainsOnly {
+                    source_name: source_name.into(),
+                };
+            }
+            Error::Parse {
+                source_name: source_name.into(),
+                message: e.to_string(),
+            }
         })
     }
 
@@ -794,10 +810,7 @@ impl Scenario {
             path: path.to_path_buf(),
             source: e,
         })?;
-        toml::from_str(&text).map_err(|e| Error::Parse {
-            source_name: path.display().to_string(),
-            message: e.to_string(),
-        })
+        Self::parse_named(&text, &path.display().to_string())
     }
 
     /// The same scenario with every default written out (the keys that apply to the chosen kinds).

@@ -1,5 +1,5 @@
-//! Claim: every reader of user files (scenario, optimisation config, `.npy`, blast table,
-//! checkpoint) answers arbitrary bytes with a result or an error, never a panic: the fuzzing
+//! Claim: every reader of user files (scenario, lattice, optimisation config, `.npy`, blast
+//! table, checkpoint, fit file with its CSV, `[uncertainty]`) answers arbitrary bytes with a result or an error, never a panic: the fuzzing
 //! corpus (`crates/woodpile-fuzz/corpus/`: the seeds and every input the fuzzer once found to
 //! crash or hang, kept after the fix) replays cleanly, and so do 320 random mutations of it
 //! (a random target and seed each, up to 8 byte edits; proptest shrinks a failure to the

@@ -18,4 +18,5 @@ mod rod_range_catalogue;
 mod run_directory_roundtrip;
 mod scenario_keys_table;
 mod study_defaults_same_choices;
+mod study_refusals;
 mod uncertainty_table;
