@@ -61,7 +61,7 @@ pub fn message(e: &CliError) -> String {
             reference,
             limit,
         } => format!(
-            "inaccurate run: the energy balance is off by {relative_error:.2e} of {reference}, above the limit {limit:.0e}; use a smaller run.time_step_s (rk4) or a tighter rtol/atol (dopri5), or pass --allow-inaccurate to keep the results anyway"
+            "inaccurate run: the energy balance is off by {relative_error:.2e} of {reference}, above the limit {limit:.0e}; use a smaller run.peak_tolerance (or run.time_step_s under rk4, rtol/atol under dopri5), or pass --allow-inaccurate to keep the results anyway"
         ),
         other => other.to_string(),
     }

@@ -134,7 +134,7 @@ pub enum Error {
     },
     /// A run whose energy balance does not close to the stated accuracy: its numbers would not
     /// mean what they say. The allow-inaccurate option keeps the results anyway.
-    #[error("inaccurate run: the energy balance is off by {relative_error:.2e} of {reference}, above the limit {limit:.0e}; use a smaller run.time_step_s (rk4) or a tighter rtol/atol (dopri5), or allow an inaccurate run to keep the results anyway")]
+    #[error("inaccurate run: the energy balance is off by {relative_error:.2e} of {reference}, above the limit {limit:.0e}; use a smaller run.peak_tolerance (or run.time_step_s under rk4, rtol/atol under dopri5), or allow an inaccurate run to keep the results anyway")]
     Inaccurate {
         /// Largest relative energy error over the samples.
         relative_error: f64,

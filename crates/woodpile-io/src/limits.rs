@@ -230,7 +230,7 @@ pub fn check_accuracy(
     }
     Ok((!within(woodpile::defaults::ENERGY_ERROR_WARN)).then(|| {
         format!(
-            "the energy balance is off by {err:.2e} of {ENERGY_REFERENCE} (above {:.0e}): the results may be inaccurate; use a smaller run.time_step_s (rk4) or a tighter rtol/atol (dopri5)",
+            "the energy balance is off by {err:.2e} of {ENERGY_REFERENCE} (above {:.0e}): the results may be inaccurate; use a smaller run.peak_tolerance (or run.time_step_s under rk4, rtol/atol under dopri5)",
             woodpile::defaults::ENERGY_ERROR_WARN
         )
     }))
