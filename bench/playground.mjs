@@ -93,7 +93,13 @@ await send("Page.navigate", { url });
 await waitFor(`document.getElementById("results")?.dataset.state === "done"`);
 const first = Number(await computeMs());
 if (screenshot) {
-  const { data } = await send("Page.captureScreenshot", { format: "png", captureBeyondViewport: true });
+  // The page down to the force map (not the text below it, which shows the last screenshot).
+  const bottom = await evaluate(`document.getElementById("map").getBoundingClientRect().bottom + scrollY + 12`);
+  const { data } = await send("Page.captureScreenshot", {
+    format: "png",
+    captureBeyondViewport: true,
+    clip: { x: 0, y: 0, width: 1100, height: bottom, scale: 1 },
+  });
   writeFileSync(screenshot, Buffer.from(data, "base64"));
 }
 const scratch = mkdtempSync(join(tmpdir(), "woodpile-native-"));
