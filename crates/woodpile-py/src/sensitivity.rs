@@ -65,8 +65,8 @@ fn sensitivity(
         if fast {
             accuracy.push_str(" (paper_settings=True: the scenario's own run settings)");
         }
-        let d = design(&scenario, &u, ("base_samples", base_samples), allow_large)
-            .map_err(py_err)?;
+        let d =
+            design(&scenario, &u, ("base_samples", base_samples), allow_large).map_err(py_err)?;
         // Resolving thousands of rows takes seconds: Ctrl-C ends it.
         let resolved =
             woodpile_io::uncertainty::resolve_samples(&d.samples, &base_dir).map_err(py_err)?;
