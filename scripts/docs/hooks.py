@@ -53,7 +53,8 @@ def _playground_module() -> Path:
             f"building the playground's WebAssembly module failed ({e}); it needs the Rust target "
             f"{target}: rustup target add {target}"
         ) from e
-    target_dir = Path(os.environ.get("CARGO_TARGET_DIR", reference.ROOT / "target"))
+    # (A relative CARGO_TARGET_DIR is cargo's, relative to the checkout.)
+    target_dir = reference.ROOT / os.environ.get("CARGO_TARGET_DIR", "target")
     return target_dir / target / "release" / "woodpile_wasm.wasm"
 
 
