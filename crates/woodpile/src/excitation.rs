@@ -371,6 +371,14 @@ pub enum Signal {
 }
 
 impl Signal {
+    /// The largest |value| the signal takes (N or m): its amplitude, or a table's largest entry.
+    pub fn largest_abs(&self) -> f64 {
+        match self {
+            Signal::Harmonic { amplitude, .. } | Signal::Chirp { amplitude, .. } => amplitude.abs(),
+            Signal::Table { values, .. } => values.iter().fold(0.0, |m, v| m.max(v.abs())),
+        }
+    }
+
     /// Value s(t) and rate ds/dt.
     pub fn value_and_rate(&self, t: f64) -> (f64, f64) {
         use std::f64::consts::TAU;

@@ -926,10 +926,11 @@ fn diagnose_blow_up(
 }
 
 /// Whether the load asks more of a contact than its physical range, from statics and energy alone
-/// (no integration, so no number from a failed state): a blast's peak force held statically on top
-/// of the preload and gravity compresses contact i by (F/β_i)^{2/3}; a striker's kinetic energy of
-/// relative motion ½ μ v² (μ the reduced mass of striker and top primary) stored in its contact
-/// compresses it by (5 E / 2β)^{2/5}.
+/// (no integration, so no number from a failed state): the preload and gravity alone compress
+/// contact i by (F_i/β_i)^{2/3} (F_i its static force); a blast's peak force, or a force drive's
+/// amplitude, held statically on top of them compresses it by ((F + F_i)/β_i)^{2/3}; a striker's
+/// kinetic energy of relative motion ½ μ v² (μ the reduced mass of striker and top primary) stored
+/// in its contact compresses it by (5 E / 2β)^{2/5}.
 fn load_beyond_reach(
     chain: &Chain,
     ode: &ChainOde,
@@ -945,6 +946,32 @@ fn load_beyond_reach(
         }
     };
     let exceeds = |need: f64, limit: f64| need.is_nan() || need > limit;
+    let statics = chain.static_contact_forces_n();
+    // A force held on element 1 (on top of the statics): the first contact it takes too far.
+    let held = |force_n: f64, load: &dyn Fn() -> String| {
+        (1..betas.len()).find_map(|c| {
+            let need = ((force_n + statics[c - 1]) / betas[c]).libm_powf(2.0 / 3.0);
+            exceeds(need, limits[c]).then(|| Error::LoadExceedsContact {
+                time_s,
+                contact: c,
+                load: load(),
+                needed: words(need),
+                limit_m: limits[c],
+            })
+        })
+    };
+    let preload = chain.preload();
+    if !preload.is_none() {
+        let statics_words = || {
+            format!(
+                "the static load (preload.force_n = {:.3e} N, gravity_m_s2 = {:.3e} m/s²)",
+                preload.force_n, preload.gravity_m_s2
+            )
+        };
+        if let Some(e) = held(0.0, &statics_words) {
+            return Some(e);
+        }
+    }
     match excitation {
         Excitation::Impact(striker) => {
             let m_s = ode.striker_mass_kg()?;
@@ -967,16 +994,14 @@ fn load_beyond_reach(
         }
         Excitation::Blast(blast) => {
             let peak_n = blast.peak_force_n();
-            let statics = chain.static_contact_forces_n();
-            (1..betas.len()).find_map(|c| {
-                let need = ((peak_n + statics[c - 1]) / betas[c]).libm_powf(2.0 / 3.0);
-                exceeds(need, limits[c]).then(|| Error::LoadExceedsContact {
-                    time_s,
-                    contact: c,
-                    load: format!("the blast's peak force {peak_n:.3e} N (excitation.peak_force_n, or the table's largest force), held statically,"),
-                    needed: words(need),
-                    limit_m: limits[c],
-                })
+            held(peak_n, &|| {
+                format!("the blast's peak force {peak_n:.3e} N (excitation.peak_force_n, or the table's largest force), held statically,")
+            })
+        }
+        Excitation::Drive(drive) if drive.quantity == crate::excitation::DriveQuantity::Force => {
+            let peak_n = drive.signal.largest_abs();
+            held(peak_n, &|| {
+                format!("the drive's largest force {peak_n:.3e} N (excitation.amplitude, or the table's largest value), held statically,")
             })
         }
         _ => None,

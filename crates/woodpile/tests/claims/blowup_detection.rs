@@ -18,10 +18,14 @@
 //!   statically by (F/β)^{2/3} ≈ 0.55 m, two thousand times its 0.25 mm range: when it blows up it
 //!   is reported as a load beyond contact 1 from that static overlap (`LoadExceedsContact`),
 //!   every number printed finite, and not as a step problem.
+//! - So is a force drive of 1e300 N on element 1, naming the drive's amplitude, and gravity of
+//!   1e300 m/s² (the static load alone, (F_i/β_i)^{2/3} ≈ 1e192 m), naming the preload's keys:
+//!   both overflow the state within a step, where a message blaming the step would send the user
+//!   to the wrong cure.
 
 use woodpile::{
-    simulate, BlastProfile, CellModel, ChainBuilder, Error, Excitation, Method, RunSettings,
-    Striker,
+    simulate, BlastProfile, CellModel, ChainBuilder, Drive, Error, Excitation, Method, Preload,
+    RunSettings, Signal, Striker,
 };
 
 /// Δt of the rigid run: about the striker's contact time, so RK4 cannot resolve the contact.
@@ -188,4 +192,40 @@ fn a_blast_beyond_the_contact_is_told_from_statics() {
     let text = err.to_string();
     assert!(text.contains("a smaller time step will not help"), "{text}");
     assert!(!text.contains("inf") && !text.contains("NaN"), "{text}");
+}
+
+/// The error of a run of three 20 mm rods under `preload`, driven by `excitation`: a load beyond
+/// contact 1, whose message names `key` and says the step is not the cure.
+fn refused_as_load(excitation: &Excitation, preload: Preload, key: &str) {
+    let chain = ChainBuilder::table1_rods(&[20; 3], CellModel::Resonant)
+        .unwrap()
+        .preload(preload)
+        .build()
+        .unwrap();
+    let err = simulate(&chain, excitation, &short(1e-7), &mut ()).unwrap_err();
+    assert!(
+        matches!(err, Error::LoadExceedsContact { contact: 1, .. }),
+        "expected a load beyond contact 1, got {err:?}"
+    );
+    let text = err.to_string();
+    assert!(text.contains(key), "{text}");
+    assert!(text.contains("a smaller time step will not help"), "{text}");
+}
+
+#[test]
+fn a_huge_force_drive_or_gravity_is_told_from_statics() {
+    let drive = Excitation::Drive(Drive::force(Signal::Harmonic {
+        amplitude: 1e300,
+        frequency_hz: 1e3,
+    }));
+    refused_as_load(&drive, Preload::default(), "excitation.amplitude");
+    let gentle = Excitation::Drive(Drive::force(Signal::Harmonic {
+        amplitude: 1.0,
+        frequency_hz: 1e3,
+    }));
+    let heavy = Preload {
+        force_n: 0.0,
+        gravity_m_s2: 1e300,
+    };
+    refused_as_load(&gentle, heavy, "gravity_m_s2");
 }
