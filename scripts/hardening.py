@@ -102,6 +102,13 @@ CLI_CASES = [
          files={"s.toml": blast("peak_force_n = 1e300\nduration_s = 2e-4\n")}),
     Case("blast 1e9 N", ["simulate", "s.toml", "--out", "o"], (1, 2), ("load",), absent=("reduce run.time_step_s",),
          files={"s.toml": blast("peak_force_n = 1e9\nduration_s = 2e-4\n")}),
+    Case("force drive 1e300 N", ["simulate", "s.toml", "--out", "o"], (1, 2), ("excitation.amplitude",),
+         absent=("reduce run.time_step_s",),
+         files={"s.toml": "[chain]\nrods_mm = [40, 30, 20]\n[excitation]\nkind = \"drive\"\ndrive = \"force\"\n"
+                "signal = \"harmonic\"\namplitude = 1e300\nfrequency_hz = 1000.0\n[run]\nduration_s = 1e-4\n"}),
+    Case("gravity 1e300 m/s2", ["simulate", "s.toml", "--out", "o"], (1, 2), ("gravity_m_s2",),
+         absent=("reduce run.time_step_s",),
+         files={"s.toml": "[chain]\nrods_mm = [40, 30, 20]\n[preload]\ngravity_m_s2 = 1e300\n[run]\nduration_s = 1e-4\n"}),
     Case("drop from 1e300 m", ["simulate", "s.toml", "--out", "o"], (1, 2), ("drop_height_m",),
          files={"s.toml": "[chain]\nrods_mm = [40, 30, 20]\n[excitation]\ndrop_height_m = 1e300\n"}),
     Case("duration 1e300 s", ["simulate", "s.toml", "--out", "o"], (2,), ("run.duration_s",),
