@@ -459,26 +459,14 @@ impl OptimizeConfig {
 
     /// In words: how accurately the designs of a completed config are simulated.
     pub fn accuracy_text(&self) -> String {
-        let r = &self.run;
-        let mut text = match (r.peak_tolerance, r.integrator, r.time_step_s) {
-            (Some(t), _, _) => format!("every contact peak within {t:e} (relative)"),
-            (None, Some(crate::scenario::IntegratorKind::Dopri5), _) => format!(
-                "dopri5, rtol {:e}, atol {:e} m",
-                r.rtol.unwrap_or(woodpile::defaults::RTOL),
-                r.atol.unwrap_or(woodpile::defaults::ATOL)
-            ),
-            (None, _, dt) => format!(
-                "rk4 at {:e} s",
-                dt.unwrap_or(woodpile::defaults::TIME_STEP_S)
-            ),
-        };
+        let mut text = self.run.accuracy_text();
         if let Some(t) = self.ga.screen_peak_tolerance {
             text.push_str(&format!(", screened at {t:e}"));
         }
         if self.ga.stop_early == Some(true) {
             text.push_str(", runs stopped early");
         }
-        if self.ga.paper_settings != Some(true) && r.peak_tolerance.is_some() {
+        if self.ga.paper_settings != Some(true) && self.run.peak_tolerance.is_some() {
             text.push_str(" (--paper-settings: the paper's rk4 at 1e-7 s)");
         }
         text

@@ -63,18 +63,7 @@ pub fn accuracy_targeted(
     if applied {
         r.peak_tolerance = Some(woodpile::defaults::STUDY_PEAK_TOLERANCE);
     }
-    let text = match (r.peak_tolerance, r.integrator, r.time_step_s) {
-        (Some(t), _, _) => format!("every contact peak within {t:e} (relative)"),
-        (None, Some(crate::scenario::IntegratorKind::Dopri5), _) => format!(
-            "dopri5, rtol {:e}, atol {:e} m",
-            r.rtol.unwrap_or(woodpile::defaults::RTOL),
-            r.atol.unwrap_or(woodpile::defaults::ATOL)
-        ),
-        (None, _, dt) => format!(
-            "rk4 at {:e} s",
-            dt.unwrap_or(woodpile::defaults::TIME_STEP_S)
-        ),
-    };
+    let text = r.accuracy_text();
     (text, applied)
 }
 

@@ -768,6 +768,24 @@ pub struct RunSpec {
     pub sample_interval_s: Option<f64>,
 }
 
+impl RunSpec {
+    /// In words: how a run of these settings is integrated (a design study's reports).
+    pub fn accuracy_text(&self) -> String {
+        match (self.peak_tolerance, self.integrator, self.time_step_s) {
+            (Some(t), _, _) => format!("every contact peak within {t:e} (relative)"),
+            (None, Some(IntegratorKind::Dopri5), _) => format!(
+                "dopri5, rtol {:e}, atol {:e} m",
+                self.rtol.unwrap_or(woodpile::defaults::RTOL),
+                self.atol.unwrap_or(woodpile::defaults::ATOL)
+            ),
+            (None, _, dt) => format!(
+                "rk4 at {:e} s",
+                dt.unwrap_or(woodpile::defaults::TIME_STEP_S)
+            ),
+        }
+    }
+}
+
 /// The model's defaults, from the physics core (their single source).
 pub mod defaults {
     pub use woodpile::defaults::*;
